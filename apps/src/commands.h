@@ -1,0 +1,16 @@
+#pragma once
+// Each `hullcover` subcommand registers its options on the CLI11 app and, when
+// chosen, runs and stores the process exit status: 0 success, 1 a finding
+// (e.g. an audit violation), 2 unreadable input or bad usage.
+
+#include <CLI/CLI.hpp>
+
+namespace hullcover::app {
+
+inline constexpr int kExitSuccess = 0;
+inline constexpr int kExitBadInput = 2;
+
+void register_info_command(CLI::App& app, int& exit_status);
+void register_demo_command(CLI::App& app, int& exit_status);
+
+} // namespace hullcover::app

@@ -1,0 +1,11 @@
+# Warnings and sanitizers apply to the project's own targets only, so a
+# dependency's headers (included as SYSTEM) never break the build.
+
+function(hullcover_target_defaults target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow)
+  if(HULLCOVER_SANITIZE)
+    target_compile_options(${target} PRIVATE
+      -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
+    target_link_options(${target} PRIVATE -fsanitize=address,undefined)
+  endif()
+endfunction()
