@@ -50,6 +50,19 @@ void append_node(const aiScene& scene, const aiNode& node, const Eigen::Matrix4d
   for (unsigned c = 0; c < node.mNumChildren; ++c) append_node(scene, *node.mChildren[c], world, out);
 }
 
+Status check_face_indices(const aiScene& scene) {
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh& mesh = *scene.mMeshes[m];
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f)
+      for (unsigned k = 0; k < mesh.mFaces[f].mNumIndices; ++k)
+        if (mesh.mFaces[f].mIndices[k] >= mesh.mNumVertices)
+          return {StatusCode::index_out_of_range, "face " + std::to_string(f) + " of mesh " + std::to_string(m) +
+                                                      " names vertex " + std::to_string(mesh.mFaces[f].mIndices[k]) +
+                                                      " but the mesh has " + std::to_string(mesh.mNumVertices)};
+  }
+  return Status::success();
+}
+
 Result<ImportedMesh> import_with_assimp(const std::string& path) {
   Assimp::Importer importer;
   const std::string extension = std::filesystem::path(path).extension().string();
@@ -57,11 +70,18 @@ Result<ImportedMesh> import_with_assimp(const std::string& path) {
     return Status{StatusCode::unknown_format,
                   path + ": unknown format '" + extension + "' (readable: .obj .ply .stl .gltf .glb .fbx and others Assimp knows)"};
 
-  const unsigned flags = aiProcess_Triangulate | aiProcess_ValidateDataStructure;
-  const aiScene* scene = importer.ReadFile(path, flags);
+  // Read without post-processing first: triangulation reads vertices by
+  // index, so indices are checked before it runs.
+  const aiScene* scene = importer.ReadFile(path, 0);
   if (scene == nullptr)
     return Status{StatusCode::unreadable_file, path + ": cannot read: " + importer.GetErrorString()};
-  if (scene->mRootNode == nullptr) return Status{StatusCode::empty_scene, path + ": the file holds no scene"};
+  if (scene->mRootNode == nullptr || scene->mNumMeshes == 0)
+    return Status{StatusCode::empty_scene, path + ": the file holds no mesh"};
+  if (Status indices = check_face_indices(*scene); !indices.ok())
+    return Status{indices.code(), path + ": " + indices.message()};
+  scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_ValidateDataStructure);
+  if (scene == nullptr)
+    return Status{StatusCode::unreadable_file, path + ": cannot read: " + importer.GetErrorString()};
 
   ImportedMesh out;
   append_node(*scene, *scene->mRootNode, Eigen::Matrix4d::Identity(), out);
@@ -83,8 +103,10 @@ Result<ImportedMesh> import_with_assimp(const std::string& path) {
 
 Result<ImportedMesh> import_mesh(const std::string& path) {
   std::error_code error;
+  if (!std::filesystem::exists(path, error)) return Status{StatusCode::file_not_found, path + ": no such file"};
   if (!std::filesystem::is_regular_file(path, error))
-    return Status{StatusCode::file_not_found, path + ": no such file"};
+    return Status{StatusCode::file_not_found, path + ": not a regular file"};
+  if (std::filesystem::file_size(path, error) == 0) return Status{StatusCode::empty_scene, path + ": the file is empty"};
   try {
     return import_with_assimp(path);
   } catch (const std::exception& e) {

@@ -1,0 +1,123 @@
+// Drives the real `hullcover` binary as a user would and checks its exit
+// status, what it prints and what it writes.
+
+#include "temp_dir.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace {
+
+using hullcover::test::TempDir;
+
+struct CommandRun {
+  int status = -1;
+  std::string out, err;
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+CommandRun run(const TempDir& dir, const std::string& arguments) {
+  const std::string command = std::string(HULLCOVER_EXECUTABLE) + " " + arguments + " >" + dir.path("stdout") +
+                              " 2>" + dir.path("stderr") + " </dev/null";
+  const int raw = std::system(command.c_str());
+  CommandRun r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.out = slurp(dir.path("stdout"));
+  r.err = slurp(dir.path("stderr"));
+  return r;
+}
+
+const char* kQuadObj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+
+TEST(CommandLine, HelpListsTheCommands) {
+  TempDir dir;
+  const CommandRun r = run(dir, "--help");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("info"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("demo"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Exit status"), std::string::npos) << r.out;
+}
+
+TEST(CommandLine, InfoHelpExplainsTheTolerance) {
+  TempDir dir;
+  const CommandRun r = run(dir, "info --help");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("--tol"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--json"), std::string::npos) << r.out;
+}
+
+TEST(CommandLine, BadUsageExitsWithTwo) {
+  TempDir dir;
+  EXPECT_EQ(run(dir, "").status, 2);
+  EXPECT_EQ(run(dir, "frobnicate").status, 2);
+  EXPECT_EQ(run(dir, "info").status, 2);
+  const std::string quad = dir.write("quad.obj", kQuadObj);
+  EXPECT_EQ(run(dir, "info " + quad + " --tol banana").status, 2);
+  const CommandRun negative = run(dir, "info " + quad + " --tol -1");
+  EXPECT_EQ(negative.status, 2);
+  EXPECT_NE(negative.err.find("tolerance"), std::string::npos) << negative.err;
+}
+
+TEST(CommandLine, BadInputGivesOneLineNamingTheFileAndExitsWithTwo) {
+  TempDir dir;
+  const std::string missing = dir.path("missing.obj");
+  const std::string nan = dir.write("nan.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const std::string unknown = dir.write("scene.xyz", "hello\n");
+  for (const std::string& path : {missing, nan, unknown}) {
+    const CommandRun r = run(dir, "info " + path);
+    EXPECT_EQ(r.status, 2) << path;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_NE(r.err.find(path), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+}
+
+TEST(CommandLine, InfoJsonReportsTheQuad) {
+  TempDir dir;
+  const std::string quad = dir.write("quad.obj", kQuadObj);
+  const CommandRun r = run(dir, "info " + quad + " --json --tol 0.001");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["triangles"], 2);
+  EXPECT_EQ(j["vertices_after_weld"], 4);
+  EXPECT_EQ(j["components"], 1);
+  EXPECT_EQ(j["boundary_edges"], 4);
+  EXPECT_EQ(j["non_manifold_edges"], 0);
+  EXPECT_DOUBLE_EQ(j["tolerance"]["length"].get<double>(), 0.001);
+  EXPECT_TRUE(j["tolerance"]["user_given"].get<bool>());
+}
+
+TEST(CommandLine, InfoTextPrintsTheToleranceUsed) {
+  TempDir dir;
+  const std::string quad = dir.write("quad.obj", kQuadObj);
+  const CommandRun r = run(dir, "info " + quad);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("tolerance"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("1e-5 x bounding-box diagonal 1.41421"), std::string::npos) << r.out;
+}
+
+TEST(CommandLine, DemoWritesTheSceneAndItsFigures) {
+  TempDir dir;
+  const CommandRun r = run(dir, "demo --out " + dir.path("demo"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const CommandRun info = run(dir, "info --json " + dir.path("demo/demo-scene.obj"));
+  ASSERT_EQ(info.status, 0) << info.err;
+  const nlohmann::json written = nlohmann::json::parse(slurp(dir.path("demo/demo-info.json")));
+  const nlohmann::json reread = nlohmann::json::parse(info.out);
+  // The OBJ the demo wrote reads back to the figures the demo printed.
+  for (const char* key : {"triangles", "vertices_after_weld", "components", "boundary_edges", "non_manifold_edges"})
+    EXPECT_EQ(written[key], reread[key]) << key;
+}
+
+} // namespace

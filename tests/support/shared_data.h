@@ -1,0 +1,24 @@
+#pragma once
+// Where the project's shared data (real game scenes, other tools' hulls)
+// lives, for tests that read it in place.
+
+#include <optional>
+#include <string>
+
+namespace hullcover::test {
+
+/// The `data/scenes` directory, or nothing when it is absent (a user's
+/// clone without ../shared). The environment variable HULLCOVER_SHARED_DIR
+/// overrides the location configured at build time.
+std::optional<std::string> shared_scenes_dir();
+
+} // namespace hullcover::test
+
+/// Skips the current test, with a message saying why, when the shared
+/// scenes are absent; otherwise binds `dir` to their directory.
+#define HULLCOVER_REQUIRE_SHARED_SCENES(dir)                                                      \
+  const auto dir##_found = ::hullcover::test::shared_scenes_dir();                                \
+  if (!dir##_found)                                                                               \
+    GTEST_SKIP() << "../shared/data/scenes not found (a clone without the project's shared "      \
+                    "folder); set HULLCOVER_SHARED_DIR to run this test";                         \
+  const std::string dir = *dir##_found

@@ -1,0 +1,24 @@
+#pragma once
+// A fresh directory per test, removed afterwards, for files tests write.
+
+#include <string>
+
+namespace hullcover::test {
+
+class TempDir {
+public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+
+  /// `name` inside the directory.
+  std::string path(const std::string& name) const;
+  /// Writes `content` to `name` and returns its path.
+  std::string write(const std::string& name, const std::string& content) const;
+
+private:
+  std::string dir_;
+};
+
+} // namespace hullcover::test
