@@ -3,7 +3,7 @@
 #include "commands.h"
 #include "mesh_report.h"
 
-#include "hullcover/lib/mesh_import.h"
+#include "scene_loading.h"
 
 #include <cstdio>
 #include <iostream>
@@ -21,18 +21,10 @@ struct InfoOptions {
 };
 
 int run_info(const InfoOptions& options) {
-  Result<ImportedMesh> imported = import_mesh(options.path);
-  if (!imported.ok()) {
-    std::fprintf(stderr, "hullcover: error: %s\n", imported.status().message().c_str());
-    return kExitBadInput;
-  }
-  Result<PreparedMesh> prepared = prepare_mesh(imported.value().mesh, options.tolerance);
-  if (!prepared.ok()) {
-    std::fprintf(stderr, "hullcover: error: %s: %s\n", options.path.c_str(), prepared.status().message().c_str());
-    return kExitBadInput;
-  }
-  const MeshFigures figures = measure_mesh(prepared.value());
-  const ImportReport& report = imported.value().report;
+  const std::optional<LoadedScene> scene = load_scene(options.path, options.tolerance);
+  if (!scene) return kExitBadInput;
+  const MeshFigures figures = measure_mesh(scene->prepared);
+  const ImportReport& report = scene->report;
   if (options.json) {
     nlohmann::json out = mesh_figures_json(figures);
     out["file"] = options.path;

@@ -1,0 +1,23 @@
+#pragma once
+// Reading and preparing the scene a command works on, with the one-line
+// error every command prints for unreadable input.
+
+#include "hullcover/lib/mesh_import.h"
+#include "hullcover/lib/prepared_mesh.h"
+
+#include <optional>
+#include <string>
+
+namespace hullcover::app {
+
+struct LoadedScene {
+  PreparedMesh prepared;
+  ImportReport report;
+};
+
+/// Imports `path` and prepares it with the tolerance given (or the
+/// default). On failure prints "hullcover: error: PATH: problem" to stderr
+/// and returns nothing.
+std::optional<LoadedScene> load_scene(const std::string& path, std::optional<double> tolerance);
+
+} // namespace hullcover::app

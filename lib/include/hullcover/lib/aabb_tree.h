@@ -1,0 +1,54 @@
+#pragma once
+/// \file aabb_tree.h
+/// A static bounding-volume tree over boxes, for "which mesh elements are
+/// near this hull" queries during the validity checks (paper 4.3: "we rely
+/// on space partitioning to speed up this process").
+
+#include "hullcover/lib/mesh.h"
+
+#include <vector>
+
+namespace hullcover {
+
+/// Built once over a fixed list of boxes; answers box-overlap queries with
+/// the indices of the boxes in that list.
+class AabbTree {
+public:
+  AabbTree() = default;
+  /// Builds over `boxes` (index i is reported for boxes[i]). O(n log n).
+  explicit AabbTree(const std::vector<Aabb>& boxes);
+
+  /// Appends to `out` the index of every box overlapping `query` (closed
+  /// boxes: touching counts), in no particular order.
+  void overlapping(const Aabb& query, std::vector<int>& out) const;
+
+  bool empty() const { return nodes_.empty(); }
+
+private:
+  struct Node {
+    Aabb box;
+    int first = 0;   ///< leaf: first item in items_
+    int count = 0;   ///< leaf: number of items; inner node: 0
+    int left = -1;   ///< inner node: children
+    int right = -1;
+  };
+  int build(int begin, int end, const std::vector<Aabb>& boxes, std::vector<Eigen::Vector3d>& centres);
+
+  std::vector<Node> nodes_;
+  std::vector<int> items_;
+  std::vector<Aabb> item_boxes_;
+};
+
+/// True when the closed boxes share a point.
+inline bool boxes_overlap(const Aabb& a, const Aabb& b) {
+  return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
+}
+
+/// `box` grown by `margin` on every side.
+inline Aabb grown(Aabb box, double margin) {
+  box.min.array() -= margin;
+  box.max.array() += margin;
+  return box;
+}
+
+} // namespace hullcover

@@ -1,0 +1,59 @@
+#pragma once
+/// \file convex_polytope.h
+/// Planes and convex polytopes (hulls, prisms, flat polygons) and the
+/// sidedness questions every validity condition asks of them.
+///
+/// Convention: a plane's normal is a unit vector pointing OUT of the
+/// polytope; a point x is on the inner side when `signed_distance(x) <= 0`.
+/// "Strictly inside" always means deeper than the tolerance `tol` behind
+/// every plane (../shared/DESIGN.md).
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace hullcover {
+
+/// The plane normal . x = offset, normal of unit length.
+struct Plane {
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  double offset = 0.0;
+
+  double signed_distance(const Eigen::Vector3d& p) const { return normal.dot(p) - offset; }
+};
+
+/// A convex polytope with its boundary polygons. A flat polytope (a convex
+/// polygon, thickness 0) has two facets, front and back, on the same
+/// vertices; its extra planes bound it sideways.
+struct ConvexPolytope {
+  std::vector<Eigen::Vector3d> vertices;
+  /// Vertex indices of each facet, counter-clockwise seen from outside.
+  std::vector<std::vector<int>> facets;
+  /// `planes[i]` carries `facets[i]` for i < facets.size(); any planes after
+  /// those have no facet (the side planes of a flat polygon). The polytope
+  /// is the intersection of all their inner sides.
+  std::vector<Plane> planes;
+  /// Mesh vertex id of each vertex, when the polytope was built from mesh
+  /// vertices (empty otherwise, e.g. a prism's extruded corners are -1).
+  std::vector<int> vertex_ids;
+};
+
+/// Largest signed distance of `p` over `planes`: <= -tol means strictly
+/// inside, > tol strictly outside.
+double deepest_signed_distance(const std::vector<Plane>& planes, const Eigen::Vector3d& p);
+
+/// True when some point of segment a-b lies deeper than `tol` behind every
+/// plane, i.e. the segment enters the polytope's interior shrunk by `tol`.
+bool segment_enters_interior(const std::vector<Plane>& planes, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                             double tol);
+
+/// Keeps the part of convex polygon `polygon` (any winding) on the inner
+/// side of `plane` offset inward by `inset` (signed distance <= -inset).
+/// Returns an empty polygon when nothing is left.
+std::vector<Eigen::Vector3d> clip_polygon(const std::vector<Eigen::Vector3d>& polygon, const Plane& plane,
+                                          double inset);
+
+/// Volume of a closed polytope (0 for a flat one), from its facets.
+double polytope_volume(const ConvexPolytope& polytope);
+
+} // namespace hullcover

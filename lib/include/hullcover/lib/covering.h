@@ -1,0 +1,91 @@
+#pragma once
+/// \file covering.h
+/// Convex hull covering of a scene: the paper's algorithm (sections 3-4)
+/// and what it produces.
+///
+/// Every face starts as its own patch. Two patches sharing a manifold,
+/// consistently oriented edge are mergeable when their union is valid
+/// (validity_conditions.h); the cheapest mergeable pair, cost = 1 /
+/// compactness = boundary length / sqrt(area), is merged until none is
+/// left. Planar patches become prisms (planar_prism.h).
+
+#include "hullcover/lib/convex_polytope.h"
+#include "hullcover/lib/prepared_mesh.h"
+#include "hullcover/lib/status.h"
+#include "hullcover/lib/validity_conditions.h"
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+namespace hullcover {
+
+/// Default bar half-length as a fraction of the bounding-box diagonal (the
+/// value the prototype in ../shared/DESIGN.md measured the paper with).
+inline constexpr double kDefaultBarHalfLengthRelative = 0.1;
+/// Default cap on prism thickness as a fraction of the diagonal.
+inline constexpr double kDefaultPrismCapRelative = 0.01;
+/// PhysX, Unity and Jolt reject convex shapes with more vertices.
+inline constexpr int kDefaultMaxHullVertices = 255;
+
+/// The order in which mergeable pairs are taken.
+enum class MergeOrder {
+  compact,  ///< cheapest 1 / compactness first (the paper's method)
+  random,   ///< pseudo-random, seeded (the paper's comparison)
+};
+
+/// How to decompose. Lengths are in scene units; unset ones take defaults
+/// relative to the scene's bounding-box diagonal.
+struct DecomposeOptions {
+  std::optional<double> bar_half_length;      ///< > 0
+  std::optional<double> prism_thickness_cap;  ///< >= 0
+  MergeOrder order = MergeOrder::compact;
+  std::uint64_t seed = 1;                     ///< for MergeOrder::random
+  bool keep_materials_apart = false;          ///< one material per hull, bars on material borders
+  int max_hull_vertices = kDefaultMaxHullVertices;  ///< >= 8 (a prism of a quad)
+  /// Called now and then with the fraction of work done (0..1); may be empty.
+  std::function<void(double)> progress;
+};
+
+/// One convex hull of the covering.
+struct CoveringHull {
+  ConvexPolytope polytope;
+  std::vector<int> faces;  ///< mesh faces it covers, ascending
+  bool planar = false;     ///< from a planar patch (a prism or flat polygon)
+  double thickness = 0.0;  ///< prism thickness (planar only; 0 = flat polygon)
+  int material = 0;        ///< material id of its faces (the smallest, if they differ)
+  double volume = 0.0;
+};
+
+/// Counts and timings of a decomposition.
+struct CoveringStatistics {
+  int faces = 0;
+  int zero_area_faces_skipped = 0;  ///< faces without a normal: covered by no hull
+  int merges = 0;
+  long candidates_tested = 0;
+  std::array<long, kValidityCount> rejections{};  ///< by Validity
+  long qhull_calls = 0;
+  int prisms_made_flat = 0;        ///< planar hulls with thickness 0
+  double seconds_index = 0.0;
+  double seconds_merging = 0.0;
+  double seconds_output = 0.0;
+};
+
+/// The result: hulls and everything needed to reproduce them.
+struct Covering {
+  std::vector<CoveringHull> hulls;  ///< ordered by their first face
+  Tolerance tolerance;
+  double bar_half_length = 0.0;
+  double prism_thickness_cap = 0.0;
+  DecomposeOptions options;  ///< as given (progress callback included)
+  CoveringStatistics statistics;
+};
+
+/// Decomposes the prepared mesh. Deterministic: the same mesh and options
+/// give the same hulls in the same order.
+/// Fails with `invalid_argument` for options out of range.
+Result<Covering> decompose(const PreparedMesh& prepared, const DecomposeOptions& options);
+
+} // namespace hullcover

@@ -1,0 +1,69 @@
+#include "hullcover/lib/aabb_tree.h"
+
+#include <algorithm>
+#include <numeric>
+
+namespace hullcover {
+namespace {
+constexpr int kLeafSize = 4;
+}
+
+AabbTree::AabbTree(const std::vector<Aabb>& boxes) : item_boxes_(boxes) {
+  if (boxes.empty()) return;
+  items_.resize(boxes.size());
+  std::iota(items_.begin(), items_.end(), 0);
+  std::vector<Eigen::Vector3d> centres(boxes.size());
+  for (size_t i = 0; i < boxes.size(); ++i) centres[i] = 0.5 * (boxes[i].min + boxes[i].max);
+  nodes_.reserve(2 * boxes.size() / kLeafSize + 2);
+  build(0, static_cast<int>(boxes.size()), boxes, centres);
+}
+
+int AabbTree::build(int begin, int end, const std::vector<Aabb>& boxes, std::vector<Eigen::Vector3d>& centres) {
+  const int index = static_cast<int>(nodes_.size());
+  nodes_.emplace_back();
+  Aabb box, centre_box;
+  for (int i = begin; i < end; ++i) {
+    box.extend(boxes[items_[i]].min);
+    box.extend(boxes[items_[i]].max);
+    centre_box.extend(centres[items_[i]]);
+  }
+  nodes_[index].box = box;
+  if (end - begin <= kLeafSize) {
+    nodes_[index].first = begin;
+    nodes_[index].count = end - begin;
+    return index;
+  }
+  Eigen::Index axis = 0;
+  (centre_box.max - centre_box.min).maxCoeff(&axis);
+  const int middle = begin + (end - begin) / 2;
+  std::nth_element(items_.begin() + begin, items_.begin() + middle, items_.begin() + end, [&](int a, int b) {
+    return centres[a][axis] < centres[b][axis] || (centres[a][axis] == centres[b][axis] && a < b);
+  });
+  const int left = build(begin, middle, boxes, centres);
+  const int right = build(middle, end, boxes, centres);
+  nodes_[index].left = left;
+  nodes_[index].right = right;
+  return index;
+}
+
+void AabbTree::overlapping(const Aabb& query, std::vector<int>& out) const {
+  if (nodes_.empty()) return;
+  std::vector<int> stack;
+  stack.reserve(64);
+  stack.push_back(0);
+  while (!stack.empty()) {
+    const int n = stack.back();
+    stack.pop_back();
+    const Node& node = nodes_[n];
+    if (!boxes_overlap(node.box, query)) continue;
+    if (node.count > 0) {
+      for (int i = node.first; i < node.first + node.count; ++i)
+        if (boxes_overlap(item_boxes_[items_[i]], query)) out.push_back(items_[i]);
+      continue;
+    }
+    stack.push_back(node.left);
+    stack.push_back(node.right);
+  }
+}
+
+} // namespace hullcover

@@ -1,0 +1,96 @@
+#include "hullcover/lib/covering.h"
+
+#include "hullcover/lib/planar_prism.h"
+#include "patch_merging.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace hullcover {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+Status check_options(const DecomposeOptions& o) {
+  if (o.bar_half_length && !(std::isfinite(*o.bar_half_length) && *o.bar_half_length > 0.0))
+    return {StatusCode::invalid_argument, "bar half-length must be a positive length"};
+  if (o.prism_thickness_cap && !(std::isfinite(*o.prism_thickness_cap) && *o.prism_thickness_cap >= 0.0))
+    return {StatusCode::invalid_argument, "prism thickness cap must be a length >= 0"};
+  if (o.max_hull_vertices < 8)
+    return {StatusCode::invalid_argument, "max hull vertices must be at least 8 (a prism over a quad)"};
+  return Status::success();
+}
+
+// The solid for a planar patch: the thickest allowed prism, re-checked as a
+// solid against conditions 1 and 3, flat if that fails.
+CoveringHull planar_hull(const SceneIndex& index, const detail::PatchMerger& merger, int patch_id,
+                         const detail::Patch& patch, double cap, std::vector<int>& scratch) {
+  CoveringHull hull;
+  hull.planar = true;
+  const FlatPolygon polygon =
+      make_flat_polygon(index.mesh().positions, patch.hull_vertices, patch.area_vector.normalized(), index.tol());
+  const auto in_patch = [&](int f) { return merger.in_patch(f, patch_id); };
+  hull.thickness = allowed_prism_thickness(index, polygon, in_patch, cap, scratch);
+  hull.polytope = prism_polytope(polygon, hull.thickness);
+  if (hull.thickness > 0.0 && check_solid_hull(index, hull.polytope, scratch) != Validity::valid) {
+    hull.thickness = 0.0;
+    hull.polytope = prism_polytope(polygon, 0.0);
+  }
+  return hull;
+}
+
+} // namespace
+
+Result<Covering> decompose(const PreparedMesh& prepared, const DecomposeOptions& options) {
+  if (Status s = check_options(options); !s.ok()) return s;
+  Covering covering;
+  covering.options = options;
+  covering.tolerance = prepared.tolerance;
+  const double diagonal = prepared.tolerance.diagonal;
+  covering.bar_half_length = options.bar_half_length.value_or(kDefaultBarHalfLengthRelative * diagonal);
+  covering.prism_thickness_cap = options.prism_thickness_cap.value_or(kDefaultPrismCapRelative * diagonal);
+  CoveringStatistics& stats = covering.statistics;
+  stats.faces = static_cast<int>(prepared.mesh.triangles.size());
+
+  Clock::time_point start = Clock::now();
+  const SceneIndex index =
+      build_scene_index(prepared, {covering.bar_half_length, options.keep_materials_apart});
+  stats.seconds_index = seconds_since(start);
+
+  start = Clock::now();
+  detail::PatchMerger merger(index, options, stats);
+  merger.run();
+  stats.seconds_merging = seconds_since(start);
+
+  start = Clock::now();
+  std::vector<int> scratch;
+  const std::vector<detail::Patch>& patches = merger.patches();
+  for (int id = 0; id < static_cast<int>(patches.size()); ++id) {
+    const detail::Patch& patch = patches[id];
+    if (!patch.alive) continue;
+    CoveringHull hull;
+    if (patch.planar) {
+      hull = planar_hull(index, merger, id, patch, covering.prism_thickness_cap, scratch);
+      stats.prisms_made_flat += hull.thickness == 0.0;
+    } else {
+      hull.polytope = *patch.solid;
+    }
+    hull.faces = patch.faces;
+    std::sort(hull.faces.begin(), hull.faces.end());
+    hull.material = patch.material;
+    hull.volume = polytope_volume(hull.polytope);
+    covering.hulls.push_back(std::move(hull));
+  }
+  std::sort(covering.hulls.begin(), covering.hulls.end(),
+            [](const CoveringHull& x, const CoveringHull& y) { return x.faces.front() < y.faces.front(); });
+  stats.seconds_output = seconds_since(start);
+  if (options.progress) options.progress(1.0);
+  return covering;
+}
+
+} // namespace hullcover

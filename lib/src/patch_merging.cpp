@@ -1,0 +1,216 @@
+#include "patch_merging.h"
+
+#include "hullcover/lib/planar_hull.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hullcover::detail {
+namespace {
+
+// Two face planes closer than this in normal direction (1 - cos) and
+// within tol in offset are kept once: over a scene diagonal D their
+// difference stays under tol when 1 - cos <= (tol / D)^2 / 2.
+double same_plane_cosine_gap(const SceneIndex& index) {
+  const double ratio = index.tol() / index.prepared->tolerance.diagonal;
+  return 0.5 * ratio * ratio;
+}
+
+void add_plane(std::vector<Plane>& planes, const Plane& p, double cosine_gap, double tol) {
+  for (const Plane& q : planes)
+    if (q.normal.dot(p.normal) >= 1.0 - cosine_gap && std::abs(q.offset - p.offset) <= tol) return;
+  planes.push_back(p);
+}
+
+std::vector<Eigen::Vector3d> positions_of(const Mesh& mesh, const std::vector<int>& ids) {
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(ids.size());
+  for (int v : ids) out.push_back(mesh.positions[v]);
+  return out;
+}
+
+// splitmix64: a fixed, portable pseudo-random function of the pair.
+double pseudo_random_cost(std::uint64_t seed, int a, int b, int va, int vb) {
+  std::uint64_t z = seed ^ (static_cast<std::uint64_t>(a) << 32 | static_cast<std::uint32_t>(b)) ^
+                    (static_cast<std::uint64_t>(va) * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(vb));
+  z += 0x9E3779B97F4A7C15ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return static_cast<double>(z >> 11) / static_cast<double>(1ull << 53);
+}
+
+} // namespace
+
+double merged_patch_cost(const Patch& a, const Patch& b, double shared) {
+  const double boundary = std::max(0.0, a.boundary_length + b.boundary_length - 2.0 * shared);
+  return boundary / std::sqrt(a.area + b.area);
+}
+
+PatchMerger::PatchMerger(const SceneIndex& index, const DecomposeOptions& options, CoveringStatistics& statistics)
+    : index_(index), options_(options), statistics_(statistics) {
+  const Mesh& mesh = index.mesh();
+  const MeshConnectivity& c = index.prepared->connectivity;
+  const int face_count = static_cast<int>(mesh.triangles.size());
+  patches_.resize(face_count);
+  face_patch_.resize(face_count);
+  for (int f = 0; f < face_count; ++f) {
+    Patch& p = patches_[f];
+    face_patch_[f] = f;
+    if (c.zero_area[f]) {
+      p.alive = false;
+      ++statistics_.zero_area_faces_skipped;
+      continue;
+    }
+    const Eigen::Vector3i& t = mesh.triangles[f];
+    p.faces = {f};
+    p.hull_vertices = {t[0], t[1], t[2]};
+    std::sort(p.hull_vertices.begin(), p.hull_vertices.end());
+    p.face_planes = {{index.face_normals[f], index.face_normals[f].dot(mesh.positions[t[0]])}};
+    p.area = index.face_areas[f];
+    p.area_vector = index.face_normals[f] * p.area;
+    for (int k = 0; k < 3; ++k) p.boundary_length += (mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]]).norm();
+    p.material = mesh.material_ids[f];
+  }
+  for (const MeshEdge& e : c.edges) {
+    if (e.kind != EdgeKind::manifold) continue;
+    const int f0 = c.edge_uses[e.first_use].face, f1 = c.edge_uses[e.first_use + 1].face;
+    if (!patches_[f0].alive || !patches_[f1].alive) continue;
+    const double length = (mesh.positions[e.v1] - mesh.positions[e.v0]).norm();
+    patches_[f0].shared_length[f1] += length;
+    patches_[f1].shared_length[f0] += length;
+  }
+  for (int f = 0; f < face_count; ++f)
+    for (const auto& [g, length] : patches_[f].shared_length)
+      if (f < g) push_pair(f, g);
+}
+
+void PatchMerger::push_pair(int a, int b) {
+  if (a > b) std::swap(a, b);
+  const Patch& pa = patches_[a];
+  const Patch& pb = patches_[b];
+  const double cost = options_.order == MergeOrder::compact
+                          ? merged_patch_cost(pa, pb, pa.shared_length.at(b))
+                          : pseudo_random_cost(options_.seed, a, b, pa.version, pb.version);
+  queue_.push_back({cost, a, b, pa.version, pb.version});
+  std::push_heap(queue_.begin(), queue_.end(), std::greater<>());
+}
+
+PatchMerger::Candidate PatchMerger::evaluate(int a, int b) {
+  const Patch& pa = patches_[a];
+  const Patch& pb = patches_[b];
+  const Mesh& mesh = index_.mesh();
+  const double tol = index_.tol();
+  Candidate out;
+  if (options_.keep_materials_apart && pa.material != pb.material) {
+    out.validity = Validity::materials_differ;
+    return out;
+  }
+  // Condition 2 first: it needs no hull and rejects every concave pair.
+  if (!planes_support_points(pa.face_planes, positions_of(mesh, pb.hull_vertices), tol) ||
+      !planes_support_points(pb.face_planes, positions_of(mesh, pa.hull_vertices), tol)) {
+    out.validity = Validity::face_not_on_hull;
+    return out;
+  }
+  std::vector<int> ids;
+  std::set_union(pa.hull_vertices.begin(), pa.hull_vertices.end(), pb.hull_vertices.begin(), pb.hull_vertices.end(),
+                 std::back_inserter(ids));
+  const std::vector<Eigen::Vector3d> points = positions_of(mesh, ids);
+
+  if (pa.planar && pb.planar && pa.area_vector.dot(pb.area_vector) > 0.0) {
+    const Eigen::Vector3d normal = (pa.area_vector + pb.area_vector).normalized();
+    double low = normal.dot(points[0]), high = low;
+    for (const Eigen::Vector3d& p : points) {
+      low = std::min(low, normal.dot(p));
+      high = std::max(high, normal.dot(p));
+    }
+    if (high - low <= 2.0 * tol) {
+      const FlatPolygon polygon = make_flat_polygon(mesh.positions, ids, normal, tol);
+      out.planar = true;
+      out.hull_vertices = polygon.corner_vertices;
+      std::sort(out.hull_vertices.begin(), out.hull_vertices.end());
+      if (2 * static_cast<int>(polygon.corners.size()) > options_.max_hull_vertices) {
+        out.validity = Validity::too_many_vertices;
+        return out;
+      }
+      out.validity = check_flat_polygon(
+          index_, polygon, [&](int f) { return face_patch_[f] == a || face_patch_[f] == b; }, scratch_);
+      return out;
+    }
+  }
+
+  Result<ConvexPolytope> hull = hull_builder_.build(points, ids);
+  ++statistics_.qhull_calls;
+  if (!hull.ok()) {
+    out.validity = Validity::hull_failed;
+    return out;
+  }
+  if (static_cast<int>(hull.value().vertices.size()) > options_.max_hull_vertices) {
+    out.validity = Validity::too_many_vertices;
+    return out;
+  }
+  out.validity = check_solid_hull(index_, hull.value(), scratch_);
+  out.hull_vertices = hull.value().vertex_ids;
+  std::sort(out.hull_vertices.begin(), out.hull_vertices.end());
+  out.solid = std::move(hull).value();
+  return out;
+}
+
+void PatchMerger::merge(int a, int b, Candidate&& candidate) {
+  // The larger patch absorbs the smaller one (ties: the lower id survives),
+  // so each face moves O(log n) times.
+  int keep = a, gone = b;
+  if (patches_[b].faces.size() > patches_[a].faces.size()) std::swap(keep, gone);
+  Patch& k = patches_[keep];
+  Patch& g = patches_[gone];
+  const double cosine_gap = same_plane_cosine_gap(index_);
+
+  k.boundary_length = std::max(0.0, k.boundary_length + g.boundary_length - 2.0 * k.shared_length.at(gone));
+  k.area += g.area;
+  k.area_vector += g.area_vector;
+  for (int f : g.faces) face_patch_[f] = keep;
+  k.faces.insert(k.faces.end(), g.faces.begin(), g.faces.end());
+  for (const Plane& p : g.face_planes) add_plane(k.face_planes, p, cosine_gap, index_.tol());
+  k.hull_vertices = std::move(candidate.hull_vertices);
+  k.planar = candidate.planar;
+  k.solid = std::move(candidate.solid);
+  k.material = std::min(k.material, g.material);
+
+  k.shared_length.erase(gone);
+  for (const auto& [neighbour, length] : g.shared_length) {
+    if (neighbour == keep) continue;
+    Patch& n = patches_[neighbour];
+    n.shared_length.erase(gone);
+    n.shared_length[keep] += length;
+    k.shared_length[neighbour] += length;
+  }
+  g = Patch{};
+  g.alive = false;
+  ++k.version;
+  ++statistics_.merges;
+  for (const auto& [neighbour, length] : k.shared_length) push_pair(keep, neighbour);
+}
+
+void PatchMerger::run() {
+  const int start_patches = static_cast<int>(patches_.size()) - statistics_.zero_area_faces_skipped;
+  constexpr int kProgressEvery = 2048;
+  while (!queue_.empty()) {
+    std::pop_heap(queue_.begin(), queue_.end(), std::greater<>());
+    const QueueEntry entry = queue_.back();
+    queue_.pop_back();
+    const Patch& pa = patches_[entry.a];
+    const Patch& pb = patches_[entry.b];
+    if (!pa.alive || !pb.alive || pa.version != entry.version_a || pb.version != entry.version_b) continue;
+    ++statistics_.candidates_tested;
+    Candidate candidate = evaluate(entry.a, entry.b);
+    if (candidate.validity != Validity::valid) {
+      ++statistics_.rejections[static_cast<int>(candidate.validity)];
+      continue;
+    }
+    merge(entry.a, entry.b, std::move(candidate));
+    if (options_.progress && statistics_.merges % kProgressEvery == 0 && start_patches > 1)
+      options_.progress(static_cast<double>(statistics_.merges) / (start_patches - 1));
+  }
+}
+
+} // namespace hullcover::detail

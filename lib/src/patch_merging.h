@@ -1,0 +1,78 @@
+#pragma once
+// Greedy patch merging (paper 4, 4.2): internal to the decomposer.
+
+#include "hullcover/lib/convex_hull_3d.h"
+#include "hullcover/lib/covering.h"
+#include "hullcover/lib/scene_index.h"
+
+#include <map>
+#include <optional>
+#include <vector>
+
+namespace hullcover::detail {
+
+/// A set of faces that will become one hull.
+struct Patch {
+  std::vector<int> faces;
+  std::vector<int> hull_vertices;  ///< mesh vertex ids of its hull's corners
+  std::vector<Plane> face_planes;  ///< distinct planes of its faces, outward
+  std::map<int, double> shared_length;  ///< neighbour patch -> length of the edges they share
+  double area = 0.0;
+  double boundary_length = 0.0;
+  Eigen::Vector3d area_vector = Eigen::Vector3d::Zero();  ///< sum of face normals x areas
+  bool planar = true;
+  std::optional<ConvexPolytope> solid;  ///< the hull, when not planar
+  int material = 0;
+  int version = 0;
+  bool alive = true;
+};
+
+/// Inverse compactness of the union of two patches sharing `shared` length
+/// of boundary: B / sqrt(A) (0 for a closed union).
+double merged_patch_cost(const Patch& a, const Patch& b, double shared);
+
+/// Runs the merging to the end and returns the surviving patches.
+class PatchMerger {
+public:
+  PatchMerger(const SceneIndex& index, const DecomposeOptions& options, CoveringStatistics& statistics);
+
+  /// Merges until no mergeable pair is left.
+  void run();
+
+  const std::vector<Patch>& patches() const { return patches_; }
+  bool in_patch(int face, int patch) const { return face_patch_[face] == patch; }
+
+private:
+  struct Candidate {
+    Validity validity = Validity::valid;
+    std::vector<int> hull_vertices;
+    bool planar = false;
+    std::optional<ConvexPolytope> solid;
+  };
+
+  Candidate evaluate(int a, int b);
+  void merge(int a, int b, Candidate&& candidate);
+  void push_pair(int a, int b);
+
+  struct QueueEntry {
+    double cost;
+    int a, b;
+    int version_a, version_b;
+    bool operator>(const QueueEntry& o) const {
+      if (cost != o.cost) return cost > o.cost;
+      if (a != o.a) return a > o.a;
+      return b > o.b;
+    }
+  };
+
+  const SceneIndex& index_;
+  const DecomposeOptions& options_;
+  CoveringStatistics& statistics_;
+  std::vector<Patch> patches_;
+  std::vector<int> face_patch_;
+  std::vector<QueueEntry> queue_;  // a min-heap by QueueEntry::operator>
+  ConvexHullBuilder hull_builder_;
+  std::vector<int> scratch_;
+};
+
+} // namespace hullcover::detail

@@ -1,0 +1,108 @@
+#include "hullcover/lib/planar_hull.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <numeric>
+
+namespace hullcover {
+
+PlaneFrame PlaneFrame::from_normal(const Eigen::Vector3d& origin, const Eigen::Vector3d& unit_normal) {
+  PlaneFrame f;
+  f.origin = origin;
+  f.normal = unit_normal;
+  // Start from the world axis least aligned with the normal, for a
+  // well-conditioned cross product.
+  Eigen::Index axis = 0;
+  unit_normal.cwiseAbs().minCoeff(&axis);
+  f.u = unit_normal.cross(Eigen::Vector3d::Unit(axis)).normalized();
+  f.v = unit_normal.cross(f.u);
+  return f;
+}
+
+namespace {
+double cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+}
+
+// True when b makes a strict left turn from o->a, farther than tol from
+// the line o-b (cross = twice the triangle area = distance x base).
+bool turns_left(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b, double tol) {
+  return cross(o, a, b) > tol * (b - o).norm();
+}
+} // namespace
+
+std::vector<int> convex_hull_2d(const std::vector<Eigen::Vector2d>& points, double tol) {
+  std::vector<int> order(points.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    if (points[a].y() != points[b].y()) return points[a].y() < points[b].y();
+    if (points[a].x() != points[b].x()) return points[a].x() < points[b].x();
+    return a < b;
+  });
+  // Sorting by (y, x) makes the chains lower-right then upper-left; the
+  // monotone chain works along any lexicographic order.
+  std::vector<int> hull;
+  hull.reserve(order.size() + 1);
+  for (int pass = 0; pass < 2; ++pass) {
+    const size_t chain_start = hull.size();
+    for (int idx : order) {
+      while (hull.size() >= chain_start + 2 &&
+             !turns_left(points[hull[hull.size() - 2]], points[hull.back()], points[idx], tol))
+        hull.pop_back();
+      hull.push_back(idx);
+    }
+    hull.pop_back();  // the chain's last point starts the other chain
+    std::reverse(order.begin(), order.end());
+  }
+  // Drop points within tol of an earlier kept point (duplicates).
+  std::vector<int> unique;
+  for (int idx : hull)
+    if (unique.empty() || (points[idx] - points[unique.back()]).squaredNorm() > tol * tol) unique.push_back(idx);
+  while (unique.size() > 1 && (points[unique.front()] - points[unique.back()]).squaredNorm() <= tol * tol)
+    unique.pop_back();
+  return unique;
+}
+
+std::vector<Plane> polygon_side_planes(const std::vector<Eigen::Vector3d>& corners, const Eigen::Vector3d& normal) {
+  std::vector<Plane> planes;
+  planes.reserve(corners.size());
+  for (size_t i = 0; i < corners.size(); ++i) {
+    const Eigen::Vector3d& a = corners[i];
+    const Eigen::Vector3d& b = corners[(i + 1) % corners.size()];
+    Plane p;
+    p.normal = (b - a).cross(normal).normalized();  // counter-clockwise: edge x normal points out
+    p.offset = p.normal.dot(a);
+    planes.push_back(p);
+  }
+  return planes;
+}
+
+} // namespace hullcover
+
+namespace hullcover {
+
+FlatPolygon make_flat_polygon(const std::vector<Eigen::Vector3d>& positions, const std::vector<int>& vertex_ids,
+                              const Eigen::Vector3d& normal, double tol) {
+  FlatPolygon polygon;
+  if (vertex_ids.empty()) return polygon;
+  double offset = 0.0;
+  for (int v : vertex_ids) offset += normal.dot(positions[v]);
+  offset /= static_cast<double>(vertex_ids.size());
+  const PlaneFrame frame = PlaneFrame::from_normal(positions[vertex_ids.front()], normal);
+  std::vector<Eigen::Vector2d> projected;
+  projected.reserve(vertex_ids.size());
+  for (int v : vertex_ids) projected.push_back(frame.to_plane(positions[v]));
+  const std::vector<int> hull = convex_hull_2d(projected, tol);
+  if (hull.size() < 3) return polygon;
+  polygon.plane = {normal, offset};
+  for (int i : hull) {
+    const Eigen::Vector3d& p = positions[vertex_ids[i]];
+    polygon.corners.push_back(p - (normal.dot(p) - offset) * normal);
+    polygon.corner_vertices.push_back(vertex_ids[i]);
+  }
+  polygon.sides = polygon_side_planes(polygon.corners, normal);
+  return polygon;
+}
+
+} // namespace hullcover
