@@ -25,10 +25,9 @@ double cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Ve
   return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
 }
 
-// True when b makes a strict left turn from o->a, farther than tol from
-// the line o-b (cross = twice the triangle area = distance x base).
-bool turns_left(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b, double tol) {
-  return cross(o, a, b) > tol * (b - o).norm();
+// Distance of p from the line through a and b (a != b).
+double distance_to_line(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return std::abs(cross(a, b, p)) / (b - a).norm();
 }
 } // namespace
 
@@ -40,28 +39,40 @@ std::vector<int> convex_hull_2d(const std::vector<Eigen::Vector2d>& points, doub
     if (points[a].x() != points[b].x()) return points[a].x() < points[b].x();
     return a < b;
   });
-  // Sorting by (y, x) makes the chains lower-right then upper-left; the
-  // monotone chain works along any lexicographic order.
+  // Andrew's monotone chain on the exact orientation (the tolerance is
+  // applied afterwards: popping with a tolerance here can drop a true
+  // extreme point when a later point is nearly collinear but behind it).
   std::vector<int> hull;
   hull.reserve(order.size() + 1);
   for (int pass = 0; pass < 2; ++pass) {
     const size_t chain_start = hull.size();
     for (int idx : order) {
-      while (hull.size() >= chain_start + 2 &&
-             !turns_left(points[hull[hull.size() - 2]], points[hull.back()], points[idx], tol))
+      while (hull.size() >= chain_start + 2 && cross(points[hull[hull.size() - 2]], points[hull.back()], points[idx]) <= 0.0)
         hull.pop_back();
       hull.push_back(idx);
     }
     hull.pop_back();  // the chain's last point starts the other chain
     std::reverse(order.begin(), order.end());
   }
-  // Drop points within tol of an earlier kept point (duplicates).
-  std::vector<int> unique;
-  for (int idx : hull)
-    if (unique.empty() || (points[idx] - points[unique.back()]).squaredNorm() > tol * tol) unique.push_back(idx);
-  while (unique.size() > 1 && (points[unique.front()] - points[unique.back()]).squaredNorm() <= tol * tol)
-    unique.pop_back();
-  return unique;
+  // Drop corners within tol of their neighbours or of the line through them;
+  // each removal moves the boundary inward by at most tol.
+  bool changed = true;
+  while (changed && hull.size() >= 3) {
+    changed = false;
+    for (size_t i = 0; i < hull.size() && hull.size() >= 3; ++i) {
+      const Eigen::Vector2d& prev = points[hull[(i + hull.size() - 1) % hull.size()]];
+      const Eigen::Vector2d& here = points[hull[i]];
+      const Eigen::Vector2d& next = points[hull[(i + 1) % hull.size()]];
+      const bool duplicate = (here - prev).squaredNorm() <= tol * tol || (here - next).squaredNorm() <= tol * tol;
+      if (duplicate || (next - prev).squaredNorm() <= tol * tol || distance_to_line(here, prev, next) <= tol) {
+        hull.erase(hull.begin() + static_cast<long>(i));
+        changed = true;
+        --i;
+      }
+    }
+  }
+  if (hull.size() < 3) hull.clear();
+  return hull;
 }
 
 std::vector<Plane> polygon_side_planes(const std::vector<Eigen::Vector3d>& corners, const Eigen::Vector3d& normal) {

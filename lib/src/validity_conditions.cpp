@@ -62,12 +62,12 @@ bool bar_crosses_polygon(const FlatPolygon& polygon, const BoundaryBar& bar, dou
   const double da = polygon.plane.signed_distance(bar.a);
   const double db = polygon.plane.signed_distance(bar.b);
   if ((da > tol && db > tol) || (da < -tol && db < -tol)) return false;
-  if (std::abs(da - db) > tol) {
-    const Eigen::Vector3d crossing = bar.a + (bar.b - bar.a) * (da / (da - db));
-    return deepest_signed_distance(polygon.sides, crossing) < -tol;
-  }
-  // The bar runs along the plane (within tol): does it enter the polygon?
-  return segment_enters_interior(polygon.sides, bar.a, bar.b, tol);
+  // A bar lying in the plane (within tol) does not cross the polygon: it is
+  // the bar of an open edge resting on it (a wall's culled bottom edge on a
+  // floor), whose opening the polygon itself closes.
+  if (std::abs(da - db) <= tol) return false;
+  const Eigen::Vector3d crossing = bar.a + (bar.b - bar.a) * (da / (da - db));
+  return deepest_signed_distance(polygon.sides, crossing) < -tol;
 }
 
 // Does the part of triangle t within tol of the polygon's plane reach the

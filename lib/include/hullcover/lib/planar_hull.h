@@ -28,10 +28,11 @@ struct PlaneFrame {
   }
 };
 
-/// Indices of the convex hull of `points`, counter-clockwise, starting at the
-/// lowest-then-leftmost point. A point within `tol` of the line through its
-/// hull neighbours is dropped (so near-collinear drift adds no vertex).
-/// Fewer than 3 indices means the points are (within tol) collinear.
+/// Indices of the convex hull of `points`, counter-clockwise. A corner
+/// within `tol` of the line through its neighbours (or of a neighbour) is
+/// dropped, so near-collinear drift adds no vertex; every point then lies
+/// inside the polygon or within `tol` of it. An empty result means the
+/// points are collinear within `tol`.
 std::vector<int> convex_hull_2d(const std::vector<Eigen::Vector2d>& points, double tol);
 
 /// Outward side planes of the convex polygon `corners` (counter-clockwise

@@ -1,0 +1,131 @@
+// The decomposer on the shared real scenes and its options: every scene
+// decomposes and every hull passes the independent re-check.
+
+#include "covering_fixture.h"
+#include "shared_data.h"
+#include "temp_dir.h"
+
+#include "hullcover/lib/covering_export.h"
+#include "hullcover/lib/mesh_import.h"
+#include "hullcover/lib/scene_builder.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace hullcover {
+namespace {
+
+class SharedSceneCovering : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(SharedSceneCovering, DecomposesAndEveryHullIsValid) {
+  HULLCOVER_REQUIRE_SHARED_SCENES(dir);
+  const Result<ImportedMesh> imported = import_mesh(dir + "/" + GetParam());
+  ASSERT_TRUE(imported.ok()) << imported.status().message();
+  const auto d = test::decompose_and_check(imported.value().mesh);
+  ASSERT_TRUE(d);
+  const int faces = d->covering.statistics.faces;
+  EXPECT_LT(static_cast<int>(d->covering.hulls.size()), faces);
+  for (const CoveringHull& h : d->covering.hulls) {
+    EXPECT_LE(static_cast<int>(h.polytope.vertices.size()), kDefaultMaxHullVertices);
+    for (const Eigen::Vector3d& v : h.polytope.vertices) ASSERT_TRUE(v.allFinite());
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, SharedSceneCovering,
+                         ::testing::Values("recast-dungeon.obj", "recast-nav_test.obj", "recast-undulating.obj",
+                                           "sauerbraten-fdm6.obj", "sauerbraten-pandora.obj",
+                                           "stanford-bunny-res2.ply", "thor-art56-gearplate.stl",
+                                           "threejs-collision-world.glb"),
+                         [](const ::testing::TestParamInfo<const char*>& param_info) {
+                           std::string name = param_info.param;
+                           for (char& ch : name)
+                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           return name;
+                         });
+
+std::string obj_bytes(const Covering& covering) {
+  test::TempDir dir;
+  const std::string path = dir.path("hulls.obj");
+  EXPECT_TRUE(write_covering_obj(covering, path).ok());
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(Decompose, IsDeterministicToTheByte) {
+  const Mesh m = demo_building();
+  for (MergeOrder order : {MergeOrder::compact, MergeOrder::random}) {
+    DecomposeOptions o;
+    o.order = order;
+    const auto first = test::decompose_and_check(m, o);
+    const auto second = test::decompose_and_check(m, o);
+    ASSERT_TRUE(first && second);
+    EXPECT_EQ(obj_bytes(first->covering), obj_bytes(second->covering));
+  }
+}
+
+TEST(Decompose, HullVertexCapIsRespected) {
+  Mesh m;
+  add_height_field(m, {0, 1, 2, 3, 4, 5, 6, 7, 8}, {0, 1, 2, 3, 4, 5, 6, 7, 8},
+                   [](double x, double z) { return -0.05 * ((x - 4) * (x - 4) + (z - 4) * (z - 4)); });
+  DecomposeOptions o;
+  o.max_hull_vertices = 12;
+  const auto d = test::decompose_and_check(m, o);
+  ASSERT_TRUE(d);
+  for (const CoveringHull& h : d->covering.hulls) EXPECT_LE(h.polytope.vertices.size(), 12u);
+  const auto unlimited = test::decompose_and_check(m);
+  ASSERT_TRUE(unlimited);
+  EXPECT_LT(unlimited->covering.hulls.size(), d->covering.hulls.size());
+}
+
+TEST(Decompose, KeepingMaterialsApartGivesOneMaterialPerHull) {
+  const Mesh m = demo_building();
+  DecomposeOptions o;
+  o.keep_materials_apart = true;
+  const auto d = test::decompose_and_check(m, o);
+  ASSERT_TRUE(d);
+  for (const CoveringHull& h : d->covering.hulls)
+    for (int f : h.faces) EXPECT_EQ(m.material_ids[f], h.material);
+}
+
+TEST(Decompose, RejectsOptionsOutOfRange) {
+  Result<PreparedMesh> p = prepare_mesh(demo_building(), std::nullopt);
+  ASSERT_TRUE(p.ok());
+  DecomposeOptions o;
+  o.bar_half_length = -1.0;
+  EXPECT_EQ(decompose(p.value(), o).status().code(), StatusCode::invalid_argument);
+  o = {};
+  o.max_hull_vertices = 3;
+  EXPECT_EQ(decompose(p.value(), o).status().code(), StatusCode::invalid_argument);
+}
+
+// A double-sided wall: two coincident sheets back to back. A prism behind
+// either sheet would fill the other's front space, so both stay flat.
+TEST(Decompose, BackToBackSheetsGiveFlatHulls) {
+  Mesh m;
+  test::add_quad_facing(m, {0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {0, 0, 1});
+  test::add_quad_facing(m, {0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {0, 0, -1});
+  const auto d = test::decompose_and_check(m);
+  ASSERT_TRUE(d);
+  for (const CoveringHull& h : d->covering.hulls) EXPECT_EQ(h.thickness, 0.0);
+}
+
+// A thin wall box: the prism behind its front face stops at its back face.
+TEST(Decompose, PrismStopsAtTheBackOfAThinWall) {
+  Mesh m;
+  test::add_quad_facing(m, {0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {0, 0, 1});
+  test::add_quad_facing(m, {0, 0, -0.1}, {2, 0, -0.1}, {2, 2, -0.1}, {0, 2, -0.1}, {0, 0, -1});
+  DecomposeOptions o;
+  o.prism_thickness_cap = 1.0;
+  const auto d = test::decompose_and_check(m, o);
+  ASSERT_TRUE(d);
+  ASSERT_EQ(d->covering.hulls.size(), 2u);
+  for (const CoveringHull& h : d->covering.hulls) EXPECT_NEAR(h.thickness, 0.1, 1e-9);
+  EXPECT_FALSE(test::point_inside_covering(d->covering, {1, 1, -0.5}, d->tol()));
+}
+
+} // namespace
+} // namespace hullcover

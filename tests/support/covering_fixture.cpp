@@ -1,0 +1,42 @@
+#include "covering_fixture.h"
+
+#include "hullcover/lib/scene_builder.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+
+namespace hullcover::test {
+
+int Decomposed::hull_of_face(int f) const {
+  for (size_t h = 0; h < covering.hulls.size(); ++h)
+    if (std::binary_search(covering.hulls[h].faces.begin(), covering.hulls[h].faces.end(), f)) return static_cast<int>(h);
+  return -1;
+}
+
+std::optional<Decomposed> decompose_and_check(const Mesh& mesh, const DecomposeOptions& options,
+                                              std::optional<double> tolerance) {
+  Result<PreparedMesh> prepared = prepare_mesh(mesh, tolerance);
+  if (!prepared.ok()) {
+    ADD_FAILURE() << prepared.status().message();
+    return std::nullopt;
+  }
+  Result<Covering> covering = decompose(prepared.value(), options);
+  if (!covering.ok()) {
+    ADD_FAILURE() << covering.status().message();
+    return std::nullopt;
+  }
+  const CheckReport report = check_covering_independently(prepared.value(), covering.value());
+  EXPECT_EQ(report.total(), 0) << report.summary();
+  return Decomposed{std::move(prepared).value(), std::move(covering).value()};
+}
+
+void add_quad_facing(Mesh& mesh, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                     const Eigen::Vector3d& d, const Eigen::Vector3d& front, int material) {
+  if ((b - a).cross(c - a).dot(front) >= 0.0)
+    add_quad(mesh, a, b, c, d, material);
+  else
+    add_quad(mesh, a, d, c, b, material);
+}
+
+} // namespace hullcover::test

@@ -1,0 +1,33 @@
+#pragma once
+// Decomposes a mesh built in a test and re-checks the result independently.
+
+#include "independent_check.h"
+
+#include "hullcover/lib/covering.h"
+#include "hullcover/lib/prepared_mesh.h"
+
+#include <gtest/gtest.h>
+
+#include <optional>
+
+namespace hullcover::test {
+
+struct Decomposed {
+  PreparedMesh prepared;
+  Covering covering;
+
+  /// Index of the hull covering face f (-1 if none).
+  int hull_of_face(int f) const;
+  double tol() const { return prepared.tolerance.length; }
+};
+
+/// Prepares and decomposes `mesh`; records a test failure (and returns
+/// nothing) if either step fails or the independent check finds a violation.
+std::optional<Decomposed> decompose_and_check(const Mesh& mesh, const DecomposeOptions& options = {},
+                                              std::optional<double> tolerance = std::nullopt);
+
+/// Appends quad a-b-c-d, wound so its front faces along `front`.
+void add_quad_facing(Mesh& mesh, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                     const Eigen::Vector3d& d, const Eigen::Vector3d& front, int material = 0);
+
+} // namespace hullcover::test

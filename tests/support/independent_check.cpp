@@ -1,0 +1,317 @@
+#include "independent_check.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <unordered_map>
+
+namespace hullcover::test {
+namespace {
+
+struct HalfSpace {
+  Eigen::Vector3d n;  // unit, outward
+  double d;           // inside: n.x <= d
+};
+
+// A hull as this checker sees it.
+struct CheckedHull {
+  std::vector<HalfSpace> facets;  // solid: one per facet; flat: front, back and sides
+  bool flat = false;
+  HalfSpace front;                // flat: the polygon's plane
+  std::vector<HalfSpace> sides;   // flat: in-plane edge half-spaces
+  Eigen::Vector3d lo, hi;
+};
+
+HalfSpace newell_plane(const std::vector<Eigen::Vector3d>& poly) {
+  Eigen::Vector3d n = Eigen::Vector3d::Zero(), centre = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const Eigen::Vector3d& a = poly[i];
+    const Eigen::Vector3d& b = poly[(i + 1) % poly.size()];
+    n += Eigen::Vector3d((a.y() - b.y()) * (a.z() + b.z()), (a.z() - b.z()) * (a.x() + b.x()),
+                         (a.x() - b.x()) * (a.y() + b.y()));
+    centre += a;
+  }
+  centre /= static_cast<double>(poly.size());
+  n.normalize();
+  return {n, n.dot(centre)};
+}
+
+CheckedHull make_checked(const CoveringHull& hull) {
+  CheckedHull c;
+  const auto& V = hull.polytope.vertices;
+  c.lo = c.hi = V.front();
+  for (const auto& p : V) {
+    c.lo = c.lo.cwiseMin(p);
+    c.hi = c.hi.cwiseMax(p);
+  }
+  std::vector<Eigen::Vector3d> poly;
+  for (const auto& facet : hull.polytope.facets) {
+    poly.clear();
+    for (int v : facet) poly.push_back(V[v]);
+    c.facets.push_back(newell_plane(poly));
+  }
+  c.flat = hull.planar && hull.thickness == 0.0;
+  if (c.flat) {
+    c.front = c.facets.front();
+    poly.clear();
+    for (int v : hull.polytope.facets.front()) poly.push_back(V[v]);
+    for (size_t i = 0; i < poly.size(); ++i) {
+      const Eigen::Vector3d e = poly[(i + 1) % poly.size()] - poly[i];
+      const Eigen::Vector3d out = e.cross(c.front.n).normalized();
+      c.sides.push_back({out, out.dot(poly[i])});
+    }
+  }
+  return c;
+}
+
+double depth_inside(const std::vector<HalfSpace>& hs, const Eigen::Vector3d& p) {
+  double worst = INFINITY;
+  for (const HalfSpace& h : hs) worst = std::min(worst, h.d - h.n.dot(p));
+  return worst;  // > tol: strictly inside
+}
+
+// Longest sub-interval of segment p-q deeper than tol inside all half-spaces.
+bool segment_deeper_than(const std::vector<HalfSpace>& hs, const Eigen::Vector3d& p, const Eigen::Vector3d& q,
+                         double tol) {
+  double lo = 0.0, hi = 1.0;
+  const Eigen::Vector3d d = q - p;
+  for (const HalfSpace& h : hs) {
+    // need h.n.(p + t d) <= h.d - tol
+    const double slope = h.n.dot(d);
+    const double room = h.d - tol - h.n.dot(p);
+    if (std::abs(slope) < 1e-300) {
+      if (room <= 0.0) return false;
+      continue;
+    }
+    const double t = room / slope;
+    if (slope > 0.0)
+      hi = std::min(hi, t);
+    else
+      lo = std::max(lo, t);
+    if (lo >= hi) return false;
+  }
+  return lo < hi;
+}
+
+// Does segment p-q cross the flat polygon's relative interior?
+bool segment_crosses_flat(const CheckedHull& c, const Eigen::Vector3d& p, const Eigen::Vector3d& q, double tol) {
+  const double dp = c.front.n.dot(p) - c.front.d, dq = c.front.n.dot(q) - c.front.d;
+  if (std::abs(dp - dq) <= tol) return false;  // runs along the plane
+  if ((dp > tol && dq > tol) || (dp < -tol && dq < -tol)) return false;
+  const Eigen::Vector3d x = p + (q - p) * (dp / (dp - dq));
+  return depth_inside(c.sides, x) > tol;
+}
+
+struct Grid {
+  double cell;
+  Eigen::Vector3d origin;
+  std::unordered_map<long long, std::vector<int>> cells;
+  long long key(long long i, long long j, long long k) const { return (i * 73856093LL) ^ (j * 19349663LL) ^ (k * 83492791LL); }
+  Eigen::Vector3i at(const Eigen::Vector3d& p) const {
+    return ((p - origin) / cell).array().floor().cast<int>();
+  }
+  void insert(int id, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+    const Eigen::Vector3i a = at(lo), b = at(hi);
+    for (int i = a.x(); i <= b.x(); ++i)
+      for (int j = a.y(); j <= b.y(); ++j)
+        for (int k = a.z(); k <= b.z(); ++k) cells[key(i, j, k)].push_back(id);
+  }
+  std::vector<int> query(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const {
+    std::vector<int> out;
+    const Eigen::Vector3i a = at(lo), b = at(hi);
+    for (int i = a.x(); i <= b.x(); ++i)
+      for (int j = a.y(); j <= b.y(); ++j)
+        for (int k = a.z(); k <= b.z(); ++k) {
+          const auto it = cells.find(key(i, j, k));
+          if (it != cells.end()) out.insert(out.end(), it->second.begin(), it->second.end());
+        }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+};
+
+}  // namespace
+
+std::string CheckReport::summary() const {
+  std::ostringstream s;
+  s << "vertices_inside " << vertices_inside << ", edges_inside " << edges_inside << ", faces_off_hull "
+    << faces_off_hull << ", bars_inside " << bars_inside << ", faces_below_polygon " << faces_below_polygon
+    << ", faces_uncovered " << faces_uncovered << ", hulls_not_convex " << hulls_not_convex;
+  for (const std::string& e : examples) s << "\n  " << e;
+  return s.str();
+}
+
+CheckReport check_covering_independently(const PreparedMesh& prepared, const Covering& covering) {
+  CheckReport report;
+  const Mesh& mesh = prepared.mesh;
+  const double tol = prepared.tolerance.length;
+  const auto note = [&](const std::string& what) {
+    if (report.examples.size() < 8) report.examples.push_back(what);
+  };
+
+  // Faces with a surface, their unit normals, and their edges counted again.
+  const int F = static_cast<int>(mesh.triangles.size());
+  std::vector<Eigen::Vector3d> normal(F, Eigen::Vector3d::Zero());
+  std::vector<char> has_surface(F, 0);
+  std::map<std::pair<int, int>, std::vector<int>> edge_faces;
+  double longest_edge = 0;
+  for (int f = 0; f < F; ++f) {
+    const Eigen::Vector3i& t = mesh.triangles[f];
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
+    for (int k = 0; k < 3; ++k) {
+      edge_faces[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}].push_back(f);
+      longest_edge = std::max(longest_edge, (mesh.positions[t[k]] - mesh.positions[t[(k + 1) % 3]]).norm());
+    }
+    const Eigen::Vector3d a = mesh.positions[t[0]];
+    const Eigen::Vector3d cr = (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a);
+    double longest = 0;
+    for (int k = 0; k < 3; ++k) longest = std::max(longest, (mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]]).norm());
+    if (cr.norm() > tol * longest) {
+      has_surface[f] = 1;
+      normal[f] = cr.normalized();
+    }
+  }
+  struct Bar { Eigen::Vector3d a, b; };
+  std::vector<Bar> bars;
+  std::vector<std::pair<int, int>> edges;
+  for (const auto& [e, faces] : edge_faces) {
+    edges.push_back(e);
+    if (faces.size() == 1 && has_surface[faces[0]]) {
+      const Eigen::Vector3d mid = 0.5 * (mesh.positions[e.first] + mesh.positions[e.second]);
+      bars.push_back({mid - covering.bar_half_length * normal[faces[0]], mid + covering.bar_half_length * normal[faces[0]]});
+    }
+  }
+
+  // Uniform grids over vertices, edges, bars and faces.
+  const Aabb scene = referenced_bounding_box(mesh);
+  const double cell = std::max(longest_edge, scene.diagonal() / 200.0);
+  Grid vgrid{cell, scene.min, {}}, egrid{cell, scene.min, {}}, bgrid{cell, scene.min, {}}, fgrid{cell, scene.min, {}};
+  for (int v = 0; v < static_cast<int>(mesh.positions.size()); ++v) vgrid.insert(v, mesh.positions[v], mesh.positions[v]);
+  for (int e = 0; e < static_cast<int>(edges.size()); ++e) {
+    const auto& p = mesh.positions[edges[e].first];
+    const auto& q = mesh.positions[edges[e].second];
+    egrid.insert(e, p.cwiseMin(q), p.cwiseMax(q));
+  }
+  for (int b = 0; b < static_cast<int>(bars.size()); ++b)
+    bgrid.insert(b, bars[b].a.cwiseMin(bars[b].b), bars[b].a.cwiseMax(bars[b].b));
+  for (int f = 0; f < F; ++f) {
+    const Eigen::Vector3i& t = mesh.triangles[f];
+    const Eigen::Vector3d lo = mesh.positions[t[0]].cwiseMin(mesh.positions[t[1]]).cwiseMin(mesh.positions[t[2]]);
+    const Eigen::Vector3d hi = mesh.positions[t[0]].cwiseMax(mesh.positions[t[1]]).cwiseMax(mesh.positions[t[2]]);
+    fgrid.insert(f, lo, hi);
+  }
+
+  std::vector<char> covered(F, 0);
+  for (size_t h = 0; h < covering.hulls.size(); ++h) {
+    const CoveringHull& hull = covering.hulls[h];
+    const CheckedHull c = make_checked(hull);
+    const Eigen::Vector3d lo = c.lo.array() - 2 * tol, hi = c.hi.array() + 2 * tol;
+    const std::string where = "hull " + std::to_string(h) + " (" + std::to_string(hull.faces.size()) + " faces, thickness " + std::to_string(hull.thickness) + "): ";
+    for (const auto& p : hull.polytope.vertices)
+      for (const HalfSpace& plane : c.facets)
+        if (plane.n.dot(p) - plane.d > tol) {
+          ++report.hulls_not_convex;
+          note(where + "not convex");
+          goto convex_checked;
+        }
+  convex_checked:
+    // Condition 2 and coverage: each covered face lies on a facet, same normal.
+    for (int f : hull.faces) {
+      covered[f] = 1;
+      const Eigen::Vector3i& t = mesh.triangles[f];
+      bool on_facet = false;
+      for (const HalfSpace& plane : c.facets) {
+        if (plane.n.dot(normal[f]) <= 0.0) continue;
+        bool all = true;
+        for (int k = 0; k < 3; ++k) all &= std::abs(plane.n.dot(mesh.positions[t[k]]) - plane.d) <= 2 * tol;
+        if (all) { on_facet = true; break; }
+      }
+      if (!on_facet) {
+        ++report.faces_off_hull;
+        note(where + "face " + std::to_string(f) + " not on a facet with its normal");
+      }
+    }
+    if (c.flat && hull.faces.size() == 1) continue;  // the face itself: whatever crosses it, crosses the mesh
+    if (c.flat) {
+      // Condition 3 (flat): no bar crosses the relative interior.
+      for (int b : bgrid.query(lo, hi))
+        if (segment_crosses_flat(c, bars[b].a, bars[b].b, tol)) {
+          ++report.bars_inside;
+          note(where + "bar " + std::to_string(b) + " crosses the polygon");
+        }
+      // Condition 4: faces outside the hull's patch touching the interior from below.
+      for (int f : fgrid.query(lo, hi)) {
+        if (std::binary_search(hull.faces.begin(), hull.faces.end(), f)) continue;
+        const Eigen::Vector3i& t = mesh.triangles[f];
+        bool below = false;
+        for (int k = 0; k < 3; ++k) below |= c.front.n.dot(mesh.positions[t[k]]) - c.front.d < -tol;
+        if (!below) continue;
+        // Sample the triangle's crossing with the plane: its edges' crossing points and vertices on it.
+        std::vector<Eigen::Vector3d> on_plane;
+        for (int k = 0; k < 3; ++k) {
+          const Eigen::Vector3d p = mesh.positions[t[k]], q = mesh.positions[t[(k + 1) % 3]];
+          const double dp = c.front.n.dot(p) - c.front.d, dq = c.front.n.dot(q) - c.front.d;
+          if (std::abs(dp) <= tol) on_plane.push_back(p);
+          if ((dp < -tol && dq > tol) || (dp > tol && dq < -tol)) on_plane.push_back(p + (q - p) * (dp / (dp - dq)));
+        }
+        bool touches = false;
+        for (size_t i = 0; i < on_plane.size() && !touches; ++i)
+          for (size_t j = i; j < on_plane.size() && !touches; ++j)
+            for (int s = 0; s <= 16 && !touches; ++s) {
+              const Eigen::Vector3d x = on_plane[i] + (on_plane[j] - on_plane[i]) * (s / 16.0);
+              touches = depth_inside(c.sides, x) > 2 * tol;
+            }
+        if (touches) {
+          ++report.faces_below_polygon;
+          note(where + "face " + std::to_string(f) + " reaches below the polygon's interior");
+        }
+      }
+      continue;
+    }
+    // Condition 1: no mesh vertex or edge part strictly inside.
+    for (int v : vgrid.query(lo, hi))
+      if (depth_inside(c.facets, mesh.positions[v]) > tol) {
+        ++report.vertices_inside;
+        note(where + "vertex " + std::to_string(v) + " inside");
+      }
+    for (int e : egrid.query(lo, hi))
+      if (segment_deeper_than(c.facets, mesh.positions[edges[e].first], mesh.positions[edges[e].second], tol)) {
+        ++report.edges_inside;
+        note(where + "edge " + std::to_string(edges[e].first) + "-" + std::to_string(edges[e].second) + " inside");
+      }
+    // Condition 3: no bar enters the interior.
+    for (int b : bgrid.query(lo, hi))
+      if (segment_deeper_than(c.facets, bars[b].a, bars[b].b, tol)) {
+        ++report.bars_inside;
+        note(where + "bar " + std::to_string(b) + " inside");
+      }
+  }
+  for (int f = 0; f < F; ++f)
+    if (has_surface[f] && !covered[f]) {
+      ++report.faces_uncovered;
+      note("face " + std::to_string(f) + " is in no hull");
+    }
+  return report;
+}
+
+bool segment_hits_covering(const Covering& covering, const Eigen::Vector3d& p, const Eigen::Vector3d& q, double tol) {
+  for (const CoveringHull& hull : covering.hulls) {
+    const CheckedHull c = make_checked(hull);
+    if (c.flat ? segment_crosses_flat(c, p, q, tol) : segment_deeper_than(c.facets, p, q, tol)) return true;
+  }
+  return false;
+}
+
+bool point_inside_covering(const Covering& covering, const Eigen::Vector3d& p, double tol) {
+  for (const CoveringHull& hull : covering.hulls) {
+    const CheckedHull c = make_checked(hull);
+    if (!c.flat && depth_inside(c.facets, p) > tol) return true;
+  }
+  return false;
+}
+
+} // namespace hullcover::test
