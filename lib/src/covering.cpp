@@ -26,20 +26,21 @@ Status check_options(const DecomposeOptions& o) {
   return Status::success();
 }
 
-// The solid for a planar patch: the thickest allowed prism, re-checked as a
-// solid against conditions 1 and 3, flat if that fails.
+// The solid for a planar patch: the thickest allowed beveled prism,
+// re-checked as a solid against conditions 1 and 3, flat if that fails.
 CoveringHull planar_hull(const SceneIndex& index, const detail::PatchMerger& merger, int patch_id,
-                         const detail::Patch& patch, double cap, std::vector<int>& scratch) {
+                         const detail::Patch& patch, double cap, ConvexHullBuilder& hulls, std::vector<int>& scratch) {
   CoveringHull hull;
   hull.planar = true;
   const FlatPolygon polygon =
       make_flat_polygon(index.mesh().positions, patch.hull_vertices, patch.area_vector.normalized(), index.tol());
   const auto in_patch = [&](int f) { return merger.in_patch(f, patch_id); };
-  hull.thickness = allowed_prism_thickness(index, polygon, in_patch, cap, scratch);
-  hull.polytope = prism_polytope(polygon, hull.thickness);
+  const std::vector<Plane> sides = beveled_side_planes(index, polygon, in_patch, scratch);
+  hull.thickness = allowed_prism_thickness(index, polygon, sides, in_patch, cap, scratch);
+  hull.polytope = prism_polytope(polygon, sides, hull.thickness, index.tol(), hulls);
   if (hull.thickness > 0.0 && check_solid_hull(index, hull.polytope, scratch) != Validity::valid) {
     hull.thickness = 0.0;
-    hull.polytope = prism_polytope(polygon, 0.0);
+    hull.polytope = prism_polytope(polygon, sides, hull.thickness, index.tol(), hulls);
   }
   return hull;
 }
@@ -69,16 +70,28 @@ Result<Covering> decompose(const PreparedMesh& prepared, const DecomposeOptions&
 
   start = Clock::now();
   std::vector<int> scratch;
+  ConvexHullBuilder output_hulls;
   const std::vector<detail::Patch>& patches = merger.patches();
   for (int id = 0; id < static_cast<int>(patches.size()); ++id) {
     const detail::Patch& patch = patches[id];
     if (!patch.alive) continue;
     CoveringHull hull;
     if (patch.planar) {
-      hull = planar_hull(index, merger, id, patch, covering.prism_thickness_cap, scratch);
+      hull = planar_hull(index, merger, id, patch, covering.prism_thickness_cap, output_hulls, scratch);
       stats.prisms_made_flat += hull.thickness == 0.0;
     } else {
-      hull.polytope = *patch.solid;
+      // Rebuild once with Qhull: hulls grown during merging keep the
+      // triangles they grew by, Qhull merges coplanar facets into polygons.
+      std::vector<Eigen::Vector3d> points;
+      for (int v : patch.hull_vertices) points.push_back(prepared.mesh.positions[v]);
+      Result<ConvexPolytope> rebuilt = output_hulls.build(points, patch.hull_vertices);
+      ++stats.qhull_calls;
+      // The hull validated during merging may differ from the rebuilt one by
+      // up to tol (points within tol of it were not added): the rebuilt hull
+      // is kept only if it passes the same checks.
+      const bool rebuilt_valid = rebuilt.ok() && check_solid_hull(index, rebuilt.value(), scratch) == Validity::valid;
+      hull.polytope = rebuilt_valid ? std::move(rebuilt).value() : *patch.solid;
+      stats.solids_kept_as_grown += !rebuilt_valid;
     }
     hull.faces = patch.faces;
     std::sort(hull.faces.begin(), hull.faces.end());

@@ -73,6 +73,8 @@ nlohmann::json covering_json(const Covering& covering) {
         {"max_hull_vertices", o.max_hull_vertices}}},
       {"merging",
        {{"merges", s.merges}, {"candidates_tested", s.candidates_tested}, {"qhull_calls", s.qhull_calls},
+        {"incremental_hulls", s.incremental_hulls},
+        {"solids_kept_as_grown", s.solids_kept_as_grown},
         {"rejections", rejections}}},
       {"seconds",
        {{"index", s.seconds_index}, {"merging", s.seconds_merging}, {"output", s.seconds_output},

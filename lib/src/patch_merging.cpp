@@ -1,5 +1,6 @@
 #include "patch_merging.h"
 
+#include "hullcover/lib/incremental_hull.h"
 #include "hullcover/lib/planar_hull.h"
 
 #include <algorithm>
@@ -139,21 +140,60 @@ PatchMerger::Candidate PatchMerger::evaluate(int a, int b) {
     }
   }
 
-  Result<ConvexPolytope> hull = hull_builder_.build(points, ids);
-  ++statistics_.qhull_calls;
-  if (!hull.ok()) {
-    out.validity = Validity::hull_failed;
-    return out;
+  std::optional<ConvexPolytope> hull = grow_known_hull(pa, pb);
+  if (!hull) hull = grow_known_hull(pb, pa);
+  if (!hull) {
+    Result<ConvexPolytope> built = hull_builder_.build(points, ids);
+    ++statistics_.qhull_calls;
+    if (!built.ok()) {
+      out.validity = Validity::hull_failed;
+      return out;
+    }
+    hull = std::move(built).value();
   }
-  if (static_cast<int>(hull.value().vertices.size()) > options_.max_hull_vertices) {
+  if (static_cast<int>(hull->vertices.size()) > options_.max_hull_vertices) {
     out.validity = Validity::too_many_vertices;
     return out;
   }
-  out.validity = check_solid_hull(index_, hull.value(), scratch_);
-  out.hull_vertices = hull.value().vertex_ids;
+  out.validity = check_solid_hull(index_, *hull, scratch_);
+  out.hull_vertices = hull->vertex_ids;
   std::sort(out.hull_vertices.begin(), out.hull_vertices.end());
-  out.solid = std::move(hull).value();
+  out.solid = std::move(hull);
   return out;
+}
+
+std::optional<ConvexPolytope> PatchMerger::grow_known_hull(const Patch& base, const Patch& other) {
+  std::vector<int> added;
+  std::set_difference(other.hull_vertices.begin(), other.hull_vertices.end(), base.hull_vertices.begin(),
+                      base.hull_vertices.end(), std::back_inserter(added));
+  if (static_cast<int>(added.size()) > kMostPointsToAddIncrementally) return std::nullopt;
+  std::optional<ConvexPolytope> hull;
+  if (base.solid) {
+    hull = *base.solid;
+  } else {
+    // A planar base is a flat polytope, its front and back facets on the
+    // same corners. Growing it only works off its plane: a point on the
+    // plane but outside the polygon is beyond no facet.
+    const FlatPolygon polygon =
+        make_flat_polygon(index_.mesh().positions, base.hull_vertices, base.area_vector.normalized(), index_.tol());
+    if (polygon.corners.size() < 3) return std::nullopt;
+    for (int v : added)
+      if (std::abs(polygon.plane.signed_distance(index_.mesh().positions[v])) <= index_.tol()) return std::nullopt;
+    ConvexPolytope flat;
+    flat.vertices = polygon.corners;
+    flat.vertex_ids = polygon.corner_vertices;
+    std::vector<int> front(polygon.corners.size());
+    for (size_t i = 0; i < front.size(); ++i) front[i] = static_cast<int>(i);
+    flat.facets = {front, std::vector<int>(front.rbegin(), front.rend())};
+    flat.planes = {polygon.plane, {-polygon.plane.normal, -polygon.plane.offset}};
+    hull = std::move(flat);
+  }
+  for (int v : added) {
+    hull = add_point_to_hull(*hull, index_.mesh().positions[v], v, index_.tol());
+    if (!hull) return std::nullopt;
+  }
+  ++statistics_.incremental_hulls;
+  return hull;
 }
 
 void PatchMerger::merge(int a, int b, Candidate&& candidate) {

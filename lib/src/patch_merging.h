@@ -51,6 +51,11 @@ private:
   };
 
   Candidate evaluate(int a, int b);
+  /// hull(base + other) grown from base's known hull, when other adds few
+  /// points; nothing when that does not apply or fails (then Qhull runs).
+  std::optional<ConvexPolytope> grow_known_hull(const Patch& base, const Patch& other);
+  /// Beyond this many new points a rebuild is as cheap as growing.
+  static constexpr int kMostPointsToAddIncrementally = 6;
   void merge(int a, int b, Candidate&& candidate);
   void push_pair(int a, int b);
 

@@ -32,6 +32,7 @@ double distance_to_line(const Eigen::Vector2d& p, const Eigen::Vector2d& a, cons
 } // namespace
 
 std::vector<int> convex_hull_2d(const std::vector<Eigen::Vector2d>& points, double tol) {
+  if (points.size() < 3) return {};
   std::vector<int> order(points.size());
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](int a, int b) {

@@ -2,6 +2,8 @@
 
 #include "hullcover/lib/validity_conditions.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 
 namespace hullcover {
@@ -10,59 +12,85 @@ namespace {
 // A prism thinner than this many tolerances is no thicker than the noise of
 // the data: it is made flat instead.
 constexpr double kMinThicknessInTolerances = 2.0;
+// A bevel clears the face it avoids by this factor on its slope.
+constexpr double kBevelClearance = 1.05;
+// Halvings tried when the beveled sides meet above the wanted bottom.
+constexpr int kBottomRetries = 8;
 
 // Depth below the polygon's plane (positive behind the front).
 double depth_below(const FlatPolygon& polygon, const Eigen::Vector3d& p) { return -polygon.plane.signed_distance(p); }
 
-// The part of a convex polygon inside the polygon's column (its side planes
-// shrunk by tol); empty when it misses.
-std::vector<Eigen::Vector3d> clip_to_column(std::vector<Eigen::Vector3d> part, const FlatPolygon& polygon, double tol) {
-  for (const Plane& side : polygon.sides) {
+// The part of a convex polygon inside the column bounded by `sides` shrunk
+// by tol; empty when it misses.
+std::vector<Eigen::Vector3d> clip_to_column(std::vector<Eigen::Vector3d> part, const std::vector<Plane>& sides,
+                                            double tol) {
+  for (const Plane& side : sides) {
     if (part.empty()) break;
     part = clip_polygon(part, side, tol);
   }
   return part;
 }
 
-} // namespace
-
-ConvexPolytope prism_polytope(const FlatPolygon& polygon, double thickness) {
-  ConvexPolytope prism;
-  const int n = static_cast<int>(polygon.corners.size());
-  prism.vertices = polygon.corners;
-  prism.vertex_ids = polygon.corner_vertices;
-  std::vector<int> top(n), bottom(n);
-  for (int i = 0; i < n; ++i) top[i] = i;
-  const Plane& front = polygon.plane;
-  Plane back{-front.normal, -(front.offset - thickness)};
-  if (thickness > 0.0) {
-    for (int i = 0; i < n; ++i) {
-      prism.vertices.push_back(polygon.corners[i] - thickness * front.normal);
-      prism.vertex_ids.push_back(-1);
-    }
-    // The bottom corner under top corner i is n + i; the back facet runs
-    // backwards so it is counter-clockwise seen from behind.
-    for (int i = 0; i < n; ++i) bottom[i] = n + (n - 1 - i);
-  } else {
-    for (int i = 0; i < n; ++i) bottom[i] = n - 1 - i;
-  }
-  prism.facets.push_back(top);
-  prism.planes.push_back(front);
-  prism.facets.push_back(bottom);
-  prism.planes.push_back(back);
-  if (thickness > 0.0) {
-    for (int i = 0; i < n; ++i) {
-      const int j = (i + 1) % n;
-      prism.facets.push_back({i, n + i, n + j, j});
-      prism.planes.push_back(polygon.sides[i]);
-    }
-  } else {
-    prism.planes.insert(prism.planes.end(), polygon.sides.begin(), polygon.sides.end());
-  }
-  return prism;
+double distance_to_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return (a + t * ab - p).norm();
 }
 
-double allowed_prism_thickness(const SceneIndex& index, const FlatPolygon& polygon,
+// The flat polygon as a polytope: front and back facets, vertical sides.
+ConvexPolytope flat_polytope(const FlatPolygon& polygon) {
+  ConvexPolytope flat;
+  flat.vertices = polygon.corners;
+  flat.vertex_ids = polygon.corner_vertices;
+  std::vector<int> front(polygon.corners.size());
+  for (size_t i = 0; i < front.size(); ++i) front[i] = static_cast<int>(i);
+  flat.facets = {front, std::vector<int>(front.rbegin(), front.rend())};
+  flat.planes = {polygon.plane, {-polygon.plane.normal, -polygon.plane.offset}};
+  flat.planes.insert(flat.planes.end(), polygon.sides.begin(), polygon.sides.end());
+  return flat;
+}
+
+} // namespace
+
+std::vector<Plane> beveled_side_planes(const SceneIndex& index, const FlatPolygon& polygon,
+                                       const std::function<bool(int)>& in_patch, std::vector<int>& scratch) {
+  const double tol = index.tol();
+  const Mesh& mesh = index.mesh();
+  const Eigen::Vector3d& n = polygon.plane.normal;
+  std::vector<Plane> sides = polygon.sides;
+  const size_t count = polygon.corners.size();
+  for (size_t i = 0; i < count; ++i) {
+    const Eigen::Vector3d& a = polygon.corners[i];
+    const Eigen::Vector3d& b = polygon.corners[(i + 1) % count];
+    const Eigen::Vector3d& out = polygon.sides[i].normal;
+    Aabb edge_box;
+    edge_box.extend(a);
+    edge_box.extend(b);
+    scratch.clear();
+    index.face_tree.overlapping(grown(edge_box, tol), scratch);
+    double slope = 0.0;  // inward run per unit depth the side must exceed
+    for (int f : scratch) {
+      if (in_patch(f)) continue;
+      bool touches = false;
+      for (int k = 0; k < 3; ++k) touches |= distance_to_segment(mesh.positions[mesh.triangles[f][k]], a, b) <= tol;
+      if (!touches) continue;
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d d = mesh.positions[mesh.triangles[f][k]] - a;
+        const double depth = -n.dot(d), inward = -out.dot(d);
+        if (depth > tol && inward > 0.0) slope = std::max(slope, kBevelClearance * (inward + tol) / depth);
+      }
+    }
+    slope = std::min(slope, kMaxBevelSlope);
+    if (slope == 0.0) continue;
+    Plane tilted;
+    tilted.normal = (out - slope * n).normalized();
+    tilted.offset = tilted.normal.dot(a);
+    sides[i] = tilted;
+  }
+  return sides;
+}
+
+double allowed_prism_thickness(const SceneIndex& index, const FlatPolygon& polygon, const std::vector<Plane>& sides,
                                const std::function<bool(int)>& in_patch, double cap, std::vector<int>& scratch) {
   const double tol = index.tol();
   const Mesh& mesh = index.mesh();
@@ -78,7 +106,7 @@ double allowed_prism_thickness(const SceneIndex& index, const FlatPolygon& polyg
   for (int f : scratch) {
     if (in_patch(f)) continue;
     for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[f][k]];
-    const std::vector<Eigen::Vector3d> part = clip_to_column(triangle, polygon, tol);
+    const std::vector<Eigen::Vector3d> part = clip_to_column(triangle, sides, tol);
     if (part.empty()) continue;
     double shallowest = depth_below(polygon, part[0]), deepest = shallowest;
     for (const Eigen::Vector3d& p : part) {
@@ -99,8 +127,7 @@ double allowed_prism_thickness(const SceneIndex& index, const FlatPolygon& polyg
   index.bar_tree.overlapping(region, scratch);
   for (int b : scratch) {
     const BoundaryBar& bar = index.bars[b];
-    std::vector<Eigen::Vector3d> segment = {bar.a, bar.b};
-    segment = clip_to_column(segment, polygon, tol);
+    const std::vector<Eigen::Vector3d> segment = clip_to_column({bar.a, bar.b}, sides, tol);
     if (segment.empty()) continue;
     double shallowest = depth_below(polygon, segment[0]), deepest = shallowest;
     for (const Eigen::Vector3d& p : segment) {
@@ -110,6 +137,31 @@ double allowed_prism_thickness(const SceneIndex& index, const FlatPolygon& polyg
     if (deepest > tol) thickness = std::min(thickness, std::max(shallowest, 0.0));
   }
   return thickness < kMinThicknessInTolerances * tol ? 0.0 : thickness;
+}
+
+ConvexPolytope prism_polytope(const FlatPolygon& polygon, const std::vector<Plane>& sides, double& thickness,
+                              double tol, ConvexHullBuilder& hulls) {
+  const Eigen::Vector3d& n = polygon.plane.normal;
+  for (int attempt = 0; thickness > 0.0 && attempt <= kBottomRetries; ++attempt, thickness *= 0.5) {
+    std::vector<Eigen::Vector3d> bottom;
+    for (const Eigen::Vector3d& c : polygon.corners) bottom.push_back(c - thickness * n);
+    for (const Plane& side : sides) bottom = clip_polygon(bottom, side, 0.0);
+    // Clipping leaves points on edges and near-duplicates; keep corners only,
+    // so the hull gets no sliver facets.
+    const PlaneFrame frame = PlaneFrame::from_normal(polygon.corners.front(), n);
+    std::vector<Eigen::Vector2d> flat;
+    for (const Eigen::Vector3d& p : bottom) flat.push_back(frame.to_plane(p));
+    const std::vector<int> corners = convex_hull_2d(flat, tol);
+    if (corners.size() < 3) continue;
+    std::vector<Eigen::Vector3d> points = polygon.corners;
+    std::vector<int> ids = polygon.corner_vertices;
+    for (int c : corners) points.push_back(bottom[c]);
+    ids.resize(points.size(), -1);
+    Result<ConvexPolytope> prism = hulls.build(points, ids);
+    if (prism.ok() && prism.value().facets.size() >= 4) return std::move(prism).value();
+  }
+  thickness = 0.0;
+  return flat_polytope(polygon);
 }
 
 } // namespace hullcover

@@ -23,6 +23,8 @@ TEST(ConvexHull2d, DropsInteriorAndNearCollinearPoints) {
 TEST(ConvexHull2d, CollinearPointsGiveNoPolygon) {
   EXPECT_LT(convex_hull_2d({{0, 0}, {1, 1e-9}, {2, 0}, {3, -1e-9}}, 1e-6).size(), 3u);
   EXPECT_LT(convex_hull_2d({{1, 1}, {1, 1}, {1, 1}}, 1e-6).size(), 3u);
+  EXPECT_TRUE(convex_hull_2d({}, 1e-6).empty());
+  EXPECT_TRUE(convex_hull_2d({{1, 1}, {2, 2}}, 1e-6).empty());
 }
 
 // Property: every input point is inside (or within tol of) the hull.

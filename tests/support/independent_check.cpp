@@ -212,27 +212,31 @@ CheckReport check_covering_independently(const PreparedMesh& prepared, const Cov
     const Eigen::Vector3d lo = c.lo.array() - 2 * tol, hi = c.hi.array() + 2 * tol;
     const std::string where = "hull " + std::to_string(h) + " (" + std::to_string(hull.faces.size()) + " faces, thickness " + std::to_string(hull.thickness) + "): ";
     for (const auto& p : hull.polytope.vertices)
-      for (const HalfSpace& plane : c.facets)
-        if (plane.n.dot(p) - plane.d > tol) {
+      for (size_t fi = 0; fi < c.facets.size(); ++fi)
+        if (const HalfSpace& plane = c.facets[fi]; plane.n.dot(p) - plane.d > tol) {
+          std::ostringstream detail;
+          detail << "facet " << fi << " of size " << hull.polytope.facets[fi].size() << " n " << plane.n.transpose()
+                 << " p " << p.transpose();
+          note(detail.str());
           ++report.hulls_not_convex;
-          note(where + "not convex");
+          note(where + "not convex: a vertex " + std::to_string(plane.n.dot(p) - plane.d) + " in front of a facet of " +
+               std::to_string(hull.polytope.facets.size()));
           goto convex_checked;
         }
   convex_checked:
-    // Condition 2 and coverage: each covered face lies on a facet, same normal.
+    // Condition 2 and coverage: each covered face's plane supports the hull
+    // (every hull vertex behind it) and its corners lie on the hull.
     for (int f : hull.faces) {
       covered[f] = 1;
       const Eigen::Vector3i& t = mesh.triangles[f];
-      bool on_facet = false;
-      for (const HalfSpace& plane : c.facets) {
-        if (plane.n.dot(normal[f]) <= 0.0) continue;
-        bool all = true;
-        for (int k = 0; k < 3; ++k) all &= std::abs(plane.n.dot(mesh.positions[t[k]]) - plane.d) <= 2 * tol;
-        if (all) { on_facet = true; break; }
-      }
-      if (!on_facet) {
+      const Eigen::Vector3d& a = mesh.positions[t[0]];
+      double in_front = 0.0, deepest_corner = -INFINITY;
+      for (const auto& p : hull.polytope.vertices) in_front = std::max(in_front, normal[f].dot(p - a));
+      for (int k = 0; k < 3; ++k) deepest_corner = std::max(deepest_corner, depth_inside(c.facets, mesh.positions[t[k]]));
+      if (in_front > 2 * tol || deepest_corner > 2 * tol || (c.flat && c.front.n.dot(normal[f]) <= 0.0)) {
         ++report.faces_off_hull;
-        note(where + "face " + std::to_string(f) + " not on a facet with its normal");
+        note(where + "face " + std::to_string(f) + " not on the hull with its normal out (" +
+             std::to_string(in_front) + " in front, corner " + std::to_string(deepest_corner) + " deep)");
       }
     }
     if (c.flat && hull.faces.size() == 1) continue;  // the face itself: whatever crosses it, crosses the mesh

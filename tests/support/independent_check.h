@@ -16,7 +16,7 @@ namespace hullcover::test {
 struct CheckReport {
   long vertices_inside = 0;       // condition 1
   long edges_inside = 0;          // condition 1
-  long faces_off_hull = 0;        // condition 2 (a covered face not on a facet with its normal)
+  long faces_off_hull = 0;        // condition 2 (a covered face whose plane does not support its hull)
   long bars_inside = 0;           // condition 3
   long faces_below_polygon = 0;   // condition 4
   long faces_uncovered = 0;       // coverage: a face with area in no hull

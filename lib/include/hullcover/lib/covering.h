@@ -67,7 +67,9 @@ struct CoveringStatistics {
   long candidates_tested = 0;
   std::array<long, kValidityCount> rejections{};  ///< by Validity
   long qhull_calls = 0;
+  long incremental_hulls = 0;      ///< merge hulls grown from a known hull instead of rebuilt
   int prisms_made_flat = 0;        ///< planar hulls with thickness 0
+  int solids_kept_as_grown = 0;    ///< solid hulls output as validated during merging (Qhull's rebuild differed)
   double seconds_index = 0.0;
   double seconds_merging = 0.0;
   double seconds_output = 0.0;

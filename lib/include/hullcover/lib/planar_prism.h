@@ -12,6 +12,7 @@
 /// itself). The final prism is re-checked as a solid hull (conditions 1 and
 /// 3) and made flat if that check fails.
 
+#include "hullcover/lib/convex_hull_3d.h"
 #include "hullcover/lib/planar_hull.h"
 #include "hullcover/lib/scene_index.h"
 
@@ -19,14 +20,30 @@
 
 namespace hullcover {
 
-/// A prism below `polygon` of the given thickness (scene units, >= 0).
-/// Thickness 0 gives the flat polygon: two facets (front and back) and the
-/// side planes.
-ConvexPolytope prism_polytope(const FlatPolygon& polygon, double thickness);
+/// Side planes for a prism under `polygon`: one per polygon edge, through
+/// the edge, tilted inward with depth just enough to pass above every face
+/// that leaves that edge downward at an acute angle (a bevel), vertical
+/// where nothing does. Tilts are capped at `kMaxBevelSlope`; a face steeper
+/// than that stays inside the column and limits the thickness instead.
+std::vector<Plane> beveled_side_planes(const SceneIndex& index, const FlatPolygon& polygon,
+                                       const std::function<bool(int)>& in_patch, std::vector<int>& scratch);
+
+/// Largest inward run per unit of depth a side plane may get (about 84
+/// degrees from vertical).
+inline constexpr double kMaxBevelSlope = 10.0;
 
 /// The largest allowed thickness in [0, cap] for a prism under `polygon`
-/// (see the file comment); `in_patch(face)` tells the patch's own faces.
-double allowed_prism_thickness(const SceneIndex& index, const FlatPolygon& polygon,
+/// bounded by `sides` (see the file comment); `in_patch(face)` tells the
+/// patch's own faces.
+double allowed_prism_thickness(const SceneIndex& index, const FlatPolygon& polygon, const std::vector<Plane>& sides,
                                const std::function<bool(int)>& in_patch, double cap, std::vector<int>& scratch);
+
+/// The prism under `polygon` of the given thickness (scene units, >= 0)
+/// between the side planes `sides`, built by `hulls`. Where the sides meet
+/// before that depth the thickness is reduced until the bottom is a proper
+/// polygon (corners more than `tol` apart and off each other's lines); `thickness` returns what was used. Thickness 0 gives the flat
+/// polygon: front and back facets and the vertical side planes.
+ConvexPolytope prism_polytope(const FlatPolygon& polygon, const std::vector<Plane>& sides, double& thickness,
+                              double tol, ConvexHullBuilder& hulls);
 
 } // namespace hullcover
