@@ -1,12 +1,14 @@
 #include "hullcover/lib/aabb_tree.h"
 
 #include <algorithm>
+#include <cassert>
 #include <numeric>
 
 namespace hullcover {
 namespace {
 constexpr int kLeafSize = 4;
-}
+constexpr int kMaxDepth = 128;
+} // namespace
 
 AabbTree::AabbTree(const std::vector<Aabb>& boxes) : item_boxes_(boxes) {
   if (boxes.empty()) return;
@@ -48,12 +50,13 @@ int AabbTree::build(int begin, int end, const std::vector<Aabb>& boxes, std::vec
 
 void AabbTree::overlapping(const Aabb& query, std::vector<int>& out) const {
   if (nodes_.empty()) return;
-  std::vector<int> stack;
-  stack.reserve(64);
-  stack.push_back(0);
-  while (!stack.empty()) {
-    const int n = stack.back();
-    stack.pop_back();
+  // The tree is balanced (median splits), so its depth is about log2(n / 4):
+  // a fixed stack of kMaxDepth entries holds any traversal.
+  int stack[kMaxDepth];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const int n = stack[--top];
     const Node& node = nodes_[n];
     if (!boxes_overlap(node.box, query)) continue;
     if (node.count > 0) {
@@ -61,8 +64,9 @@ void AabbTree::overlapping(const Aabb& query, std::vector<int>& out) const {
         if (boxes_overlap(item_boxes_[items_[i]], query)) out.push_back(items_[i]);
       continue;
     }
-    stack.push_back(node.left);
-    stack.push_back(node.right);
+    assert(top + 2 <= kMaxDepth);
+    stack[top++] = node.left;
+    stack[top++] = node.right;
   }
 }
 

@@ -124,7 +124,7 @@ double allowed_prism_thickness(const SceneIndex& index, const FlatPolygon& polyg
   }
 
   scratch.clear();
-  index.bar_tree.overlapping(region, scratch);
+  index.bars_overlapping(region, scratch);
   for (int b : scratch) {
     const BoundaryBar& bar = index.bars[b];
     const std::vector<Eigen::Vector3d> segment = clip_to_column({bar.a, bar.b}, sides, tol);

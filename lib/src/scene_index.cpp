@@ -1,5 +1,8 @@
 #include "hullcover/lib/scene_index.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace hullcover {
 namespace {
 
@@ -58,9 +61,26 @@ SceneIndex build_scene_index(const PreparedMesh& prepared, const BarOptions& opt
     boxes.push_back(box_of({mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]}));
   index.face_tree = AabbTree(boxes);
   boxes.clear();
-  for (const BoundaryBar& bar : index.bars) boxes.push_back(box_of({bar.a, bar.b}));
+  const double piece_length = prepared.tolerance.diagonal / kBarPiecesPerDiagonal;
+  for (int b = 0; b < static_cast<int>(index.bars.size()); ++b) {
+    const BoundaryBar& bar = index.bars[b];
+    const int pieces = std::max(1, static_cast<int>(std::ceil((bar.b - bar.a).norm() / piece_length)));
+    for (int k = 0; k < pieces; ++k) {
+      boxes.push_back(box_of({bar.a + (bar.b - bar.a) * (static_cast<double>(k) / pieces),
+                              bar.a + (bar.b - bar.a) * (static_cast<double>(k + 1) / pieces)}));
+      index.bar_of_piece.push_back(b);
+    }
+  }
   index.bar_tree = AabbTree(boxes);
   return index;
+}
+
+void SceneIndex::bars_overlapping(const Aabb& box, std::vector<int>& out) const {
+  const size_t start = out.size();
+  bar_tree.overlapping(box, out);
+  for (size_t i = start; i < out.size(); ++i) out[i] = bar_of_piece[out[i]];
+  std::sort(out.begin() + static_cast<long>(start), out.end());
+  out.erase(std::unique(out.begin() + static_cast<long>(start), out.end()), out.end());
 }
 
 } // namespace hullcover

@@ -50,7 +50,7 @@ Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, s
   }
 
   scratch.clear();
-  index.bar_tree.overlapping(box, scratch);
+  index.bars_overlapping(box, scratch);
   for (int b : scratch)
     if (segment_enters_interior(hull.planes, index.bars[b].a, index.bars[b].b, tol)) return Validity::bar_inside;
   return Validity::valid;
@@ -92,7 +92,7 @@ Validity check_flat_polygon(const SceneIndex& index, const FlatPolygon& polygon,
   const Mesh& mesh = index.mesh();
 
   scratch.clear();
-  index.bar_tree.overlapping(box, scratch);
+  index.bars_overlapping(box, scratch);
   for (int b : scratch)
     if (bar_crosses_polygon(polygon, index.bars[b], tol)) return Validity::bar_crosses_polygon;
 

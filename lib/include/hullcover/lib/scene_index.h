@@ -43,11 +43,20 @@ struct SceneIndex {
   AabbTree vertex_tree;  ///< over mesh vertices
   AabbTree edge_tree;    ///< over MeshConnectivity::edges
   AabbTree face_tree;    ///< over faces
-  AabbTree bar_tree;     ///< over bars
+  AabbTree bar_tree;     ///< over pieces of bars (long bars are split, so boxes stay small)
+  std::vector<int> bar_of_piece;  ///< bar index of each piece in bar_tree
+
+  /// Appends, once each and ascending, the bars with a piece overlapping `box`.
+  void bars_overlapping(const Aabb& box, std::vector<int>& out) const;
 
   const Mesh& mesh() const { return prepared->mesh; }
   double tol() const { return prepared->tolerance.length; }
 };
+
+/// Bars are indexed in pieces no longer than the diagonal / this: a bar
+/// is long (a tenth of the scene by default), and one long box per bar would
+/// make every query visit most of the tree.
+inline constexpr double kBarPiecesPerDiagonal = 64.0;
 
 /// Builds the index: face normals and areas, bars on every boundary edge
 /// (and material boundary when asked), and the four trees. O(n log n).
