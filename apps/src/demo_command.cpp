@@ -4,6 +4,7 @@
 #include "commands.h"
 #include "mesh_report.h"
 
+#include "hullcover/lib/covering_export.h"
 #include "hullcover/lib/mesh_export.h"
 #include "hullcover/lib/scene_builder.h"
 
@@ -43,9 +44,25 @@ int run_demo(const DemoOptions& options) {
   std::printf("demo scene: a building with a doorway, an interior wall, stairs and a terrain patch\n%s",
               format_mesh_figures(figures).c_str());
 
-  const std::string info_path = options.out_dir + "/demo-info.json";
-  std::ofstream(info_path) << mesh_figures_json(figures).dump(2) << "\n";
-  std::printf("wrote %s and %s\n", scene_path.c_str(), info_path.c_str());
+  const Result<Covering> covering = decompose(prepared.value(), DecomposeOptions{});
+  if (!covering.ok()) {
+    std::fprintf(stderr, "hullcover: error: demo scene: %s\n", covering.status().message().c_str());
+    return kExitBadInput;
+  }
+  const Covering& c = covering.value();
+  const std::string hulls_path = options.out_dir + "/demo-hulls.obj";
+  const std::string json_path = options.out_dir + "/demo-hulls.json";
+  nlohmann::json extra;
+  extra["scene"] = mesh_figures_json(figures);
+  for (const Status& s : {write_covering_obj(c, hulls_path), write_covering_json(c, extra, json_path)})
+    if (!s.ok()) {
+      std::fprintf(stderr, "hullcover: error: %s\n", s.message().c_str());
+      return kExitBadInput;
+    }
+  const CoveringStatistics& st = c.statistics;
+  std::printf("decomposed: %d faces -> %zu hulls (%.3f hulls/face) in %.3f s\n", st.faces, c.hulls.size(),
+              static_cast<double>(c.hulls.size()) / st.faces, st.seconds_index + st.seconds_merging + st.seconds_output);
+  std::printf("wrote %s, %s and %s\n", scene_path.c_str(), hulls_path.c_str(), json_path.c_str());
   return kExitSuccess;
 }
 

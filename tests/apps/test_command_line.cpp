@@ -107,17 +107,51 @@ TEST(CommandLine, InfoTextPrintsTheToleranceUsed) {
   EXPECT_NE(r.out.find("1e-5 x bounding-box diagonal 1.41421"), std::string::npos) << r.out;
 }
 
-TEST(CommandLine, DemoWritesTheSceneAndItsFigures) {
+TEST(CommandLine, DemoWritesTheSceneItsFiguresAndItsHulls) {
   TempDir dir;
   const CommandRun r = run(dir, "demo --out " + dir.path("demo"));
   ASSERT_EQ(r.status, 0) << r.err;
   const CommandRun info = run(dir, "info --json " + dir.path("demo/demo-scene.obj"));
   ASSERT_EQ(info.status, 0) << info.err;
-  const nlohmann::json written = nlohmann::json::parse(slurp(dir.path("demo/demo-info.json")));
+  const nlohmann::json written = nlohmann::json::parse(slurp(dir.path("demo/demo-hulls.json")));
   const nlohmann::json reread = nlohmann::json::parse(info.out);
-  // The OBJ the demo wrote reads back to the figures the demo printed.
+  // The OBJ the demo wrote reads back to the figures the demo reported.
   for (const char* key : {"triangles", "vertices_after_weld", "components", "boundary_edges", "non_manifold_edges"})
-    EXPECT_EQ(written[key], reread[key]) << key;
+    EXPECT_EQ(written["scene"][key], reread[key]) << key;
+  const std::string hulls = slurp(dir.path("demo/demo-hulls.obj"));
+  size_t hull_groups = 0;
+  for (size_t at = hulls.find("\no hull_"); at != std::string::npos; at = hulls.find("\no hull_", at + 1)) ++hull_groups;
+  EXPECT_EQ(hull_groups, written["totals"]["hulls"].get<size_t>());
+  EXPECT_LT(written["totals"]["hulls"].get<int>(), written["totals"]["faces"].get<int>());
+}
+
+TEST(CommandLine, DecomposeWritesOneGroupPerHullAndTheSidecar) {
+  TempDir dir;
+  const std::string quad = dir.write("quad.obj", kQuadObj);
+  const CommandRun r = run(dir, "decompose " + quad + " -o " + dir.path("h.obj") + " --json " + dir.path("h.json") +
+                                    " --order random --seed 7 --bar-length 0.5 --prism-cap 0.1 --max-hull-vertices 16 -q");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("2 faces -> 1 hulls"), std::string::npos) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(slurp(dir.path("h.json")));
+  EXPECT_EQ(j["totals"]["hulls"], 1);
+  EXPECT_EQ(j["options"]["order"], "random");
+  EXPECT_EQ(j["options"]["seed"], 7);
+  EXPECT_DOUBLE_EQ(j["options"]["bar_half_length"].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(j["hulls"][0]["prism_thickness"].get<double>(), 0.1);  // nothing behind the quad
+  EXPECT_EQ(j["hulls"][0]["faces"], nlohmann::json::array({0, 1}));
+  const std::string obj = slurp(dir.path("h.obj"));
+  EXPECT_NE(obj.find("o hull_0\n"), std::string::npos);
+}
+
+TEST(CommandLine, DecomposeRejectsBadOptionsWithTwo) {
+  TempDir dir;
+  const std::string quad = dir.write("quad.obj", kQuadObj);
+  const std::string base = "decompose " + quad + " -o " + dir.path("h.obj") + " ";
+  for (const std::string bad : {"--order sideways", "--max-hull-vertices 3", "--bar-length -1", "--prism-cap -2",
+                                "--tol 0"})
+    EXPECT_EQ(run(dir, base + bad).status, 2) << bad;
+  EXPECT_EQ(run(dir, "decompose " + dir.path("missing.obj") + " -o " + dir.path("h.obj")).status, 2);
+  EXPECT_EQ(run(dir, "decompose " + quad + " -o " + dir.path("no/such/dir/h.obj")).status, 2);
 }
 
 } // namespace
