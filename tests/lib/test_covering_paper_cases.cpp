@@ -1,4 +1,4 @@
-// The paper's cases (figures 2-8, 10), built in code, plus the closed and
+// The paper's cases (figures 2-5, 7, 8, 10), built in code, plus the closed and
 // inward cubes. Every result is re-checked by the independent checker in
 // decompose_and_check; the assertions here are the figures' own claims.
 
@@ -155,6 +155,30 @@ TEST(PaperCases, Figure2cTheSameSolidClosedIsOneHull) {
   const auto d = decompose_and_check(inverted_frustum(true));
   ASSERT_TRUE(d);
   EXPECT_EQ(d->covering.hulls.size(), 1u);
+}
+
+// Figure 7: merge order matters. A plus-shaped floor of five cells (two
+// triangles each) is ideally three rectangles; compactness finds them, while
+// other orders can merge a jagged patch first and end with more.
+TEST(PaperCases, Figure7CompactOrderFindsTheThreeRectangles) {
+  Mesh m;
+  for (const auto& [x, z] : {std::pair{1, 0}, {0, 1}, {1, 1}, {2, 1}, {1, 2}})
+    add_quad_facing(m, V(x, 0, z), V(x, 0, z + 1), V(x + 1, 0, z + 1), V(x + 1, 0, z), V(0, 1, 0));
+  const auto compact = decompose_and_check(m);
+  ASSERT_TRUE(compact);
+  EXPECT_EQ(compact->covering.hulls.size(), 3u);
+  DecomposeOptions random;
+  random.order = MergeOrder::random;
+  size_t fewest = SIZE_MAX, most = 0;
+  for (std::uint64_t seed = 1; seed <= 15; ++seed) {
+    random.seed = seed;
+    const auto d = decompose_and_check(m, random);
+    ASSERT_TRUE(d);
+    fewest = std::min(fewest, d->covering.hulls.size());
+    most = std::max(most, d->covering.hulls.size());
+  }
+  EXPECT_EQ(fewest, 3u);
+  EXPECT_GT(most, 3u);
 }
 
 // Figure 10: an extruded gear with 32 teeth; caps tessellated with each
