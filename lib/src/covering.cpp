@@ -45,9 +45,22 @@ CoveringHull planar_hull(const SceneIndex& index, const detail::PatchMerger& mer
   return hull;
 }
 
+Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const DecomposeOptions& options);
+
 } // namespace
 
 Result<Covering> decompose(const PreparedMesh& prepared, const DecomposeOptions& options) {
+  // No exception may leave the library (a game server links it): out of
+  // memory, or a bug, comes back as a status.
+  try {
+    return decompose_unchecked(prepared, options);
+  } catch (const std::exception& e) {
+    return Status{StatusCode::internal_error, std::string("decomposition failed: ") + e.what()};
+  }
+}
+
+namespace {
+Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const DecomposeOptions& options) {
   if (Status s = check_options(options); !s.ok()) return s;
   Covering covering;
   covering.options = options;
@@ -105,5 +118,7 @@ Result<Covering> decompose(const PreparedMesh& prepared, const DecomposeOptions&
   if (options.progress) options.progress(1.0);
   return covering;
 }
+
+} // namespace
 
 } // namespace hullcover

@@ -14,6 +14,7 @@ const char* status_code_name(StatusCode code) {
     case StatusCode::index_out_of_range: return "index_out_of_range";
     case StatusCode::invalid_argument: return "invalid_argument";
     case StatusCode::degenerate_scene: return "degenerate_scene";
+    case StatusCode::internal_error: return "internal_error";
   }
   return "unknown";
 }

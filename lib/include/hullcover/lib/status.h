@@ -25,6 +25,7 @@ enum class StatusCode {
   index_out_of_range,    ///< a triangle names a vertex that does not exist
   invalid_argument,      ///< an option is out of its documented range
   degenerate_scene,      ///< the input has no extent (all points coincide)
+  internal_error,        ///< a bug or exhausted memory, caught before it left the library
 };
 
 /// Short stable name of a code ("file_not_found", ...), for logs and JSON.
