@@ -1,0 +1,73 @@
+#pragma once
+/// \file hull_contact.h
+/// Exact narrow phase of a query shape against one convex hull, from the
+/// hull's own facet planes (FCL 0.7's contacts on fcl::Convex come from
+/// libccd's MPR and are often wrong in depth and normal; its EPA can abort
+/// the process: see ../shared/DESIGN.md).
+///
+/// Normal convention, on every path: the contact normal is a unit vector
+/// pointing OUT of the world hull, towards the query shape; moving the
+/// shape by `depth * normal` separates it (to touching). `point` lies on the
+/// hull's surface.
+///
+/// Penetration is found by the separating-axis test over every axis the
+/// Minkowski difference can have (hull face normals, the shape's face
+/// normals, and cross products of their edge directions), so depth and
+/// normal are exact, not iterated.
+
+#include "hullcover/bvh/runtime_hull.h"
+
+#include <Eigen/Geometry>
+
+#include <optional>
+
+namespace hullcover::bvh {
+
+/// A contact between a world hull and the query shape.
+struct Contact {
+  int hull = -1;                                     ///< hull index in its world
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();   ///< on the hull's surface
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); ///< unit, out of the hull towards the shape
+  double depth = 0.0;                                ///< penetration, >= 0 (0: touching)
+};
+
+/// Closest points between a hull and a point or segment.
+struct ClosestPoints {
+  double distance = 0.0;                               ///< 0 when they meet
+  Eigen::Vector3d on_hull = Eigen::Vector3d::Zero();
+  Eigen::Vector3d on_other = Eigen::Vector3d::Zero();
+};
+
+/// Distance from `p` to the hull (0 inside) and the closest hull point.
+ClosestPoints closest_to_point(const RuntimeHull& hull, const Eigen::Vector3d& p);
+
+/// Distance from segment a-b to the hull (0 when they meet).
+ClosestPoints closest_to_segment(const RuntimeHull& hull, const Eigen::Vector3d& a, const Eigen::Vector3d& b);
+
+/// Sphere (centre, radius > 0) against the hull: a contact when they
+/// overlap or touch, nothing when apart.
+std::optional<Contact> sphere_contact(const RuntimeHull& hull, const Eigen::Vector3d& centre, double radius);
+
+/// Capsule (segment a-b, radius > 0) against the hull.
+std::optional<Contact> capsule_contact(const RuntimeHull& hull, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                       double radius);
+
+/// Box (`pose` of its centre, half extents > 0) against the hull.
+std::optional<Contact> box_contact(const RuntimeHull& hull, const Eigen::Isometry3d& pose,
+                                   const Eigen::Vector3d& half_extents);
+
+/// A ray hit on a hull.
+struct RayHit {
+  int hull = -1;
+  double t = 0.0;  ///< distance along the unit direction
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< outward normal of the facet hit
+};
+
+/// First hit of the ray origin + t * direction (unit), 0 <= t <= max_t.
+/// A ray starting inside the hull hits at t = 0 with the normal of the
+/// nearest facet.
+std::optional<RayHit> ray_hit(const RuntimeHull& hull, const Eigen::Vector3d& origin,
+                              const Eigen::Vector3d& direction, double max_t);
+
+} // namespace hullcover::bvh

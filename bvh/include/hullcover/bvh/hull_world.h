@@ -1,0 +1,101 @@
+#pragma once
+/// \file hull_world.h
+/// The runtime a game server links: a covering's hulls as `fcl::Convex`
+/// objects in FCL's dynamic AABB tree (broad phase, yes/no overlap,
+/// separated distance) with hullcover's exact narrow phase for contacts
+/// and rays (hull_contact.h).
+///
+/// Every query takes a Request and fills a Result (as FCL does), returns a
+/// [[nodiscard]] Status and never throws. Queries are const and safe to run
+/// from many threads at once on one world.
+
+#include "hullcover/bvh/hull_contact.h"
+#include "hullcover/bvh/query_shape.h"
+#include "hullcover/bvh/runtime_hull.h"
+#include "hullcover/lib/covering.h"
+#include "hullcover/lib/status.h"
+
+#include <memory>
+#include <vector>
+
+namespace hullcover::bvh {
+
+/// Which hulls a shape at a pose touches.
+struct OverlapRequest {
+  QueryShape shape;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+};
+struct OverlapResult {
+  std::vector<int> hulls;  ///< ascending hull indices
+};
+
+/// Up to `max_contacts` contacts of a shape at a pose, deepest first.
+struct ContactRequest {
+  QueryShape shape;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  int max_contacts = 8;
+};
+struct ContactResult {
+  std::vector<Contact> contacts;  ///< deepest first; ties by hull index
+};
+
+/// First hit along a ray.
+struct RayRequest {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitX();  ///< need not be unit; t is in length units
+  double max_distance = 1e30;
+};
+struct RayResult {
+  bool hit = false;
+  RayHit first;  ///< valid when hit
+};
+
+/// Minimum separation of a shape from the world, when not touching.
+struct DistanceRequest {
+  QueryShape shape;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+};
+struct DistanceResult {
+  bool touching = false;  ///< some hull overlaps the shape (then distance is 0)
+  double distance = 0.0;
+  int hull = -1;          ///< the nearest hull
+  Eigen::Vector3d on_world = Eigen::Vector3d::Zero();
+  Eigen::Vector3d on_shape = Eigen::Vector3d::Zero();
+};
+
+class HullWorld {
+public:
+  /// Builds from runtime hulls (index i is hull i in every result).
+  /// Fails with `invalid_argument` for an empty list or a hull with no
+  /// facets or non-finite data.
+  static Result<std::shared_ptr<const HullWorld>> build(std::vector<RuntimeHull> hulls);
+  /// Builds from a covering's hulls, in its order.
+  static Result<std::shared_ptr<const HullWorld>> build(const Covering& covering);
+
+  ~HullWorld();
+  HullWorld(const HullWorld&) = delete;
+  HullWorld& operator=(const HullWorld&) = delete;
+
+  /// Fails with `invalid_argument` for a bad shape or pose (check_query_shape).
+  [[nodiscard]] Status overlap(const OverlapRequest& request, OverlapResult& result) const;
+  /// As overlap; contacts for sphere, capsule and box. A convex query shape
+  /// gets `invalid_argument` (its exact narrow phase is not written yet).
+  [[nodiscard]] Status contacts(const ContactRequest& request, ContactResult& result) const;
+  /// Fails with `invalid_argument` for a zero or non-finite direction.
+  [[nodiscard]] Status ray_cast(const RayRequest& request, RayResult& result) const;
+  /// Sphere and capsule (exact); `invalid_argument` for other shapes.
+  [[nodiscard]] Status distance(const DistanceRequest& request, DistanceResult& result) const;
+
+  const std::vector<RuntimeHull>& hulls() const { return hulls_; }
+
+private:
+  HullWorld() = default;
+  struct Fcl;  // FCL objects, kept out of this header: fcl headers are slow to compile
+  std::vector<RuntimeHull> hulls_;
+  std::unique_ptr<Fcl> fcl_;
+
+  /// Hull indices whose tree boxes overlap `box`, ascending.
+  void candidates(const Aabb& box, std::vector<int>& out) const;
+};
+
+} // namespace hullcover::bvh

@@ -1,0 +1,29 @@
+#pragma once
+/// \file runtime_hull.h
+/// What the runtime keeps of one hull: only what queries use (vertices,
+/// outward facet planes, facet polygons, edges, material), nothing per
+/// triangle (../shared/DESIGN.md, "Model only what a scene needs").
+
+#include "hullcover/lib/convex_polytope.h"
+#include "hullcover/lib/covering.h"
+
+#include <utility>
+#include <vector>
+
+namespace hullcover::bvh {
+
+/// One convex hull at run time. Flat hulls (a polygon, thickness 0) have a
+/// front and a back facet and bound themselves sideways with extra planes
+/// (see ConvexPolytope).
+struct RuntimeHull {
+  ConvexPolytope shape;
+  /// Each undirected edge of the facet polygons once (vertex index pairs).
+  std::vector<std::pair<int, int>> edges;
+  int material = 0;
+  Aabb box;
+};
+
+/// The runtime form of a covering's hull.
+RuntimeHull make_runtime_hull(const ConvexPolytope& shape, int material);
+
+} // namespace hullcover::bvh

@@ -1,0 +1,261 @@
+#include "hullcover/bvh/hull_contact.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace hullcover::bvh {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Below this fraction of the hull's size, a distance is "zero": the
+// direction between closest points is then noise, and the separating-axis
+// path gives the normal instead.
+constexpr double kTouchingFraction = 1e-12;
+
+double touching_distance(const RuntimeHull& hull) { return kTouchingFraction * (1.0 + hull.box.diagonal()); }
+
+Eigen::Vector3d closest_on_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d ab = b - a;
+  const double len2 = ab.squaredNorm();
+  if (len2 == 0.0) return a;
+  return a + std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) * ab;
+}
+
+// Closest points of segments p1-q1 and p2-q2 (Ericson, Real-Time Collision
+// Detection, 5.1.9).
+std::pair<Eigen::Vector3d, Eigen::Vector3d> closest_between_segments(const Eigen::Vector3d& p1,
+                                                                     const Eigen::Vector3d& q1,
+                                                                     const Eigen::Vector3d& p2,
+                                                                     const Eigen::Vector3d& q2) {
+  const Eigen::Vector3d d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  double s = 0.0, t = 0.0;
+  if (a == 0.0 && e == 0.0) return {p1, p2};
+  if (a == 0.0) {
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = d1.dot(r);
+    if (e == 0.0) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = d1.dot(d2), denom = a * e - b * b;
+      s = denom > 0.0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+      t = (b * s + f) / e;
+      if (t < 0.0) {
+        t = 0.0;
+        s = std::clamp(-c / a, 0.0, 1.0);
+      } else if (t > 1.0) {
+        t = 1.0;
+        s = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  return {p1 + d1 * s, p2 + d2 * t};
+}
+
+// Closest point of facet f's polygon to p.
+Eigen::Vector3d closest_on_facet(const RuntimeHull& hull, int f, const Eigen::Vector3d& p) {
+  const Plane& plane = hull.shape.planes[f];
+  const std::vector<int>& poly = hull.shape.facets[f];
+  const Eigen::Vector3d q = p - plane.signed_distance(p) * plane.normal;
+  bool inside = true;
+  for (size_t i = 0; i < poly.size() && inside; ++i) {
+    const Eigen::Vector3d& a = hull.shape.vertices[poly[i]];
+    const Eigen::Vector3d& b = hull.shape.vertices[poly[(i + 1) % poly.size()]];
+    inside = (b - a).cross(plane.normal).dot(q - a) <= 0.0;
+  }
+  if (inside) return q;
+  Eigen::Vector3d best = q;
+  double best_d2 = kInfinity;
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const Eigen::Vector3d c =
+        closest_on_segment(p, hull.shape.vertices[poly[i]], hull.shape.vertices[poly[(i + 1) % poly.size()]]);
+    if ((c - p).squaredNorm() < best_d2) {
+      best_d2 = (c - p).squaredNorm();
+      best = c;
+    }
+  }
+  return best;
+}
+
+// The facet plane p is least deep behind (p inside the hull).
+int nearest_facet(const RuntimeHull& hull, const Eigen::Vector3d& p) {
+  int best = 0;
+  for (int f = 1; f < static_cast<int>(hull.shape.facets.size()); ++f)
+    if (hull.shape.planes[f].signed_distance(p) > hull.shape.planes[best].signed_distance(p)) best = f;
+  return best;
+}
+
+// Separating-axis penetration: the smallest push of the shape along an axis
+// (both senses) that separates it from the hull. `project` gives the
+// shape's [min, max] along a unit axis. Returns depth and the push
+// direction, or nothing when some axis separates them.
+template <typename Project>
+std::optional<std::pair<double, Eigen::Vector3d>> smallest_push(const RuntimeHull& hull,
+                                                                const std::vector<Eigen::Vector3d>& axes,
+                                                                Project project) {
+  double best = kInfinity;
+  Eigen::Vector3d best_axis = Eigen::Vector3d::UnitZ();
+  for (const Eigen::Vector3d& w : axes) {
+    double hmin = kInfinity, hmax = -kInfinity;
+    for (const Eigen::Vector3d& v : hull.shape.vertices) {
+      hmin = std::min(hmin, v.dot(w));
+      hmax = std::max(hmax, v.dot(w));
+    }
+    const auto [smin, smax] = project(w);
+    const double push_plus = hmax - smin, push_minus = smax - hmin;
+    if (push_plus < 0.0 || push_minus < 0.0) return std::nullopt;
+    if (push_plus < best) {
+      best = push_plus;
+      best_axis = w;
+    }
+    if (push_minus < best) {
+      best = push_minus;
+      best_axis = -w;
+    }
+  }
+  return std::make_pair(best, best_axis);
+}
+
+// Hull plane normals, then `directions` crossed with every hull edge.
+std::vector<Eigen::Vector3d> candidate_axes(const RuntimeHull& hull, const std::vector<Eigen::Vector3d>& directions) {
+  std::vector<Eigen::Vector3d> axes;
+  for (const Plane& p : hull.shape.planes) axes.push_back(p.normal);
+  for (const Eigen::Vector3d& d : directions) {
+    axes.push_back(d.normalized());
+    for (const auto& [u, v] : hull.edges) {
+      const Eigen::Vector3d c = d.cross(hull.shape.vertices[v] - hull.shape.vertices[u]);
+      const double n = c.norm();
+      if (n > kTouchingFraction * d.norm() * (hull.shape.vertices[v] - hull.shape.vertices[u]).norm())
+        axes.push_back(c / n);
+    }
+  }
+  return axes;
+}
+
+} // namespace
+
+ClosestPoints closest_to_point(const RuntimeHull& hull, const Eigen::Vector3d& p) {
+  if (deepest_signed_distance(hull.shape.planes, p) <= 0.0) return {0.0, p, p};
+  ClosestPoints best{kInfinity, p, p};
+  for (int f = 0; f < static_cast<int>(hull.shape.facets.size()); ++f) {
+    if (hull.shape.planes[f].signed_distance(p) < 0.0) continue;
+    const Eigen::Vector3d c = closest_on_facet(hull, f, p);
+    const double d = (c - p).norm();
+    if (d < best.distance) best = {d, c, p};
+  }
+  return best;
+}
+
+ClosestPoints closest_to_segment(const RuntimeHull& hull, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  // Do they meet? Clip the segment by every plane.
+  double enter = 0.0, leave = 1.0;
+  for (const Plane& plane : hull.shape.planes) {
+    const double da = plane.signed_distance(a), db = plane.signed_distance(b);
+    if (da > 0.0 && db > 0.0) {
+      enter = 1.0;
+      leave = 0.0;
+      break;
+    }
+    if (da <= 0.0 && db <= 0.0) continue;
+    const double t = da / (da - db);
+    if (da > 0.0)
+      enter = std::max(enter, t);
+    else
+      leave = std::min(leave, t);
+  }
+  if (enter <= leave) {
+    const Eigen::Vector3d meet = a + (b - a) * (0.5 * (enter + leave));
+    return {0.0, meet, meet};
+  }
+  ClosestPoints best = closest_to_point(hull, a);
+  const ClosestPoints from_b = closest_to_point(hull, b);
+  if (from_b.distance < best.distance) best = from_b;
+  for (const auto& [u, v] : hull.edges) {
+    const auto [on_segment, on_edge] = closest_between_segments(a, b, hull.shape.vertices[u], hull.shape.vertices[v]);
+    const double d = (on_segment - on_edge).norm();
+    if (d < best.distance) best = {d, on_edge, on_segment};
+  }
+  return best;
+}
+
+std::optional<Contact> sphere_contact(const RuntimeHull& hull, const Eigen::Vector3d& centre, double radius) {
+  if (deepest_signed_distance(hull.shape.planes, centre) <= 0.0) {
+    const int f = nearest_facet(hull, centre);
+    const Plane& plane = hull.shape.planes[f];
+    const double s = plane.signed_distance(centre);
+    return Contact{-1, centre - s * plane.normal, plane.normal, radius - s};
+  }
+  const ClosestPoints c = closest_to_point(hull, centre);
+  if (c.distance > radius) return std::nullopt;
+  if (c.distance > touching_distance(hull))
+    return Contact{-1, c.on_hull, (centre - c.on_hull) / c.distance, radius - c.distance};
+  const int f = nearest_facet(hull, centre);
+  return Contact{-1, c.on_hull, hull.shape.planes[f].normal, radius};
+}
+
+std::optional<Contact> capsule_contact(const RuntimeHull& hull, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                       double radius) {
+  const ClosestPoints c = closest_to_segment(hull, a, b);
+  if (c.distance > radius) return std::nullopt;
+  if (c.distance > touching_distance(hull))
+    return Contact{-1, c.on_hull, (c.on_other - c.on_hull) / c.distance, radius - c.distance};
+  std::vector<Eigen::Vector3d> directions;
+  if ((b - a).norm() > touching_distance(hull)) directions.push_back(b - a);
+  const auto push = smallest_push(hull, candidate_axes(hull, directions), [&](const Eigen::Vector3d& w) {
+    return std::make_pair(std::min(a.dot(w), b.dot(w)), std::max(a.dot(w), b.dot(w)));
+  });
+  if (!push) return std::nullopt;  // rounding: the clip said they meet, an axis says not
+  const auto& [depth, normal] = *push;
+  const Eigen::Vector3d deepest = a.dot(normal) < b.dot(normal) ? a : b;
+  return Contact{-1, deepest + depth * normal, normal, depth + radius};
+}
+
+std::optional<Contact> box_contact(const RuntimeHull& hull, const Eigen::Isometry3d& pose,
+                                   const Eigen::Vector3d& half_extents) {
+  const Eigen::Matrix3d& r = pose.linear();
+  const Eigen::Vector3d centre = pose.translation();
+  const std::vector<Eigen::Vector3d> directions = {r.col(0), r.col(1), r.col(2)};
+  const auto push = smallest_push(hull, candidate_axes(hull, directions), [&](const Eigen::Vector3d& w) {
+    const double reach = (r.transpose() * w).cwiseAbs().dot(half_extents);
+    return std::make_pair(centre.dot(w) - reach, centre.dot(w) + reach);
+  });
+  if (!push) return std::nullopt;
+  const auto& [depth, normal] = *push;
+  // The box corner deepest along -normal, moved back onto the hull's surface.
+  Eigen::Vector3d corner = centre;
+  for (int k = 0; k < 3; ++k) corner -= (r.col(k).dot(normal) >= 0.0 ? 1.0 : -1.0) * half_extents[k] * r.col(k);
+  return Contact{-1, corner + depth * normal, normal, depth};
+}
+
+std::optional<RayHit> ray_hit(const RuntimeHull& hull, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                              double max_t) {
+  double enter = 0.0, leave = max_t;
+  int entering_plane = -1;
+  for (int i = 0; i < static_cast<int>(hull.shape.planes.size()); ++i) {
+    const Plane& plane = hull.shape.planes[i];
+    const double dist = plane.signed_distance(origin), denom = plane.normal.dot(direction);
+    if (denom == 0.0) {
+      if (dist > 0.0) return std::nullopt;
+      continue;
+    }
+    const double t = -dist / denom;
+    if (denom < 0.0) {
+      if (t > enter) {
+        enter = std::max(enter, t);
+        entering_plane = i;
+      }
+    } else {
+      leave = std::min(leave, t);
+    }
+    if (enter > leave) return std::nullopt;
+  }
+  if (entering_plane < 0) {  // the origin is inside (or on) the hull
+    const int f = nearest_facet(hull, origin);
+    return RayHit{-1, 0.0, origin, hull.shape.planes[f].normal};
+  }
+  return RayHit{-1, enter, origin + enter * direction, hull.shape.planes[entering_plane].normal};
+}
+
+} // namespace hullcover::bvh

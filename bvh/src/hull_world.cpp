@@ -1,0 +1,230 @@
+#include "hullcover/bvh/hull_world.h"
+
+#include "fcl_objects.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace hullcover::bvh {
+
+struct HullWorld::Fcl {
+  std::vector<std::shared_ptr<fcl::Convexd>> geometry;  // one per hull, shared by every query
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;
+  fcl::DynamicAABBTreeCollisionManagerd manager;
+};
+
+HullWorld::~HullWorld() = default;
+
+Result<std::shared_ptr<const HullWorld>> HullWorld::build(std::vector<RuntimeHull> hulls) {
+  if (hulls.empty()) return Status{StatusCode::invalid_argument, "a hull world needs at least one hull"};
+  for (size_t i = 0; i < hulls.size(); ++i) {
+    const ConvexPolytope& s = hulls[i].shape;
+    bool finite = !s.vertices.empty() && s.facets.size() >= 2 && s.planes.size() >= s.facets.size();
+    for (const Eigen::Vector3d& v : s.vertices) finite = finite && v.allFinite();
+    for (const Plane& p : s.planes) finite = finite && p.normal.allFinite() && std::isfinite(p.offset);
+    if (!finite)
+      return Status{StatusCode::invalid_argument, "hull " + std::to_string(i) + " has no facets or non-finite data"};
+  }
+  try {
+    std::shared_ptr<HullWorld> world(new HullWorld());
+    world->hulls_ = std::move(hulls);
+    world->fcl_ = std::make_unique<Fcl>();
+    Fcl& f = *world->fcl_;
+    std::vector<fcl::CollisionObjectd*> registered;
+    for (size_t i = 0; i < world->hulls_.size(); ++i) {
+      f.geometry.push_back(detail::fcl_convex(world->hulls_[i].shape));
+      f.objects.push_back(std::make_unique<fcl::CollisionObjectd>(f.geometry.back()));
+      // User data: the hull index + 1, so a null pointer means "no hull".
+      f.objects.back()->setUserData(reinterpret_cast<void*>(static_cast<std::intptr_t>(i + 1)));
+      f.objects.back()->computeAABB();
+      registered.push_back(f.objects.back().get());
+    }
+    f.manager.registerObjects(registered);
+    f.manager.setup();
+    return std::shared_ptr<const HullWorld>(std::move(world));
+  } catch (const std::exception& e) {
+    return Status{StatusCode::internal_error, std::string("building the hull world failed: ") + e.what()};
+  }
+}
+
+Result<std::shared_ptr<const HullWorld>> HullWorld::build(const Covering& covering) {
+  std::vector<RuntimeHull> hulls;
+  hulls.reserve(covering.hulls.size());
+  for (const CoveringHull& h : covering.hulls) hulls.push_back(make_runtime_hull(h.polytope, h.material));
+  return build(std::move(hulls));
+}
+
+void HullWorld::candidates(const Aabb& box, std::vector<int>& out) const {
+  using Node = fcl::DynamicAABBTreeCollisionManagerd::DynamicAABBNode;
+  const Node* root = fcl_->manager.getTree().getRoot();
+  if (root == nullptr) return;
+  const fcl::AABBd query(box.min, box.max);
+  std::vector<const Node*> stack = {root};
+  while (!stack.empty()) {
+    const Node* node = stack.back();
+    stack.pop_back();
+    if (!node->bv.overlap(query)) continue;
+    if (node->isLeaf()) {
+      const auto* object = static_cast<const fcl::CollisionObjectd*>(node->data);
+      out.push_back(static_cast<int>(reinterpret_cast<std::intptr_t>(object->getUserData())) - 1);
+    } else {
+      stack.push_back(node->children[0]);
+      stack.push_back(node->children[1]);
+    }
+  }
+  std::sort(out.begin(), out.end());
+}
+
+Status HullWorld::overlap(const OverlapRequest& request, OverlapResult& result) const {
+  result.hulls.clear();
+  const char* why = nullptr;
+  if (!check_query_shape(request.shape, request.pose, &why)) return {StatusCode::invalid_argument, why};
+  try {
+    const std::shared_ptr<fcl::CollisionGeometryd> geometry = detail::fcl_geometry(request.shape);
+    if (!geometry) return {StatusCode::invalid_argument, "the convex query shape has no 3D hull"};
+    const detail::QueryObject query(geometry, request.pose, world_box(request.shape, request.pose));
+    std::vector<int> near;
+    candidates(world_box(request.shape, request.pose), near);
+    const fcl::CollisionRequestd yes_no;
+    for (int h : near) {
+      fcl::CollisionResultd answer;
+      if (fcl::collide(&query, fcl_->objects[h].get(), yes_no, answer) > 0) result.hulls.push_back(h);
+    }
+    return Status::success();
+  } catch (const std::exception& e) {
+    return {StatusCode::internal_error, std::string("overlap query failed: ") + e.what()};
+  }
+}
+
+namespace {
+// The capsule's axis end points in the world.
+std::pair<Eigen::Vector3d, Eigen::Vector3d> capsule_ends(const QueryShape& s, const Eigen::Isometry3d& pose) {
+  const Eigen::Vector3d axis = pose.linear().col(2) * s.half_height;
+  return {pose.translation() - axis, pose.translation() + axis};
+}
+
+std::optional<Contact> contact_with(const RuntimeHull& hull, const QueryShape& s, const Eigen::Isometry3d& pose) {
+  switch (s.kind) {
+    case ShapeKind::sphere: return sphere_contact(hull, pose.translation(), s.radius);
+    case ShapeKind::capsule: {
+      const auto [a, b] = capsule_ends(s, pose);
+      return capsule_contact(hull, a, b, s.radius);
+    }
+    case ShapeKind::box: return box_contact(hull, pose, s.half_extents);
+    case ShapeKind::convex: return std::nullopt;
+  }
+  return std::nullopt;
+}
+} // namespace
+
+Status HullWorld::contacts(const ContactRequest& request, ContactResult& result) const {
+  result.contacts.clear();
+  const char* why = nullptr;
+  if (!check_query_shape(request.shape, request.pose, &why)) return {StatusCode::invalid_argument, why};
+  if (request.shape.kind == ShapeKind::convex)
+    return {StatusCode::invalid_argument, "contacts for convex query shapes are not implemented yet"};
+  if (request.max_contacts < 1) return {StatusCode::invalid_argument, "max_contacts must be at least 1"};
+  std::vector<int> near;
+  candidates(world_box(request.shape, request.pose), near);
+  for (int h : near)
+    if (std::optional<Contact> c = contact_with(hulls_[h], request.shape, request.pose)) {
+      c->hull = h;
+      result.contacts.push_back(*c);
+    }
+  std::stable_sort(result.contacts.begin(), result.contacts.end(),
+                   [](const Contact& x, const Contact& y) { return x.depth > y.depth; });
+  if (static_cast<int>(result.contacts.size()) > request.max_contacts) result.contacts.resize(request.max_contacts);
+  return Status::success();
+}
+
+Status HullWorld::ray_cast(const RayRequest& request, RayResult& result) const {
+  result = {};
+  const double length = request.direction.norm();
+  if (!(length > 0.0) || !request.direction.allFinite() || !request.origin.allFinite() ||
+      !(request.max_distance >= 0.0))
+    return {StatusCode::invalid_argument, "a ray needs a finite origin, a non-zero direction and max_distance >= 0"};
+  const Eigen::Vector3d dir = request.direction / length;
+  const Eigen::Vector3d inverse = dir.cwiseInverse();
+  using Node = fcl::DynamicAABBTreeCollisionManagerd::DynamicAABBNode;
+  double best = request.max_distance;
+  std::vector<const Node*> stack = {fcl_->manager.getTree().getRoot()};
+  while (!stack.empty()) {
+    const Node* node = stack.back();
+    stack.pop_back();
+    if (node == nullptr) continue;
+    // Slab test of the node's box against the ray, up to the best hit so far.
+    double t0 = 0.0, t1 = best;
+    for (int k = 0; k < 3 && t0 <= t1; ++k) {
+      double near = (node->bv.min_[k] - request.origin[k]) * inverse[k];
+      double far = (node->bv.max_[k] - request.origin[k]) * inverse[k];
+      if (std::isnan(near) || std::isnan(far)) {  // parallel and on the slab's face
+        near = -std::numeric_limits<double>::infinity();
+        far = std::numeric_limits<double>::infinity();
+      }
+      if (near > far) std::swap(near, far);
+      t0 = std::max(t0, near);
+      t1 = std::min(t1, far);
+    }
+    if (t0 > t1) continue;
+    if (!node->isLeaf()) {
+      stack.push_back(node->children[0]);
+      stack.push_back(node->children[1]);
+      continue;
+    }
+    const auto* object = static_cast<const fcl::CollisionObjectd*>(node->data);
+    const int h = static_cast<int>(reinterpret_cast<std::intptr_t>(object->getUserData())) - 1;
+    std::optional<RayHit> hit = ray_hit(hulls_[h], request.origin, dir, best);
+    if (hit && (!result.hit || hit->t < result.first.t || (hit->t == result.first.t && h < result.first.hull))) {
+      hit->hull = h;
+      result.hit = true;
+      result.first = *hit;
+      best = hit->t;
+    }
+  }
+  return Status::success();
+}
+
+Status HullWorld::distance(const DistanceRequest& request, DistanceResult& result) const {
+  result = {};
+  const char* why = nullptr;
+  if (!check_query_shape(request.shape, request.pose, &why)) return {StatusCode::invalid_argument, why};
+  const QueryShape& s = request.shape;
+  if (s.kind != ShapeKind::sphere && s.kind != ShapeKind::capsule)
+    return {StatusCode::invalid_argument, "distance is implemented for spheres and capsules"};
+  const auto [a, b] = s.kind == ShapeKind::sphere
+                          ? std::make_pair(request.pose.translation(), request.pose.translation())
+                          : capsule_ends(s, request.pose);
+  // Grow the search box until it holds a hull, then until it holds every
+  // hull nearer than the best found.
+  Aabb core;
+  core.extend(a);
+  core.extend(b);
+  double reach = s.radius;
+  const double scene = std::max(1.0, hulls_.empty() ? 1.0 : (fcl_->manager.getTree().getRoot()->bv.max_ -
+                                                              fcl_->manager.getTree().getRoot()->bv.min_).norm());
+  result.distance = std::numeric_limits<double>::infinity();
+  for (int round = 0; round < 64; ++round) {
+    std::vector<int> near;
+    candidates(grown(core, reach), near);
+    for (int h : near) {
+      const ClosestPoints c = closest_to_segment(hulls_[h], a, b);
+      const double d = std::max(0.0, c.distance - s.radius);
+      if (d < result.distance || (d == result.distance && h < result.hull)) {
+        result.distance = d;
+        result.hull = h;
+        result.on_world = c.on_hull;
+        result.on_shape = c.distance > 0.0 ? Eigen::Vector3d(c.on_other + (c.on_hull - c.on_other) *
+                                                                             (s.radius / c.distance))
+                                           : c.on_other;
+      }
+    }
+    if (result.hull >= 0 && result.distance + s.radius <= reach) break;
+    if (reach > 4.0 * scene) break;
+    reach = result.hull >= 0 ? result.distance + s.radius : 2.0 * reach + 1e-3 * scene;
+  }
+  result.touching = result.hull >= 0 && result.distance == 0.0;
+  return Status::success();
+}
+
+} // namespace hullcover::bvh

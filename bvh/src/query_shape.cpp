@@ -1,0 +1,61 @@
+#include "hullcover/bvh/query_shape.h"
+
+#include <cmath>
+
+namespace hullcover::bvh {
+
+Aabb world_box(const QueryShape& shape, const Eigen::Isometry3d& pose) {
+  Aabb box;
+  const Eigen::Matrix3d& r = pose.linear();
+  const Eigen::Vector3d& t = pose.translation();
+  switch (shape.kind) {
+    case ShapeKind::sphere:
+      box.extend(t - Eigen::Vector3d::Constant(shape.radius));
+      box.extend(t + Eigen::Vector3d::Constant(shape.radius));
+      break;
+    case ShapeKind::capsule: {
+      const Eigen::Vector3d axis = r.col(2) * shape.half_height;
+      for (const Eigen::Vector3d& end : {Eigen::Vector3d(t + axis), Eigen::Vector3d(t - axis)}) {
+        box.extend(end - Eigen::Vector3d::Constant(shape.radius));
+        box.extend(end + Eigen::Vector3d::Constant(shape.radius));
+      }
+      break;
+    }
+    case ShapeKind::box: {
+      const Eigen::Vector3d reach = r.cwiseAbs() * shape.half_extents;
+      box.extend(t - reach);
+      box.extend(t + reach);
+      break;
+    }
+    case ShapeKind::convex:
+      for (const Eigen::Vector3d& p : shape.points) box.extend(pose * p);
+      break;
+  }
+  return box;
+}
+
+bool check_query_shape(const QueryShape& shape, const Eigen::Isometry3d& pose, const char** why) {
+  const auto positive = [](double x) { return std::isfinite(x) && x > 0.0; };
+  if (!pose.matrix().allFinite()) return *why = "the pose is not finite", false;
+  switch (shape.kind) {
+    case ShapeKind::sphere:
+      if (!positive(shape.radius)) return *why = "sphere radius must be positive", false;
+      break;
+    case ShapeKind::capsule:
+      if (!positive(shape.radius) || !(std::isfinite(shape.half_height) && shape.half_height >= 0.0))
+        return *why = "capsule radius must be positive and half height >= 0", false;
+      break;
+    case ShapeKind::box:
+      if (!(shape.half_extents.array() > 0.0).all() || !shape.half_extents.allFinite())
+        return *why = "box half extents must be positive", false;
+      break;
+    case ShapeKind::convex:
+      if (shape.points.size() < 4) return *why = "a convex query shape needs at least 4 points", false;
+      for (const Eigen::Vector3d& p : shape.points)
+        if (!p.allFinite()) return *why = "convex query shape has a non-finite point", false;
+      break;
+  }
+  return true;
+}
+
+} // namespace hullcover::bvh

@@ -1,0 +1,208 @@
+// HullWorld: known geometry through the whole query path (FCL broad phase,
+// exact narrow phase), a world built from a real covering, and concurrent
+// queries.
+
+#include "hullcover/bvh/hull_world.h"
+
+#include "covering_fixture.h"
+
+#include "hullcover/lib/convex_hull_3d.h"
+#include "hullcover/lib/scene_builder.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <thread>
+
+namespace hullcover::bvh {
+namespace {
+
+using V = Eigen::Vector3d;
+
+RuntimeHull box_hull(const V& lo, const V& hi) {
+  std::vector<V> corners;
+  for (int i = 0; i < 8; ++i) corners.emplace_back(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
+  ConvexHullBuilder builder;
+  return make_runtime_hull(builder.build(corners).value(), 0);
+}
+
+std::shared_ptr<const HullWorld> floor_and_block() {
+  auto world = HullWorld::build({box_hull(V(-5, -1, -5), V(5, 0, 5)), box_hull(V(0, 0, 0), V(1, 1, 1))});
+  EXPECT_TRUE(world.ok()) << world.status().message();
+  return world.value();
+}
+
+Eigen::Isometry3d at(const V& p) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = p;
+  return pose;
+}
+
+TEST(HullWorld, SphereRestingOnTheFloor) {
+  const auto world = floor_and_block();
+  ContactResult result;
+  ASSERT_TRUE(world->contacts({QueryShape::sphere(0.5), at(V(-2, 0.4, 2))}, result).ok());
+  ASSERT_EQ(result.contacts.size(), 1u);
+  const Contact& c = result.contacts[0];
+  EXPECT_EQ(c.hull, 0);
+  EXPECT_NEAR(c.depth, 0.1, 1e-12);
+  EXPECT_NEAR((c.normal - V(0, 1, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((c.point - V(-2, 0, 2)).norm(), 0.0, 1e-12);
+  OverlapResult overlap;
+  ASSERT_TRUE(world->overlap({QueryShape::sphere(0.5), at(V(-2, 0.4, 2))}, overlap).ok());
+  EXPECT_EQ(overlap.hulls, std::vector<int>{0});
+}
+
+TEST(HullWorld, CapsuleAgainstABlockEdge) {
+  const auto world = floor_and_block();
+  // Lying along z, its axis 0.2 * sqrt(2) from the block's top-right edge.
+  Eigen::Isometry3d pose = at(V(1.2, 1.2, 0.5));
+  ContactResult result;
+  ASSERT_TRUE(world->contacts({QueryShape::capsule(0.4, 1.0), pose}, result).ok());
+  ASSERT_EQ(result.contacts.size(), 1u);
+  EXPECT_EQ(result.contacts[0].hull, 1);
+  EXPECT_NEAR(result.contacts[0].depth, 0.4 - 0.2 * std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR((result.contacts[0].normal - V(1, 1, 0).normalized()).norm(), 0.0, 1e-12);
+}
+
+TEST(HullWorld, DistanceBetweenSeparatedShapes) {
+  const auto world = floor_and_block();
+  DistanceResult d;
+  ASSERT_TRUE(world->distance({QueryShape::sphere(0.5), at(V(3, 0.5 + 1.0, 0.5))}, d).ok());
+  // Nearest: the floor top (y = 0) is 1.5 - 0.5 = 1.0 away, the block 2 - 0.5.
+  EXPECT_FALSE(d.touching);
+  EXPECT_NEAR(d.distance, 1.0, 1e-12);
+  EXPECT_EQ(d.hull, 0);
+  ASSERT_TRUE(world->distance({QueryShape::capsule(0.25, 0.5), at(V(0.5, 3.0, 0.5))}, d).ok());
+  EXPECT_NEAR(d.distance, 3.0 - 0.25 - 1.0, 1e-12);  // axis along z at y = 3: lowest point y = 2.75
+  EXPECT_EQ(d.hull, 1);
+  EXPECT_NEAR(d.on_world.y(), 1.0, 1e-12);
+}
+
+TEST(HullWorld, RaysFindTheFirstHull) {
+  const auto world = floor_and_block();
+  RayResult r;
+  ASSERT_TRUE(world->ray_cast({V(-3, 0.5, 0.5), V(1, 0, 0), 100}, r).ok());
+  ASSERT_TRUE(r.hit);
+  EXPECT_EQ(r.first.hull, 1);
+  EXPECT_NEAR(r.first.t, 3.0, 1e-12);
+  ASSERT_TRUE(world->ray_cast({V(0.5, 5, 0.5), V(0, -2, 0), 100}, r).ok());  // unnormalised direction
+  EXPECT_EQ(r.first.hull, 1);
+  EXPECT_NEAR(r.first.t, 4.0, 1e-12);
+  ASSERT_TRUE(world->ray_cast({V(3, 5, 3), V(0, -1, 0), 100}, r).ok());
+  EXPECT_EQ(r.first.hull, 0);
+  EXPECT_NEAR(r.first.t, 5.0, 1e-12);
+  ASSERT_TRUE(world->ray_cast({V(3, 5, 3), V(0, 1, 0), 100}, r).ok());
+  EXPECT_FALSE(r.hit);
+  EXPECT_EQ(world->ray_cast({V(3, 5, 3), V(0, 0, 0), 100}, r).code(), StatusCode::invalid_argument);
+}
+
+TEST(HullWorld, BadRequestsAreRefusedNotCrashed) {
+  const auto world = floor_and_block();
+  ContactResult result;
+  EXPECT_EQ(world->contacts({QueryShape::sphere(-1), at(V(0, 0, 0))}, result).code(), StatusCode::invalid_argument);
+  EXPECT_EQ(world->contacts({QueryShape::sphere(1), at(V(NAN, 0, 0))}, result).code(), StatusCode::invalid_argument);
+  EXPECT_FALSE(HullWorld::build(std::vector<RuntimeHull>{}).ok());
+}
+
+// The paper's "stuck in the wall": a sphere deep inside a thin closed wall.
+// The wall's triangles push it out of both sides at once; its one hull
+// pushes it out of one side.
+TEST(HullWorld, StuckInTheWallGetsOneConsistentNormal) {
+  Mesh wall;
+  add_box(wall, V(0, 0, 0), V(0.3, 3, 4));
+  const auto d = test::decompose_and_check(wall);
+  ASSERT_TRUE(d);
+  ASSERT_EQ(d->covering.hulls.size(), 1u);
+  const auto world = HullWorld::build(d->covering);
+  ASSERT_TRUE(world.ok());
+  ContactResult result;
+  ASSERT_TRUE(world.value()->contacts({QueryShape::sphere(0.25), at(V(0.12, 1.5, 2))}, result).ok());
+  ASSERT_EQ(result.contacts.size(), 1u);
+  EXPECT_NEAR((result.contacts[0].normal - V(-1, 0, 0)).norm(), 0.0, 1e-12);  // nearest side: x = 0
+  EXPECT_NEAR(result.contacts[0].depth, 0.25 + 0.12, 1e-12);
+  // Against the triangles, each face facing the sphere's centre pushes
+  // along its own normal: the two big sides give opposing normals.
+  int towards_minus_x = 0, towards_plus_x = 0;
+  for (int t = 0; t < static_cast<int>(wall.triangles.size()); ++t) {
+    const V n = triangle_area_vector(wall, t).normalized();
+    const V a = wall.positions[wall.triangles[t][0]];
+    const double behind = n.dot(V(0.12, 1.5, 2) - a);
+    if (behind < 0 && behind > -0.25) {
+      towards_minus_x += n.x() < -0.9;
+      towards_plus_x += n.x() > 0.9;
+    }
+  }
+  EXPECT_GT(towards_minus_x, 0);
+  EXPECT_GT(towards_plus_x, 0);
+}
+
+TEST(HullWorld, CoveringOfTheDemoBuilding) {
+  const auto d = test::decompose_and_check(demo_building());
+  ASSERT_TRUE(d);
+  const auto world = HullWorld::build(d->covering);
+  ASSERT_TRUE(world.ok());
+  ContactResult result;
+  // Standing upright in the doorway, 5 cm into the floor: touches only the
+  // floor, pushed up.
+  Eigen::Isometry3d upright = at(V(0, 0.85, 3.9));
+  upright.linear() = Eigen::AngleAxisd(-M_PI / 2, V::UnitX()).toRotationMatrix();  // local z -> world y
+  ASSERT_TRUE(world.value()->contacts({QueryShape::capsule(0.3, 0.6), upright}, result).ok());
+  ASSERT_FALSE(result.contacts.empty());
+  for (const Contact& c : result.contacts) {
+    EXPECT_GT(c.normal.y(), 0.99) << c.hull;
+    EXPECT_NEAR(c.depth, 0.05, 1e-9) << c.hull;
+  }
+  // Walking into the back wall from the room.
+  ASSERT_TRUE(world.value()->contacts({QueryShape::sphere(0.3), at(V(-2, 1.5, -3.6))}, result).ok());
+  ASSERT_FALSE(result.contacts.empty());
+  EXPECT_NEAR(result.contacts[0].depth, 0.1, 1e-9);
+  EXPECT_NEAR(result.contacts[0].normal.z(), 1.0, 1e-9);
+}
+
+bool same(const ContactResult& a, const ContactResult& b) {
+  if (a.contacts.size() != b.contacts.size()) return false;
+  for (size_t i = 0; i < a.contacts.size(); ++i)
+    if (a.contacts[i].hull != b.contacts[i].hull || a.contacts[i].depth != b.contacts[i].depth ||
+        a.contacts[i].normal != b.contacts[i].normal || a.contacts[i].point != b.contacts[i].point)
+      return false;
+  return true;
+}
+
+TEST(HullWorld, EightThreadsGetExactlyWhatOneThreadGets) {
+  const auto d = test::decompose_and_check(demo_building());
+  ASSERT_TRUE(d);
+  const auto world = HullWorld::build(d->covering).value();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> x(-15, 5), y(-0.5, 3.5), z(-6, 6);
+  std::vector<ContactRequest> requests;
+  for (int i = 0; i < 400; ++i) {
+    const QueryShape shape = i % 3 == 0 ? QueryShape::sphere(0.4)
+                             : i % 3 == 1 ? QueryShape::capsule(0.3, 0.6)
+                                          : QueryShape::box(V(0.3, 0.5, 0.2));
+    Eigen::Isometry3d pose = at(V(x(rng), y(rng), z(rng)));
+    pose.linear() = Eigen::Quaterniond(Eigen::Vector4d::Random().normalized()).toRotationMatrix();
+    requests.push_back({shape, pose, 8});
+  }
+  std::vector<ContactResult> expected(requests.size());
+  for (size_t i = 0; i < requests.size(); ++i) ASSERT_TRUE(world->contacts(requests[i], expected[i]).ok());
+  std::vector<std::vector<ContactResult>> got(8, std::vector<ContactResult>(requests.size()));
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 8; ++t)
+    threads.emplace_back([&, t] {
+      for (size_t i = 0; i < requests.size(); ++i) {
+        const size_t k = (i + 50 * t) % requests.size();
+        (void)world->contacts(requests[k], got[t][k]);
+      }
+    });
+  for (std::thread& th : threads) th.join();
+  int touching = 0;
+  for (size_t i = 0; i < requests.size(); ++i) {
+    touching += !expected[i].contacts.empty();
+    for (int t = 0; t < 8; ++t) EXPECT_TRUE(same(got[t][i], expected[i])) << "thread " << t << " request " << i;
+  }
+  EXPECT_GT(touching, 40);
+}
+
+} // namespace
+} // namespace hullcover::bvh
