@@ -1,0 +1,177 @@
+#include "hullcover/bvh/runtime_file.h"
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+namespace hullcover::bvh {
+namespace {
+
+constexpr char kMagic[8] = {'H', 'C', 'W', 'O', 'R', 'L', 'D', '\0'};
+constexpr size_t kHeaderBytes = 8 + 4 + 4 + 8 + 8 + 8;
+constexpr size_t kHullFixedBytes = 5 * 4 + 6 * 8;
+// A unit normal read back may differ from 1 by rounding only.
+constexpr double kUnitNormalSlack = 1e-9;
+
+std::uint64_t fnv1a(const unsigned char* data, size_t size) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (size_t i = 0; i < size; ++i) h = (h ^ data[i]) * 0x100000001b3ull;
+  return h;
+}
+
+struct Writer {
+  std::vector<unsigned char> bytes;
+  void u32(std::uint32_t v) {
+    for (int k = 0; k < 4; ++k) bytes.push_back(static_cast<unsigned char>(v >> (8 * k)));
+  }
+  void u64(std::uint64_t v) {
+    for (int k = 0; k < 8; ++k) bytes.push_back(static_cast<unsigned char>(v >> (8 * k)));
+  }
+  void f64(double d) {
+    std::uint64_t v;
+    std::memcpy(&v, &d, 8);
+    u64(v);
+  }
+};
+
+struct Reader {
+  const unsigned char* data;
+  size_t size;
+  size_t at = 0;
+  bool has(size_t n) const { return size - at >= n; }
+  std::uint32_t u32() {
+    std::uint32_t v = 0;
+    for (int k = 0; k < 4; ++k) v |= static_cast<std::uint32_t>(data[at + k]) << (8 * k);
+    at += 4;
+    return v;
+  }
+  std::uint64_t u64() {
+    std::uint64_t v = 0;
+    for (int k = 0; k < 8; ++k) v |= static_cast<std::uint64_t>(data[at + k]) << (8 * k);
+    at += 8;
+    return v;
+  }
+  double f64() {
+    const std::uint64_t v = u64();
+    double d;
+    std::memcpy(&d, &v, 8);
+    return d;
+  }
+};
+
+Status broken(const std::string& path, const std::string& what) {
+  return {StatusCode::unreadable_file, path + ": broken runtime file: " + what};
+}
+
+} // namespace
+
+Status write_runtime_file(const std::vector<RuntimeHull>& hulls, const std::string& path) {
+  Writer payload;
+  for (const RuntimeHull& h : hulls) {
+    const ConvexPolytope& s = h.shape;
+    size_t indices = 0;
+    for (const std::vector<int>& f : s.facets) indices += f.size();
+    payload.u32(static_cast<std::uint32_t>(h.material));
+    payload.u32(static_cast<std::uint32_t>(s.vertices.size()));
+    payload.u32(static_cast<std::uint32_t>(s.facets.size()));
+    payload.u32(static_cast<std::uint32_t>(s.planes.size()));
+    payload.u32(static_cast<std::uint32_t>(indices));
+    for (int k = 0; k < 3; ++k) payload.f64(h.box.min[k]);
+    for (int k = 0; k < 3; ++k) payload.f64(h.box.max[k]);
+    for (const Eigen::Vector3d& v : s.vertices)
+      for (int k = 0; k < 3; ++k) payload.f64(v[k]);
+    for (const Plane& p : s.planes) {
+      for (int k = 0; k < 3; ++k) payload.f64(p.normal[k]);
+      payload.f64(p.offset);
+    }
+    for (const std::vector<int>& f : s.facets) payload.u32(static_cast<std::uint32_t>(f.size()));
+    for (const std::vector<int>& f : s.facets)
+      for (int v : f) payload.u32(static_cast<std::uint32_t>(v));
+  }
+  Writer file;
+  file.bytes.insert(file.bytes.end(), kMagic, kMagic + 8);
+  file.u32(kRuntimeFileVersion);
+  file.u32(0);
+  file.u64(hulls.size());
+  file.u64(payload.bytes.size());
+  file.u64(fnv1a(payload.bytes.data(), payload.bytes.size()));
+  std::ofstream out(path, std::ios::binary);
+  if (!out) return {StatusCode::unwritable_file, path + ": cannot open for writing"};
+  out.write(reinterpret_cast<const char*>(file.bytes.data()), static_cast<std::streamsize>(file.bytes.size()));
+  out.write(reinterpret_cast<const char*>(payload.bytes.data()), static_cast<std::streamsize>(payload.bytes.size()));
+  if (!out) return {StatusCode::unwritable_file, path + ": write failed"};
+  return Status::success();
+}
+
+Result<std::vector<RuntimeHull>> read_runtime_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Status{StatusCode::file_not_found, path + ": no such file"};
+  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  Reader r{bytes.data(), bytes.size()};
+  if (!r.has(kHeaderBytes) || std::memcmp(bytes.data(), kMagic, 8) != 0)
+    return Status{StatusCode::unknown_format, path + ": not a hullcover runtime file (no HCWORLD header)"};
+  r.at = 8;
+  const std::uint32_t version = r.u32();
+  if (version != kRuntimeFileVersion)
+    return Status{StatusCode::unknown_format, path + ": runtime file version " + std::to_string(version) +
+                                                  ", this build reads version " + std::to_string(kRuntimeFileVersion)};
+  r.u32();
+  const std::uint64_t hull_count = r.u64(), payload_bytes = r.u64(), checksum = r.u64();
+  if (payload_bytes != bytes.size() - kHeaderBytes)
+    return broken(path, "payload is " + std::to_string(bytes.size() - kHeaderBytes) + " bytes, header says " +
+                            std::to_string(payload_bytes));
+  if (fnv1a(bytes.data() + kHeaderBytes, payload_bytes) != checksum) return broken(path, "checksum mismatch");
+  if (hull_count > payload_bytes / kHullFixedBytes) return broken(path, "hull count larger than the payload");
+
+  std::vector<RuntimeHull> hulls;
+  hulls.reserve(hull_count);
+  for (std::uint64_t h = 0; h < hull_count; ++h) {
+    const std::string where = "hull " + std::to_string(h) + ": ";
+    if (!r.has(kHullFixedBytes)) return broken(path, where + "truncated");
+    RuntimeHull hull;
+    hull.material = static_cast<int>(r.u32());
+    const std::uint64_t V = r.u32(), F = r.u32(), P = r.u32(), I = r.u32();
+    for (int k = 0; k < 3; ++k) hull.box.min[k] = r.f64();
+    for (int k = 0; k < 3; ++k) hull.box.max[k] = r.f64();
+    if (V < 3 || F < 2 || P < F) return broken(path, where + "too few vertices, facets or planes");
+    if (!r.has(V * 24 + P * 32 + F * 4 + I * 4)) return broken(path, where + "sizes run past the end");
+    ConvexPolytope& s = hull.shape;
+    s.vertices.resize(V);
+    for (Eigen::Vector3d& v : s.vertices)
+      for (int k = 0; k < 3; ++k) v[k] = r.f64();
+    s.planes.resize(P);
+    for (Plane& p : s.planes) {
+      for (int k = 0; k < 3; ++k) p.normal[k] = r.f64();
+      p.offset = r.f64();
+      if (!p.normal.allFinite() || !std::isfinite(p.offset) || std::abs(p.normal.norm() - 1.0) > kUnitNormalSlack)
+        return broken(path, where + "a plane is not finite or its normal not of unit length");
+    }
+    for (const Eigen::Vector3d& v : s.vertices)
+      if (!v.allFinite()) return broken(path, where + "a vertex is not finite");
+    if (!hull.box.min.allFinite() || !hull.box.max.allFinite()) return broken(path, where + "box not finite");
+    s.facets.resize(F);
+    std::uint64_t total = 0;
+    for (std::vector<int>& f : s.facets) {
+      const std::uint32_t n = r.u32();
+      if (n < 3) return broken(path, where + "a facet has fewer than 3 corners");
+      f.resize(n);
+      total += n;
+    }
+    if (total != I) return broken(path, where + "facet sizes do not add up to the index count");
+    for (std::vector<int>& f : s.facets)
+      for (int& v : f) {
+        const std::uint32_t index = r.u32();
+        if (index >= V) return broken(path, where + "facet index " + std::to_string(index) + " out of range");
+        v = static_cast<int>(index);
+      }
+    RuntimeHull full = make_runtime_hull(s, hull.material);
+    if (full.box.min != hull.box.min || full.box.max != hull.box.max)
+      return broken(path, where + "bounding box does not match its vertices");
+    hulls.push_back(std::move(full));
+  }
+  if (r.at != bytes.size()) return broken(path, "bytes left after the last hull");
+  return hulls;
+}
+
+} // namespace hullcover::bvh

@@ -1,0 +1,113 @@
+#include "hullcover/bvh/hull_world.h"
+#include "hullcover/bvh/runtime_file.h"
+
+#include "covering_fixture.h"
+#include "temp_dir.h"
+
+#include "hullcover/lib/scene_builder.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <iterator>
+#include <random>
+
+namespace hullcover::bvh {
+namespace {
+
+using test::TempDir;
+
+std::vector<RuntimeHull> demo_hulls() {
+  const auto d = test::decompose_and_check(demo_building());
+  EXPECT_TRUE(d);
+  std::vector<RuntimeHull> hulls;
+  for (const CoveringHull& h : d->covering.hulls) hulls.push_back(make_runtime_hull(h.polytope, h.material));
+  return hulls;
+}
+
+std::string bytes_of(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(RuntimeFile, ReloadedWorldAnswersExactlyLikeTheBuiltOne) {
+  TempDir dir;
+  const std::vector<RuntimeHull> hulls = demo_hulls();
+  ASSERT_TRUE(write_runtime_file(hulls, dir.path("w.hcw")).ok());
+  const Result<std::vector<RuntimeHull>> loaded = read_runtime_file(dir.path("w.hcw"));
+  ASSERT_TRUE(loaded.ok()) << loaded.status().message();
+  const auto built = HullWorld::build(hulls).value();
+  const auto reloaded = HullWorld::build(loaded.value()).value();
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> x(-15, 5), y(-0.5, 3.5), z(-6, 6);
+  int touching = 0;
+  for (int i = 0; i < 300; ++i) {
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translation() = Eigen::Vector3d(x(rng), y(rng), z(rng));
+    const ContactRequest request{i % 2 ? QueryShape::sphere(0.4) : QueryShape::capsule(0.3, 0.5), pose, 8};
+    ContactResult a, b;
+    ASSERT_TRUE(built->contacts(request, a).ok());
+    ASSERT_TRUE(reloaded->contacts(request, b).ok());
+    ASSERT_EQ(a.contacts.size(), b.contacts.size());
+    for (size_t k = 0; k < a.contacts.size(); ++k) {
+      EXPECT_EQ(a.contacts[k].hull, b.contacts[k].hull);
+      EXPECT_EQ(a.contacts[k].depth, b.contacts[k].depth);
+      EXPECT_EQ(a.contacts[k].normal, b.contacts[k].normal);
+    }
+    touching += !a.contacts.empty();
+    RayResult ra, rb;
+    const RayRequest ray{pose.translation(), Eigen::Vector3d(z(rng), -3, x(rng)), 50};
+    ASSERT_TRUE(built->ray_cast(ray, ra).ok());
+    ASSERT_TRUE(reloaded->ray_cast(ray, rb).ok());
+    EXPECT_EQ(ra.hit, rb.hit);
+    if (ra.hit) {
+      EXPECT_EQ(ra.first.t, rb.first.t);
+    }
+  }
+  EXPECT_GT(touching, 30);
+}
+
+// Every kind of damage is refused with a message naming the file.
+TEST(RuntimeFile, DamagedFilesAreRefusedWithAReason) {
+  TempDir dir;
+  const std::vector<RuntimeHull> hulls = demo_hulls();
+  ASSERT_TRUE(write_runtime_file(hulls, dir.path("good.hcw")).ok());
+  const std::string good = bytes_of(dir.path("good.hcw"));
+  const auto refuse = [&](const std::string& name, const std::string& content, StatusCode code) {
+    const std::string path = dir.write(name, content);
+    const Result<std::vector<RuntimeHull>> r = read_runtime_file(path);
+    ASSERT_FALSE(r.ok()) << name;
+    EXPECT_EQ(r.status().code(), code) << name << ": " << r.status().message();
+    EXPECT_EQ(r.status().message().rfind(path, 0), 0u) << r.status().message();
+  };
+  refuse("truncated.hcw", good.substr(0, good.size() - 7), StatusCode::unreadable_file);
+  std::string flipped = good;
+  flipped[good.size() / 2] ^= 0x10;
+  refuse("flipped.hcw", flipped, StatusCode::unreadable_file);
+  std::string magic = good;
+  magic[0] = 'X';
+  refuse("magic.hcw", magic, StatusCode::unknown_format);
+  std::string newer = good;
+  newer[8] = 9;
+  refuse("newer.hcw", newer, StatusCode::unknown_format);
+  refuse("empty.hcw", "", StatusCode::unknown_format);
+  refuse("extra.hcw", good + "x", StatusCode::unreadable_file);
+  EXPECT_EQ(read_runtime_file(dir.path("missing.hcw")).status().code(), StatusCode::file_not_found);
+
+  // Well-formed files with bad content (the checksum is right for them).
+  std::vector<RuntimeHull> bad = hulls;
+  bad[3].shape.facets[0][1] = 9999;
+  ASSERT_TRUE(write_runtime_file(bad, dir.path("index.hcw")).ok());
+  EXPECT_NE(read_runtime_file(dir.path("index.hcw")).status().message().find("out of range"), std::string::npos);
+  bad = hulls;
+  bad[2].shape.vertices[1].x() = std::numeric_limits<double>::quiet_NaN();
+  ASSERT_TRUE(write_runtime_file(bad, dir.path("nan.hcw")).ok());
+  EXPECT_EQ(read_runtime_file(dir.path("nan.hcw")).status().code(), StatusCode::unreadable_file);
+  bad = hulls;
+  bad[1].shape.planes[0].normal *= 2.0;
+  ASSERT_TRUE(write_runtime_file(bad, dir.path("normal.hcw")).ok());
+  EXPECT_EQ(read_runtime_file(dir.path("normal.hcw")).status().code(), StatusCode::unreadable_file);
+}
+
+} // namespace
+} // namespace hullcover::bvh
