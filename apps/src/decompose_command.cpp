@@ -3,6 +3,7 @@
 #include "commands.h"
 #include "scene_loading.h"
 
+#include "hullcover/bvh/runtime_file.h"
 #include "hullcover/lib/covering_export.h"
 
 #include <chrono>
@@ -17,6 +18,7 @@ struct DecomposeCommandOptions {
   std::string input;
   std::string obj_path;
   std::string json_path;
+  std::string world_path;
   std::optional<double> tolerance;
   std::string order = "compact";
   DecomposeOptions decompose;
@@ -43,6 +45,14 @@ int run_decompose(DecomposeCommandOptions& o) {
     std::fprintf(stderr, "hullcover: error: %s\n", s.message().c_str());
     return kExitBadInput;
   }
+  if (!o.world_path.empty()) {
+    std::vector<bvh::RuntimeHull> hulls;
+    for (const CoveringHull& h : c.hulls) hulls.push_back(bvh::make_runtime_hull(h.polytope, h.material));
+    if (Status s = bvh::write_runtime_file(hulls, o.world_path); !s.ok()) {
+      std::fprintf(stderr, "hullcover: error: %s\n", s.message().c_str());
+      return kExitBadInput;
+    }
+  }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!o.json_path.empty()) {
     const nlohmann::json extra = {{"input", o.input}, {"seconds_including_import", seconds}};
@@ -58,7 +68,8 @@ int run_decompose(DecomposeCommandOptions& o) {
               faces > 0 ? static_cast<double>(c.hulls.size()) / faces : 0.0, seconds, c.statistics.seconds_merging);
   std::printf("  tolerance %.6g, bar half-length %.6g, prism cap %.6g, order %s\n", c.tolerance.length,
               c.bar_half_length, c.prism_thickness_cap, o.order.c_str());
-  std::printf("  wrote %s%s%s\n", o.obj_path.c_str(), o.json_path.empty() ? "" : " and ", o.json_path.c_str());
+  std::printf("  wrote %s%s%s%s%s\n", o.obj_path.c_str(), o.json_path.empty() ? "" : ", ", o.json_path.c_str(),
+              o.world_path.empty() ? "" : ", ", o.world_path.c_str());
   return kExitSuccess;
 }
 
@@ -73,6 +84,7 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
   cmd->add_option("IN", o->input, "Scene file (OBJ, PLY, STL, glTF/GLB, FBX)")->required();
   cmd->add_option("-o,--output", o->obj_path, "Output OBJ")->required();
   cmd->add_option("--json", o->json_path, "Also write per-hull figures, totals, options and timing as JSON");
+  cmd->add_option("--world", o->world_path, "Also write the runtime file (.hcw) that 'query' and game servers load");
   cmd->add_option("--tol", o->tolerance, "Tolerance in scene units (default 1e-5 x bounding-box diagonal)");
   cmd->add_option("--order", o->order, "Merge order: compact (the paper's) or random")
       ->check(CLI::IsMember({"compact", "random"}))

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   int exit_status = hullcover::app::kExitSuccess;
   hullcover::app::register_info_command(app, exit_status);
   hullcover::app::register_decompose_command(app, exit_status);
+  hullcover::app::register_query_command(app, exit_status);
   hullcover::app::register_demo_command(app, exit_status);
 
   try {

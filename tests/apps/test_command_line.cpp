@@ -154,4 +154,30 @@ TEST(CommandLine, DecomposeRejectsBadOptionsWithTwo) {
   EXPECT_EQ(run(dir, "decompose " + quad + " -o " + dir.path("no/such/dir/h.obj")).status, 2);
 }
 
+TEST(CommandLine, QueryAnswersFromTheRuntimeFile) {
+  TempDir dir;
+  ASSERT_EQ(run(dir, "demo --out " + dir.path("demo")).status, 0);
+  const std::string world = dir.path("w.hcw");
+  ASSERT_EQ(run(dir, "decompose " + dir.path("demo/demo-scene.obj") + " -o " + dir.path("h.obj") + " --world " + world +
+                         " -q")
+                .status,
+            0);
+  // Upright capsule in the doorway, 5 cm into the floor.
+  CommandRun r = run(dir, "query " + world + " --capsule 0,0.85,3.9,0.3,0.6");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("1 contact(s)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("depth 0.05"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("normal (0, 1, 0)"), std::string::npos) << r.out;
+  // Down onto the roof.
+  r = run(dir, "query " + world + " --ray 0,5,0,0,-1,0");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("at t 1.7999999"), std::string::npos) << r.out;  // the roof at 3.2, read as float32
+  // Floating in a room: no contact, the floor 1.2 below.
+  r = run(dir, "query " + world + " --sphere -2,1.5,-2,0.3");
+  EXPECT_NE(r.out.find("distance 1.2"), std::string::npos) << r.out;
+  EXPECT_EQ(run(dir, "query " + world + " --sphere 1,2").status, 2);
+  EXPECT_EQ(run(dir, "query " + world).status, 2);
+  EXPECT_EQ(run(dir, "query " + dir.path("h.obj") + " --sphere 0,0,0,1").status, 2);  // not a runtime file
+}
+
 } // namespace
