@@ -1,0 +1,54 @@
+#pragma once
+/// \file triangle_world.h
+/// The baseline: the same queries over the original triangles, in one
+/// `fcl::BVHModel<fcl::OBBRSS>`. Benchmarks compare HullWorld against it;
+/// the audit uses it as the reference for how characters collide with the
+/// scene as modelled.
+///
+/// Results name triangles where HullWorld's name hulls (`Contact::hull`,
+/// `OverlapResult::hulls`, `RayHit::hull` hold triangle ids). Each triangle
+/// pushes along its own normal: a shape deep inside a thin closed wall gets
+/// contacts from both sides (the paper's "stuck in the wall").
+
+#include "hullcover/bvh/hull_world.h"
+#include "hullcover/lib/mesh.h"
+
+#include <memory>
+
+namespace hullcover::bvh {
+
+class TriangleWorld {
+public:
+  /// Builds over every triangle of `mesh` with a surface (altitude above
+  /// `tol`; others can touch nothing). Fails with `invalid_argument` for a
+  /// mesh that fails validate_mesh or has no such triangle.
+  static Result<std::shared_ptr<const TriangleWorld>> build(const Mesh& mesh, double tol);
+
+  ~TriangleWorld();
+  TriangleWorld(const TriangleWorld&) = delete;
+  TriangleWorld& operator=(const TriangleWorld&) = delete;
+
+  /// Triangles a shape overlaps, by FCL (broad and narrow phase).
+  [[nodiscard]] Status overlap(const OverlapRequest& request, OverlapResult& result) const;
+  /// Exact contacts (hull_contact.h) with every triangle FCL finds within a
+  /// small margin of the shape; sphere, capsule and box.
+  [[nodiscard]] Status contacts(const ContactRequest& request, ContactResult& result) const;
+  /// First triangle hit, through the OBB tree.
+  [[nodiscard]] Status ray_cast(const RayRequest& request, RayResult& result) const;
+  /// Nearest triangle by FCL's distance query; spheres and capsules.
+  [[nodiscard]] Status distance(const DistanceRequest& request, DistanceResult& result) const;
+
+  int triangle_count() const { return static_cast<int>(triangles_.size()); }
+
+private:
+  TriangleWorld() = default;
+  struct Fcl;
+  std::vector<RuntimeHull> triangles_;  // each triangle as a flat hull, for the exact narrow phase
+  std::vector<int> face_of_;            // mesh face id of triangles_[i]
+  double margin_ = 0.0;                 // broad-phase inflation (a few tol)
+  std::unique_ptr<Fcl> fcl_;
+
+  void candidates(const QueryShape& shape, const Eigen::Isometry3d& pose, double inflate, std::vector<int>& out) const;
+};
+
+} // namespace hullcover::bvh

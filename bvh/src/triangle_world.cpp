@@ -1,0 +1,213 @@
+#include "hullcover/bvh/triangle_world.h"
+
+#include "fcl_objects.h"
+
+#include "hullcover/lib/planar_hull.h"
+
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/math/bv/OBBRSS.h>
+#include <fcl/narrowphase/distance.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <limits>
+
+namespace hullcover::bvh {
+
+struct TriangleWorld::Fcl {
+  std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> model;
+  std::unique_ptr<fcl::CollisionObjectd> object;
+};
+
+TriangleWorld::~TriangleWorld() = default;
+
+namespace {
+// The broad phase inflates query shapes by this many tolerances, so a
+// triangle FCL's iterative narrow phase misses by rounding still reaches
+// the exact test.
+constexpr double kMarginInTolerances = 4.0;
+
+RuntimeHull flat_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  const Eigen::Vector3d n = (b - a).cross(c - a).normalized();
+  ConvexPolytope p;
+  p.vertices = {a, b, c};
+  p.facets = {{0, 1, 2}, {2, 1, 0}};
+  p.planes = {{n, n.dot(a)}, {-n, -n.dot(a)}};
+  const std::vector<Plane> sides = polygon_side_planes(p.vertices, n);
+  p.planes.insert(p.planes.end(), sides.begin(), sides.end());
+  return make_runtime_hull(p, 0);
+}
+
+QueryShape inflated(QueryShape s, double by) {
+  s.radius += by;
+  s.half_extents.array() += by;
+  return s;
+}
+} // namespace
+
+Result<std::shared_ptr<const TriangleWorld>> TriangleWorld::build(const Mesh& mesh, double tol) {
+  if (Status s = validate_mesh(mesh); !s.ok()) return Status{StatusCode::invalid_argument, s.message()};
+  try {
+    std::shared_ptr<TriangleWorld> world(new TriangleWorld());
+    world->margin_ = kMarginInTolerances * tol;
+    std::vector<fcl::Triangle> tris;
+    for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) {
+      const Eigen::Vector3i& t = mesh.triangles[f];
+      const Eigen::Vector3d &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+      const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+      if ((b - a).cross(c - a).norm() <= tol * longest) continue;
+      world->triangles_.push_back(flat_triangle(a, b, c));
+      world->face_of_.push_back(f);
+      tris.emplace_back(t[0], t[1], t[2]);
+    }
+    if (tris.empty()) return Status{StatusCode::invalid_argument, "the mesh has no triangle with a surface"};
+    world->fcl_ = std::make_unique<Fcl>();
+    auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+    model->beginModel(static_cast<int>(tris.size()), static_cast<int>(mesh.positions.size()));
+    model->addSubModel(mesh.positions, tris);
+    model->endModel();
+    world->fcl_->model = model;
+    world->fcl_->object = std::make_unique<fcl::CollisionObjectd>(model);
+    return std::shared_ptr<const TriangleWorld>(std::move(world));
+  } catch (const std::exception& e) {
+    return Status{StatusCode::internal_error, std::string("building the triangle world failed: ") + e.what()};
+  }
+}
+
+void TriangleWorld::candidates(const QueryShape& shape, const Eigen::Isometry3d& pose, double inflate,
+                               std::vector<int>& out) const {
+  const QueryShape s = inflated(shape, inflate);
+  const std::shared_ptr<fcl::CollisionGeometryd> geometry = detail::fcl_geometry(s);
+  if (!geometry) return;
+  const detail::QueryObject query(geometry, pose, world_box(s, pose));
+  fcl::CollisionRequestd request(std::numeric_limits<int>::max() / 2, false);
+  fcl::CollisionResultd result;
+  fcl::collide(&query, fcl_->object.get(), request, result);
+  std::vector<fcl::Contactd> found;
+  result.getContacts(found);
+  for (const fcl::Contactd& c : found) out.push_back(c.o1 == fcl_->model.get() ? c.b1 : c.b2);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+Status TriangleWorld::overlap(const OverlapRequest& request, OverlapResult& result) const {
+  result.hulls.clear();
+  const char* why = nullptr;
+  if (!check_query_shape(request.shape, request.pose, &why)) return {StatusCode::invalid_argument, why};
+  try {
+    candidates(request.shape, request.pose, 0.0, result.hulls);
+    return Status::success();
+  } catch (const std::exception& e) {
+    return {StatusCode::internal_error, std::string("overlap query failed: ") + e.what()};
+  }
+}
+
+Status TriangleWorld::contacts(const ContactRequest& request, ContactResult& result) const {
+  result.contacts.clear();
+  const char* why = nullptr;
+  if (!check_query_shape(request.shape, request.pose, &why)) return {StatusCode::invalid_argument, why};
+  if (request.shape.kind == ShapeKind::convex)
+    return {StatusCode::invalid_argument, "contacts for convex query shapes are not implemented yet"};
+  try {
+    std::vector<int> near;
+    candidates(request.shape, request.pose, margin_, near);
+    for (int i : near) {
+      const RuntimeHull& tri = triangles_[i];
+      std::optional<Contact> c;
+      const QueryShape& s = request.shape;
+      if (s.kind == ShapeKind::sphere) {
+        c = sphere_contact(tri, request.pose.translation(), s.radius);
+      } else if (s.kind == ShapeKind::capsule) {
+        const Eigen::Vector3d axis = request.pose.linear().col(2) * s.half_height;
+        c = capsule_contact(tri, request.pose.translation() - axis, request.pose.translation() + axis, s.radius);
+      } else {
+        c = box_contact(tri, request.pose, s.half_extents);
+      }
+      if (c) {
+        c->hull = face_of_[i];
+        result.contacts.push_back(*c);
+      }
+    }
+    std::stable_sort(result.contacts.begin(), result.contacts.end(),
+                     [](const Contact& x, const Contact& y) { return x.depth > y.depth; });
+    if (static_cast<int>(result.contacts.size()) > request.max_contacts) result.contacts.resize(request.max_contacts);
+    return Status::success();
+  } catch (const std::exception& e) {
+    return {StatusCode::internal_error, std::string("contact query failed: ") + e.what()};
+  }
+}
+
+Status TriangleWorld::ray_cast(const RayRequest& request, RayResult& result) const {
+  result = {};
+  const double length = request.direction.norm();
+  if (!(length > 0.0) || !request.direction.allFinite() || !request.origin.allFinite() ||
+      !(request.max_distance >= 0.0))
+    return {StatusCode::invalid_argument, "a ray needs a finite origin, a non-zero direction and max_distance >= 0"};
+  const Eigen::Vector3d dir = request.direction / length;
+  const fcl::BVHModel<fcl::OBBRSSd>& model = *fcl_->model;
+  double best = request.max_distance;
+  std::vector<int> stack = {0};
+  while (!stack.empty()) {
+    const fcl::BVNode<fcl::OBBRSSd>& node = model.getBV(stack.back());
+    stack.pop_back();
+    // Slab test in the node's oriented box frame.
+    const fcl::OBBd& box = node.bv.obb;
+    const Eigen::Vector3d o = box.axis.transpose() * (request.origin - box.To);
+    const Eigen::Vector3d d = box.axis.transpose() * dir;
+    double t0 = 0.0, t1 = best;
+    for (int k = 0; k < 3 && t0 <= t1; ++k) {
+      if (d[k] == 0.0) {
+        if (std::abs(o[k]) > box.extent[k]) t0 = t1 + 1.0;
+        continue;
+      }
+      double a = (-box.extent[k] - o[k]) / d[k], b = (box.extent[k] - o[k]) / d[k];
+      if (a > b) std::swap(a, b);
+      t0 = std::max(t0, a);
+      t1 = std::min(t1, b);
+    }
+    if (t0 > t1) continue;
+    if (!node.isLeaf()) {
+      stack.push_back(node.leftChild());
+      stack.push_back(node.rightChild());
+      continue;
+    }
+    // The model holds only triangles with a surface, in triangles_ order.
+    const int i = node.primitiveId();
+    std::optional<RayHit> hit = ray_hit(triangles_[i], request.origin, dir, best);
+    if (hit && (!result.hit || hit->t < result.first.t)) {
+      hit->hull = face_of_[i];
+      result.hit = true;
+      result.first = *hit;
+      best = hit->t;
+    }
+  }
+  return Status::success();
+}
+
+Status TriangleWorld::distance(const DistanceRequest& request, DistanceResult& result) const {
+  result = {};
+  const char* why = nullptr;
+  if (!check_query_shape(request.shape, request.pose, &why)) return {StatusCode::invalid_argument, why};
+  if (request.shape.kind != ShapeKind::sphere && request.shape.kind != ShapeKind::capsule)
+    return {StatusCode::invalid_argument, "distance is implemented for spheres and capsules"};
+  try {
+    const std::shared_ptr<fcl::CollisionGeometryd> geometry = detail::fcl_geometry(request.shape);
+    const detail::QueryObject query(geometry, request.pose, world_box(request.shape, request.pose));
+    fcl::DistanceRequestd d_request(true);
+    fcl::DistanceResultd d_result;
+    const double d = fcl::distance(&query, fcl_->object.get(), d_request, d_result);
+    const bool model_first = d_result.o1 == fcl_->model.get();
+    const int primitive = model_first ? d_result.b1 : d_result.b2;
+    result.distance = std::max(0.0, d);
+    result.touching = d <= 0.0;
+    result.hull = primitive >= 0 && primitive < static_cast<int>(face_of_.size()) ? face_of_[primitive] : -1;
+    result.on_world = d_result.nearest_points[model_first ? 0 : 1];
+    result.on_shape = d_result.nearest_points[model_first ? 1 : 0];
+    return Status::success();
+  } catch (const std::exception& e) {
+    return {StatusCode::internal_error, std::string("distance query failed: ") + e.what()};
+  }
+}
+
+} // namespace hullcover::bvh
