@@ -138,6 +138,13 @@ std::vector<Eigen::Vector3d> candidate_axes(const RuntimeHull& hull, const std::
 
 ClosestPoints closest_to_point(const RuntimeHull& hull, const Eigen::Vector3d& p) {
   if (deepest_signed_distance(hull.shape.planes, p) <= 0.0) return {0.0, p, p};
+  // Every plane supports the hull, so the distance is at least the largest
+  // facet distance; when p projects inside that facet, it is attained there.
+  const int front = nearest_facet(hull, p);
+  const double front_distance = hull.shape.planes[front].signed_distance(p);
+  const Eigen::Vector3d on_front = closest_on_facet(hull, front, p);
+  if (front_distance > 0.0 && (on_front - p).norm() <= front_distance * (1.0 + kTouchingFraction))
+    return {(on_front - p).norm(), on_front, p};
   ClosestPoints best{kInfinity, p, p};
   for (int f = 0; f < static_cast<int>(hull.shape.facets.size()); ++f) {
     if (hull.shape.planes[f].signed_distance(p) < 0.0) continue;
@@ -181,7 +188,9 @@ ClosestPoints closest_to_segment(const RuntimeHull& hull, const Eigen::Vector3d&
 }
 
 std::optional<Contact> sphere_contact(const RuntimeHull& hull, const Eigen::Vector3d& centre, double radius) {
-  if (deepest_signed_distance(hull.shape.planes, centre) <= 0.0) {
+  const double outside = deepest_signed_distance(hull.shape.planes, centre);
+  if (outside > radius) return std::nullopt;  // a plane separates them: the usual case, and cheap
+  if (outside <= 0.0) {
     const int f = nearest_facet(hull, centre);
     const Plane& plane = hull.shape.planes[f];
     const double s = plane.signed_distance(centre);
@@ -197,6 +206,8 @@ std::optional<Contact> sphere_contact(const RuntimeHull& hull, const Eigen::Vect
 
 std::optional<Contact> capsule_contact(const RuntimeHull& hull, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                        double radius) {
+  for (const Plane& plane : hull.shape.planes)
+    if (plane.signed_distance(a) > radius && plane.signed_distance(b) > radius) return std::nullopt;  // separated
   const ClosestPoints c = closest_to_segment(hull, a, b);
   if (c.distance > radius) return std::nullopt;
   if (c.distance > touching_distance(hull))

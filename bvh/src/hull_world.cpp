@@ -3,15 +3,29 @@
 #include "fcl_objects.h"
 
 #include <algorithm>
+#include <mutex>
 #include <cmath>
 #include <limits>
 
 namespace hullcover::bvh {
 
 struct HullWorld::Fcl {
-  std::vector<std::shared_ptr<fcl::Convexd>> geometry;  // one per hull, shared by every query
-  std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;
+  // Broad phase: one object per hull in FCL's dynamic AABB tree. They carry
+  // the hull's exact box over a shared placeholder geometry, so building a
+  // world does not pay for every fcl::Convex up front.
+  std::shared_ptr<fcl::Boxd> placeholder = std::make_shared<fcl::Boxd>(1.0, 1.0, 1.0);
+  std::vector<std::unique_ptr<detail::QueryObject>> broad;
   fcl::DynamicAABBTreeCollisionManagerd manager;
+  // Narrow phase: each hull's fcl::Convex, built once, on the first query
+  // that needs it, and shared by every later one (once per hull, so
+  // concurrent queries are safe).
+  std::unique_ptr<std::once_flag[]> built;
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> narrow;
+
+  const fcl::CollisionObjectd& convex(const RuntimeHull& hull, int h) {
+    std::call_once(built[h], [&] { narrow[h] = std::make_unique<fcl::CollisionObjectd>(detail::fcl_convex(hull.shape)); });
+    return *narrow[h];
+  }
 };
 
 HullWorld::~HullWorld() = default;
@@ -31,14 +45,17 @@ Result<std::shared_ptr<const HullWorld>> HullWorld::build(std::vector<RuntimeHul
     world->hulls_ = std::move(hulls);
     world->fcl_ = std::make_unique<Fcl>();
     Fcl& f = *world->fcl_;
+    const size_t n = world->hulls_.size();
+    f.built = std::make_unique<std::once_flag[]>(n);
+    f.narrow.resize(n);
     std::vector<fcl::CollisionObjectd*> registered;
-    for (size_t i = 0; i < world->hulls_.size(); ++i) {
-      f.geometry.push_back(detail::fcl_convex(world->hulls_[i].shape));
-      f.objects.push_back(std::make_unique<fcl::CollisionObjectd>(f.geometry.back()));
+    registered.reserve(n);
+    for (size_t i = 0; i < n; ++i) {
+      f.broad.push_back(
+          std::make_unique<detail::QueryObject>(f.placeholder, Eigen::Isometry3d::Identity(), world->hulls_[i].box));
       // User data: the hull index + 1, so a null pointer means "no hull".
-      f.objects.back()->setUserData(reinterpret_cast<void*>(static_cast<std::intptr_t>(i + 1)));
-      f.objects.back()->computeAABB();
-      registered.push_back(f.objects.back().get());
+      f.broad.back()->setUserData(reinterpret_cast<void*>(static_cast<std::intptr_t>(i + 1)));
+      registered.push_back(f.broad.back().get());
     }
     f.manager.registerObjects(registered);
     f.manager.setup();
@@ -89,7 +106,7 @@ Status HullWorld::overlap(const OverlapRequest& request, OverlapResult& result) 
     const fcl::CollisionRequestd yes_no;
     for (int h : near) {
       fcl::CollisionResultd answer;
-      if (fcl::collide(&query, fcl_->objects[h].get(), yes_no, answer) > 0) result.hulls.push_back(h);
+      if (fcl::collide(&query, &fcl_->convex(hulls_[h], h), yes_no, answer) > 0) result.hulls.push_back(h);
     }
     return Status::success();
   } catch (const std::exception& e) {

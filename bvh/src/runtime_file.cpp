@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <iterator>
 
 namespace hullcover::bvh {
 namespace {
@@ -58,6 +57,21 @@ struct Reader {
     std::memcpy(&d, &v, 8);
     return d;
   }
+  /// n doubles at once: one copy on a little-endian host.
+  void f64s(double* out, size_t n) {
+    if (host_is_little_endian()) {
+      std::memcpy(out, data + at, 8 * n);
+      at += 8 * n;
+    } else {
+      for (size_t i = 0; i < n; ++i) out[i] = f64();
+    }
+  }
+  static bool host_is_little_endian() {
+    const std::uint32_t one = 1;
+    unsigned char first;
+    std::memcpy(&first, &one, 1);
+    return first == 1;
+  }
 };
 
 Status broken(const std::string& path, const std::string& what) {
@@ -105,9 +119,14 @@ Status write_runtime_file(const std::vector<RuntimeHull>& hulls, const std::stri
 }
 
 Result<std::vector<RuntimeHull>> read_runtime_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) return Status{StatusCode::file_not_found, path + ": no such file"};
-  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::streamoff length = in.tellg();
+  if (length < 0) return Status{StatusCode::unreadable_file, path + ": cannot read"};
+  std::vector<unsigned char> bytes(static_cast<size_t>(length));
+  in.seekg(0);
+  if (!in.read(reinterpret_cast<char*>(bytes.data()), length))
+    return Status{StatusCode::unreadable_file, path + ": cannot read"};
   Reader r{bytes.data(), bytes.size()};
   if (!r.has(kHeaderBytes) || std::memcmp(bytes.data(), kMagic, 8) != 0)
     return Status{StatusCode::unknown_format, path + ": not a hullcover runtime file (no HCWORLD header)"};
@@ -138,12 +157,14 @@ Result<std::vector<RuntimeHull>> read_runtime_file(const std::string& path) {
     if (!r.has(V * 24 + P * 32 + F * 4 + I * 4)) return broken(path, where + "sizes run past the end");
     ConvexPolytope& s = hull.shape;
     s.vertices.resize(V);
-    for (Eigen::Vector3d& v : s.vertices)
-      for (int k = 0; k < 3; ++k) v[k] = r.f64();
+    static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double), "packed vertices");
+    r.f64s(s.vertices.front().data(), 3 * V);
     s.planes.resize(P);
     for (Plane& p : s.planes) {
-      for (int k = 0; k < 3; ++k) p.normal[k] = r.f64();
-      p.offset = r.f64();
+      double q[4];
+      r.f64s(q, 4);
+      p.normal = Eigen::Vector3d(q[0], q[1], q[2]);
+      p.offset = q[3];
       if (!p.normal.allFinite() || !std::isfinite(p.offset) || std::abs(p.normal.norm() - 1.0) > kUnitNormalSlack)
         return broken(path, where + "a plane is not finite or its normal not of unit length");
     }
@@ -165,7 +186,7 @@ Result<std::vector<RuntimeHull>> read_runtime_file(const std::string& path) {
         if (index >= V) return broken(path, where + "facet index " + std::to_string(index) + " out of range");
         v = static_cast<int>(index);
       }
-    RuntimeHull full = make_runtime_hull(s, hull.material);
+    RuntimeHull full = make_runtime_hull(std::move(s), hull.material);
     if (full.box.min != hull.box.min || full.box.max != hull.box.max)
       return broken(path, where + "bounding box does not match its vertices");
     hulls.push_back(std::move(full));

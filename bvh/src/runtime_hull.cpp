@@ -4,12 +4,15 @@
 
 namespace hullcover::bvh {
 
-RuntimeHull make_runtime_hull(const ConvexPolytope& shape, int material) {
+RuntimeHull make_runtime_hull(ConvexPolytope shape, int material) {
   RuntimeHull hull;
-  hull.shape = shape;
+  hull.shape = std::move(shape);
   hull.material = material;
-  for (const Eigen::Vector3d& v : shape.vertices) hull.box.extend(v);
-  for (const std::vector<int>& facet : shape.facets)
+  for (const Eigen::Vector3d& v : hull.shape.vertices) hull.box.extend(v);
+  size_t corners = 0;
+  for (const std::vector<int>& facet : hull.shape.facets) corners += facet.size();
+  hull.edges.reserve(corners);
+  for (const std::vector<int>& facet : hull.shape.facets)
     for (size_t i = 0; i < facet.size(); ++i) {
       const int a = facet[i], b = facet[(i + 1) % facet.size()];
       hull.edges.emplace_back(std::min(a, b), std::max(a, b));

@@ -23,7 +23,7 @@ struct RuntimeHull {
   Aabb box;
 };
 
-/// The runtime form of a covering's hull.
-RuntimeHull make_runtime_hull(const ConvexPolytope& shape, int material);
+/// The runtime form of a hull (pass the shape by move to avoid a copy).
+RuntimeHull make_runtime_hull(ConvexPolytope shape, int material);
 
 } // namespace hullcover::bvh
