@@ -176,13 +176,27 @@ ClosestPoints closest_to_segment(const RuntimeHull& hull, const Eigen::Vector3d&
     const Eigen::Vector3d meet = a + (b - a) * (0.5 * (enter + leave));
     return {0.0, meet, meet};
   }
-  ClosestPoints best = closest_to_point(hull, a);
-  const ClosestPoints from_b = closest_to_point(hull, b);
-  if (from_b.distance < best.distance) best = from_b;
-  for (const auto& [u, v] : hull.edges) {
-    const auto [on_segment, on_edge] = closest_between_segments(a, b, hull.shape.vertices[u], hull.shape.vertices[v]);
-    const double d = (on_segment - on_edge).norm();
-    if (d < best.distance) best = {d, on_edge, on_segment};
+  // Apart: the closest hull point lies on a facet some point of the segment
+  // is in front of (sd is linear along the segment, so an end point is).
+  // There it is either the projection of an end point or on an edge.
+  ClosestPoints best{kInfinity, a, a};
+  for (int f = 0; f < static_cast<int>(hull.shape.facets.size()); ++f) {
+    const Plane& plane = hull.shape.planes[f];
+    const bool a_in_front = plane.signed_distance(a) > 0.0, b_in_front = plane.signed_distance(b) > 0.0;
+    if (!a_in_front && !b_in_front) continue;
+    for (const auto& [end, in_front] : {std::make_pair(a, a_in_front), std::make_pair(b, b_in_front)}) {
+      if (!in_front) continue;
+      const Eigen::Vector3d c = closest_on_facet(hull, f, end);
+      const double d = (c - end).norm();
+      if (d < best.distance) best = {d, c, end};
+    }
+    const std::vector<int>& poly = hull.shape.facets[f];
+    for (size_t i = 0; i < poly.size(); ++i) {
+      const auto [on_segment, on_edge] = closest_between_segments(
+          a, b, hull.shape.vertices[poly[i]], hull.shape.vertices[poly[(i + 1) % poly.size()]]);
+      const double d = (on_segment - on_edge).norm();
+      if (d < best.distance) best = {d, on_edge, on_segment};
+    }
   }
   return best;
 }

@@ -206,3 +206,40 @@ TEST(HullWorld, EightThreadsGetExactlyWhatOneThreadGets) {
 
 } // namespace
 } // namespace hullcover::bvh
+
+namespace hullcover::bvh {
+namespace {
+
+TEST(HullWorld, SweepNeverTunnelsThroughAThinWall) {
+  auto built = HullWorld::build({box_hull(V(0, 0, 0), V(0.01, 3, 3))});
+  ASSERT_TRUE(built.ok());
+  const auto& world = built.value();
+  SweepResult r;
+  // A 0.1 sphere crossing 10 m in one step, straight through a 1 cm wall.
+  ASSERT_TRUE(world->sweep({QueryShape::sphere(0.1), at(V(-5, 1.5, 1.5)), at(V(5, 1.5, 1.5))}, r, 1e-9).ok());
+  ASSERT_TRUE(r.hit);
+  EXPECT_NEAR(r.fraction, (5.0 - 0.1) / 10.0, 1e-8);
+  EXPECT_NEAR(r.normal.x(), -1.0, 1e-6);
+  // Missing the wall (passing above it), and stopping short of it.
+  ASSERT_TRUE(world->sweep({QueryShape::sphere(0.1), at(V(-5, 3.2, 1.5)), at(V(5, 3.2, 1.5))}, r, 1e-9).ok());
+  EXPECT_FALSE(r.hit);
+  ASSERT_TRUE(world->sweep({QueryShape::sphere(0.1), at(V(-5, 1.5, 1.5)), at(V(-1, 1.5, 1.5))}, r, 1e-9).ok());
+  EXPECT_FALSE(r.hit);
+  // A capsule swept sideways into the wall's edge, and one touching at start.
+  Eigen::Isometry3d upright = at(V(-2, 1.5, 1.5));
+  upright.linear() = Eigen::AngleAxisd(-M_PI / 2, V::UnitX()).toRotationMatrix();
+  Eigen::Isometry3d moved = upright;
+  moved.translation() = V(2, 1.5, 1.5);
+  ASSERT_TRUE(world->sweep({QueryShape::capsule(0.2, 0.5), upright, moved}, r, 1e-9).ok());
+  ASSERT_TRUE(r.hit);
+  EXPECT_NEAR(r.fraction, (2.0 - 0.2) / 4.0, 1e-8);
+  ASSERT_TRUE(world->sweep({QueryShape::sphere(0.1), at(V(0.05, 1, 1)), at(V(1, 1, 1))}, r, 1e-9).ok());
+  EXPECT_TRUE(r.hit);
+  EXPECT_EQ(r.fraction, 0.0);
+  Eigen::Isometry3d turned = at(V(1, 1, 1));
+  turned.linear() = Eigen::AngleAxisd(0.3, V::UnitY()).toRotationMatrix();
+  EXPECT_EQ(world->sweep({QueryShape::sphere(0.1), at(V(-1, 1, 1)), turned}, r, 1e-9).code(), StatusCode::invalid_argument);
+}
+
+} // namespace
+} // namespace hullcover::bvh

@@ -63,6 +63,20 @@ struct DistanceResult {
   Eigen::Vector3d on_shape = Eigen::Vector3d::Zero();
 };
 
+/// A shape moving in a straight line, without turning, from `start` to
+/// `end` (the two poses must share their rotation).
+struct SweepRequest {
+  QueryShape shape;
+  Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d end = Eigen::Isometry3d::Identity();
+};
+struct SweepResult {
+  bool hit = false;
+  double fraction = 1.0;  ///< of the way from start to end where it first touches (0 if touching at start)
+  int hull = -1;
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< out of the hull, at the first touch
+};
+
 class HullWorld {
 public:
   /// Builds from runtime hulls (index i is hull i in every result).
@@ -85,6 +99,13 @@ public:
   [[nodiscard]] Status ray_cast(const RayRequest& request, RayResult& result) const;
   /// Sphere and capsule (exact); `invalid_argument` for other shapes.
   [[nodiscard]] Status distance(const DistanceRequest& request, DistanceResult& result) const;
+
+  /// Time of impact by conservative advancement on the exact distance:
+  /// every step is at most the current distance, so a thin wall is never
+  /// tunnelled through; the touch is found within `touch` (scene units, > 0).
+  /// Spheres and capsules; `invalid_argument` for other shapes or poses
+  /// that turn.
+  [[nodiscard]] Status sweep(const SweepRequest& request, SweepResult& result, double touch) const;
 
   const std::vector<RuntimeHull>& hulls() const { return hulls_; }
 
