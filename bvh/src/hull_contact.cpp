@@ -254,6 +254,35 @@ std::optional<Contact> box_contact(const RuntimeHull& hull, const Eigen::Isometr
   return Contact{-1, corner + depth * normal, normal, depth};
 }
 
+std::optional<Contact> convex_contact(const RuntimeHull& hull, const RuntimeHull& shape) {
+  std::vector<Eigen::Vector3d> axes;
+  for (const Plane& p : hull.shape.planes) axes.push_back(p.normal);
+  for (const Plane& p : shape.shape.planes) axes.push_back(p.normal);
+  for (const auto& [u, v] : shape.edges) {
+    const Eigen::Vector3d d = shape.shape.vertices[v] - shape.shape.vertices[u];
+    for (const auto& [x, y] : hull.edges) {
+      const Eigen::Vector3d e = hull.shape.vertices[y] - hull.shape.vertices[x];
+      const Eigen::Vector3d c = d.cross(e);
+      const double n = c.norm();
+      if (n > kTouchingFraction * d.norm() * e.norm()) axes.push_back(c / n);
+    }
+  }
+  const auto push = smallest_push(hull, axes, [&](const Eigen::Vector3d& w) {
+    double lo = kInfinity, hi = -kInfinity;
+    for (const Eigen::Vector3d& v : shape.shape.vertices) {
+      lo = std::min(lo, v.dot(w));
+      hi = std::max(hi, v.dot(w));
+    }
+    return std::make_pair(lo, hi);
+  });
+  if (!push) return std::nullopt;
+  const auto& [depth, normal] = *push;
+  Eigen::Vector3d deepest = shape.shape.vertices.front();
+  for (const Eigen::Vector3d& v : shape.shape.vertices)
+    if (v.dot(normal) < deepest.dot(normal)) deepest = v;
+  return Contact{-1, deepest + depth * normal, normal, depth};
+}
+
 std::optional<RayHit> ray_hit(const RuntimeHull& hull, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                               double max_t) {
   double enter = 0.0, leave = max_t;

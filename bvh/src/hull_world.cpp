@@ -2,6 +2,8 @@
 
 #include "fcl_objects.h"
 
+#include "hullcover/lib/convex_hull_3d.h"
+
 #include <algorithm>
 #include <mutex>
 #include <cmath>
@@ -121,7 +123,8 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> capsule_ends(const QueryShape& s, co
   return {pose.translation() - axis, pose.translation() + axis};
 }
 
-std::optional<Contact> contact_with(const RuntimeHull& hull, const QueryShape& s, const Eigen::Isometry3d& pose) {
+std::optional<Contact> contact_with(const RuntimeHull& hull, const QueryShape& s, const Eigen::Isometry3d& pose,
+                                    const RuntimeHull* convex_in_world) {
   switch (s.kind) {
     case ShapeKind::sphere: return sphere_contact(hull, pose.translation(), s.radius);
     case ShapeKind::capsule: {
@@ -129,23 +132,35 @@ std::optional<Contact> contact_with(const RuntimeHull& hull, const QueryShape& s
       return capsule_contact(hull, a, b, s.radius);
     }
     case ShapeKind::box: return box_contact(hull, pose, s.half_extents);
-    case ShapeKind::convex: return std::nullopt;
+    case ShapeKind::convex: return convex_contact(hull, *convex_in_world);
   }
   return std::nullopt;
 }
 } // namespace
 
+std::optional<RuntimeHull> placed_convex(const QueryShape& shape, const Eigen::Isometry3d& pose) {
+  std::vector<Eigen::Vector3d> points;
+  for (const Eigen::Vector3d& p : shape.points) points.push_back(pose * p);
+  ConvexHullBuilder builder;
+  Result<ConvexPolytope> hull = builder.build(points);
+  if (!hull.ok()) return std::nullopt;
+  return make_runtime_hull(std::move(hull).value(), 0);
+}
+
 Status HullWorld::contacts(const ContactRequest& request, ContactResult& result) const {
   result.contacts.clear();
   const char* why = nullptr;
   if (!check_query_shape(request.shape, request.pose, &why)) return {StatusCode::invalid_argument, why};
-  if (request.shape.kind == ShapeKind::convex)
-    return {StatusCode::invalid_argument, "contacts for convex query shapes are not implemented yet"};
   if (request.max_contacts < 1) return {StatusCode::invalid_argument, "max_contacts must be at least 1"};
+  std::optional<RuntimeHull> convex;
+  if (request.shape.kind == ShapeKind::convex) {
+    convex = placed_convex(request.shape, request.pose);
+    if (!convex) return {StatusCode::invalid_argument, "the convex query shape has no 3D hull"};
+  }
   std::vector<int> near;
   candidates(world_box(request.shape, request.pose), near);
   for (int h : near)
-    if (std::optional<Contact> c = contact_with(hulls_[h], request.shape, request.pose)) {
+    if (std::optional<Contact> c = contact_with(hulls_[h], request.shape, request.pose, convex ? &*convex : nullptr)) {
       c->hull = h;
       result.contacts.push_back(*c);
     }

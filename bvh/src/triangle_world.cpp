@@ -107,9 +107,12 @@ Status TriangleWorld::contacts(const ContactRequest& request, ContactResult& res
   result.contacts.clear();
   const char* why = nullptr;
   if (!check_query_shape(request.shape, request.pose, &why)) return {StatusCode::invalid_argument, why};
-  if (request.shape.kind == ShapeKind::convex)
-    return {StatusCode::invalid_argument, "contacts for convex query shapes are not implemented yet"};
   try {
+    std::optional<RuntimeHull> convex;
+    if (request.shape.kind == ShapeKind::convex) {
+      convex = placed_convex(request.shape, request.pose);
+      if (!convex) return {StatusCode::invalid_argument, "the convex query shape has no 3D hull"};
+    }
     std::vector<int> near;
     candidates(request.shape, request.pose, margin_, near);
     for (int i : near) {
@@ -121,8 +124,10 @@ Status TriangleWorld::contacts(const ContactRequest& request, ContactResult& res
       } else if (s.kind == ShapeKind::capsule) {
         const Eigen::Vector3d axis = request.pose.linear().col(2) * s.half_height;
         c = capsule_contact(tri, request.pose.translation() - axis, request.pose.translation() + axis, s.radius);
-      } else {
+      } else if (s.kind == ShapeKind::box) {
         c = box_contact(tri, request.pose, s.half_extents);
+      } else {
+        c = convex_contact(tri, *convex);
       }
       if (c) {
         c->hull = face_of_[i];

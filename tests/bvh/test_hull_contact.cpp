@@ -192,5 +192,95 @@ TEST(RayHit, FacesEdgesVerticesGrazingAndFromInside) {
   EXPECT_FALSE(ray_hit(hull, {-1, 0.5, 0.5}, {1, 0, 0}, 0.5));  // too short
 }
 
+// Reference for polytopes: the shape S overlaps hull H by the distance from
+// the origin to the boundary of the Minkowski difference H - S, along that
+// facet's normal (Qhull over every vertex difference; no separating axes).
+struct Penetration {
+  double depth;
+  Eigen::Vector3d normal;
+  bool unique;  // the nearest facet is clearly nearest (normal well defined)
+};
+std::optional<Penetration> minkowski_reference(const std::vector<Eigen::Vector3d>& hull,
+                                               const std::vector<Eigen::Vector3d>& shape) {
+  std::vector<Eigen::Vector3d> differences;
+  for (const Eigen::Vector3d& h : hull)
+    for (const Eigen::Vector3d& s : shape) differences.push_back(h - s);
+  ConvexHullBuilder builder;
+  const Result<ConvexPolytope> m = builder.build(differences);
+  EXPECT_TRUE(m.ok());
+  double best = INFINITY, second = INFINITY;
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  for (const Plane& p : m.value().planes) {
+    if (p.offset < 0.0) return std::nullopt;  // the origin is outside: apart
+    if (p.offset < best) {
+      second = best;
+      best = p.offset;
+      normal = p.normal;
+    } else if (p.offset < second && (p.normal - normal).norm() > 1e-9) {
+      second = p.offset;
+    }
+  }
+  return Penetration{best, normal, second - best > 1e-6};
+}
+
+std::vector<Eigen::Vector3d> random_points(std::mt19937& rng, const Eigen::Vector3d& centre, double size) {
+  std::normal_distribution<double> g(0.0, size);
+  std::vector<Eigen::Vector3d> points;
+  for (int i = 0; i < 12; ++i) points.push_back(centre + Eigen::Vector3d(g(rng), g(rng), g(rng)));
+  return points;
+}
+
+TEST(BoxAndConvexContact, MatchTheMinkowskiReferenceAtRandomPoses) {
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int boxes = 0, convexes = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    const OrientedBox world_box = random_box(rng);
+    const RuntimeHull hull = trial % 2 ? hull_of(world_box) : [&] {
+      ConvexHullBuilder b;
+      return make_runtime_hull(b.build(random_points(rng, world_box.pose.translation(), 1.0)).value(), 0);
+    }();
+    // A box query near the hull.
+    Eigen::Isometry3d pose = world_box.pose;
+    pose.translation() += Eigen::Vector3d(u(rng), u(rng), u(rng)) * 1.5;
+    pose.linear() = Eigen::Quaterniond(Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
+    const Eigen::Vector3d half(0.2 + std::abs(u(rng)), 0.2 + std::abs(u(rng)), 0.2 + std::abs(u(rng)));
+    std::vector<Eigen::Vector3d> box_corners;
+    for (int i = 0; i < 8; ++i)
+      box_corners.push_back(pose * Eigen::Vector3d(i & 1 ? half.x() : -half.x(), i & 2 ? half.y() : -half.y(),
+                                                   i & 4 ? half.z() : -half.z()));
+    const auto expected = minkowski_reference(hull.shape.vertices, box_corners);
+    const std::optional<Contact> got = box_contact(hull, pose, half);
+    if (expected && expected->depth > 1e-9) {
+      ASSERT_TRUE(got) << trial;
+      EXPECT_NEAR(got->depth, expected->depth, 1e-9) << trial;
+      if (expected->unique) {
+        EXPECT_NEAR((got->normal - expected->normal).norm(), 0.0, 1e-6) << trial;
+      }
+      ++boxes;
+    } else if (!expected) {
+      EXPECT_FALSE(got) << trial;
+    }
+    // A convex query shape near the hull.
+    ConvexHullBuilder builder;
+    const RuntimeHull shape = make_runtime_hull(
+        builder.build(random_points(rng, world_box.pose * Eigen::Vector3d(u(rng), u(rng), u(rng)), 0.5)).value(), 0);
+    const auto expected_convex = minkowski_reference(hull.shape.vertices, shape.shape.vertices);
+    const std::optional<Contact> got_convex = convex_contact(hull, shape);
+    if (expected_convex && expected_convex->depth > 1e-9) {
+      ASSERT_TRUE(got_convex) << trial;
+      EXPECT_NEAR(got_convex->depth, expected_convex->depth, 1e-9) << trial;
+      if (expected_convex->unique) {
+        EXPECT_NEAR((got_convex->normal - expected_convex->normal).norm(), 0.0, 1e-6) << trial;
+      }
+      ++convexes;
+    } else if (!expected_convex) {
+      EXPECT_FALSE(got_convex) << trial;
+    }
+  }
+  EXPECT_GT(boxes, 100);
+  EXPECT_GT(convexes, 100);
+}
+
 } // namespace
 } // namespace hullcover::bvh

@@ -56,6 +56,11 @@ std::optional<Contact> capsule_contact(const RuntimeHull& hull, const Eigen::Vec
 std::optional<Contact> box_contact(const RuntimeHull& hull, const Eigen::Isometry3d& pose,
                                    const Eigen::Vector3d& half_extents);
 
+/// Convex shape (as a closed runtime hull already placed in the world)
+/// against the hull: separating axes over both shapes' face normals and
+/// every pair of edge directions. Cost grows with edges x edges.
+std::optional<Contact> convex_contact(const RuntimeHull& hull, const RuntimeHull& shape);
+
 /// A ray hit on a hull.
 struct RayHit {
   int hull = -1;

@@ -77,6 +77,10 @@ struct SweepResult {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< out of the hull, at the first touch
 };
 
+/// A convex query shape's hull placed at `pose`; nothing when its points
+/// have no 3D hull.
+std::optional<RuntimeHull> placed_convex(const QueryShape& shape, const Eigen::Isometry3d& pose);
+
 class HullWorld {
 public:
   /// Builds from runtime hulls (index i is hull i in every result).
@@ -92,8 +96,8 @@ public:
 
   /// Fails with `invalid_argument` for a bad shape or pose (check_query_shape).
   [[nodiscard]] Status overlap(const OverlapRequest& request, OverlapResult& result) const;
-  /// As overlap; contacts for sphere, capsule and box. A convex query shape
-  /// gets `invalid_argument` (its exact narrow phase is not written yet).
+  /// As overlap; exact contacts for every shape (a convex one is hulled
+  /// once per call, then tested by separating axes).
   [[nodiscard]] Status contacts(const ContactRequest& request, ContactResult& result) const;
   /// Fails with `invalid_argument` for a zero or non-finite direction.
   [[nodiscard]] Status ray_cast(const RayRequest& request, RayResult& result) const;

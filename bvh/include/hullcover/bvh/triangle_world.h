@@ -31,7 +31,7 @@ public:
   /// Triangles a shape overlaps, by FCL (broad and narrow phase).
   [[nodiscard]] Status overlap(const OverlapRequest& request, OverlapResult& result) const;
   /// Exact contacts (hull_contact.h) with every triangle FCL finds within a
-  /// small margin of the shape; sphere, capsule and box.
+  /// small margin of the shape.
   [[nodiscard]] Status contacts(const ContactRequest& request, ContactResult& result) const;
   /// First triangle hit, through the OBB tree.
   [[nodiscard]] Status ray_cast(const RayRequest& request, RayResult& result) const;
