@@ -2,6 +2,8 @@
 
 #include "fcl_objects.h"
 
+#include <fcl/narrowphase/distance.h>
+
 #include "hullcover/lib/convex_hull_3d.h"
 
 #include <algorithm>
@@ -222,41 +224,64 @@ Status HullWorld::distance(const DistanceRequest& request, DistanceResult& resul
   const char* why = nullptr;
   if (!check_query_shape(request.shape, request.pose, &why)) return {StatusCode::invalid_argument, why};
   const QueryShape& s = request.shape;
-  if (s.kind != ShapeKind::sphere && s.kind != ShapeKind::capsule)
-    return {StatusCode::invalid_argument, "distance is implemented for spheres and capsules"};
-  const auto [a, b] = s.kind == ShapeKind::sphere
-                          ? std::make_pair(request.pose.translation(), request.pose.translation())
-                          : capsule_ends(s, request.pose);
-  // Grow the search box until it holds a hull, then until it holds every
-  // hull nearer than the best found.
-  Aabb core;
-  core.extend(a);
-  core.extend(b);
-  double reach = s.radius;
-  const double scene = std::max(1.0, hulls_.empty() ? 1.0 : (fcl_->manager.getTree().getRoot()->bv.max_ -
-                                                              fcl_->manager.getTree().getRoot()->bv.min_).norm());
-  result.distance = std::numeric_limits<double>::infinity();
-  for (int round = 0; round < 64; ++round) {
-    std::vector<int> near;
-    candidates(grown(core, reach), near);
-    for (int h : near) {
-      const ClosestPoints c = closest_to_segment(hulls_[h], a, b);
-      const double d = std::max(0.0, c.distance - s.radius);
-      if (d < result.distance || (d == result.distance && h < result.hull)) {
-        result.distance = d;
-        result.hull = h;
-        result.on_world = c.on_hull;
-        result.on_shape = c.distance > 0.0 ? Eigen::Vector3d(c.on_other + (c.on_hull - c.on_other) *
-                                                                             (s.radius / c.distance))
-                                           : c.on_other;
-      }
-    }
-    if (result.hull >= 0 && result.distance + s.radius <= reach) break;
-    if (reach > 4.0 * scene) break;
-    reach = result.hull >= 0 ? result.distance + s.radius : 2.0 * reach + 1e-3 * scene;
+  const bool rounded = s.kind == ShapeKind::sphere || s.kind == ShapeKind::capsule;
+  const auto [a, b] = s.kind == ShapeKind::capsule ? capsule_ends(s, request.pose)
+                                                   : std::make_pair(request.pose.translation(), request.pose.translation());
+  std::shared_ptr<fcl::CollisionGeometryd> geometry;
+  if (!rounded) {
+    geometry = detail::fcl_geometry(s);
+    if (!geometry) return {StatusCode::invalid_argument, "the convex query shape has no 3D hull"};
   }
-  result.touching = result.hull >= 0 && result.distance == 0.0;
-  return Status::success();
+  const Aabb core = world_box(s, request.pose);
+  const detail::QueryObject query(geometry ? geometry : fcl_->placeholder, request.pose, core);
+  try {
+    // Spheres and capsules: exact closest points. Boxes and convex shapes:
+    // FCL's GJK distance, sound for separated shapes (signed distance, whose
+    // EPA can abort the process, is never asked for).
+    const auto separation = [&](int h, Eigen::Vector3d& on_world, Eigen::Vector3d& on_shape) {
+      if (rounded) {
+        const ClosestPoints c = closest_to_segment(hulls_[h], a, b);
+        on_world = c.on_hull;
+        on_shape = c.distance > 0.0 ? Eigen::Vector3d(c.on_other + (c.on_hull - c.on_other) * (s.radius / c.distance))
+                                    : c.on_other;
+        return std::max(0.0, c.distance - s.radius);
+      }
+      fcl::DistanceRequestd d_request(true);
+      fcl::DistanceResultd d_result;
+      const fcl::CollisionObjectd& hull = fcl_->convex(hulls_[h], h);
+      const double d = fcl::distance(&query, &hull, d_request, d_result);
+      const bool query_first = d_result.o1 != hull.collisionGeometry().get();
+      on_shape = d_result.nearest_points[query_first ? 0 : 1];
+      on_world = d_result.nearest_points[query_first ? 1 : 0];
+      return std::max(0.0, d);
+    };
+    // Grow the search box until it holds a hull, then until it holds every
+    // hull nearer than the best found.
+    const double scene = (fcl_->manager.getTree().getRoot()->bv.max_ - fcl_->manager.getTree().getRoot()->bv.min_).norm();
+    result.distance = std::numeric_limits<double>::infinity();
+    double reach = 0.0;
+    for (int round = 0; round < 64; ++round) {
+      std::vector<int> near;
+      candidates(grown(core, reach), near);
+      for (int h : near) {
+        Eigen::Vector3d on_world, on_shape;
+        const double d = separation(h, on_world, on_shape);
+        if (d < result.distance || (d == result.distance && h < result.hull)) {
+          result.distance = d;
+          result.hull = h;
+          result.on_world = on_world;
+          result.on_shape = on_shape;
+        }
+      }
+      if (result.hull >= 0 && result.distance <= reach) break;
+      if (reach > 4.0 * scene) break;
+      reach = result.hull >= 0 ? result.distance : 2.0 * reach + 1e-3 * (1.0 + scene);
+    }
+    result.touching = result.hull >= 0 && result.distance == 0.0;
+    return Status::success();
+  } catch (const std::exception& e) {
+    return {StatusCode::internal_error, std::string("distance query failed: ") + e.what()};
+  }
 }
 
 Status HullWorld::sweep(const SweepRequest& request, SweepResult& result, double touch) const {

@@ -77,6 +77,13 @@ TEST(HullWorld, DistanceBetweenSeparatedShapes) {
   EXPECT_NEAR(d.distance, 3.0 - 0.25 - 1.0, 1e-12);  // axis along z at y = 3: lowest point y = 2.75
   EXPECT_EQ(d.hull, 1);
   EXPECT_NEAR(d.on_world.y(), 1.0, 1e-12);
+  // A box: the floor 1.5 below it, the block's corner edge sqrt(1.5^2 + 0.5^2) away.
+  ASSERT_TRUE(world->distance({QueryShape::box(V(0.5, 0.5, 0.5)), at(V(3, 2, 0.5))}, d).ok());
+  EXPECT_NEAR(d.distance, 1.5, 1e-6);
+  EXPECT_EQ(d.hull, 0);
+  EXPECT_NEAR(d.on_world.y(), 0.0, 1e-6);
+  ASSERT_TRUE(world->distance({QueryShape::box(V(0.5, 0.5, 0.5)), at(V(3, 0.4, 0.5))}, d).ok());
+  EXPECT_TRUE(d.touching);
 }
 
 TEST(HullWorld, RaysFindTheFirstHull) {

@@ -101,7 +101,8 @@ public:
   [[nodiscard]] Status contacts(const ContactRequest& request, ContactResult& result) const;
   /// Fails with `invalid_argument` for a zero or non-finite direction.
   [[nodiscard]] Status ray_cast(const RayRequest& request, RayResult& result) const;
-  /// Sphere and capsule (exact); `invalid_argument` for other shapes.
+  /// Exact for spheres and capsules; FCL's GJK distance for boxes and convex
+  /// shapes (sound for separated shapes).
   [[nodiscard]] Status distance(const DistanceRequest& request, DistanceResult& result) const;
 
   /// Time of impact by conservative advancement on the exact distance:
