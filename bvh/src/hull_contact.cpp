@@ -283,6 +283,50 @@ std::optional<Contact> convex_contact(const RuntimeHull& hull, const RuntimeHull
   return Contact{-1, deepest + depth * normal, normal, depth};
 }
 
+ClosestPoints closest_between(const RuntimeHull& hull, const RuntimeHull& shape) {
+  if (convex_contact(hull, shape)) {
+    // They meet: report a common point (the shape's vertex deepest in the hull
+    // side or any point of the overlap will do for "distance 0").
+    const Eigen::Vector3d& p = shape.shape.vertices.front();
+    const ClosestPoints c = closest_to_point(hull, p);
+    return {0.0, c.on_hull, c.on_hull};
+  }
+  ClosestPoints best{kInfinity, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  for (const Eigen::Vector3d& v : shape.shape.vertices) {
+    const ClosestPoints c = closest_to_point(hull, v);
+    if (c.distance < best.distance) best = {c.distance, c.on_hull, v};
+  }
+  for (const Eigen::Vector3d& v : hull.shape.vertices) {
+    const ClosestPoints c = closest_to_point(shape, v);
+    if (c.distance < best.distance) best = {c.distance, v, c.on_hull};
+  }
+  for (const auto& [u, w] : hull.edges)
+    for (const auto& [x, y] : shape.edges) {
+      const auto [on_hull, on_shape] = closest_between_segments(hull.shape.vertices[u], hull.shape.vertices[w],
+                                                                 shape.shape.vertices[x], shape.shape.vertices[y]);
+      const double d = (on_hull - on_shape).norm();
+      if (d < best.distance) best = {d, on_hull, on_shape};
+    }
+  return best;
+}
+
+RuntimeHull placed_box(const Eigen::Isometry3d& pose, const Eigen::Vector3d& half_extents) {
+  ConvexPolytope box;
+  for (int i = 0; i < 8; ++i)
+    box.vertices.push_back(pose * Eigen::Vector3d(i & 1 ? half_extents.x() : -half_extents.x(),
+                                                  i & 2 ? half_extents.y() : -half_extents.y(),
+                                                  i & 4 ? half_extents.z() : -half_extents.z()));
+  // Corner i has +x at bit 0, +y at bit 1, +z at bit 2; sides counter-clockwise from outside.
+  static const int kSides[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+  static const int kAxis[6] = {0, 0, 1, 1, 2, 2};
+  for (int f = 0; f < 6; ++f) {
+    box.facets.emplace_back(kSides[f], kSides[f] + 4);
+    const Eigen::Vector3d n = pose.linear().col(kAxis[f]) * (f % 2 ? 1.0 : -1.0);
+    box.planes.push_back({n, n.dot(pose.translation()) + half_extents[kAxis[f]]});
+  }
+  return make_runtime_hull(std::move(box), 0);
+}
+
 std::optional<RayHit> ray_hit(const RuntimeHull& hull, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                               double max_t) {
   double enter = 0.0, leave = max_t;

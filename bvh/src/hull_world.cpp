@@ -2,7 +2,6 @@
 
 #include "fcl_objects.h"
 
-#include <fcl/narrowphase/distance.h>
 
 #include "hullcover/lib/convex_hull_3d.h"
 
@@ -219,42 +218,42 @@ Status HullWorld::ray_cast(const RayRequest& request, RayResult& result) const {
   return Status::success();
 }
 
+std::function<double(int, Eigen::Vector3d&, Eigen::Vector3d&)> HullWorld::separation_from(
+    const QueryShape& s, const Eigen::Isometry3d& pose) const {
+  // Spheres and capsules: exact closest points to the axis.
+  if (s.kind == ShapeKind::sphere || s.kind == ShapeKind::capsule) {
+    const auto [a, b] = s.kind == ShapeKind::capsule ? capsule_ends(s, pose)
+                                                     : std::make_pair(pose.translation(), pose.translation());
+    return [this, a = a, b = b, radius = s.radius](int h, Eigen::Vector3d& on_world, Eigen::Vector3d& on_shape) {
+      const ClosestPoints c = closest_to_segment(hulls_[h], a, b);
+      on_world = c.on_hull;
+      on_shape = c.distance > 0.0 ? Eigen::Vector3d(c.on_other + (c.on_hull - c.on_other) * (radius / c.distance))
+                                  : c.on_other;
+      return std::max(0.0, c.distance - radius);
+    };
+  }
+  // Boxes and convex shapes: exact closest features (closest_between).
+  std::optional<RuntimeHull> placed =
+      s.kind == ShapeKind::box ? std::optional<RuntimeHull>(placed_box(pose, s.half_extents)) : placed_convex(s, pose);
+  if (!placed) return nullptr;
+  auto shape = std::make_shared<const RuntimeHull>(std::move(*placed));
+  return [this, shape](int h, Eigen::Vector3d& on_world, Eigen::Vector3d& on_shape) {
+    const ClosestPoints c = closest_between(hulls_[h], *shape);
+    on_world = c.on_hull;
+    on_shape = c.on_other;
+    return c.distance;
+  };
+}
+
 Status HullWorld::distance(const DistanceRequest& request, DistanceResult& result) const {
   result = {};
   const char* why = nullptr;
   if (!check_query_shape(request.shape, request.pose, &why)) return {StatusCode::invalid_argument, why};
   const QueryShape& s = request.shape;
-  const bool rounded = s.kind == ShapeKind::sphere || s.kind == ShapeKind::capsule;
-  const auto [a, b] = s.kind == ShapeKind::capsule ? capsule_ends(s, request.pose)
-                                                   : std::make_pair(request.pose.translation(), request.pose.translation());
-  std::shared_ptr<fcl::CollisionGeometryd> geometry;
-  if (!rounded) {
-    geometry = detail::fcl_geometry(s);
-    if (!geometry) return {StatusCode::invalid_argument, "the convex query shape has no 3D hull"};
-  }
   const Aabb core = world_box(s, request.pose);
-  const detail::QueryObject query(geometry ? geometry : fcl_->placeholder, request.pose, core);
   try {
-    // Spheres and capsules: exact closest points. Boxes and convex shapes:
-    // FCL's GJK distance, sound for separated shapes (signed distance, whose
-    // EPA can abort the process, is never asked for).
-    const auto separation = [&](int h, Eigen::Vector3d& on_world, Eigen::Vector3d& on_shape) {
-      if (rounded) {
-        const ClosestPoints c = closest_to_segment(hulls_[h], a, b);
-        on_world = c.on_hull;
-        on_shape = c.distance > 0.0 ? Eigen::Vector3d(c.on_other + (c.on_hull - c.on_other) * (s.radius / c.distance))
-                                    : c.on_other;
-        return std::max(0.0, c.distance - s.radius);
-      }
-      fcl::DistanceRequestd d_request(true);
-      fcl::DistanceResultd d_result;
-      const fcl::CollisionObjectd& hull = fcl_->convex(hulls_[h], h);
-      const double d = fcl::distance(&query, &hull, d_request, d_result);
-      const bool query_first = d_result.o1 != hull.collisionGeometry().get();
-      on_shape = d_result.nearest_points[query_first ? 0 : 1];
-      on_world = d_result.nearest_points[query_first ? 1 : 0];
-      return std::max(0.0, d);
-    };
+    const auto separation = separation_from(s, request.pose);
+    if (!separation) return {StatusCode::invalid_argument, "the convex query shape has no 3D hull"};
     // Grow the search box until it holds a hull, then until it holds every
     // hull nearer than the best found.
     const double scene = (fcl_->manager.getTree().getRoot()->bv.max_ - fcl_->manager.getTree().getRoot()->bv.min_).norm();
@@ -290,8 +289,6 @@ Status HullWorld::sweep(const SweepRequest& request, SweepResult& result, double
   if (!check_query_shape(request.shape, request.start, &why) || !check_query_shape(request.shape, request.end, &why))
     return {StatusCode::invalid_argument, why};
   const QueryShape& s = request.shape;
-  if (s.kind != ShapeKind::sphere && s.kind != ShapeKind::capsule)
-    return {StatusCode::invalid_argument, "sweep is implemented for spheres and capsules"};
   if (!request.start.linear().isApprox(request.end.linear(), 1e-12))
     return {StatusCode::invalid_argument, "a sweep moves without turning: start and end need the same rotation"};
   if (!(touch > 0.0) || !std::isfinite(touch)) return {StatusCode::invalid_argument, "touch must be a positive length"};
@@ -303,40 +300,49 @@ Status HullWorld::sweep(const SweepRequest& request, SweepResult& result, double
   swept.extend(at_end.max);
   std::vector<int> near;
   candidates(swept, near);
-  const auto [a0, b0] = s.kind == ShapeKind::sphere
-                            ? std::make_pair(request.start.translation(), request.start.translation())
-                            : capsule_ends(s, request.start);
   // Most steps before giving up and reporting a (conservative) touch where
   // it stands: a grazing approach advances ever more slowly.
   constexpr int kMaxSteps = 200;
   double t = 0.0;
-  for (int step = 0; step < kMaxSteps; ++step) {
-    const Eigen::Vector3d offset = t * travel;
-    double nearest = std::numeric_limits<double>::infinity();
-    int nearest_hull = -1;
-    ClosestPoints closest;
-    for (int h : near) {
-      const ClosestPoints c = closest_to_segment(hulls_[h], a0 + offset, b0 + offset);
-      if (c.distance - s.radius < nearest) {
-        nearest = c.distance - s.radius;
-        nearest_hull = h;
-        closest = c;
+  try {
+    for (int step = 0; step < kMaxSteps; ++step) {
+      Eigen::Isometry3d pose = request.start;
+      pose.translation() += t * travel;
+      const auto separation = separation_from(s, pose);
+      if (!separation) return {StatusCode::invalid_argument, "the convex query shape has no 3D hull"};
+      double nearest = std::numeric_limits<double>::infinity();
+      int nearest_hull = -1;
+      Eigen::Vector3d on_world, on_shape;
+      for (int h : near) {
+        const double d = separation(h, on_world, on_shape);
+        if (d < nearest) {
+          nearest = d;
+          nearest_hull = h;
+        }
       }
+      if (nearest_hull < 0) return Status::success();  // nothing on the way
+      if (nearest <= touch || step + 1 == kMaxSteps) {
+        result.hit = true;
+        result.fraction = t;
+        result.hull = nearest_hull;
+        // The normal of the exact contact a touch further on (closest points
+        // this near are noise in direction).
+        Eigen::Isometry3d pressed = pose;
+        if (length > 0.0) pressed.translation() += travel * (2.0 * touch / length);
+        std::optional<RuntimeHull> convex;
+        if (s.kind == ShapeKind::convex) convex = placed_convex(s, pressed);
+        const std::optional<Contact> c = contact_with(hulls_[nearest_hull], s, pressed, convex ? &*convex : nullptr);
+        result.normal = c ? c->normal : Eigen::Vector3d(-travel.normalized());
+        return Status::success();
+      }
+      if (length == 0.0) return Status::success();
+      t += nearest / length;
+      if (t > 1.0) return Status::success();
     }
-    if (nearest_hull < 0) return Status::success();  // nothing on the way
-    if (nearest <= touch || step + 1 == kMaxSteps) {
-      result.hit = true;
-      result.fraction = t;
-      result.hull = nearest_hull;
-      const double gap = (closest.on_other - closest.on_hull).norm();
-      result.normal = gap > 0.0 ? Eigen::Vector3d((closest.on_other - closest.on_hull) / gap) : -travel.normalized();
-      return Status::success();
-    }
-    if (length == 0.0) return Status::success();
-    t += nearest / length;
-    if (t > 1.0) return Status::success();
+    return Status::success();
+  } catch (const std::exception& e) {
+    return {StatusCode::internal_error, std::string("sweep failed: ") + e.what()};
   }
-  return Status::success();
 }
 
 } // namespace hullcover::bvh

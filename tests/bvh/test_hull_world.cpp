@@ -79,11 +79,22 @@ TEST(HullWorld, DistanceBetweenSeparatedShapes) {
   EXPECT_NEAR(d.on_world.y(), 1.0, 1e-12);
   // A box: the floor 1.5 below it, the block's corner edge sqrt(1.5^2 + 0.5^2) away.
   ASSERT_TRUE(world->distance({QueryShape::box(V(0.5, 0.5, 0.5)), at(V(3, 2, 0.5))}, d).ok());
-  EXPECT_NEAR(d.distance, 1.5, 1e-6);
+  EXPECT_NEAR(d.distance, 1.5, 1e-12);
   EXPECT_EQ(d.hull, 0);
-  EXPECT_NEAR(d.on_world.y(), 0.0, 1e-6);
+  EXPECT_NEAR(d.on_world.y(), 0.0, 1e-12);
   ASSERT_TRUE(world->distance({QueryShape::box(V(0.5, 0.5, 0.5)), at(V(3, 0.4, 0.5))}, d).ok());
   EXPECT_TRUE(d.touching);
+}
+
+// Regression: FCL 0.7's GJK distance between this box and this thin hull
+// came out 5.397 (and 3.678 at x = -3), which would let a sweep tunnel.
+TEST(HullWorld, BoxDistanceToAThinWallIsExact) {
+  auto world = HullWorld::build({box_hull(V(0, 0, 0), V(0.01, 3, 3))}).value();
+  for (double x : {-5.0, -3.0, -2.0}) {
+    DistanceResult d;
+    ASSERT_TRUE(world->distance({QueryShape::box(V(0.1, 0.1, 0.1)), at(V(x, 1.5, 1.5))}, d).ok());
+    EXPECT_NEAR(d.distance, -x - 0.1, 1e-12) << x;
+  }
 }
 
 TEST(HullWorld, RaysFindTheFirstHull) {
@@ -243,6 +254,10 @@ TEST(HullWorld, SweepNeverTunnelsThroughAThinWall) {
   ASSERT_TRUE(world->sweep({QueryShape::sphere(0.1), at(V(0.05, 1, 1)), at(V(1, 1, 1))}, r, 1e-9).ok());
   EXPECT_TRUE(r.hit);
   EXPECT_EQ(r.fraction, 0.0);
+  // A box, stepping on FCL's distance.
+  ASSERT_TRUE(world->sweep({QueryShape::box(V(0.1, 0.1, 0.1)), at(V(-5, 1.5, 1.5)), at(V(5, 1.5, 1.5))}, r, 1e-7).ok());
+  ASSERT_TRUE(r.hit);
+  EXPECT_NEAR(r.fraction, (5.0 - 0.1) / 10.0, 1e-6);
   Eigen::Isometry3d turned = at(V(1, 1, 1));
   turned.linear() = Eigen::AngleAxisd(0.3, V::UnitY()).toRotationMatrix();
   EXPECT_EQ(world->sweep({QueryShape::sphere(0.1), at(V(-1, 1, 1)), turned}, r, 1e-9).code(), StatusCode::invalid_argument);

@@ -15,6 +15,7 @@
 #include "hullcover/lib/covering.h"
 #include "hullcover/lib/status.h"
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -101,15 +102,14 @@ public:
   [[nodiscard]] Status contacts(const ContactRequest& request, ContactResult& result) const;
   /// Fails with `invalid_argument` for a zero or non-finite direction.
   [[nodiscard]] Status ray_cast(const RayRequest& request, RayResult& result) const;
-  /// Exact for spheres and capsules; FCL's GJK distance for boxes and convex
-  /// shapes (sound for separated shapes).
+  /// Exact for every shape (closest features; FCL's GJK distance between a
+  /// box and a hull was found to overestimate, see hull_contact.h).
   [[nodiscard]] Status distance(const DistanceRequest& request, DistanceResult& result) const;
 
   /// Time of impact by conservative advancement on the exact distance:
   /// every step is at most the current distance, so a thin wall is never
   /// tunnelled through; the touch is found within `touch` (scene units, > 0).
-  /// Spheres and capsules; `invalid_argument` for other shapes or poses
-  /// that turn.
+  /// Any shape; `invalid_argument` for poses that turn.
   [[nodiscard]] Status sweep(const SweepRequest& request, SweepResult& result, double touch) const;
 
   const std::vector<RuntimeHull>& hulls() const { return hulls_; }
@@ -120,6 +120,11 @@ private:
   std::vector<RuntimeHull> hulls_;
   std::unique_ptr<Fcl> fcl_;
 
+  /// The distance from hull h to `shape` at `pose` (0 when they meet) with
+  /// the closest points, as a function of h; empty for a convex shape
+  /// without a 3D hull.
+  std::function<double(int, Eigen::Vector3d&, Eigen::Vector3d&)> separation_from(const QueryShape& shape,
+                                                                                 const Eigen::Isometry3d& pose) const;
   /// Hull indices whose tree boxes overlap `box`, ascending.
   void candidates(const Aabb& box, std::vector<int>& out) const;
 };
