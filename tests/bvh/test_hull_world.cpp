@@ -65,6 +65,31 @@ TEST(HullWorld, CapsuleAgainstABlockEdge) {
   EXPECT_NEAR((result.contacts[0].normal - V(1, 1, 0).normalized()).norm(), 0.0, 1e-12);
 }
 
+// A capsule against the edge of a prism made from a planar patch: a floor
+// quad decomposed into one prism of thickness 0.25 below it.
+TEST(HullWorld, CapsuleAgainstAPrismEdge) {
+  Mesh floor;
+  test::add_quad_facing(floor, V(0, 0, 0), V(0, 0, 2), V(2, 0, 2), V(2, 0, 0), V(0, 1, 0));
+  DecomposeOptions options;
+  options.prism_thickness_cap = 0.25;
+  const auto d = test::decompose_and_check(floor, options);
+  ASSERT_TRUE(d);
+  ASSERT_EQ(d->covering.hulls.size(), 1u);
+  ASSERT_DOUBLE_EQ(d->covering.hulls[0].thickness, 0.25);
+  const auto world = HullWorld::build(d->covering).value();
+  // Lying along z beyond the prism's edge x = 2, level with its middle.
+  ContactResult result;
+  ASSERT_TRUE(world->contacts({QueryShape::capsule(0.3, 0.5), at(V(2.2, -0.125, 1))}, result).ok());
+  ASSERT_EQ(result.contacts.size(), 1u);
+  EXPECT_NEAR(result.contacts[0].depth, 0.1, 1e-12);
+  EXPECT_NEAR((result.contacts[0].normal - V(1, 0, 0)).norm(), 0.0, 1e-12);
+  // Beyond its top edge, diagonally: 0.2 * sqrt(2) from the edge.
+  ASSERT_TRUE(world->contacts({QueryShape::capsule(0.3, 0.5), at(V(2.2, 0.2, 1))}, result).ok());
+  ASSERT_EQ(result.contacts.size(), 1u);
+  EXPECT_NEAR(result.contacts[0].depth, 0.3 - 0.2 * std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR((result.contacts[0].normal - V(1, 1, 0).normalized()).norm(), 0.0, 1e-12);
+}
+
 TEST(HullWorld, DistanceBetweenSeparatedShapes) {
   const auto world = floor_and_block();
   DistanceResult d;
