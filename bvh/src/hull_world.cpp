@@ -171,13 +171,19 @@ Status HullWorld::contacts(const ContactRequest& request, ContactResult& result)
   return Status::success();
 }
 
-Status HullWorld::ray_cast(const RayRequest& request, RayResult& result) const {
-  result = {};
+Status check_ray_request(const RayRequest& request, Eigen::Vector3d& unit_direction) {
   const double length = request.direction.norm();
   if (!(length > 0.0) || !request.direction.allFinite() || !request.origin.allFinite() ||
       !(request.max_distance >= 0.0))
     return {StatusCode::invalid_argument, "a ray needs a finite origin, a non-zero direction and max_distance >= 0"};
-  const Eigen::Vector3d dir = request.direction / length;
+  unit_direction = request.direction / length;
+  return Status::success();
+}
+
+Status HullWorld::ray_cast(const RayRequest& request, RayResult& result) const {
+  result = {};
+  Eigen::Vector3d dir;
+  if (Status s = check_ray_request(request, dir); !s.ok()) return s;
   const Eigen::Vector3d inverse = dir.cwiseInverse();
   using Node = fcl::DynamicAABBTreeCollisionManagerd::DynamicAABBNode;
   double best = request.max_distance;

@@ -29,14 +29,13 @@ namespace {
 constexpr double kMarginInTolerances = 4.0;
 
 RuntimeHull flat_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  FlatPolygon triangle;
+  triangle.corners = {a, b, c};
+  triangle.corner_vertices = {-1, -1, -1};
   const Eigen::Vector3d n = (b - a).cross(c - a).normalized();
-  ConvexPolytope p;
-  p.vertices = {a, b, c};
-  p.facets = {{0, 1, 2}, {2, 1, 0}};
-  p.planes = {{n, n.dot(a)}, {-n, -n.dot(a)}};
-  const std::vector<Plane> sides = polygon_side_planes(p.vertices, n);
-  p.planes.insert(p.planes.end(), sides.begin(), sides.end());
-  return make_runtime_hull(p, 0);
+  triangle.plane = {n, n.dot(a)};
+  triangle.sides = polygon_side_planes(triangle.corners, n);
+  return make_runtime_hull(flat_polytope(triangle, true), 0);
 }
 
 QueryShape inflated(QueryShape s, double by) {
@@ -145,11 +144,8 @@ Status TriangleWorld::contacts(const ContactRequest& request, ContactResult& res
 
 Status TriangleWorld::ray_cast(const RayRequest& request, RayResult& result) const {
   result = {};
-  const double length = request.direction.norm();
-  if (!(length > 0.0) || !request.direction.allFinite() || !request.origin.allFinite() ||
-      !(request.max_distance >= 0.0))
-    return {StatusCode::invalid_argument, "a ray needs a finite origin, a non-zero direction and max_distance >= 0"};
-  const Eigen::Vector3d dir = request.direction / length;
+  Eigen::Vector3d dir;
+  if (Status s = check_ray_request(request, dir); !s.ok()) return s;
   const fcl::BVHModel<fcl::OBBRSSd>& model = *fcl_->model;
   double best = request.max_distance;
   std::vector<int> stack = {0};

@@ -179,14 +179,7 @@ std::optional<ConvexPolytope> PatchMerger::grow_known_hull(const Patch& base, co
     if (polygon.corners.size() < 3) return std::nullopt;
     for (int v : added)
       if (std::abs(polygon.plane.signed_distance(index_.mesh().positions[v])) <= index_.tol()) return std::nullopt;
-    ConvexPolytope flat;
-    flat.vertices = polygon.corners;
-    flat.vertex_ids = polygon.corner_vertices;
-    std::vector<int> front(polygon.corners.size());
-    for (size_t i = 0; i < front.size(); ++i) front[i] = static_cast<int>(i);
-    flat.facets = {front, std::vector<int>(front.rbegin(), front.rend())};
-    flat.planes = {polygon.plane, {-polygon.plane.normal, -polygon.plane.offset}};
-    hull = std::move(flat);
+    hull = flat_polytope(polygon, false);
   }
   for (int v : added) {
     hull = add_point_to_hull(*hull, index_.mesh().positions[v], v, index_.tol());

@@ -117,4 +117,16 @@ FlatPolygon make_flat_polygon(const std::vector<Eigen::Vector3d>& positions, con
   return polygon;
 }
 
+ConvexPolytope flat_polytope(const FlatPolygon& polygon, bool side_planes) {
+  ConvexPolytope flat;
+  flat.vertices = polygon.corners;
+  flat.vertex_ids = polygon.corner_vertices;
+  std::vector<int> front(polygon.corners.size());
+  for (size_t i = 0; i < front.size(); ++i) front[i] = static_cast<int>(i);
+  flat.facets = {front, std::vector<int>(front.rbegin(), front.rend())};
+  flat.planes = {polygon.plane, {-polygon.plane.normal, -polygon.plane.offset}};
+  if (side_planes) flat.planes.insert(flat.planes.end(), polygon.sides.begin(), polygon.sides.end());
+  return flat;
+}
+
 } // namespace hullcover

@@ -37,19 +37,6 @@ double distance_to_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, c
   return (a + t * ab - p).norm();
 }
 
-// The flat polygon as a polytope: front and back facets, vertical sides.
-ConvexPolytope flat_polytope(const FlatPolygon& polygon) {
-  ConvexPolytope flat;
-  flat.vertices = polygon.corners;
-  flat.vertex_ids = polygon.corner_vertices;
-  std::vector<int> front(polygon.corners.size());
-  for (size_t i = 0; i < front.size(); ++i) front[i] = static_cast<int>(i);
-  flat.facets = {front, std::vector<int>(front.rbegin(), front.rend())};
-  flat.planes = {polygon.plane, {-polygon.plane.normal, -polygon.plane.offset}};
-  flat.planes.insert(flat.planes.end(), polygon.sides.begin(), polygon.sides.end());
-  return flat;
-}
-
 } // namespace
 
 std::vector<Plane> beveled_side_planes(const SceneIndex& index, const FlatPolygon& polygon,
@@ -161,7 +148,7 @@ ConvexPolytope prism_polytope(const FlatPolygon& polygon, const std::vector<Plan
     if (prism.ok() && prism.value().facets.size() >= 4) return std::move(prism).value();
   }
   thickness = 0.0;
-  return flat_polytope(polygon);
+  return flat_polytope(polygon, true);
 }
 
 } // namespace hullcover

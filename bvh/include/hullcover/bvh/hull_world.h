@@ -51,6 +51,11 @@ struct RayResult {
   RayHit first;  ///< valid when hit
 };
 
+/// Fails with `invalid_argument` for a non-finite origin, a zero or
+/// non-finite direction or a negative max_distance; else gives the unit
+/// direction.
+Status check_ray_request(const RayRequest& request, Eigen::Vector3d& unit_direction);
+
 /// Minimum separation of a shape from the world, when not touching.
 struct DistanceRequest {
   QueryShape shape;

@@ -65,4 +65,10 @@ struct FlatPolygon {
 FlatPolygon make_flat_polygon(const std::vector<Eigen::Vector3d>& positions, const std::vector<int>& vertex_ids,
                               const Eigen::Vector3d& normal, double tol);
 
+/// The flat polygon as a polytope of thickness 0: a front and a back facet
+/// on the same corners; with `side_planes`, also the planes that bound it
+/// sideways (see ConvexPolytope), without them a closed surface that
+/// add_point_to_hull can grow.
+ConvexPolytope flat_polytope(const FlatPolygon& polygon, bool side_planes);
+
 } // namespace hullcover
