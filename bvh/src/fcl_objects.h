@@ -28,6 +28,14 @@ public:
   }
 };
 
+/// A hull's entry in the broad-phase tree: its exact box and its index.
+class HullEntry : public QueryObject {
+public:
+  HullEntry(const std::shared_ptr<fcl::CollisionGeometryd>& placeholder, const Aabb& box, int hull_index)
+      : QueryObject(placeholder, Eigen::Isometry3d::Identity(), box), index(hull_index) {}
+  const int index;
+};
+
 /// FCL geometry for a query shape (a convex shape gets its hull's facets).
 /// Returns nothing for a convex whose points have no 3D hull.
 std::shared_ptr<fcl::CollisionGeometryd> fcl_geometry(const QueryShape& shape);

@@ -54,18 +54,24 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> closest_between_segments(const Eigen
   return {p1 + d1 * s, p2 + d2 * t};
 }
 
+// Is q (on facet f's plane) inside its polygon?
+bool inside_facet(const RuntimeHull& hull, int f, const Eigen::Vector3d& q) {
+  const Eigen::Vector3d& n = hull.shape.planes[f].normal;
+  const std::vector<int>& poly = hull.shape.facets[f];
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const Eigen::Vector3d& a = hull.shape.vertices[poly[i]];
+    const Eigen::Vector3d& b = hull.shape.vertices[poly[(i + 1) % poly.size()]];
+    if ((b - a).cross(n).dot(q - a) > 0.0) return false;
+  }
+  return true;
+}
+
 // Closest point of facet f's polygon to p.
 Eigen::Vector3d closest_on_facet(const RuntimeHull& hull, int f, const Eigen::Vector3d& p) {
   const Plane& plane = hull.shape.planes[f];
   const std::vector<int>& poly = hull.shape.facets[f];
   const Eigen::Vector3d q = p - plane.signed_distance(p) * plane.normal;
-  bool inside = true;
-  for (size_t i = 0; i < poly.size() && inside; ++i) {
-    const Eigen::Vector3d& a = hull.shape.vertices[poly[i]];
-    const Eigen::Vector3d& b = hull.shape.vertices[poly[(i + 1) % poly.size()]];
-    inside = (b - a).cross(plane.normal).dot(q - a) <= 0.0;
-  }
-  if (inside) return q;
+  if (inside_facet(hull, f, q)) return q;
   Eigen::Vector3d best = q;
   double best_d2 = kInfinity;
   for (size_t i = 0; i < poly.size(); ++i) {
@@ -184,11 +190,15 @@ ClosestPoints closest_to_segment(const RuntimeHull& hull, const Eigen::Vector3d&
     const Plane& plane = hull.shape.planes[f];
     const bool a_in_front = plane.signed_distance(a) > 0.0, b_in_front = plane.signed_distance(b) > 0.0;
     if (!a_in_front && !b_in_front) continue;
+    // An end point's own closest point on this facet is its projection when
+    // that falls inside; otherwise it is on an edge, which the edge pass
+    // below finds (segment-to-edge covers end-point-to-edge).
     for (const auto& [end, in_front] : {std::make_pair(a, a_in_front), std::make_pair(b, b_in_front)}) {
       if (!in_front) continue;
-      const Eigen::Vector3d c = closest_on_facet(hull, f, end);
-      const double d = (c - end).norm();
-      if (d < best.distance) best = {d, c, end};
+      const double d = plane.signed_distance(end);
+      if (d >= best.distance) continue;
+      const Eigen::Vector3d q = end - d * plane.normal;
+      if (inside_facet(hull, f, q)) best = {d, q, end};
     }
     const std::vector<int>& poly = hull.shape.facets[f];
     for (size_t i = 0; i < poly.size(); ++i) {

@@ -17,7 +17,7 @@ struct HullWorld::Fcl {
   // the hull's exact box over a shared placeholder geometry, so building a
   // world does not pay for every fcl::Convex up front.
   std::shared_ptr<fcl::Boxd> placeholder = std::make_shared<fcl::Boxd>(1.0, 1.0, 1.0);
-  std::vector<std::unique_ptr<detail::QueryObject>> broad;
+  std::vector<std::unique_ptr<detail::HullEntry>> broad;
   fcl::DynamicAABBTreeCollisionManagerd manager;
   // Narrow phase: each hull's fcl::Convex, built once, on the first query
   // that needs it, and shared by every later one (once per hull, so
@@ -54,10 +54,7 @@ Result<std::shared_ptr<const HullWorld>> HullWorld::build(std::vector<RuntimeHul
     std::vector<fcl::CollisionObjectd*> registered;
     registered.reserve(n);
     for (size_t i = 0; i < n; ++i) {
-      f.broad.push_back(
-          std::make_unique<detail::QueryObject>(f.placeholder, Eigen::Isometry3d::Identity(), world->hulls_[i].box));
-      // User data: the hull index + 1, so a null pointer means "no hull".
-      f.broad.back()->setUserData(reinterpret_cast<void*>(static_cast<std::intptr_t>(i + 1)));
+      f.broad.push_back(std::make_unique<detail::HullEntry>(f.placeholder, world->hulls_[i].box, static_cast<int>(i)));
       registered.push_back(f.broad.back().get());
     }
     f.manager.registerObjects(registered);
@@ -86,8 +83,7 @@ void HullWorld::candidates(const Aabb& box, std::vector<int>& out) const {
     stack.pop_back();
     if (!node->bv.overlap(query)) continue;
     if (node->isLeaf()) {
-      const auto* object = static_cast<const fcl::CollisionObjectd*>(node->data);
-      out.push_back(static_cast<int>(reinterpret_cast<std::intptr_t>(object->getUserData())) - 1);
+      out.push_back(static_cast<const detail::HullEntry*>(node->data)->index);
     } else {
       stack.push_back(node->children[0]);
       stack.push_back(node->children[1]);
@@ -211,8 +207,7 @@ Status HullWorld::ray_cast(const RayRequest& request, RayResult& result) const {
       stack.push_back(node->children[1]);
       continue;
     }
-    const auto* object = static_cast<const fcl::CollisionObjectd*>(node->data);
-    const int h = static_cast<int>(reinterpret_cast<std::intptr_t>(object->getUserData())) - 1;
+    const int h = static_cast<const detail::HullEntry*>(node->data)->index;
     std::optional<RayHit> hit = ray_hit(hulls_[h], request.origin, dir, best);
     if (hit && (!result.hit || hit->t < result.first.t || (hit->t == result.first.t && h < result.first.hull))) {
       hit->hull = h;
