@@ -14,5 +14,6 @@ void register_info_command(CLI::App& app, int& exit_status);
 void register_demo_command(CLI::App& app, int& exit_status);
 void register_decompose_command(CLI::App& app, int& exit_status);
 void register_query_command(CLI::App& app, int& exit_status);
+void register_audit_command(CLI::App& app, int& exit_status);
 
 } // namespace hullcover::app

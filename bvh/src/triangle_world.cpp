@@ -142,21 +142,18 @@ Status TriangleWorld::contacts(const ContactRequest& request, ContactResult& res
   }
 }
 
-Status TriangleWorld::ray_cast(const RayRequest& request, RayResult& result) const {
-  result = {};
-  Eigen::Vector3d dir;
-  if (Status s = check_ray_request(request, dir); !s.ok()) return s;
+void TriangleWorld::traverse_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double& reach,
+                                 const std::function<void(const RayHit&)>& on_hit) const {
   const fcl::BVHModel<fcl::OBBRSSd>& model = *fcl_->model;
-  double best = request.max_distance;
   std::vector<int> stack = {0};
   while (!stack.empty()) {
     const fcl::BVNode<fcl::OBBRSSd>& node = model.getBV(stack.back());
     stack.pop_back();
-    // Slab test in the node's oriented box frame.
+    // Slab test in the node's oriented box frame, up to the current reach.
     const fcl::OBBd& box = node.bv.obb;
-    const Eigen::Vector3d o = box.axis.transpose() * (request.origin - box.To);
+    const Eigen::Vector3d o = box.axis.transpose() * (origin - box.To);
     const Eigen::Vector3d d = box.axis.transpose() * dir;
-    double t0 = 0.0, t1 = best;
+    double t0 = 0.0, t1 = reach;
     for (int k = 0; k < 3 && t0 <= t1; ++k) {
       if (d[k] == 0.0) {
         if (std::abs(o[k]) > box.extent[k]) t0 = t1 + 1.0;
@@ -175,14 +172,37 @@ Status TriangleWorld::ray_cast(const RayRequest& request, RayResult& result) con
     }
     // The model holds only triangles with a surface, in triangles_ order.
     const int i = node.primitiveId();
-    std::optional<RayHit> hit = ray_hit(triangles_[i], request.origin, dir, best);
-    if (hit && (!result.hit || hit->t < result.first.t)) {
+    if (std::optional<RayHit> hit = ray_hit(triangles_[i], origin, dir, reach)) {
       hit->hull = face_of_[i];
-      result.hit = true;
-      result.first = *hit;
-      best = hit->t;
+      on_hit(*hit);
     }
   }
+}
+
+Status TriangleWorld::ray_cast(const RayRequest& request, RayResult& result) const {
+  result = {};
+  Eigen::Vector3d dir;
+  if (Status s = check_ray_request(request, dir); !s.ok()) return s;
+  double best = request.max_distance;
+  traverse_ray(request.origin, dir, best, [&](const RayHit& hit) {
+    if (!result.hit || hit.t < result.first.t || (hit.t == result.first.t && hit.hull < result.first.hull)) {
+      result.hit = true;
+      result.first = hit;
+      best = hit.t;
+    }
+  });
+  return Status::success();
+}
+
+Status TriangleWorld::ray_hits(const RayRequest& request, std::vector<RayHit>& hits) const {
+  hits.clear();
+  Eigen::Vector3d dir;
+  if (Status s = check_ray_request(request, dir); !s.ok()) return s;
+  double reach = request.max_distance;
+  traverse_ray(request.origin, dir, reach, [&](const RayHit& hit) { hits.push_back(hit); });
+  std::sort(hits.begin(), hits.end(), [](const RayHit& a, const RayHit& b) {
+    return a.t < b.t || (a.t == b.t && a.hull < b.hull);
+  });
   return Status::success();
 }
 

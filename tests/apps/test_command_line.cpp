@@ -180,4 +180,26 @@ TEST(CommandLine, QueryAnswersFromTheRuntimeFile) {
   EXPECT_EQ(run(dir, "query " + dir.path("h.obj") + " --sphere 0,0,0,1").status, 2);  // not a runtime file
 }
 
+TEST(CommandLine, AuditExitsZeroWhenCleanOneWhenSpaceIsLostTwoWhenUnreadable) {
+  TempDir dir;
+  ASSERT_EQ(run(dir, "demo --out " + dir.path("demo")).status, 0);
+  const std::string scene = dir.path("demo/demo-scene.obj");
+  ASSERT_EQ(run(dir, "decompose " + scene + " -o " + dir.path("h.obj") + " --world " + dir.path("w.hcw") + " -q").status, 0);
+  CommandRun r = run(dir, "audit " + scene + " " + dir.path("w.hcw") + " --resolution 0.15 --json " + dir.path("a.json"));
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("CLEAN"), std::string::npos) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(slurp(dir.path("a.json")));
+  EXPECT_TRUE(j["clean"].get<bool>());
+  EXPECT_GT(j["front"]["points"].get<long>(), 0);
+  // One hull over the whole building, as an OBJ group: the rooms are lost.
+  const std::string blob = dir.write("blob.obj", "o all\nv -5 0 -4\nv 5 0 -4\nv 5 3.2 -4\nv -5 3.2 -4\n"
+                                                 "v -5 0 4\nv 5 0 4\nv 5 3.2 4\nv -5 3.2 4\n"
+                                                 "f 1 2 3 4\nf 5 6 7 8\n");
+  r = run(dir, "audit " + scene + " " + blob + " --resolution 0.15");
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("VIOLATIONS"), std::string::npos) << r.out;
+  EXPECT_EQ(run(dir, "audit " + scene + " " + dir.path("missing.obj")).status, 2);
+  EXPECT_EQ(run(dir, "audit " + dir.path("missing.obj") + " " + blob).status, 2);
+}
+
 } // namespace

@@ -13,6 +13,7 @@
 #include "hullcover/bvh/hull_world.h"
 #include "hullcover/lib/mesh.h"
 
+#include <functional>
 #include <memory>
 
 namespace hullcover::bvh {
@@ -35,6 +36,9 @@ public:
   [[nodiscard]] Status contacts(const ContactRequest& request, ContactResult& result) const;
   /// First triangle hit, through the OBB tree.
   [[nodiscard]] Status ray_cast(const RayRequest& request, RayResult& result) const;
+  /// Every triangle the ray hits up to its max distance, nearest first (ties
+  /// by face id): coincident faces all show.
+  [[nodiscard]] Status ray_hits(const RayRequest& request, std::vector<RayHit>& hits) const;
   /// Nearest triangle by FCL's distance query; spheres and capsules.
   [[nodiscard]] Status distance(const DistanceRequest& request, DistanceResult& result) const;
 
@@ -48,6 +52,10 @@ private:
   double margin_ = 0.0;                 // broad-phase inflation (a few tol)
   std::unique_ptr<Fcl> fcl_;
 
+  /// Calls `on_hit` for every triangle hit within `reach` (which `on_hit`
+  /// may shorten), through the OBB tree.
+  void traverse_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double& reach,
+                    const std::function<void(const RayHit&)>& on_hit) const;
   void candidates(const QueryShape& shape, const Eigen::Isometry3d& pose, double inflate, std::vector<int>& out) const;
 };
 

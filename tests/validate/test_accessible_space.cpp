@@ -1,0 +1,152 @@
+// The accessible-space probe catches hulls that take free space, and passes
+// the decomposer's hulls on scenes where the paper's conditions suffice.
+
+#include "hullcover/validate/accessible_space.h"
+#include "hullcover/validate/hull_set.h"
+
+#include "covering_fixture.h"
+#include "shared_data.h"
+#include "temp_dir.h"
+
+#include "hullcover/lib/convex_hull_3d.h"
+#include "hullcover/lib/mesh_import.h"
+#include "hullcover/lib/scene_builder.h"
+
+#include <gtest/gtest.h>
+
+namespace hullcover::validate {
+namespace {
+
+using V = Eigen::Vector3d;
+
+bvh::RuntimeHull box_hull(const V& lo, const V& hi) {
+  std::vector<V> corners;
+  for (int i = 0; i < 8; ++i) corners.emplace_back(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
+  ConvexHullBuilder builder;
+  return bvh::make_runtime_hull(builder.build(corners).value(), 0);
+}
+
+std::vector<bvh::RuntimeHull> hulls_of(const Covering& covering) {
+  std::vector<bvh::RuntimeHull> hulls;
+  for (const CoveringHull& h : covering.hulls) hulls.push_back(bvh::make_runtime_hull(h.polytope, h.material));
+  return hulls;
+}
+
+ProbeReport probe(const test::Decomposed& d, std::vector<bvh::RuntimeHull> hulls, ProbeOptions options = {}) {
+  const auto world = bvh::HullWorld::build(std::move(hulls)).value();
+  const auto triangles = bvh::TriangleWorld::build(d.prepared.mesh, d.tol()).value();
+  if (!options.resolution) options.resolution = d.prepared.tolerance.diagonal * kDefaultProbeRelative / 4.0;
+  Result<ProbeReport> r = probe_accessible_space(d.prepared, *triangles, *world, options);
+  EXPECT_TRUE(r.ok()) << r.status().message();
+  return r.value();
+}
+
+TEST(AccessibleSpace, DecomposedBuildingIsCleanAndAClosedDoorwayIsCaught) {
+  const auto d = test::decompose_and_check(demo_building());
+  ASSERT_TRUE(d);
+  const ProbeReport clean = probe(*d, hulls_of(d->covering));
+  EXPECT_GT(clean.front_points, 1000);
+  EXPECT_GT(clean.opening_points, 100);
+  EXPECT_EQ(clean.front_lost, 0);
+  EXPECT_EQ(clean.opening_lost, 0);
+  EXPECT_EQ(clean.lost_cells, 0);
+  EXPECT_GT(clean.enclosed_points, 0);  // inside the wall boxes and stairs
+
+  // The same hulls plus one that fills the doorway.
+  std::vector<bvh::RuntimeHull> closed = hulls_of(d->covering);
+  closed.push_back(box_hull(V(-0.6, 0.0, 3.8), V(0.6, 2.1, 4.0)));
+  const ProbeReport caught = probe(*d, closed);
+  EXPECT_GT(caught.front_lost + caught.opening_lost, 0);
+  EXPECT_GT(caught.lost_cells, 0);
+  ASSERT_FALSE(caught.worst.empty());
+  EXPECT_EQ(caught.worst[0].hull, static_cast<int>(closed.size()) - 1);
+}
+
+TEST(AccessibleSpace, AHullAboveTheTerrainIsCaught) {
+  Mesh terrain;
+  add_height_field(terrain, {0, 1, 2, 3, 4, 5, 6}, {0, 1, 2, 3, 4, 5, 6},
+                   [](double x, double z) { return 0.2 * std::sin(x) * std::cos(z); });
+  const auto d = test::decompose_and_check(terrain);
+  ASSERT_TRUE(d);
+  ProbeOptions metre;  // the default (2% of the diagonal) is 17 cm here
+  metre.probe_distance = 1.0;
+  metre.resolution = 0.1;
+  EXPECT_EQ(probe(*d, hulls_of(d->covering), metre).front_lost, 0);
+  std::vector<bvh::RuntimeHull> hulls = hulls_of(d->covering);
+  hulls.push_back(box_hull(V(2, 0.25, 2), V(3, 0.6, 3)));  // floating above the ground
+  const ProbeReport r = probe(*d, hulls, metre);
+  EXPECT_GT(r.front_lost, 0);
+}
+
+TEST(AccessibleSpace, AHullFillingARoomSeenFromInsideIsCaught) {
+  Mesh room;
+  add_box(room, V(0, 0, 0), V(4, 3, 5), false);
+  const auto d = test::decompose_and_check(room);
+  ASSERT_TRUE(d);
+  EXPECT_EQ(probe(*d, hulls_of(d->covering)).front_lost, 0);
+  const ProbeReport filled = probe(*d, {box_hull(V(0, 0, 0), V(4, 3, 5))});
+  EXPECT_GT(filled.front_lost, filled.front_points / 2);
+  EXPECT_NEAR(filled.lost_volume / filled.free_volume, 1.0, 0.2);
+}
+
+TEST(AccessibleSpace, RefusesBadOptions) {
+  const auto d = test::decompose_and_check(demo_building());
+  ASSERT_TRUE(d);
+  const auto world = bvh::HullWorld::build(hulls_of(d->covering)).value();
+  const auto triangles = bvh::TriangleWorld::build(d->prepared.mesh, d->tol()).value();
+  ProbeOptions o;
+  o.probe_distance = -1.0;
+  EXPECT_EQ(probe_accessible_space(d->prepared, *triangles, *world, o).status().code(), StatusCode::invalid_argument);
+  o.probe_distance = 1.0;
+  o.resolution = 1e-9;  // more than the octree's 16 levels
+  EXPECT_EQ(probe_accessible_space(d->prepared, *triangles, *world, o).status().code(), StatusCode::invalid_argument);
+}
+
+// Another tool's hulls (V-HACD 4, 64 hulls at most) are volume
+// approximations: they take a large share of the free space.
+TEST(AccessibleSpace, PeerHullsLoseALargeShare) {
+  HULLCOVER_REQUIRE_SHARED_SCENES(dir);
+  const std::string scene = dir + "/threejs-collision-world.glb";
+  const std::string peer = dir + "/../peer-hulls/threejs-collision-world.vhacd.obj";
+  Result<ImportedMesh> mesh = import_mesh(scene);
+  ASSERT_TRUE(mesh.ok());
+  const PreparedMesh prepared = prepare_mesh(mesh.value().mesh, std::nullopt).value();
+  Result<HullSet> set = load_hull_set(peer);
+  ASSERT_TRUE(set.ok()) << set.status().message();
+  EXPECT_GE(set.value().hulls.size(), 10u);
+  const auto world = bvh::HullWorld::build(std::move(set.value().hulls)).value();
+  const auto triangles = bvh::TriangleWorld::build(prepared.mesh, prepared.tolerance.length).value();
+  ProbeOptions o;
+  o.resolution = prepared.tolerance.diagonal * kDefaultProbeRelative / 4.0;
+  const Result<ProbeReport> r = probe_accessible_space(prepared, *triangles, *world, o);
+  ASSERT_TRUE(r.ok());
+  const double front = static_cast<double>(r.value().front_lost) / r.value().front_points;
+  const double volume = r.value().lost_volume / r.value().free_volume;
+  EXPECT_GT(front, 0.10) << front;
+  EXPECT_LT(front, 0.95) << front;
+  EXPECT_GT(volume, 0.05) << volume;
+}
+
+TEST(HullSet, ReadsObjGroupsAndRefusesBadOnes) {
+  test::TempDir dir;
+  std::string obj;
+  for (int h = 0; h < 2; ++h) {
+    obj += "o hull" + std::to_string(h) + "\n";
+    for (int i = 0; i < 8; ++i)
+      obj += "v " + std::to_string((i & 1) + 3 * h) + " " + std::to_string((i >> 1) & 1) + " " +
+             std::to_string((i >> 2) & 1) + "\n";
+    obj += "f -8 -7 -6 -5\nf -4 -3 -2 -1\n";
+  }
+  obj += "g flat\nv 0 0 9\nv 1 0 9\nv 0 1 9\nf -3 -2 -1\n";
+  const Result<HullSet> set = load_hull_set(dir.write("hulls.obj", obj));
+  ASSERT_TRUE(set.ok()) << set.status().message();
+  ASSERT_EQ(set.value().hulls.size(), 2u);
+  EXPECT_EQ(set.value().groups_without_volume, 1);
+  EXPECT_NEAR(polytope_volume(set.value().hulls[1].shape), 1.0, 1e-12);
+  EXPECT_EQ(load_hull_set(dir.write("bad.obj", "v 0 0 0\nf 1 2 3\n")).status().code(), StatusCode::unreadable_file);
+  EXPECT_EQ(load_hull_set(dir.path("missing.obj")).status().code(), StatusCode::file_not_found);
+  EXPECT_EQ(load_hull_set(dir.write("none.obj", "# nothing\n")).status().code(), StatusCode::empty_scene);
+}
+
+} // namespace
+} // namespace hullcover::validate

@@ -1,0 +1,71 @@
+#pragma once
+/// \file accessible_space.h
+/// The accessible-space probe (../shared/DESIGN.md, "what no free space lost
+/// means"): free space is sampled from the scene itself, then every sample
+/// is tested against the hulls.
+///
+/// - front free space: rays from sample points on every face along its
+///   normal, up to the probe distance R or the first mesh hit. A ray that
+///   ends on the BACK of a face is *enclosed* space (a floor under a table
+///   top): counted apart, allowed by the paper's conditions.
+/// - openings: rays from points along every boundary edge, outward in the
+///   face's plane, up to R or the first hit (a doorway stays open).
+/// The accessible (not enclosed) points go into an OctoMap octree as free
+/// cells, the surface as occupied; every free cell is tested too, which
+/// gives the lost volume.
+///
+/// "Lost" means strictly inside a hull: deeper than the tolerance.
+
+#include "hullcover/bvh/hull_world.h"
+#include "hullcover/bvh/triangle_world.h"
+#include "hullcover/lib/prepared_mesh.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace hullcover::validate {
+
+/// Default probe distance as a fraction of the bounding-box diagonal.
+inline constexpr double kDefaultProbeRelative = 0.02;
+/// Default octree resolution (and sample spacing) per probe distance.
+inline constexpr double kDefaultCellsPerProbe = 8.0;
+
+struct ProbeOptions {
+  std::optional<double> probe_distance;  ///< R, scene units (> 0)
+  std::optional<double> resolution;      ///< octree cell size and sample spacing, scene units (> 0)
+  std::string octree_path;  ///< write the octree here (.bt) when not empty; its origin is the scene's box centre
+};
+
+/// One place where free space is lost.
+struct LostPlace {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  int face = -1;  ///< the face (or open edge's face) the probing ray came from
+  int hull = -1;  ///< the hull it is inside
+  double depth = 0.0;
+  bool opening = false;  ///< found by an opening ray
+};
+
+struct ProbeReport {
+  double probe_distance = 0.0;
+  double resolution = 0.0;
+  long front_points = 0, front_lost = 0;
+  long enclosed_points = 0, enclosed_in_hulls = 0;  ///< allowed, reported
+  long opening_points = 0, opening_lost = 0;
+  long free_cells = 0, lost_cells = 0;
+  double free_volume = 0.0, lost_volume = 0.0;  ///< scene units cubed
+  double max_lost_depth = 0.0;
+  Eigen::Vector3d octree_origin = Eigen::Vector3d::Zero();  ///< scene point at the octree's origin (the box centre)
+  std::vector<LostPlace> worst;  ///< deepest first, at most kWorstPlaces
+};
+inline constexpr size_t kWorstPlaces = 10;
+
+/// Probes `prepared`'s free space (ray casts on `triangles`) and tests it
+/// against `hulls`. Fails with `invalid_argument` for a non-positive probe
+/// distance or resolution, or a resolution so fine the octree would need
+/// more than its 16 levels over the scene; `unwritable_file` when the
+/// octree cannot be written.
+Result<ProbeReport> probe_accessible_space(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles,
+                                           const bvh::HullWorld& hulls, const ProbeOptions& options);
+
+} // namespace hullcover::validate

@@ -1,0 +1,26 @@
+#pragma once
+/// \file hull_set.h
+/// Hulls to audit, from any source: hullcover's runtime file, or an OBJ
+/// with one `o` or `g` group per hull (V-HACD output, hand-made UCX meshes),
+/// each hull being the convex hull of the vertices its group's faces use.
+
+#include "hullcover/bvh/runtime_hull.h"
+#include "hullcover/lib/status.h"
+
+#include <string>
+#include <vector>
+
+namespace hullcover::validate {
+
+/// Hulls read from a file, and what could not be made a hull.
+struct HullSet {
+  std::vector<bvh::RuntimeHull> hulls;
+  int groups_without_volume = 0;  ///< OBJ groups whose points span no volume (skipped)
+};
+
+/// Reads `path`: a `.hcw` runtime file, or else an OBJ with groups.
+/// Fails with `file_not_found`, `unreadable_file` (a malformed line, named
+/// by number, or a damaged runtime file) or `empty_scene` (no hull).
+Result<HullSet> load_hull_set(const std::string& path);
+
+} // namespace hullcover::validate
