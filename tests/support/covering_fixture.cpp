@@ -26,7 +26,7 @@ std::optional<Decomposed> decompose_and_check(const Mesh& mesh, const DecomposeO
     ADD_FAILURE() << covering.status().message();
     return std::nullopt;
   }
-  const CheckReport report = check_covering_independently(prepared.value(), covering.value());
+  const validate::CheckReport report = validate::check_covering_independently(prepared.value(), covering.value());
   EXPECT_EQ(report.total(), 0) << report.summary();
   return Decomposed{std::move(prepared).value(), std::move(covering).value()};
 }

@@ -1,7 +1,7 @@
 #pragma once
 // Decomposes a mesh built in a test and re-checks the result independently.
 
-#include "independent_check.h"
+#include "hullcover/validate/validity_recheck.h"
 
 #include "hullcover/lib/covering.h"
 #include "hullcover/lib/prepared_mesh.h"
@@ -11,6 +11,9 @@
 #include <optional>
 
 namespace hullcover::test {
+
+using validate::point_inside_covering;
+using validate::segment_hits_covering;
 
 struct Decomposed {
   PreparedMesh prepared;

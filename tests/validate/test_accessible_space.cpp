@@ -3,6 +3,7 @@
 
 #include "hullcover/validate/accessible_space.h"
 #include "hullcover/validate/hull_set.h"
+#include "hullcover/validate/validity_recheck.h"
 
 #include "covering_fixture.h"
 #include "shared_data.h"
@@ -125,6 +126,29 @@ TEST(AccessibleSpace, PeerHullsLoseALargeShare) {
   EXPECT_GT(front, 0.10) << front;
   EXPECT_LT(front, 0.95) << front;
   EXPECT_GT(volume, 0.05) << volume;
+}
+
+TEST(Recheck, AVertexPokingIntoAHullIsCaughtAndPeerHullsLeaveSurfaceUncovered) {
+  const auto d = test::decompose_and_check(demo_building());
+  ASSERT_TRUE(d);
+  std::vector<bvh::RuntimeHull> hulls = hulls_of(d->covering);
+  EXPECT_EQ(recheck_hulls(d->prepared, hulls_under_check(hulls), d->covering.bar_half_length).total(), 0);
+  hulls.push_back(box_hull(V(4.5, 2.5, -4.2), V(5.2, 3.4, -3.5)));  // around the building's back right top corner
+  const CheckReport poked = recheck_hulls(d->prepared, hulls_under_check(hulls), d->covering.bar_half_length);
+  EXPECT_GT(poked.vertices_inside, 0);
+  EXPECT_GT(poked.edges_inside, 0);
+
+  HULLCOVER_REQUIRE_SHARED_SCENES(dir);
+  Result<ImportedMesh> mesh = import_mesh(dir + "/recast-nav_test.obj");
+  ASSERT_TRUE(mesh.ok());
+  const PreparedMesh prepared = prepare_mesh(mesh.value().mesh, std::nullopt).value();
+  Result<HullSet> peer = load_hull_set(dir + "/../peer-hulls/recast-nav_test.vhacd.obj");
+  ASSERT_TRUE(peer.ok());
+  const CheckReport r = recheck_hulls(prepared, hulls_under_check(peer.value().hulls), 0.1 * prepared.tolerance.diagonal);
+  const double uncovered = r.uncovered_area / r.total_area;
+  EXPECT_GT(uncovered, 0.2) << uncovered;  // volume approximations leave much of the surface off their hulls
+  EXPECT_LT(uncovered, 1.0) << uncovered;
+  EXPECT_GT(r.vertices_inside, 0);
 }
 
 TEST(HullSet, ReadsObjGroupsAndRefusesBadOnes) {

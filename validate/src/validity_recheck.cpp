@@ -1,4 +1,4 @@
-#include "independent_check.h"
+#include "hullcover/validate/validity_recheck.h"
 
 #include <Eigen/Geometry>
 
@@ -8,7 +8,7 @@
 #include <sstream>
 #include <unordered_map>
 
-namespace hullcover::test {
+namespace hullcover::validate {
 namespace {
 
 struct HalfSpace {
@@ -39,25 +39,25 @@ HalfSpace newell_plane(const std::vector<Eigen::Vector3d>& poly) {
   return {n, n.dot(centre)};
 }
 
-CheckedHull make_checked(const CoveringHull& hull) {
+CheckedHull make_checked(const HullUnderCheck& hull) {
   CheckedHull c;
-  const auto& V = hull.polytope.vertices;
+  const auto& V = hull.shape->vertices;
   c.lo = c.hi = V.front();
   for (const auto& p : V) {
     c.lo = c.lo.cwiseMin(p);
     c.hi = c.hi.cwiseMax(p);
   }
   std::vector<Eigen::Vector3d> poly;
-  for (const auto& facet : hull.polytope.facets) {
+  for (const auto& facet : hull.shape->facets) {
     poly.clear();
     for (int v : facet) poly.push_back(V[v]);
     c.facets.push_back(newell_plane(poly));
   }
-  c.flat = hull.planar && hull.thickness == 0.0;
+  c.flat = hull.flat;
   if (c.flat) {
     c.front = c.facets.front();
     poly.clear();
-    for (int v : hull.polytope.facets.front()) poly.push_back(V[v]);
+    for (int v : hull.shape->facets.front()) poly.push_back(V[v]);
     for (size_t i = 0; i < poly.size(); ++i) {
       const Eigen::Vector3d e = poly[(i + 1) % poly.size()] - poly[i];
       const Eigen::Vector3d out = e.cross(c.front.n).normalized();
@@ -145,7 +145,29 @@ std::string CheckReport::summary() const {
   return s.str();
 }
 
+std::vector<HullUnderCheck> hulls_under_check(const Covering& covering) {
+  std::vector<HullUnderCheck> out;
+  for (const CoveringHull& h : covering.hulls) out.push_back({&h.polytope, h.planar && h.thickness == 0.0, h.faces});
+  return out;
+}
+
+std::vector<HullUnderCheck> hulls_under_check(const std::vector<bvh::RuntimeHull>& hulls) {
+  std::vector<HullUnderCheck> out;
+  for (const bvh::RuntimeHull& h : hulls) {
+    const auto& f = h.shape.facets;
+    bool flat = f.size() == 2 && f[0].size() == f[1].size();
+    for (size_t i = 0; flat && i < f[0].size(); ++i) flat = f[0][i] == f[1][f[1].size() - 1 - i];
+    out.push_back({&h.shape, flat, {}});
+  }
+  return out;
+}
+
 CheckReport check_covering_independently(const PreparedMesh& prepared, const Covering& covering) {
+  return recheck_hulls(prepared, hulls_under_check(covering), covering.bar_half_length);
+}
+
+CheckReport recheck_hulls(const PreparedMesh& prepared, const std::vector<HullUnderCheck>& hulls,
+                          double bar_half_length) {
   CheckReport report;
   const Mesh& mesh = prepared.mesh;
   const double tol = prepared.tolerance.length;
@@ -182,7 +204,7 @@ CheckReport check_covering_independently(const PreparedMesh& prepared, const Cov
     edges.push_back(e);
     if (faces.size() == 1 && has_surface[faces[0]]) {
       const Eigen::Vector3d mid = 0.5 * (mesh.positions[e.first] + mesh.positions[e.second]);
-      bars.push_back({mid - covering.bar_half_length * normal[faces[0]], mid + covering.bar_half_length * normal[faces[0]]});
+      bars.push_back({mid - bar_half_length * normal[faces[0]], mid + bar_half_length * normal[faces[0]]});
     }
   }
 
@@ -206,21 +228,26 @@ CheckReport check_covering_independently(const PreparedMesh& prepared, const Cov
   }
 
   std::vector<char> covered(F, 0);
-  for (size_t h = 0; h < covering.hulls.size(); ++h) {
-    const CoveringHull& hull = covering.hulls[h];
+  std::vector<CheckedHull> checked;
+  Grid hgrid{cell, scene.min, {}};
+  for (size_t h = 0; h < hulls.size(); ++h) {
+    const HullUnderCheck& hull = hulls[h];
     const CheckedHull c = make_checked(hull);
     const Eigen::Vector3d lo = c.lo.array() - 2 * tol, hi = c.hi.array() + 2 * tol;
-    const std::string where = "hull " + std::to_string(h) + " (" + std::to_string(hull.faces.size()) + " faces, thickness " + std::to_string(hull.thickness) + "): ";
-    for (const auto& p : hull.polytope.vertices)
+    checked.push_back(c);
+    hgrid.insert(static_cast<int>(h), c.lo, c.hi);
+    const std::string where = "hull " + std::to_string(h) + " (" + std::to_string(hull.faces.size()) + " faces" +
+                              (hull.flat ? ", flat" : "") + "): ";
+    for (const auto& p : hull.shape->vertices)
       for (size_t fi = 0; fi < c.facets.size(); ++fi)
         if (const HalfSpace& plane = c.facets[fi]; plane.n.dot(p) - plane.d > tol) {
           std::ostringstream detail;
-          detail << "facet " << fi << " of size " << hull.polytope.facets[fi].size() << " n " << plane.n.transpose()
+          detail << "facet " << fi << " of size " << hull.shape->facets[fi].size() << " n " << plane.n.transpose()
                  << " p " << p.transpose();
           note(detail.str());
           ++report.hulls_not_convex;
           note(where + "not convex: a vertex " + std::to_string(plane.n.dot(p) - plane.d) + " in front of a facet of " +
-               std::to_string(hull.polytope.facets.size()));
+               std::to_string(hull.shape->facets.size()));
           goto convex_checked;
         }
   convex_checked:
@@ -231,7 +258,7 @@ CheckReport check_covering_independently(const PreparedMesh& prepared, const Cov
       const Eigen::Vector3i& t = mesh.triangles[f];
       const Eigen::Vector3d& a = mesh.positions[t[0]];
       double in_front = 0.0, deepest_corner = -INFINITY;
-      for (const auto& p : hull.polytope.vertices) in_front = std::max(in_front, normal[f].dot(p - a));
+      for (const auto& p : hull.shape->vertices) in_front = std::max(in_front, normal[f].dot(p - a));
       for (int k = 0; k < 3; ++k) deepest_corner = std::max(deepest_corner, depth_inside(c.facets, mesh.positions[t[k]]));
       if (in_front > 2 * tol || deepest_corner > 2 * tol || (c.flat && c.front.n.dot(normal[f]) <= 0.0)) {
         ++report.faces_off_hull;
@@ -239,7 +266,9 @@ CheckReport check_covering_independently(const PreparedMesh& prepared, const Cov
              std::to_string(in_front) + " in front, corner " + std::to_string(deepest_corner) + " deep)");
       }
     }
-    if (c.flat && hull.faces.size() == 1) continue;  // the face itself: whatever crosses it, crosses the mesh
+    // A flat hull that is one face (claimed, or a bare triangle from another
+    // tool): whatever crosses it crosses the mesh itself.
+    if (c.flat && (hull.faces.size() == 1 || (hull.faces.empty() && hull.shape->vertices.size() == 3))) continue;
     if (c.flat) {
       // Condition 3 (flat): no bar crosses the relative interior.
       for (int b : bgrid.query(lo, hi))
@@ -294,16 +323,36 @@ CheckReport check_covering_independently(const PreparedMesh& prepared, const Cov
         note(where + "bar " + std::to_string(b) + " inside");
       }
   }
-  for (int f = 0; f < F; ++f)
-    if (has_surface[f] && !covered[f]) {
-      ++report.faces_uncovered;
-      note("face " + std::to_string(f) + " is in no hull");
+  // Faces no hull claims: covered when on some hull's boundary, normal out.
+  for (int f = 0; f < F; ++f) {
+    if (!has_surface[f]) continue;
+    const Eigen::Vector3i& t = mesh.triangles[f];
+    const Eigen::Vector3d &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    report.total_area += area;
+    if (covered[f]) continue;
+    const Eigen::Vector3d lo = a.cwiseMin(b).cwiseMin(c).array() - 2 * tol, hi = a.cwiseMax(b).cwiseMax(c).array() + 2 * tol;
+    for (int h : hgrid.query(lo, hi)) {
+      const HullUnderCheck& hull = hulls[h];
+      double in_front = 0.0, off = 0.0;
+      for (const auto& p : hull.shape->vertices) in_front = std::max(in_front, normal[f].dot(p - a));
+      for (const Eigen::Vector3d* corner : {&a, &b, &c}) off = std::max(off, std::abs(depth_inside(checked[h].facets, *corner)));
+      if (in_front <= 2 * tol && off <= 2 * tol && (!checked[h].flat || checked[h].front.n.dot(normal[f]) > 0.0)) {
+        covered[f] = 1;
+        break;
+      }
     }
+    if (!covered[f]) {
+      ++report.faces_uncovered;
+      report.uncovered_area += area;
+      note("face " + std::to_string(f) + " is on no hull");
+    }
+  }
   return report;
 }
 
 bool segment_hits_covering(const Covering& covering, const Eigen::Vector3d& p, const Eigen::Vector3d& q, double tol) {
-  for (const CoveringHull& hull : covering.hulls) {
+  for (const HullUnderCheck& hull : hulls_under_check(covering)) {
     const CheckedHull c = make_checked(hull);
     if (c.flat ? segment_crosses_flat(c, p, q, tol) : segment_deeper_than(c.facets, p, q, tol)) return true;
   }
@@ -311,11 +360,11 @@ bool segment_hits_covering(const Covering& covering, const Eigen::Vector3d& p, c
 }
 
 bool point_inside_covering(const Covering& covering, const Eigen::Vector3d& p, double tol) {
-  for (const CoveringHull& hull : covering.hulls) {
+  for (const HullUnderCheck& hull : hulls_under_check(covering)) {
     const CheckedHull c = make_checked(hull);
     if (!c.flat && depth_inside(c.facets, p) > tol) return true;
   }
   return false;
 }
 
-} // namespace hullcover::test
+} // namespace hullcover::validate

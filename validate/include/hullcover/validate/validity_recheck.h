@@ -1,0 +1,68 @@
+#pragma once
+/// \file validity_recheck.h
+/// An independent re-check of hulls against the paper's conditions 1-4 and
+/// coverage. It shares no predicate with the decomposer: planes come from
+/// the facet polygons (Newell's method), boundary edges and bars are found
+/// again from the raw triangles, and candidates come from a uniform grid,
+/// not the decomposer's trees. One bug cannot hide in both. The audit runs
+/// it on hulls from any source; the tests run it on every covering.
+
+#include "hullcover/bvh/runtime_hull.h"
+#include "hullcover/lib/covering.h"
+#include "hullcover/lib/prepared_mesh.h"
+
+#include <string>
+#include <vector>
+
+namespace hullcover::validate {
+
+/// One hull to re-check.
+struct HullUnderCheck {
+  const ConvexPolytope* shape = nullptr;
+  bool flat = false;       ///< a polygon of thickness 0 (front and back facets)
+  std::vector<int> faces;  ///< mesh faces it claims to cover, ascending; empty when unknown
+};
+
+/// A covering's hulls, with the faces each covers.
+std::vector<HullUnderCheck> hulls_under_check(const Covering& covering);
+/// Hulls from any source (no claimed faces); flat when front and back
+/// facets share their corners.
+std::vector<HullUnderCheck> hulls_under_check(const std::vector<bvh::RuntimeHull>& hulls);
+
+struct CheckReport {
+  long vertices_inside = 0;       // condition 1
+  long edges_inside = 0;          // condition 1
+  long faces_off_hull = 0;        // condition 2 (a covered face whose plane does not support its hull)
+  long bars_inside = 0;           // condition 3
+  long faces_below_polygon = 0;   // condition 4
+  long faces_uncovered = 0;       // coverage: a face with area on no hull's boundary
+  double uncovered_area = 0.0, total_area = 0.0;
+  long hulls_not_convex = 0;      // a hull vertex in front of one of its own facets
+  std::vector<std::string> examples;  // the first few, for the failure message
+
+  long total() const {
+    return vertices_inside + edges_inside + faces_off_hull + bars_inside + faces_below_polygon + faces_uncovered +
+           hulls_not_convex;
+  }
+  std::string summary() const;
+};
+
+/// Re-checks every hull against the whole of `prepared`, with bars of the
+/// given half-length. Conditions 3 and 4 are skipped for a flat hull that
+/// claims exactly one face (it is that face: whatever crosses it crosses
+/// the mesh). A face no hull claims counts as covered when it lies on some
+/// hull's boundary with its normal out.
+CheckReport recheck_hulls(const PreparedMesh& prepared, const std::vector<HullUnderCheck>& hulls,
+                          double bar_half_length);
+
+/// Re-checks a covering (its faces claimed, its own bar length).
+CheckReport check_covering_independently(const PreparedMesh& prepared, const Covering& covering);
+
+/// True when segment p-q passes through some hull: deeper than `tol`
+/// inside a solid hull, or across the relative interior of a flat one.
+bool segment_hits_covering(const Covering& covering, const Eigen::Vector3d& p, const Eigen::Vector3d& q, double tol);
+
+/// True when `p` lies deeper than `tol` inside some solid hull.
+bool point_inside_covering(const Covering& covering, const Eigen::Vector3d& p, double tol);
+
+} // namespace hullcover::validate
