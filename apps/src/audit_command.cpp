@@ -5,6 +5,7 @@
 #include "scene_loading.h"
 
 #include "hullcover/validate/accessible_space.h"
+#include "hullcover/validate/behaviour_equivalence.h"
 #include "hullcover/validate/hull_set.h"
 #include "hullcover/validate/validity_recheck.h"
 
@@ -21,7 +22,9 @@ constexpr int kExitViolation = 1;
 
 struct AuditOptions {
   std::string mesh, hulls, json_path, octree_path;
-  std::optional<double> tolerance, probe, resolution, bar_length;
+  std::optional<double> tolerance, probe, resolution, bar_length, proxy_size;
+  int proxies = 3000;
+  std::uint64_t seed = 1;
 };
 
 double percent(long part, long whole) { return whole > 0 ? 100.0 * static_cast<double>(part) / whole : 0.0; }
@@ -53,7 +56,15 @@ int run_audit(const AuditOptions& o) {
     return kExitBadInput;
   }
   const validate::ProbeReport& r = probed.value();
-  const bool clean = r.front_lost == 0 && r.opening_lost == 0 && r.lost_cells == 0 && recheck.total() == 0;
+  const Result<validate::BehaviourReport> compared = validate::compare_behaviour(
+      scene->prepared, *triangles.value(), *hulls.value(), {o.proxies, o.seed, o.proxy_size});
+  if (!compared.ok()) {
+    std::fprintf(stderr, "hullcover: error: %s\n", compared.status().message().c_str());
+    return kExitBadInput;
+  }
+  const validate::BehaviourReport& b = compared.value();
+  const bool clean =
+      r.front_lost == 0 && r.opening_lost == 0 && r.lost_cells == 0 && recheck.total() == 0 && b.missed == 0;
   std::printf("%s: %s\n", o.hulls.c_str(), clean ? "CLEAN: no accessible space lost" : "VIOLATIONS: accessible space lost");
   std::printf("  %zu hulls against %zu faces; tolerance %.6g, probe distance %.6g, resolution %.6g\n", hull_count,
               scene->prepared.mesh.triangles.size(), scene->prepared.tolerance.length, r.probe_distance, r.resolution);
@@ -71,6 +82,10 @@ int run_audit(const AuditOptions& o) {
               recheck.vertices_inside, recheck.edges_inside, recheck.bars_inside, recheck.faces_below_polygon,
               recheck.hulls_not_convex, recheck.faces_uncovered,
               recheck.total_area > 0 ? 100.0 * recheck.uncovered_area / recheck.total_area : 0.0);
+  std::printf("  behaviour: %ld proxies (size %.6g): %ld missed contacts, %ld false contacts (deepest %.6g),\n"
+              "             normals %.3g deg apart on average, %.3g at most, over %ld shared contacts\n",
+              b.poses, b.size, b.missed, b.false_contacts, b.max_false_depth, b.mean_normal_angle, b.max_normal_angle,
+              b.both_touch);
   if (!r.worst.empty()) {
     std::printf("  deepest lost points (max depth %.6g):\n", r.max_lost_depth);
     for (const validate::LostPlace& p : r.worst)
@@ -109,6 +124,15 @@ int run_audit(const AuditOptions& o) {
           {"uncovered_area", recheck.uncovered_area},
           {"total_area", recheck.total_area}}},
         {"worst", worst},
+        {"behaviour",
+         {{"proxies", b.poses},
+          {"size", b.size},
+          {"missed", b.missed},
+          {"false_contacts", b.false_contacts},
+          {"max_false_depth", b.max_false_depth},
+          {"both_touch", b.both_touch},
+          {"mean_normal_angle_deg", b.mean_normal_angle},
+          {"max_normal_angle_deg", b.max_normal_angle}}},
     };
     std::ofstream out(o.json_path);
     out << j.dump(1) << "\n";
@@ -130,7 +154,8 @@ void register_audit_command(CLI::App& app, int& exit_status) {
       "face along its normal and from every open edge outward, up to the probe distance or the first mesh hit,\n"
       "and every probed point and OctoMap free cell is tested against the hulls (deeper than the tolerance\n"
       "= lost). Space behind a face (ray ending on a back face) is enclosed: reported, allowed. The paper's\n"
-      "conditions 1-4 and coverage are re-checked independently of the decomposer.\n"
+      "conditions 1-4 and coverage are re-checked independently of the decomposer, and character proxies\n"
+      "near the surfaces are collided with the triangles and the hulls (missed and false contacts).\n"
       "Exit status 0 clean, 1 space lost, 2 unreadable input.");
   cmd->add_option("MESH", o->mesh, "The scene the hulls stand for")->required();
   cmd->add_option("HULLS", o->hulls,
@@ -145,6 +170,12 @@ void register_audit_command(CLI::App& app, int& exit_status) {
   cmd->add_option("--bar-length", o->bar_length,
                   "Half-length of the boundary bars of the re-check (default 0.1 x diagonal, as decompose)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--proxies", o->proxies, "Character proxies (sphere, capsule, box) compared on both worlds")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--proxy-size", o->proxy_size, "Proxy radius / half extent (default 0.005 x diagonal)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--seed", o->seed, "Seed of the proxy poses")->capture_default_str();
   cmd->add_option("--octree", o->octree_path, "Write the probed octree (.bt, for OctoMap's viewer; origin = box centre)");
   cmd->add_option("--json", o->json_path, "Write the figures as JSON");
   cmd->callback([o, &exit_status] { exit_status = run_audit(*o); });

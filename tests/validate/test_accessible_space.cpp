@@ -2,6 +2,7 @@
 // the decomposer's hulls on scenes where the paper's conditions suffice.
 
 #include "hullcover/validate/accessible_space.h"
+#include "hullcover/validate/behaviour_equivalence.h"
 #include "hullcover/validate/hull_set.h"
 #include "hullcover/validate/validity_recheck.h"
 
@@ -149,6 +150,30 @@ TEST(Recheck, AVertexPokingIntoAHullIsCaughtAndPeerHullsLeaveSurfaceUncovered) {
   EXPECT_GT(uncovered, 0.2) << uncovered;  // volume approximations leave much of the surface off their hulls
   EXPECT_LT(uncovered, 1.0) << uncovered;
   EXPECT_GT(r.vertices_inside, 0);
+}
+
+TEST(Behaviour, TheDecomposedBuildingCollidesLikeItsTrianglesAndABlobDoesNot) {
+  const auto d = test::decompose_and_check(demo_building());
+  ASSERT_TRUE(d);
+  const auto triangles = bvh::TriangleWorld::build(d->prepared.mesh, d->tol()).value();
+  const auto hulls = bvh::HullWorld::build(hulls_of(d->covering)).value();
+  BehaviourOptions o;
+  o.proxies = 900;
+  const Result<BehaviourReport> same = compare_behaviour(d->prepared, *triangles, *hulls, o);
+  ASSERT_TRUE(same.ok());
+  EXPECT_GT(same.value().poses, 500);
+  EXPECT_GT(same.value().both_touch, 100);
+  EXPECT_EQ(same.value().missed, 0);
+  // One hull over the whole building: poses clear of the room surfaces
+  // touch it, and inside it the push points out of the blob, not the room.
+  const auto blob = bvh::HullWorld::build({box_hull(V(-5, -0.2, -4), V(5, 3.2, 4))}).value();
+  const Result<BehaviourReport> other = compare_behaviour(d->prepared, *triangles, *blob, o);
+  ASSERT_TRUE(other.ok());
+  EXPECT_GT(other.value().false_contacts, 5);
+  EXPECT_GT(other.value().max_normal_angle, 90.0);
+  EXPECT_GT(other.value().missed, 10);  // the terrain has no hull at all
+  o.proxies = 0;
+  EXPECT_EQ(compare_behaviour(d->prepared, *triangles, *hulls, o).status().code(), StatusCode::invalid_argument);
 }
 
 TEST(HullSet, ReadsObjGroupsAndRefusesBadOnes) {

@@ -1,0 +1,39 @@
+#pragma once
+/// \file behaviour_equivalence.h
+/// Do characters collide with the hulls as they do with the triangles?
+/// Character proxies (sphere, capsule, box) are placed at seeded random
+/// poses near the surfaces, in accessible space (a pose whose centre lies in
+/// enclosed space is skipped), and queried against both worlds.
+
+#include "hullcover/bvh/hull_world.h"
+#include "hullcover/bvh/triangle_world.h"
+#include "hullcover/lib/prepared_mesh.h"
+
+#include <cstdint>
+#include <optional>
+
+namespace hullcover::validate {
+
+struct BehaviourOptions {
+  int proxies = 3000;            ///< poses tried (a third of each shape)
+  std::uint64_t seed = 1;
+  std::optional<double> size;    ///< proxy radius / half extent, scene units (default 0.005 x diagonal)
+};
+
+struct BehaviourReport {
+  double size = 0.0;
+  long poses = 0;                ///< poses used (accessible ones)
+  long both_touch = 0, neither_touches = 0;
+  long missed = 0;               ///< triangles touched, hulls not
+  long false_contacts = 0;       ///< hulls touched, triangles not
+  double max_false_depth = 0.0;  ///< deepest such false contact
+  double max_normal_angle = 0.0; ///< degrees, from the hulls' deepest normal to the nearest triangle normal, when both touch
+  double mean_normal_angle = 0.0;
+};
+
+/// Runs the proxies. Fails with `invalid_argument` for proxies < 1 or a
+/// non-positive size.
+Result<BehaviourReport> compare_behaviour(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles,
+                                          const bvh::HullWorld& hulls, const BehaviourOptions& options);
+
+} // namespace hullcover::validate

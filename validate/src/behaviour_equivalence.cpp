@@ -1,0 +1,96 @@
+#include "hullcover/validate/behaviour_equivalence.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace hullcover::validate {
+namespace {
+
+// Default proxy size as a fraction of the scene's diagonal.
+constexpr double kDefaultProxyRelative = 0.005;
+// Contacts compared per pose, deepest first.
+constexpr int kContactsCompared = 16;
+
+// Is `p` in accessible space: does the ray from it along `dir` first meet a
+// face from the front (or nothing)?
+bool accessible(const bvh::TriangleWorld& triangles, const Mesh& mesh, const Eigen::Vector3d& p,
+                const Eigen::Vector3d& dir, double reach) {
+  bvh::RayResult hit;
+  if (!triangles.ray_cast({p, dir, reach}, hit).ok() || !hit.hit) return true;
+  return triangle_area_vector(mesh, hit.first.hull).dot(dir) < 0.0;
+}
+
+} // namespace
+
+Result<BehaviourReport> compare_behaviour(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles,
+                                          const bvh::HullWorld& hulls, const BehaviourOptions& options) {
+  BehaviourReport report;
+  report.size = options.size.value_or(kDefaultProxyRelative * prepared.tolerance.diagonal);
+  if (options.proxies < 1 || !(report.size > 0.0) || !std::isfinite(report.size))
+    return Status{StatusCode::invalid_argument, "proxies must be at least 1 and their size a positive length"};
+  const Mesh& mesh = prepared.mesh;
+  std::vector<int> faces;
+  for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f)
+    if (!prepared.connectivity.zero_area[f]) faces.push_back(f);
+  if (faces.empty()) return Status{StatusCode::invalid_argument, "the mesh has no face with a surface"};
+
+  std::mt19937_64 rng(options.seed);
+  std::uniform_int_distribution<size_t> pick(0, faces.size() - 1);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::normal_distribution<double> g(0.0, 1.0);
+  const double s = report.size;
+  double angle_sum = 0.0;
+  try {
+    for (int i = 0; i < options.proxies; ++i) {
+      const int f = faces[pick(rng)];
+      const Eigen::Vector3i& t = mesh.triangles[f];
+      double a = u(rng), b = u(rng);
+      if (a + b > 1.0) a = 1.0 - a, b = 1.0 - b;
+      const Eigen::Vector3d n = triangle_area_vector(mesh, f).normalized();
+      const Eigen::Vector3d on_face = mesh.positions[t[0]] + a * (mesh.positions[t[1]] - mesh.positions[t[0]]) +
+                                      b * (mesh.positions[t[2]] - mesh.positions[t[0]]);
+      // From just touching to 0.5 size into the surface, and up to 1.5 size clear of it.
+      Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+      pose.translation() = on_face + n * (s * (2.0 * u(rng) - 0.5));
+      pose.linear() = Eigen::Quaterniond(Eigen::Vector4d(g(rng), g(rng), g(rng), g(rng)).normalized()).toRotationMatrix();
+      if (!accessible(triangles, mesh, on_face + n * (2.0 * prepared.tolerance.length), n, prepared.tolerance.diagonal))
+        continue;
+      const bvh::QueryShape shape = i % 3 == 0   ? bvh::QueryShape::sphere(s)
+                                    : i % 3 == 1 ? bvh::QueryShape::capsule(0.6 * s, s)
+                                                 : bvh::QueryShape::box(Eigen::Vector3d(s, 0.7 * s, 0.5 * s));
+      bvh::ContactResult on_triangles, on_hulls;
+      if (!triangles.contacts({shape, pose, kContactsCompared}, on_triangles).ok() ||
+          !hulls.contacts({shape, pose, kContactsCompared}, on_hulls).ok())
+        continue;
+      ++report.poses;
+      const bool t_touch = !on_triangles.contacts.empty(), h_touch = !on_hulls.contacts.empty();
+      if (t_touch && h_touch) {
+        ++report.both_touch;
+        // The hulls' deepest push against the triangle push nearest to it in
+        // direction (a proxy in a corner touches several faces; any of them
+        // may be deepest).
+        double best = -1.0;
+        for (const bvh::Contact& c : on_triangles.contacts) best = std::max(best, c.normal.dot(on_hulls.contacts[0].normal));
+        const double angle = std::acos(std::clamp(best, -1.0, 1.0)) * 180.0 / M_PI;
+        report.max_normal_angle = std::max(report.max_normal_angle, angle);
+        angle_sum += angle;
+      } else if (t_touch) {
+        ++report.missed;
+      } else if (h_touch) {
+        ++report.false_contacts;
+        report.max_false_depth = std::max(report.max_false_depth, on_hulls.contacts[0].depth);
+      } else {
+        ++report.neither_touches;
+      }
+    }
+  } catch (const std::exception& e) {
+    return Status{StatusCode::internal_error, std::string("behaviour comparison failed: ") + e.what()};
+  }
+  if (report.both_touch > 0) report.mean_normal_angle = angle_sum / report.both_touch;
+  return report;
+}
+
+} // namespace hullcover::validate
