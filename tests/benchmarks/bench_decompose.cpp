@@ -8,7 +8,6 @@
 #include "shared_data.h"
 
 #include "hullcover/lib/covering.h"
-#include "hullcover/lib/mesh_import.h"
 
 #include <benchmark/benchmark.h>
 
@@ -19,10 +18,6 @@
 namespace {
 
 using namespace hullcover;
-
-const char* const kScenes[] = {"recast-dungeon.obj",      "recast-nav_test.obj",        "recast-undulating.obj",
-                               "sauerbraten-fdm6.obj",    "sauerbraten-pandora.obj",    "stanford-bunny-res2.ply",
-                               "thor-art56-gearplate.stl", "threejs-collision-world.glb"};
 
 // The paper's building: 3,137 hulls for 14,608 faces.
 constexpr double kPaperHullsPerFace = 3137.0 / 14608.0;
@@ -59,13 +54,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "../shared/data/scenes not found: nothing to benchmark (set HULLCOVER_SHARED_DIR)\n");
     return 0;
   }
-  for (const char* scene : kScenes) {
-    Result<ImportedMesh> imported = import_mesh(*dir + "/" + scene);
-    if (!imported.ok()) {
-      std::fprintf(stderr, "%s\n", imported.status().message().c_str());
-      return 2;
-    }
-    Result<PreparedMesh> prepared = prepare_mesh(imported.value().mesh, std::nullopt);
+  for (const char* scene : hullcover::test::kSharedScenes) {
+    Result<PreparedMesh> prepared = hullcover::test::prepare_shared_scene(*dir, scene);
     if (!prepared.ok()) {
       std::fprintf(stderr, "%s: %s\n", scene, prepared.status().message().c_str());
       return 2;

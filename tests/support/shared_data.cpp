@@ -1,5 +1,7 @@
 #include "shared_data.h"
 
+#include "hullcover/lib/mesh_import.h"
+
 #include <cstdlib>
 #include <filesystem>
 
@@ -12,6 +14,12 @@ std::optional<std::string> shared_scenes_dir() {
   std::error_code error;
   if (!std::filesystem::is_directory(scenes, error)) return std::nullopt;
   return scenes.string();
+}
+
+Result<PreparedMesh> prepare_shared_scene(const std::string& dir, const std::string& file) {
+  Result<ImportedMesh> imported = import_mesh(dir + "/" + file);
+  if (!imported.ok()) return imported.status();
+  return prepare_mesh(imported.value().mesh, std::nullopt);
 }
 
 } // namespace hullcover::test

@@ -2,6 +2,8 @@
 // Where the project's shared data (real game scenes, other tools' hulls)
 // lives, for tests that read it in place.
 
+#include "hullcover/lib/prepared_mesh.h"
+
 #include <optional>
 #include <string>
 
@@ -11,6 +13,15 @@ namespace hullcover::test {
 /// clone without ../shared). The environment variable HULLCOVER_SHARED_DIR
 /// overrides the location configured at build time.
 std::optional<std::string> shared_scenes_dir();
+
+/// Imports and prepares `file` from the shared scenes at the default
+/// tolerance (for benchmarks; tests assert each step themselves).
+Result<PreparedMesh> prepare_shared_scene(const std::string& dir, const std::string& file);
+
+/// The eight shared scenes, by file name.
+inline const char* const kSharedScenes[] = {
+    "recast-dungeon.obj",      "recast-nav_test.obj",     "recast-undulating.obj",    "sauerbraten-fdm6.obj",
+    "sauerbraten-pandora.obj", "stanford-bunny-res2.ply", "thor-art56-gearplate.stl", "threejs-collision-world.glb"};
 
 } // namespace hullcover::test
 

@@ -62,7 +62,9 @@ public:
   /// The value. Calling these on a failed result is a programmer error.
   T& value() & { return *value_; }
   const T& value() const& { return *value_; }
-  T&& value() && { return std::move(*value_); }
+  /// Moved out of a temporary result: returned by value, so a range-for
+  /// over a member of `f().value()` does not dangle.
+  T value() && { return std::move(*value_); }
 
 private:
   Status status_;
