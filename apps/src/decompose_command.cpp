@@ -46,9 +46,7 @@ int run_decompose(DecomposeCommandOptions& o) {
     return kExitBadInput;
   }
   if (!o.world_path.empty()) {
-    std::vector<bvh::RuntimeHull> hulls;
-    for (const CoveringHull& h : c.hulls) hulls.push_back(bvh::make_runtime_hull(h.polytope, h.material));
-    if (Status s = bvh::write_runtime_file(hulls, o.world_path); !s.ok()) {
+    if (Status s = bvh::write_runtime_file(bvh::runtime_hulls(c), o.world_path); !s.ok()) {
       std::fprintf(stderr, "hullcover: error: %s\n", s.message().c_str());
       return kExitBadInput;
     }

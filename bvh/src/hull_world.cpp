@@ -66,10 +66,7 @@ Result<std::shared_ptr<const HullWorld>> HullWorld::build(std::vector<RuntimeHul
 }
 
 Result<std::shared_ptr<const HullWorld>> HullWorld::build(const Covering& covering) {
-  std::vector<RuntimeHull> hulls;
-  hulls.reserve(covering.hulls.size());
-  for (const CoveringHull& h : covering.hulls) hulls.push_back(make_runtime_hull(h.polytope, h.material));
-  return build(std::move(hulls));
+  return build(runtime_hulls(covering));
 }
 
 void HullWorld::candidates(const Aabb& box, std::vector<int>& out) const {

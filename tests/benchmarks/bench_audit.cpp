@@ -44,18 +44,14 @@ void audit(benchmark::State& state, std::shared_ptr<PreparedMesh> prepared, std:
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
-  const std::optional<std::string> dir = hullcover::test::shared_scenes_dir();
-  if (!dir) {
-    std::fprintf(stderr, "../shared/data/scenes not found: nothing to benchmark (set HULLCOVER_SHARED_DIR)\n");
-    return 0;
-  }
+  const std::optional<std::string> dir = hullcover::test::shared_scenes_dir_for_benchmark();
+  if (!dir) return 0;
   for (const char* scene : hullcover::test::kSharedScenes) {
     Result<PreparedMesh> prepared = hullcover::test::prepare_shared_scene(*dir, scene);
     if (!prepared.ok()) return std::fprintf(stderr, "%s: %s\n", scene, prepared.status().message().c_str()), 2;
     auto mesh = std::make_shared<PreparedMesh>(std::move(prepared).value());
     auto ours = std::make_shared<validate::HullSet>();
-    const Covering covering = decompose(*mesh, {}).value();
-    for (const CoveringHull& h : covering.hulls) ours->hulls.push_back(bvh::make_runtime_hull(h.polytope, h.material));
+    ours->hulls = bvh::runtime_hulls(decompose(*mesh, {}).value());
     const std::string stem = std::string(scene).substr(0, std::string(scene).rfind('.'));
     Result<validate::HullSet> peer = validate::load_hull_set(*dir + "/../peer-hulls/" + stem + ".vhacd.obj");
     for (const auto& [who, set] : {std::make_pair(std::string("hullcover"), ours),

@@ -49,11 +49,8 @@ void decompose_scene(benchmark::State& state, std::shared_ptr<PreparedMesh> prep
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
-  const std::optional<std::string> dir = hullcover::test::shared_scenes_dir();
-  if (!dir) {
-    std::fprintf(stderr, "../shared/data/scenes not found: nothing to benchmark (set HULLCOVER_SHARED_DIR)\n");
-    return 0;
-  }
+  const std::optional<std::string> dir = hullcover::test::shared_scenes_dir_for_benchmark();
+  if (!dir) return 0;
   for (const char* scene : hullcover::test::kSharedScenes) {
     Result<PreparedMesh> prepared = hullcover::test::prepare_shared_scene(*dir, scene);
     if (!prepared.ok()) {

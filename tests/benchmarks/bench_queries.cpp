@@ -14,7 +14,6 @@
 #include "hullcover/bvh/runtime_file.h"
 #include "hullcover/bvh/triangle_world.h"
 #include "hullcover/lib/covering.h"
-#include "hullcover/lib/mesh_import.h"
 
 #include <benchmark/benchmark.h>
 
@@ -145,21 +144,17 @@ void register_scene(const std::string& name, std::shared_ptr<Scene> s) {
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
-  const std::optional<std::string> dir = hullcover::test::shared_scenes_dir();
-  if (!dir) {
-    std::fprintf(stderr, "../shared/data/scenes not found: nothing to benchmark (set HULLCOVER_SHARED_DIR)\n");
-    return 0;
-  }
+  const std::optional<std::string> dir = hullcover::test::shared_scenes_dir_for_benchmark();
+  if (!dir) return 0;
   const hullcover::test::TempDir files;
   for (const SceneScale& scene : kScenes) {
-    Result<ImportedMesh> imported = import_mesh(*dir + "/" + scene.file);
-    if (!imported.ok()) return std::fprintf(stderr, "%s\n", imported.status().message().c_str()), 2;
-    auto prepared = std::make_shared<PreparedMesh>(prepare_mesh(imported.value().mesh, std::nullopt).value());
+    Result<PreparedMesh> loaded = hullcover::test::prepare_shared_scene(*dir, scene.file);
+    if (!loaded.ok()) return std::fprintf(stderr, "%s\n", loaded.status().message().c_str()), 2;
+    auto prepared = std::make_shared<PreparedMesh>(std::move(loaded).value());
     auto covering = std::make_shared<Covering>(decompose(*prepared, {}).value());
     register_scene(scene.file, std::make_shared<Scene>(make_scene(*prepared, *covering, scene.units_per_metre)));
     // Loading the runtime file: read, check and build the tree.
-    std::vector<RuntimeHull> runtime;
-    for (const CoveringHull& h : covering->hulls) runtime.push_back(make_runtime_hull(h.polytope, h.material));
+    const std::vector<RuntimeHull> runtime = runtime_hulls(*covering);
     const std::string path = files.path(std::string(scene.file) + ".hcw");
     if (!write_runtime_file(runtime, path).ok()) return 2;
     benchmark::RegisterBenchmark((std::string("load/") + scene.file).c_str(), [path](benchmark::State& state) {

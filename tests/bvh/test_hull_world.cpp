@@ -6,7 +6,6 @@
 
 #include "covering_fixture.h"
 
-#include "hullcover/lib/convex_hull_3d.h"
 #include "hullcover/lib/scene_builder.h"
 
 #include <gtest/gtest.h>
@@ -20,10 +19,9 @@ namespace {
 using V = Eigen::Vector3d;
 
 RuntimeHull box_hull(const V& lo, const V& hi) {
-  std::vector<V> corners;
-  for (int i = 0; i < 8; ++i) corners.emplace_back(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
-  ConvexHullBuilder builder;
-  return make_runtime_hull(builder.build(corners).value(), 0);
+  Eigen::Isometry3d centre = Eigen::Isometry3d::Identity();
+  centre.translation() = 0.5 * (lo + hi);
+  return placed_box(centre, 0.5 * (hi - lo));
 }
 
 std::shared_ptr<const HullWorld> floor_and_block() {

@@ -20,9 +20,7 @@ using test::TempDir;
 std::vector<RuntimeHull> demo_hulls() {
   const auto d = test::decompose_and_check(demo_building());
   EXPECT_TRUE(d);
-  std::vector<RuntimeHull> hulls;
-  for (const CoveringHull& h : d->covering.hulls) hulls.push_back(make_runtime_hull(h.polytope, h.material));
-  return hulls;
+  return runtime_hulls(d->covering);
 }
 
 std::string bytes_of(const std::string& path) {

@@ -2,6 +2,7 @@
 
 #include "hullcover/lib/mesh_import.h"
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 
@@ -14,6 +15,12 @@ std::optional<std::string> shared_scenes_dir() {
   std::error_code error;
   if (!std::filesystem::is_directory(scenes, error)) return std::nullopt;
   return scenes.string();
+}
+
+std::optional<std::string> shared_scenes_dir_for_benchmark() {
+  std::optional<std::string> dir = shared_scenes_dir();
+  if (!dir) std::fprintf(stderr, "../shared/data/scenes not found: nothing to benchmark (set HULLCOVER_SHARED_DIR)\n");
+  return dir;
 }
 
 Result<PreparedMesh> prepare_shared_scene(const std::string& dir, const std::string& file) {

@@ -14,6 +14,10 @@ namespace hullcover::test {
 /// overrides the location configured at build time.
 std::optional<std::string> shared_scenes_dir();
 
+/// As shared_scenes_dir(), saying on stderr why a benchmark has nothing to
+/// measure when the scenes are absent.
+std::optional<std::string> shared_scenes_dir_for_benchmark();
+
 /// Imports and prepares `file` from the shared scenes at the default
 /// tolerance (for benchmarks; tests assert each step themselves).
 Result<PreparedMesh> prepare_shared_scene(const std::string& dir, const std::string& file);

@@ -10,7 +10,6 @@
 #include "shared_data.h"
 #include "temp_dir.h"
 
-#include "hullcover/lib/convex_hull_3d.h"
 #include "hullcover/lib/mesh_import.h"
 #include "hullcover/lib/scene_builder.h"
 
@@ -22,17 +21,12 @@ namespace {
 using V = Eigen::Vector3d;
 
 bvh::RuntimeHull box_hull(const V& lo, const V& hi) {
-  std::vector<V> corners;
-  for (int i = 0; i < 8; ++i) corners.emplace_back(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
-  ConvexHullBuilder builder;
-  return bvh::make_runtime_hull(builder.build(corners).value(), 0);
+  Eigen::Isometry3d centre = Eigen::Isometry3d::Identity();
+  centre.translation() = 0.5 * (lo + hi);
+  return bvh::placed_box(centre, 0.5 * (hi - lo));
 }
 
-std::vector<bvh::RuntimeHull> hulls_of(const Covering& covering) {
-  std::vector<bvh::RuntimeHull> hulls;
-  for (const CoveringHull& h : covering.hulls) hulls.push_back(bvh::make_runtime_hull(h.polytope, h.material));
-  return hulls;
-}
+std::vector<bvh::RuntimeHull> hulls_of(const Covering& covering) { return bvh::runtime_hulls(covering); }
 
 ProbeReport probe(const test::Decomposed& d, std::vector<bvh::RuntimeHull> hulls, ProbeOptions options = {}) {
   const auto world = bvh::HullWorld::build(std::move(hulls)).value();

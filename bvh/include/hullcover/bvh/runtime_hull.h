@@ -26,4 +26,7 @@ struct RuntimeHull {
 /// The runtime form of a hull (pass the shape by move to avoid a copy).
 RuntimeHull make_runtime_hull(ConvexPolytope shape, int material);
 
+/// The runtime form of every hull of a covering, in its order.
+std::vector<RuntimeHull> runtime_hulls(const Covering& covering);
+
 } // namespace hullcover::bvh
