@@ -21,6 +21,7 @@ struct DecomposeCommandOptions {
   std::string world_path;
   std::optional<double> tolerance;
   std::string order = "compact";
+  std::string conditions = "exact";
   DecomposeOptions decompose;
   bool quiet = false;
 };
@@ -30,6 +31,7 @@ int run_decompose(DecomposeCommandOptions& o) {
   const std::optional<LoadedScene> scene = load_scene(o.input, o.tolerance);
   if (!scene) return kExitBadInput;
   o.decompose.order = o.order == "random" ? MergeOrder::random : MergeOrder::compact;
+  o.decompose.conditions = o.conditions == "paper" ? ValidityMode::paper : ValidityMode::exact;
   if (!o.quiet)
     o.decompose.progress = [](double fraction) {
       std::fprintf(stderr, "\rdecomposing: %3.0f%% of merges at most", 100.0 * fraction);
@@ -64,8 +66,8 @@ int run_decompose(DecomposeCommandOptions& o) {
   std::printf("%s: %d faces -> %zu hulls (%.1f%% fewer, %.3f hulls/face), %.3f s (merging %.3f s)\n",
               o.input.c_str(), faces, c.hulls.size(), 100.0 * reduction,
               faces > 0 ? static_cast<double>(c.hulls.size()) / faces : 0.0, seconds, c.statistics.seconds_merging);
-  std::printf("  tolerance %.6g, bar half-length %.6g, prism cap %.6g, order %s\n", c.tolerance.length,
-              c.bar_half_length, c.prism_thickness_cap, o.order.c_str());
+  std::printf("  tolerance %.6g, bar half-length %.6g, prism cap %.6g, order %s, conditions %s\n",
+              c.tolerance.length, c.bar_half_length, c.prism_thickness_cap, o.order.c_str(), o.conditions.c_str());
   std::printf("  wrote %s%s%s%s%s\n", o.obj_path.c_str(), o.json_path.empty() ? "" : ", ", o.json_path.c_str(),
               o.world_path.empty() ? "" : ", ", o.world_path.c_str());
   return kExitSuccess;
@@ -87,9 +89,17 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
   cmd->add_option("--order", o->order, "Merge order: compact (the paper's) or random")
       ->check(CLI::IsMember({"compact", "random"}))
       ->capture_default_str();
+  cmd->add_option("--conditions", o->conditions,
+                  "Validity: exact (the paper's four conditions plus those that keep every bit of free space: "
+                  "coincident faces, whole open edges, self-intersections) or paper (the four alone)")
+      ->check(CLI::IsMember({"exact", "paper"}))
+      ->capture_default_str();
+  cmd->add_option("--reach", o->decompose.free_space_reach,
+                  "Exact mode: how far free space is kept in front of faces and beyond open edges, scene units "
+                  "(default 0.02 x diagonal, the audit's probe distance)");
   cmd->add_option("--seed", o->decompose.seed, "Seed of the random order")->capture_default_str();
   cmd->add_option("--bar-length", o->decompose.bar_half_length,
-                  "Half-length of the boundary constraint bars, scene units (default 0.1 x diagonal)")
+                  "Half-length of the boundary constraint bars, scene units (default: paper 0.1 x diagonal, exact 4 x tol)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--prism-cap", o->decompose.prism_thickness_cap,
                   "Largest thickness of the prisms made from planar patches (default 0.01 x diagonal)")

@@ -19,6 +19,8 @@ double seconds_since(Clock::time_point start) {
 Status check_options(const DecomposeOptions& o) {
   if (o.bar_half_length && !(std::isfinite(*o.bar_half_length) && *o.bar_half_length > 0.0))
     return {StatusCode::invalid_argument, "bar half-length must be a positive length"};
+  if (o.free_space_reach && !(std::isfinite(*o.free_space_reach) && *o.free_space_reach > 0.0))
+    return {StatusCode::invalid_argument, "free-space reach must be a positive length"};
   if (o.prism_thickness_cap && !(std::isfinite(*o.prism_thickness_cap) && *o.prism_thickness_cap >= 0.0))
     return {StatusCode::invalid_argument, "prism thickness cap must be a length >= 0"};
   if (o.max_hull_vertices < 8)
@@ -38,7 +40,7 @@ CoveringHull planar_hull(const SceneIndex& index, const detail::PatchMerger& mer
   const std::vector<Plane> sides = beveled_side_planes(index, polygon, in_patch, scratch);
   hull.thickness = allowed_prism_thickness(index, polygon, sides, in_patch, cap, scratch);
   hull.polytope = prism_polytope(polygon, sides, hull.thickness, index.tol(), hulls);
-  if (hull.thickness > 0.0 && check_solid_hull(index, hull.polytope, scratch) != Validity::valid) {
+  if (hull.thickness > 0.0 && check_solid_hull(index, hull.polytope, patch.face_planes, scratch) != Validity::valid) {
     hull.thickness = 0.0;
     hull.polytope = prism_polytope(polygon, sides, hull.thickness, index.tol(), hulls);
   }
@@ -66,14 +68,18 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
   covering.options = options;
   covering.tolerance = prepared.tolerance;
   const double diagonal = prepared.tolerance.diagonal;
-  covering.bar_half_length = options.bar_half_length.value_or(kDefaultBarHalfLengthRelative * diagonal);
+  const bool exact = options.conditions == ValidityMode::exact;
+  covering.bar_half_length = options.bar_half_length.value_or(
+      exact ? kExactBarHalfLengthInTolerances * prepared.tolerance.length : kDefaultBarHalfLengthRelative * diagonal);
+  covering.free_space_reach = options.free_space_reach.value_or(kDefaultFreeSpaceReachRelative * diagonal);
   covering.prism_thickness_cap = options.prism_thickness_cap.value_or(kDefaultPrismCapRelative * diagonal);
   CoveringStatistics& stats = covering.statistics;
   stats.faces = static_cast<int>(prepared.mesh.triangles.size());
 
   Clock::time_point start = Clock::now();
   const SceneIndex index =
-      build_scene_index(prepared, {covering.bar_half_length, options.keep_materials_apart});
+      build_scene_index(prepared, {covering.bar_half_length, options.keep_materials_apart, options.conditions,
+                                   covering.free_space_reach});
   stats.seconds_index = seconds_since(start);
 
   start = Clock::now();
@@ -102,7 +108,7 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
       // The hull validated during merging may differ from the rebuilt one by
       // up to tol (points within tol of it were not added): the rebuilt hull
       // is kept only if it passes the same checks.
-      const bool rebuilt_valid = rebuilt.ok() && check_solid_hull(index, rebuilt.value(), scratch) == Validity::valid;
+      const bool rebuilt_valid = rebuilt.ok() && check_solid_hull(index, rebuilt.value(), patch.face_planes, scratch) == Validity::valid;
       hull.polytope = rebuilt_valid ? std::move(rebuilt).value() : *patch.solid;
       stats.solids_kept_as_grown += !rebuilt_valid;
     }

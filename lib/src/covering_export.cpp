@@ -68,6 +68,7 @@ nlohmann::json covering_json(const Covering& covering) {
         {"bar_half_length", covering.bar_half_length},
         {"prism_thickness_cap", covering.prism_thickness_cap},
         {"order", o.order == MergeOrder::compact ? "compact" : "random"},
+        {"conditions", o.conditions == ValidityMode::exact ? "exact" : "paper"},
         {"seed", o.seed},
         {"keep_materials_apart", o.keep_materials_apart},
         {"max_hull_vertices", o.max_hull_vertices}}},

@@ -114,7 +114,7 @@ double allowed_prism_thickness(const SceneIndex& index, const FlatPolygon& polyg
   index.bars_overlapping(region, scratch);
   for (int b : scratch) {
     const BoundaryBar& bar = index.bars[b];
-    const std::vector<Eigen::Vector3d> segment = clip_to_column({bar.a, bar.b}, sides, tol);
+    const std::vector<Eigen::Vector3d> segment = clip_to_column(bar.outline(), sides, tol);
     if (segment.empty()) continue;
     double shallowest = depth_below(polygon, segment[0]), deepest = shallowest;
     for (const Eigen::Vector3d& p : segment) {

@@ -14,16 +14,46 @@ Aabb box_of(std::initializer_list<Eigen::Vector3d> points) {
 
 void add_bar(SceneIndex& index, int edge, int face, double half_length) {
   const MeshEdge& e = index.prepared->connectivity.edges[edge];
-  const Eigen::Vector3d mid = 0.5 * (index.mesh().positions[e.v0] + index.mesh().positions[e.v1]);
+  const Eigen::Vector3d& p0 = index.mesh().positions[e.v0];
+  const Eigen::Vector3d& p1 = index.mesh().positions[e.v1];
   const Eigen::Vector3d offset = half_length * index.face_normals[face];
-  index.bars.push_back({mid - offset, mid + offset, edge, face});
+  if (index.mode == ValidityMode::exact) {
+    index.bars.push_back({p0 - offset, p0 + offset, p1 - p0, edge, face});
+  } else {
+    const Eigen::Vector3d mid = 0.5 * (p0 + p1);
+    index.bars.push_back({mid - offset, mid + offset, Eigen::Vector3d::Zero(), edge, face});
+  }
 }
 
 } // namespace
 
+std::vector<Eigen::Vector3d> BoundaryBar::outline() const {
+  if (!is_sheet()) return {a, b};
+  return {a, a + along, b + along, b};
+}
+
+bool is_fold_edge(const PreparedMesh& prepared, int edge) {
+  const MeshConnectivity& c = prepared.connectivity;
+  const MeshEdge& e = c.edges[edge];
+  if (e.kind != EdgeKind::manifold) return false;
+  const EdgeUse& u0 = c.edge_uses[e.first_use];
+  const EdgeUse& u1 = c.edge_uses[e.first_use + 1];
+  if (c.zero_area[u0.face] || c.zero_area[u1.face]) return false;
+  const Mesh& mesh = prepared.mesh;
+  const Eigen::Vector3d n0 = triangle_area_vector(mesh, u0.face).normalized();
+  const Eigen::Vector3d n1 = triangle_area_vector(mesh, u1.face).normalized();
+  if (n0.dot(n1) >= 0.0) return false;
+  const Eigen::Vector3d& far_corner = mesh.positions[mesh.triangles[u1.face][(u1.corner + 2) % 3]];
+  const Eigen::Vector3d& on_edge = mesh.positions[e.v0];
+  return std::abs(n0.dot(far_corner - on_edge)) <= prepared.tolerance.length;
+}
+
 SceneIndex build_scene_index(const PreparedMesh& prepared, const BarOptions& options) {
   SceneIndex index;
   index.prepared = &prepared;
+  index.mode = options.mode;
+  index.free_space_reach = options.free_space_reach;
+  index.open_edge_face.assign(prepared.connectivity.edges.size(), -1);
   const Mesh& mesh = prepared.mesh;
   const MeshConnectivity& c = prepared.connectivity;
   const int face_count = static_cast<int>(mesh.triangles.size());
@@ -40,7 +70,12 @@ SceneIndex build_scene_index(const PreparedMesh& prepared, const BarOptions& opt
     const MeshEdge& edge = c.edges[e];
     if (edge.kind == EdgeKind::boundary) {
       const int face = c.edge_uses[edge.first_use].face;
-      if (!c.zero_area[face]) add_bar(index, e, face, options.half_length);
+      if (c.zero_area[face]) continue;
+      add_bar(index, e, face, options.half_length);
+      index.open_edge_face[e] = face;
+    } else if (options.mode == ValidityMode::exact && is_fold_edge(prepared, e)) {
+      add_bar(index, e, c.edge_uses[edge.first_use].face, options.half_length);
+      index.open_edge_face[e] = c.edge_uses[edge.first_use].face;
     } else if (options.material_boundaries && edge.kind == EdgeKind::manifold) {
       const int f0 = c.edge_uses[edge.first_use].face, f1 = c.edge_uses[edge.first_use + 1].face;
       if (mesh.material_ids[f0] == mesh.material_ids[f1]) continue;
@@ -66,8 +101,9 @@ SceneIndex build_scene_index(const PreparedMesh& prepared, const BarOptions& opt
     const BoundaryBar& bar = index.bars[b];
     const int pieces = std::max(1, static_cast<int>(std::ceil((bar.b - bar.a).norm() / piece_length)));
     for (int k = 0; k < pieces; ++k) {
-      boxes.push_back(box_of({bar.a + (bar.b - bar.a) * (static_cast<double>(k) / pieces),
-                              bar.a + (bar.b - bar.a) * (static_cast<double>(k + 1) / pieces)}));
+      const Eigen::Vector3d from = bar.a + (bar.b - bar.a) * (static_cast<double>(k) / pieces);
+      const Eigen::Vector3d to = bar.a + (bar.b - bar.a) * (static_cast<double>(k + 1) / pieces);
+      boxes.push_back(box_of({from, to, from + bar.along, to + bar.along}));
       index.bar_of_piece.push_back(b);
     }
   }

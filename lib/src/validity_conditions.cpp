@@ -1,5 +1,7 @@
 #include "hullcover/lib/validity_conditions.h"
 
+#include "hullcover/lib/exact_conditions.h"
+
 namespace hullcover {
 
 const char* validity_name(Validity v) {
@@ -14,6 +16,9 @@ const char* validity_name(Validity v) {
     case Validity::too_many_vertices: return "too_many_vertices";
     case Validity::materials_differ: return "materials_differ";
     case Validity::hull_failed: return "hull_failed";
+    case Validity::front_space_inside: return "front_space_inside";
+    case Validity::opening_inside: return "opening_inside";
+    case Validity::face_crosses_hull: return "face_crosses_hull";
   }
   return "unknown";
 }
@@ -31,7 +36,53 @@ bool planes_support_points(const std::vector<Plane>& planes, const std::vector<E
   return true;
 }
 
-Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, std::vector<int>& scratch) {
+namespace {
+
+// E1-E3 (exact_conditions.h) for a solid hull whose box grown by tol is `box`.
+Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& hull,
+                                const std::vector<Plane>& face_planes, const Aabb& box, std::vector<int>& scratch) {
+  const double tol = index.tol();
+  const double reach = index.free_space_reach;
+  const Mesh& mesh = index.mesh();
+  const Aabb reached = grown(box, reach);
+  std::vector<Eigen::Vector3d> triangle(3);
+  std::vector<int> blocking_scratch;
+  const SegmentBlocked blocked = [&](const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+    return mesh_blocks_segment(index, from, to, blocking_scratch);
+  };
+  scratch.clear();
+  index.face_tree.overlapping(reached, scratch);
+  for (int f : scratch) {
+    if (index.prepared->connectivity.zero_area[f]) continue;
+    for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[f][k]];
+    if (triangle_enters_interior(hull.planes, triangle, tol)) return Validity::face_crosses_hull;
+    if (sweep_enters_hull(front_space_sweep(triangle, index.face_normals[f], reach, tol), hull, face_planes, tol,
+                          blocked))
+      return Validity::front_space_inside;
+  }
+  scratch.clear();
+  index.edge_tree.overlapping(reached, scratch);
+  const MeshConnectivity& c = index.prepared->connectivity;
+  for (int e : scratch) {
+    const int face = index.open_edge_face[e];
+    if (face < 0) continue;
+    const Eigen::Vector3d& p0 = mesh.positions[c.edges[e].v0];
+    const Eigen::Vector3d& p1 = mesh.positions[c.edges[e].v1];
+    const Eigen::Vector3i& t = mesh.triangles[face];
+    const Eigen::Vector3d& inner = mesh.positions[t[0] != c.edges[e].v0 && t[0] != c.edges[e].v1 ? t[0]
+                                                  : t[1] != c.edges[e].v0 && t[1] != c.edges[e].v1 ? t[1]
+                                                                                                   : t[2]];
+    if (sweep_enters_hull(opening_sweep(p0, p1, inner, index.face_normals[face], reach, tol), hull, face_planes, tol,
+                          blocked))
+      return Validity::opening_inside;
+  }
+  return Validity::valid;
+}
+
+} // namespace
+
+Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, const std::vector<Plane>& face_planes,
+                          std::vector<int>& scratch) {
   const double tol = index.tol();
   const Aabb box = grown(bounding_box_of(hull.vertices), tol);
   const Mesh& mesh = index.mesh();
@@ -51,24 +102,18 @@ Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, s
 
   scratch.clear();
   index.bars_overlapping(box, scratch);
-  for (int b : scratch)
-    if (segment_enters_interior(hull.planes, index.bars[b].a, index.bars[b].b, tol)) return Validity::bar_inside;
-  return Validity::valid;
+  for (int b : scratch) {
+    const BoundaryBar& bar = index.bars[b];
+    if (bar.is_sheet() ? sheet_enters_interior(hull.planes, bar.outline(), tol)
+                       : segment_enters_interior(hull.planes, bar.a, bar.b, tol))
+      return Validity::bar_inside;
+  }
+  if (index.mode != ValidityMode::exact) return Validity::valid;
+
+  return check_exact_solid_hull(index, hull, face_planes, box, scratch);
 }
 
 namespace {
-
-bool bar_crosses_polygon(const FlatPolygon& polygon, const BoundaryBar& bar, double tol) {
-  const double da = polygon.plane.signed_distance(bar.a);
-  const double db = polygon.plane.signed_distance(bar.b);
-  if ((da > tol && db > tol) || (da < -tol && db < -tol)) return false;
-  // A bar lying in the plane (within tol) does not cross the polygon: it is
-  // the bar of an open edge resting on it (a wall's culled bottom edge on a
-  // floor), whose opening the polygon itself closes.
-  if (std::abs(da - db) <= tol) return false;
-  const Eigen::Vector3d crossing = bar.a + (bar.b - bar.a) * (da / (da - db));
-  return deepest_signed_distance(polygon.sides, crossing) < -tol;
-}
 
 // Does the part of triangle t within tol of the polygon's plane reach the
 // polygon's interior (shrunk by tol)?

@@ -25,6 +25,14 @@ namespace hullcover {
 /// Default bar half-length as a fraction of the bounding-box diagonal (the
 /// value the prototype in ../shared/DESIGN.md measured the paper with).
 inline constexpr double kDefaultBarHalfLengthRelative = 0.1;
+/// Exact mode's default bar half-length, in tolerances: its sheets only have
+/// to stop a flat polygon spanning an open edge in its own plane; the
+/// opening beyond the edge is kept by E2 up to the free-space reach.
+inline constexpr double kExactBarHalfLengthInTolerances = 4.0;
+/// Default free-space reach (exact mode) as a fraction of the diagonal: the
+/// audit's default probe distance, so the decomposer keeps all the free
+/// space the audit looks at.
+inline constexpr double kDefaultFreeSpaceReachRelative = 0.02;
 /// Default cap on prism thickness as a fraction of the diagonal.
 inline constexpr double kDefaultPrismCapRelative = 0.01;
 /// PhysX, Unity and Jolt reject convex shapes with more vertices.
@@ -39,7 +47,12 @@ enum class MergeOrder {
 /// How to decompose. Lengths are in scene units; unset ones take defaults
 /// relative to the scene's bounding-box diagonal.
 struct DecomposeOptions {
+  /// `exact` (default) keeps every condition of exact_conditions.h too, so
+  /// no free space is lost; `paper` applies the paper's four alone, so the
+  /// cost of exactness stays measurable.
+  ValidityMode conditions = ValidityMode::exact;
   std::optional<double> bar_half_length;      ///< > 0
+  std::optional<double> free_space_reach;     ///< > 0, exact mode
   std::optional<double> prism_thickness_cap;  ///< >= 0
   MergeOrder order = MergeOrder::compact;
   std::uint64_t seed = 1;                     ///< for MergeOrder::random
@@ -80,6 +93,7 @@ struct Covering {
   std::vector<CoveringHull> hulls;  ///< ordered by their first face
   Tolerance tolerance;
   double bar_half_length = 0.0;
+  double free_space_reach = 0.0;  ///< exact mode
   double prism_thickness_cap = 0.0;
   DecomposeOptions options;  ///< as given (progress callback included)
   CoveringStatistics statistics;

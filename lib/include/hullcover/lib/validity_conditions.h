@@ -11,6 +11,10 @@
 ///     crosses its relative interior);
 ///  4. for a flat polygon, no face outside the patch that touches the
 ///     polygon's relative interior has a vertex on its negative side.
+///
+/// In `ValidityMode::exact` (the index's mode) the conditions of
+/// exact_conditions.h are checked too: bars become sheets along whole open
+/// edges, and faces must not face into or cross a solid hull.
 
 #include "hullcover/lib/convex_polytope.h"
 #include "hullcover/lib/planar_hull.h"
@@ -34,8 +38,11 @@ enum class Validity : std::uint8_t {
   too_many_vertices,   ///< the option max_hull_vertices
   materials_differ,    ///< materials are kept apart
   hull_failed,         ///< Qhull rejected the points (treated as invalid)
+  front_space_inside,    ///< exact E1: a face's front space enters the hull
+  opening_inside,        ///< exact E2: the opening beyond an open edge enters the hull
+  face_crosses_hull,     ///< exact E3: a face's interior deeper than tol inside
 };
-inline constexpr int kValidityCount = 10;
+inline constexpr int kValidityCount = 13;
 
 /// Stable snake_case name, for reports.
 const char* validity_name(Validity v);
@@ -45,10 +52,12 @@ const char* validity_name(Validity v);
 /// or within `tol` in front.
 bool planes_support_points(const std::vector<Plane>& planes, const std::vector<Eigen::Vector3d>& points, double tol);
 
-/// Conditions 1 and 3 for a solid hull. `scratch` is reused storage.
-Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, std::vector<int>& scratch);
+/// Conditions 1 and 3 (exact mode: and E1-E3) for a solid hull whose
+/// patch's faces lie in `face_planes` (outward). `scratch` is reused storage.
+Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, const std::vector<Plane>& face_planes,
+                          std::vector<int>& scratch);
 
-/// Conditions 3 and 4 for a flat polygon; `in_patch(face)` tells whether a
+/// Conditions 3 (exact mode: E2) and 4 for a flat polygon; `in_patch(face)` tells whether a
 /// face belongs to the patch (condition 4 looks only at faces outside it).
 Validity check_flat_polygon(const SceneIndex& index, const FlatPolygon& polygon,
                             const std::function<bool(int)>& in_patch, std::vector<int>& scratch);

@@ -18,6 +18,7 @@
 
 #include "hullcover/bvh/hull_world.h"
 #include "hullcover/bvh/triangle_world.h"
+#include "hullcover/lib/covering.h"
 #include "hullcover/lib/prepared_mesh.h"
 
 #include <optional>
@@ -26,8 +27,9 @@
 
 namespace hullcover::validate {
 
-/// Default probe distance as a fraction of the bounding-box diagonal.
-inline constexpr double kDefaultProbeRelative = 0.02;
+/// Default probe distance as a fraction of the bounding-box diagonal: the
+/// decomposer's default free-space reach, so it probes what exact mode keeps.
+inline constexpr double kDefaultProbeRelative = kDefaultFreeSpaceReachRelative;
 /// Default octree resolution (and sample spacing) per probe distance.
 inline constexpr double kDefaultCellsPerProbe = 8.0;
 
