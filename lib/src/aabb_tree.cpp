@@ -8,6 +8,24 @@ namespace hullcover {
 namespace {
 constexpr int kLeafSize = 4;
 constexpr int kMaxDepth = 128;
+// Slab test: does the segment from + s (to - from), s in [0, 1], meet `box`?
+bool segment_meets_box(const Eigen::Vector3d& from, const Eigen::Vector3d& delta, const Aabb& box) {
+  double enter = 0.0, leave = 1.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (delta[axis] == 0.0) {
+      if (from[axis] < box.min[axis] || from[axis] > box.max[axis]) return false;
+      continue;
+    }
+    double s0 = (box.min[axis] - from[axis]) / delta[axis];
+    double s1 = (box.max[axis] - from[axis]) / delta[axis];
+    if (s0 > s1) std::swap(s0, s1);
+    enter = std::max(enter, s0);
+    leave = std::min(leave, s1);
+    if (enter > leave) return false;
+  }
+  return true;
+}
+
 } // namespace
 
 AabbTree::AabbTree(const std::vector<Aabb>& boxes) : item_boxes_(boxes) {
@@ -62,6 +80,27 @@ void AabbTree::overlapping(const Aabb& query, std::vector<int>& out) const {
     if (node.count > 0) {
       for (int i = node.first; i < node.first + node.count; ++i)
         if (boxes_overlap(item_boxes_[items_[i]], query)) out.push_back(items_[i]);
+      continue;
+    }
+    assert(top + 2 <= kMaxDepth);
+    stack[top++] = node.left;
+    stack[top++] = node.right;
+  }
+}
+
+void AabbTree::along_segment(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double margin,
+                             std::vector<int>& out) const {
+  if (nodes_.empty()) return;
+  const Eigen::Vector3d delta = to - from;
+  int stack[kMaxDepth];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& node = nodes_[stack[--top]];
+    if (!segment_meets_box(from, delta, grown(node.box, margin))) continue;
+    if (node.count > 0) {
+      for (int i = node.first; i < node.first + node.count; ++i)
+        if (segment_meets_box(from, delta, grown(item_boxes_[items_[i]], margin))) out.push_back(items_[i]);
       continue;
     }
     assert(top + 2 <= kMaxDepth);

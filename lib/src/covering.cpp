@@ -40,7 +40,7 @@ CoveringHull planar_hull(const SceneIndex& index, const detail::PatchMerger& mer
   const std::vector<Plane> sides = beveled_side_planes(index, polygon, in_patch, scratch);
   hull.thickness = allowed_prism_thickness(index, polygon, sides, in_patch, cap, scratch);
   hull.polytope = prism_polytope(polygon, sides, hull.thickness, index.tol(), hulls);
-  if (hull.thickness > 0.0 && check_solid_hull(index, hull.polytope, patch.face_planes, scratch) != Validity::valid) {
+  if (hull.thickness > 0.0 && check_solid_hull(index, hull.polytope, scratch) != Validity::valid) {
     hull.thickness = 0.0;
     hull.polytope = prism_polytope(polygon, sides, hull.thickness, index.tol(), hulls);
   }
@@ -108,7 +108,7 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
       // The hull validated during merging may differ from the rebuilt one by
       // up to tol (points within tol of it were not added): the rebuilt hull
       // is kept only if it passes the same checks.
-      const bool rebuilt_valid = rebuilt.ok() && check_solid_hull(index, rebuilt.value(), patch.face_planes, scratch) == Validity::valid;
+      const bool rebuilt_valid = rebuilt.ok() && check_solid_hull(index, rebuilt.value(), scratch) == Validity::valid;
       hull.polytope = rebuilt_valid ? std::move(rebuilt).value() : *patch.solid;
       stats.solids_kept_as_grown += !rebuilt_valid;
     }

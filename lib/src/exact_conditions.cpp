@@ -1,5 +1,7 @@
 #include "hullcover/lib/exact_conditions.h"
 
+#include "hullcover/lib/mesh_ray.h"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -45,18 +47,6 @@ std::optional<double> ray_entry(const std::vector<Plane>& planes, const Eigen::V
   return enter;
 }
 
-// Does facet k lie in the plane of one of the patch's faces, facing the
-// same way? Then the hull's surface there is the mesh's own.
-bool facet_carries_face(const ConvexPolytope& hull, size_t k, const std::vector<Plane>& face_planes, double tol) {
-  for (const Plane& q : face_planes) {
-    if (q.normal.dot(hull.planes[k].normal) <= 0.0) continue;
-    bool on = true;
-    for (int v : hull.facets[k]) on &= std::abs(q.signed_distance(hull.vertices[v])) <= tol;
-    if (on) return true;
-  }
-  return false;
-}
-
 // Quick rejection: a hull plane with every corner of the sweep on its far
 // side (beyond -tol) keeps the sweep out of the interior.
 bool separated(const FreeSpaceSweep& sweep, const ConvexPolytope& hull, double tol) {
@@ -99,12 +89,35 @@ Eigen::Vector3d centroid(const std::vector<Eigen::Vector3d>& points) {
   return c / static_cast<double>(points.size());
 }
 
+// The probe's verdict on the sweep's ray through `point`: it starts on the
+// base (standing off it like the probe's rays), runs to its first mesh hit
+// or the reach, and loses space when it lies deeper than tol inside the
+// hull on the way - unless it first meets a face from behind (enclosed
+// space), where the sweep allows that.
+bool witness_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const ConvexPolytope& hull,
+                         const Eigen::Vector3d& point, std::vector<int>& scratch) {
+  const double tol = index.tol();
+  const Eigen::Vector3d& dir = sweep.direction;
+  const Eigen::Vector3d base = point + sweep.start.signed_distance(point) * dir;
+  const double stand_off = kRayStandOffInTolerances * tol;
+  const std::optional<double> inside_from = ray_entry(hull.planes, base + stand_off * dir, dir, tol);
+  if (!inside_from) return false;
+  const double enter = stand_off + *inside_from;
+  if (enter > sweep.reach) return false;
+  const std::optional<MeshRayHit> hit =
+      first_mesh_hit(index, base, dir, stand_off, index.prepared->tolerance.diagonal, scratch);
+  if (hit && hit->t <= enter) return false;              // the mesh ends the free space first
+  if (hit && hit->from_behind && sweep.enclosed_allowed) return false;  // enclosed space
+  return true;
+}
+
 } // namespace
 
 FreeSpaceSweep front_space_sweep(const std::vector<Eigen::Vector3d>& corners, const Eigen::Vector3d& normal,
                                  double reach, double tol) {
   FreeSpaceSweep sweep;
   sweep.direction = normal;
+  sweep.reach = reach;
   sweep.enclosed_allowed = true;
   const Eigen::Vector3d centre = (corners[0] + corners[1] + corners[2]) / 3.0;
   for (int k = 0; k < 3; ++k) {
@@ -120,6 +133,7 @@ FreeSpaceSweep front_space_sweep(const std::vector<Eigen::Vector3d>& corners, co
   sweep.insets.push_back(-tol);
   sweep.planes.push_back(plane_through(normal, corners[0] + reach * normal));
   sweep.insets.push_back(0.0);
+  sweep.base = corners;
   for (const Eigen::Vector3d& c : corners) {
     sweep.corners.push_back(c);
     sweep.corners.push_back(c + reach * normal);
@@ -134,6 +148,7 @@ FreeSpaceSweep opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p
   Eigen::Vector3d out = along.cross(face_normal).normalized();
   if (out.dot(inner - p0) > 0.0) out = -out;
   sweep.direction = out;
+  sweep.reach = reach;
   // A strip in the face's plane: kept within tol of it either side.
   sweep.planes = {plane_through(face_normal, p0), plane_through(-face_normal, p0), plane_through(along, p1),
                   plane_through(-along, p0)};
@@ -143,20 +158,14 @@ FreeSpaceSweep opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p
   sweep.insets.push_back(-tol);
   sweep.planes.push_back(plane_through(out, p0 + reach * out));
   sweep.insets.push_back(0.0);
+  sweep.base = {p0, p1};
   sweep.corners = {p0, p1, p1 + reach * out, p0 + reach * out};
   return sweep;
 }
 
-bool sweep_enters_hull(const FreeSpaceSweep& sweep, const ConvexPolytope& hull, const std::vector<Plane>& face_planes,
-                       double tol, const SegmentBlocked& blocked) {
-  // The witness ray through `region` (in the entry facet): reaching deeper
-  // than tol, with nothing in its way from the base.
-  const auto witness = [&](const std::vector<Eigen::Vector3d>& region) {
-    const Eigen::Vector3d entry = centroid(region);
-    if (!ray_entry(hull.planes, entry, sweep.direction, tol)) return false;
-    const Eigen::Vector3d base = entry + sweep.start.signed_distance(entry) * sweep.direction;
-    return !blocked || !blocked(base, entry);
-  };
+bool sweep_enters_hull(const SceneIndex& index, const FreeSpaceSweep& sweep, const ConvexPolytope& hull,
+                       std::vector<int>& scratch) {
+  const double tol = index.tol();
   if (separated(sweep, hull, tol)) return false;
   const Eigen::Vector3d& dir = sweep.direction;
   std::vector<Eigen::Vector3d> part;
@@ -168,63 +177,42 @@ bool sweep_enters_hull(const FreeSpaceSweep& sweep, const ConvexPolytope& hull, 
     for (size_t i = 0; i < sweep.planes.size() && !part.empty(); ++i)
       part = clip_polygon(part, sweep.planes[i], sweep.insets[i]);
     if (part.empty()) continue;
-    // Met from the front away from the base, a face of the patch ends the
-    // free space there; met at the base (a face coincident with it, facing
-    // the other way) it does not.
-    const double t = -sweep.start.signed_distance(centroid(part));
-    if (t > tol && facet_carries_face(hull, k, face_planes, tol)) continue;
     if (!sweep.enclosed_allowed) {
-      if (witness(part)) return true;
+      if (witness_loses_space(index, sweep, hull, centroid(part), scratch)) return true;
       continue;
     }
+    // Rays leaving through different facets may end differently: one
+    // witness per way out.
     for (size_t j = 0; j < hull.facets.size(); ++j) {
-      if (hull.planes[j].normal.dot(dir) <= 0.0 || facet_carries_face(hull, j, face_planes, tol)) continue;
+      if (hull.planes[j].normal.dot(dir) <= 0.0) continue;
       const std::vector<Eigen::Vector3d> through = leaving_through(part, hull, j, dir, tol);
-      if (!through.empty() && witness(through)) return true;
+      if (!through.empty() && witness_loses_space(index, sweep, hull, centroid(through), scratch)) return true;
     }
   }
   return false;
 }
 
-bool mesh_blocks_segment(const SceneIndex& index, const Eigen::Vector3d& from, const Eigen::Vector3d& to,
+bool crossing_face_leaks(const SceneIndex& index, const FreeSpaceSweep& sweep, const ConvexPolytope& hull,
                          std::vector<int>& scratch) {
-  const Mesh& mesh = index.mesh();
   const double tol = index.tol();
-  Aabb box;
-  box.extend(from);
-  box.extend(to);
-  scratch.clear();
-  index.face_tree.overlapping(grown(box, tol), scratch);
-  for (int g : scratch) {
-    if (index.prepared->connectivity.zero_area[g]) continue;
-    const Eigen::Vector3i& t = mesh.triangles[g];
-    const Eigen::Vector3d& n = index.face_normals[g];
-    const double d0 = n.dot(from - mesh.positions[t[0]]), d1 = n.dot(to - mesh.positions[t[0]]);
-    if (!((d0 > tol && d1 <= tol) || (d0 < -tol && d1 >= -tol))) continue;
-    const Eigen::Vector3d crossing = from + (to - from) * std::clamp(d0 / (d0 - d1), 0.0, 1.0);
-    bool inside = true;
-    for (int k = 0; k < 3 && inside; ++k) {
-      const Eigen::Vector3d& a = mesh.positions[t[k]];
-      const Eigen::Vector3d& b = mesh.positions[t[(k + 1) % 3]];
-      inside = (b - a).cross(n).normalized().dot(crossing - a) <= tol;
-    }
-    if (inside) return true;
+  for (const Plane& plane : hull.planes) {
+    bool beyond = true;
+    for (const Eigen::Vector3d& c : sweep.base) beyond &= plane.signed_distance(c) > -tol;
+    if (beyond) return false;
+  }
+  std::vector<Eigen::Vector3d> inside = sweep.base;
+  for (size_t k = 0; k < hull.planes.size() && !inside.empty(); ++k) inside = clip_polygon(inside, hull.planes[k], tol);
+  if (inside.empty()) return false;
+  for (size_t j = 0; j < hull.facets.size(); ++j) {
+    if (hull.planes[j].normal.dot(sweep.direction) <= 0.0) continue;
+    const std::vector<Eigen::Vector3d> through = leaving_through(inside, hull, j, sweep.direction, tol);
+    if (!through.empty() && witness_loses_space(index, sweep, hull, centroid(through), scratch)) return true;
   }
   return false;
 }
 
 bool sheet_enters_interior(const std::vector<Plane>& planes, const std::vector<Eigen::Vector3d>& sheet, double tol) {
   return !clip_to_planes(sheet, planes, tol).empty();
-}
-
-bool triangle_enters_interior(const std::vector<Plane>& planes, const std::vector<Eigen::Vector3d>& corners,
-                              double tol) {
-  for (const Plane& plane : planes) {
-    bool beyond = true;
-    for (const Eigen::Vector3d& c : corners) beyond &= plane.signed_distance(c) > -tol;
-    if (beyond) return false;
-  }
-  return !clip_to_planes(corners, planes, tol).empty();
 }
 
 bool bar_crosses_polygon(const FlatPolygon& polygon, const BoundaryBar& bar, double tol) {

@@ -155,9 +155,7 @@ PatchMerger::Candidate PatchMerger::evaluate(int a, int b) {
     out.validity = Validity::too_many_vertices;
     return out;
   }
-  std::vector<Plane> face_planes = pa.face_planes;
-  face_planes.insert(face_planes.end(), pb.face_planes.begin(), pb.face_planes.end());
-  out.validity = check_solid_hull(index_, *hull, face_planes, scratch_);
+  out.validity = check_solid_hull(index_, *hull, scratch_);
   out.hull_vertices = hull->vertex_ids;
   std::sort(out.hull_vertices.begin(), out.hull_vertices.end());
   out.solid = std::move(hull);

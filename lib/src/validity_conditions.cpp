@@ -39,26 +39,22 @@ bool planes_support_points(const std::vector<Plane>& planes, const std::vector<E
 namespace {
 
 // E1-E3 (exact_conditions.h) for a solid hull whose box grown by tol is `box`.
-Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& hull,
-                                const std::vector<Plane>& face_planes, const Aabb& box, std::vector<int>& scratch) {
+Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, const Aabb& box,
+                                std::vector<int>& scratch) {
   const double tol = index.tol();
   const double reach = index.free_space_reach;
   const Mesh& mesh = index.mesh();
   const Aabb reached = grown(box, reach);
   std::vector<Eigen::Vector3d> triangle(3);
-  std::vector<int> blocking_scratch;
-  const SegmentBlocked blocked = [&](const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
-    return mesh_blocks_segment(index, from, to, blocking_scratch);
-  };
+  std::vector<int> ray_scratch;
   scratch.clear();
   index.face_tree.overlapping(reached, scratch);
   for (int f : scratch) {
     if (index.prepared->connectivity.zero_area[f]) continue;
     for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[f][k]];
-    if (triangle_enters_interior(hull.planes, triangle, tol)) return Validity::face_crosses_hull;
-    if (sweep_enters_hull(front_space_sweep(triangle, index.face_normals[f], reach, tol), hull, face_planes, tol,
-                          blocked))
-      return Validity::front_space_inside;
+    const FreeSpaceSweep front = front_space_sweep(triangle, index.face_normals[f], reach, tol);
+    if (crossing_face_leaks(index, front, hull, ray_scratch)) return Validity::face_crosses_hull;
+    if (sweep_enters_hull(index, front, hull, ray_scratch)) return Validity::front_space_inside;
   }
   scratch.clear();
   index.edge_tree.overlapping(reached, scratch);
@@ -72,8 +68,8 @@ Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& h
     const Eigen::Vector3d& inner = mesh.positions[t[0] != c.edges[e].v0 && t[0] != c.edges[e].v1 ? t[0]
                                                   : t[1] != c.edges[e].v0 && t[1] != c.edges[e].v1 ? t[1]
                                                                                                    : t[2]];
-    if (sweep_enters_hull(opening_sweep(p0, p1, inner, index.face_normals[face], reach, tol), hull, face_planes, tol,
-                          blocked))
+    if (sweep_enters_hull(index, opening_sweep(p0, p1, inner, index.face_normals[face], reach, tol), hull,
+                          ray_scratch))
       return Validity::opening_inside;
   }
   return Validity::valid;
@@ -81,8 +77,7 @@ Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& h
 
 } // namespace
 
-Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, const std::vector<Plane>& face_planes,
-                          std::vector<int>& scratch) {
+Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, std::vector<int>& scratch) {
   const double tol = index.tol();
   const Aabb box = grown(bounding_box_of(hull.vertices), tol);
   const Mesh& mesh = index.mesh();
@@ -110,7 +105,7 @@ Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, c
   }
   if (index.mode != ValidityMode::exact) return Validity::valid;
 
-  return check_exact_solid_hull(index, hull, face_planes, box, scratch);
+  return check_exact_solid_hull(index, hull, box, scratch);
 }
 
 namespace {

@@ -22,6 +22,10 @@ public:
   /// boxes: touching counts), in no particular order.
   void overlapping(const Aabb& query, std::vector<int>& out) const;
 
+  /// Appends to `out` the index of every box that, grown by `margin`, the
+  /// segment from-to passes through, in no particular order.
+  void along_segment(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double margin, std::vector<int>& out) const;
+
   bool empty() const { return nodes_.empty(); }
 
 private:

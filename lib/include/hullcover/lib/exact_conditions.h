@@ -20,8 +20,10 @@
 ///     or fold (the rim of a double-sided sheet), along the whole edge, with
 ///     no allowance for enclosed space; for flat polygons the bar becomes a
 ///     sheet along the whole edge.
-///  E3 `face_crosses_hull`: no face's interior crosses the hull's interior
-///     (self-intersecting input, where vertices and edges stay outside).
+///  E3 crossing faces: where a face's interior crosses the hull's interior
+///     (self-intersecting input, where vertices and edges stay outside), its
+///     front space there must leave the hull only through the hull's own
+///     faces (enclosed, as E1 allows: a floor running into a pillar).
 ///
 /// All use the one tolerance: "interior" is the hull shrunk by `tol`.
 
@@ -29,7 +31,6 @@
 #include "hullcover/lib/planar_hull.h"
 #include "hullcover/lib/scene_index.h"
 
-#include <functional>
 
 namespace hullcover {
 
@@ -41,8 +42,10 @@ struct FreeSpaceSweep {
   std::vector<double> insets;
   Plane start;  ///< the base's plane facing back: signed distance = -t
   Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
+  std::vector<Eigen::Vector3d> base;     ///< the face or edge swept
   std::vector<Eigen::Vector3d> corners;  ///< the base at t = 0 and at the reach
-  bool enclosed_allowed = false;  ///< front space may run into a hull that only faces of it close
+  double reach = 0.0;             ///< scene units
+  bool enclosed_allowed = false;  ///< front space may be enclosed (first meet a face from behind)
 };
 
 /// The front space of triangle `corners` (unit front `normal`); it starts
@@ -54,24 +57,19 @@ FreeSpaceSweep front_space_sweep(const std::vector<Eigen::Vector3d>& corners, co
 FreeSpaceSweep opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
                              const Eigen::Vector3d& face_normal, double reach, double tol);
 
-/// Tells whether a mesh face ends the free space along the segment from
-/// `from` (on the sweep's base) to `to` before it: see `mesh_blocks_segment`.
-using SegmentBlocked = std::function<bool(const Eigen::Vector3d& from, const Eigen::Vector3d& to)>;
+/// Rays of the free space start this many tolerances off the surface they
+/// leave, as the audit's probe rays do.
+inline constexpr double kRayStandOffInTolerances = 2.0;
 
-/// E1/E2: true when `sweep` enters the solid hull `hull` deeper than `tol`
-/// through a facet other than one carrying the patch's faces (a plane of
-/// `face_planes`) met from the front beyond tol of the sweep's base; with
-/// `enclosed_allowed`, only when it also leaves through a facet carrying no
-/// face. The ray through the middle of each such region is the witness; it
-/// does not count when `blocked` says a mesh face stands in its way.
-bool sweep_enters_hull(const FreeSpaceSweep& sweep, const ConvexPolytope& hull, const std::vector<Plane>& face_planes,
-                       double tol, const SegmentBlocked& blocked);
-
-/// True when a face of the mesh passes through segment from-to: from
-/// farther than tol on one side of its plane to within tol of it or beyond,
-/// within tol of the triangle. The faces the segment starts on never do.
-bool mesh_blocks_segment(const SceneIndex& index, const Eigen::Vector3d& from, const Eigen::Vector3d& to,
-                         std::vector<int>& scratch);
+/// E1/E2: true when free space of `sweep` lies deeper than tol inside the
+/// solid `hull`. Each region of a facet through which the sweep enters the
+/// hull (and, for front space, leaves it through one facet) is judged by its
+/// middle ray, as the audit's probe would judge it: the ray from the base
+/// loses space when it is inside the hull before its first mesh hit and
+/// within the reach; a ray whose first hit is the back of a face runs
+/// through enclosed space, which front space may.
+bool sweep_enters_hull(const SceneIndex& index, const FreeSpaceSweep& sweep, const ConvexPolytope& hull,
+                       std::vector<int>& scratch);
 
 /// E2 (and the paper's condition 3) for a flat polygon: true when the bar or
 /// sheet crosses the polygon's relative interior shrunk by `tol`. One lying
@@ -85,9 +83,10 @@ bool bar_crosses_polygon(const FlatPolygon& polygon, const BoundaryBar& bar, dou
 /// behind every plane.
 bool sheet_enters_interior(const std::vector<Plane>& planes, const std::vector<Eigen::Vector3d>& sheet, double tol);
 
-/// E3: true when part of triangle `corners` lies deeper than `tol` inside
-/// the hull bounded by `planes`.
-bool triangle_enters_interior(const std::vector<Plane>& planes, const std::vector<Eigen::Vector3d>& corners,
-                              double tol);
+/// E3: true when part of the front sweep's base (a face) lies deeper than
+/// `tol` inside the solid hull and its front space from there, judged like
+/// `sweep_enters_hull`'s, is lost.
+bool crossing_face_leaks(const SceneIndex& index, const FreeSpaceSweep& sweep, const ConvexPolytope& hull,
+                         std::vector<int>& scratch);
 
 } // namespace hullcover

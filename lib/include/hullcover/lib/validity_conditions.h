@@ -52,10 +52,9 @@ const char* validity_name(Validity v);
 /// or within `tol` in front.
 bool planes_support_points(const std::vector<Plane>& planes, const std::vector<Eigen::Vector3d>& points, double tol);
 
-/// Conditions 1 and 3 (exact mode: and E1-E3) for a solid hull whose
-/// patch's faces lie in `face_planes` (outward). `scratch` is reused storage.
-Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, const std::vector<Plane>& face_planes,
-                          std::vector<int>& scratch);
+/// Conditions 1 and 3 (exact mode: and E1-E3) for a solid hull. `scratch`
+/// is reused storage.
+Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, std::vector<int>& scratch);
 
 /// Conditions 3 (exact mode: E2) and 4 for a flat polygon; `in_patch(face)` tells whether a
 /// face belongs to the patch (condition 4 looks only at faces outside it).
