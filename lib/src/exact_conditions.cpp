@@ -89,6 +89,10 @@ Eigen::Vector3d centroid(const std::vector<Eigen::Vector3d>& points) {
   return c / static_cast<double>(points.size());
 }
 
+// Corner witnesses sit this fraction of the way from a region's corner to
+// its middle, off the region's edges where the mesh's own edges lie.
+constexpr double kCornerWitnessInset = 0.05;
+
 // The probe's verdict on the sweep's ray through `point`: it starts on the
 // base (standing off it like the probe's rays), runs to its first mesh hit
 // or the reach, and loses space when it lies deeper than tol inside the
@@ -109,6 +113,24 @@ bool witness_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, c
   if (hit && hit->t <= enter) return false;              // the mesh ends the free space first
   if (hit && hit->from_behind && sweep.enclosed_allowed) return false;  // enclosed space
   return true;
+}
+
+// A region of rays ends differently where different faces stand in their
+// way: judged by its middle ray and rays spread over it (near each corner,
+// half way to each corner, near the middle of each edge).
+bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const ConvexPolytope& hull,
+                        const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch) {
+  const Eigen::Vector3d middle = centroid(region);
+  if (witness_loses_space(index, sweep, hull, middle, scratch)) return true;
+  for (size_t i = 0; i < region.size(); ++i) {
+    const Eigen::Vector3d& corner = region[i];
+    const Eigen::Vector3d edge_middle = 0.5 * (corner + region[(i + 1) % region.size()]);
+    const Eigen::Vector3d witnesses[] = {corner + kCornerWitnessInset * (middle - corner), 0.5 * (corner + middle),
+                                         edge_middle + kCornerWitnessInset * (middle - edge_middle)};
+    for (const Eigen::Vector3d& witness : witnesses)
+      if (witness_loses_space(index, sweep, hull, witness, scratch)) return true;
+  }
+  return false;
 }
 
 } // namespace
@@ -178,7 +200,7 @@ bool sweep_enters_hull(const SceneIndex& index, const FreeSpaceSweep& sweep, con
       part = clip_polygon(part, sweep.planes[i], sweep.insets[i]);
     if (part.empty()) continue;
     if (!sweep.enclosed_allowed) {
-      if (witness_loses_space(index, sweep, hull, centroid(part), scratch)) return true;
+      if (region_loses_space(index, sweep, hull, part, scratch)) return true;
       continue;
     }
     // Rays leaving through different facets may end differently: one
@@ -186,7 +208,7 @@ bool sweep_enters_hull(const SceneIndex& index, const FreeSpaceSweep& sweep, con
     for (size_t j = 0; j < hull.facets.size(); ++j) {
       if (hull.planes[j].normal.dot(dir) <= 0.0) continue;
       const std::vector<Eigen::Vector3d> through = leaving_through(part, hull, j, dir, tol);
-      if (!through.empty() && witness_loses_space(index, sweep, hull, centroid(through), scratch)) return true;
+      if (!through.empty() && region_loses_space(index, sweep, hull, through, scratch)) return true;
     }
   }
   return false;
@@ -206,7 +228,7 @@ bool crossing_face_leaks(const SceneIndex& index, const FreeSpaceSweep& sweep, c
   for (size_t j = 0; j < hull.facets.size(); ++j) {
     if (hull.planes[j].normal.dot(sweep.direction) <= 0.0) continue;
     const std::vector<Eigen::Vector3d> through = leaving_through(inside, hull, j, sweep.direction, tol);
-    if (!through.empty() && witness_loses_space(index, sweep, hull, centroid(through), scratch)) return true;
+    if (!through.empty() && region_loses_space(index, sweep, hull, through, scratch)) return true;
   }
   return false;
 }

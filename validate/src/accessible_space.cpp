@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_set>
 
 namespace hullcover::validate {
 namespace {
@@ -106,7 +107,10 @@ public:
         ++report_.front_points;
         report_.front_lost += lost;
       }
-      if (lost && !enclosed) note({q, face, hull, depth, opening});
+      if (lost && !enclosed) {
+        note({q, face, hull, depth, opening});
+        lost_keys_.insert(tree_.coordToKey(to_octomap(q)));
+      }
     }
   }
 
@@ -190,10 +194,18 @@ public:
       const octomap::point3d c = leaf.getCoordinate();
       ++report_.free_cells;
       report_.free_volume += size * size * size;
+      // A cell is lost when a free sample in it is, or when it lies wholly
+      // inside a hull. One whose centre alone is inside straddles a hull's
+      // surface: its free sample lies outside, so only part of it may be
+      // lost; counted apart.
       int hull = -1;
-      if (depth_in_hulls(centre_ + Eigen::Vector3d(c.x(), c.y(), c.z()), hull) > tol_) {
+      const double depth = depth_in_hulls(centre_ + Eigen::Vector3d(c.x(), c.y(), c.z()), hull);
+      const bool sample_lost = leaf.getDepth() == tree_.getTreeDepth() && lost_keys_.count(leaf.getKey()) > 0;
+      if (sample_lost || depth > tol_ + 0.5 * std::sqrt(3.0) * size) {
         ++report_.lost_cells;
         report_.lost_volume += size * size * size;
+      } else if (depth > tol_) {
+        ++report_.straddling_cells;
       }
     }
   }
@@ -208,6 +220,7 @@ private:
   double tol_;
   octomap::OcTree tree_;
   Eigen::Vector3d centre_;
+  std::unordered_set<octomap::OcTreeKey, octomap::OcTreeKey::KeyHash> lost_keys_;  // cells of lost free samples
 };
 
 } // namespace

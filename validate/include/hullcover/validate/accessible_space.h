@@ -12,7 +12,8 @@
 ///   face's plane, up to R or the first hit (a doorway stays open).
 /// The accessible (not enclosed) points go into an OctoMap octree as free
 /// cells, the surface as occupied; every free cell is tested too, which
-/// gives the lost volume.
+/// gives the lost volume: a cell counts as lost when a free sample in it
+/// is, or when the whole cell lies inside a hull.
 ///
 /// "Lost" means strictly inside a hull: deeper than the tolerance.
 
@@ -54,7 +55,8 @@ struct ProbeReport {
   long front_points = 0, front_lost = 0;
   long enclosed_points = 0, enclosed_in_hulls = 0;  ///< allowed, reported
   long opening_points = 0, opening_lost = 0;
-  long free_cells = 0, lost_cells = 0;
+  long free_cells = 0, lost_cells = 0;  ///< lost: holds a lost free sample, or lies wholly inside a hull
+  long straddling_cells = 0;  ///< free cells whose centre alone is inside a hull (a hull's surface crosses them)
   double free_volume = 0.0, lost_volume = 0.0;  ///< scene units cubed
   double max_lost_depth = 0.0;
   Eigen::Vector3d octree_origin = Eigen::Vector3d::Zero();  ///< scene point at the octree's origin (the box centre)
