@@ -38,6 +38,23 @@ RuntimeHull flat_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, co
   return make_runtime_hull(flat_polytope(triangle, true), 0);
 }
 
+// A ray against one triangle (a flat hull: front plane first, side planes
+// after its two facets), counting a hit within `tol` of its edges, so a ray
+// through the edge two triangles share meets at least one of them.
+std::optional<RayHit> ray_hits_triangle(const RuntimeHull& triangle, const Eigen::Vector3d& origin,
+                                        const Eigen::Vector3d& dir, double reach, double tol) {
+  const std::vector<Plane>& planes = triangle.shape.planes;
+  const Plane& front = planes.front();
+  const double rate = front.normal.dot(dir);
+  if (rate == 0.0) return std::nullopt;
+  const double t = -front.signed_distance(origin) / rate;
+  if (t < 0.0 || t > reach) return std::nullopt;
+  const Eigen::Vector3d p = origin + t * dir;
+  for (size_t i = triangle.shape.facets.size(); i < planes.size(); ++i)
+    if (planes[i].signed_distance(p) > tol) return std::nullopt;
+  return RayHit{-1, t, p, rate < 0.0 ? front.normal : Eigen::Vector3d(-front.normal)};
+}
+
 QueryShape inflated(QueryShape s, double by) {
   s.radius += by;
   s.half_extents.array() += by;
@@ -50,6 +67,7 @@ Result<std::shared_ptr<const TriangleWorld>> TriangleWorld::build(const Mesh& me
   try {
     std::shared_ptr<TriangleWorld> world(new TriangleWorld());
     world->margin_ = kMarginInTolerances * tol;
+    world->tol_ = tol;
     std::vector<fcl::Triangle> tris;
     for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) {
       const Eigen::Vector3i& t = mesh.triangles[f];
@@ -153,13 +171,16 @@ void TriangleWorld::traverse_ray(const Eigen::Vector3d& origin, const Eigen::Vec
     const fcl::OBBd& box = node.bv.obb;
     const Eigen::Vector3d o = box.axis.transpose() * (origin - box.To);
     const Eigen::Vector3d d = box.axis.transpose() * dir;
+    // Boxes grown by the margin: a tight box (flat for a triangle) would
+    // lose rays through its edges to rounding.
     double t0 = 0.0, t1 = reach;
     for (int k = 0; k < 3 && t0 <= t1; ++k) {
+      const double extent = box.extent[k] + margin_;
       if (d[k] == 0.0) {
-        if (std::abs(o[k]) > box.extent[k]) t0 = t1 + 1.0;
+        if (std::abs(o[k]) > extent) t0 = t1 + 1.0;
         continue;
       }
-      double a = (-box.extent[k] - o[k]) / d[k], b = (box.extent[k] - o[k]) / d[k];
+      double a = (-extent - o[k]) / d[k], b = (extent - o[k]) / d[k];
       if (a > b) std::swap(a, b);
       t0 = std::max(t0, a);
       t1 = std::min(t1, b);
@@ -172,7 +193,7 @@ void TriangleWorld::traverse_ray(const Eigen::Vector3d& origin, const Eigen::Vec
     }
     // The model holds only triangles with a surface, in triangles_ order.
     const int i = node.primitiveId();
-    if (std::optional<RayHit> hit = ray_hit(triangles_[i], origin, dir, reach)) {
+    if (std::optional<RayHit> hit = ray_hits_triangle(triangles_[i], origin, dir, reach, tol_)) {
       hit->hull = face_of_[i];
       on_hit(*hit);
     }

@@ -89,9 +89,10 @@ Eigen::Vector3d centroid(const std::vector<Eigen::Vector3d>& points) {
   return c / static_cast<double>(points.size());
 }
 
-// Corner witnesses sit this fraction of the way from a region's corner to
-// its middle, off the region's edges where the mesh's own edges lie.
-constexpr double kCornerWitnessInset = 0.05;
+// Witness rays sit on a grid of this many steps a side per fan triangle of
+// a region, pulled this fraction of the way toward its middle.
+constexpr int kWitnessGridSteps = 2;
+constexpr double kWitnessInset = 0.05;
 
 // The probe's verdict on the sweep's ray through `point`: it starts on the
 // base (standing off it like the probe's rays), runs to its first mesh hit
@@ -116,19 +117,23 @@ bool witness_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, c
 }
 
 // A region of rays ends differently where different faces stand in their
-// way: judged by its middle ray and rays spread over it (near each corner,
-// half way to each corner, near the middle of each edge).
+// way: judged by rays on a grid over it (each fan triangle from its middle
+// cut kWitnessGridSteps times a side), pulled in off its edges, where the
+// mesh's own edges lie.
 bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const ConvexPolytope& hull,
                         const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch) {
   const Eigen::Vector3d middle = centroid(region);
   if (witness_loses_space(index, sweep, hull, middle, scratch)) return true;
-  for (size_t i = 0; i < region.size(); ++i) {
-    const Eigen::Vector3d& corner = region[i];
-    const Eigen::Vector3d edge_middle = 0.5 * (corner + region[(i + 1) % region.size()]);
-    const Eigen::Vector3d witnesses[] = {corner + kCornerWitnessInset * (middle - corner), 0.5 * (corner + middle),
-                                         edge_middle + kCornerWitnessInset * (middle - edge_middle)};
-    for (const Eigen::Vector3d& witness : witnesses)
-      if (witness_loses_space(index, sweep, hull, witness, scratch)) return true;
+  constexpr int m = kWitnessGridSteps;
+  for (size_t e = 0; e < region.size(); ++e) {
+    const Eigen::Vector3d u = region[e] - middle;
+    const Eigen::Vector3d v = region[(e + 1) % region.size()] - middle;
+    // (i, j) with i + j <= m, i >= 1 (i = 0 is the previous fan triangle's edge).
+    for (int i = 1; i <= m; ++i)
+      for (int j = 0; i + j <= m; ++j) {
+        const Eigen::Vector3d offset = (static_cast<double>(i) * u + static_cast<double>(j) * v) / m;
+        if (witness_loses_space(index, sweep, hull, middle + (1.0 - kWitnessInset) * offset, scratch)) return true;
+      }
   }
   return false;
 }

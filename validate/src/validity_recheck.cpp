@@ -260,7 +260,8 @@ CheckReport recheck_hulls(const PreparedMesh& prepared, const std::vector<HullUn
       double in_front = 0.0, deepest_corner = -INFINITY;
       for (const auto& p : hull.shape->vertices) in_front = std::max(in_front, normal[f].dot(p - a));
       for (int k = 0; k < 3; ++k) deepest_corner = std::max(deepest_corner, depth_inside(c.facets, mesh.positions[t[k]]));
-      if (in_front > 2 * tol || deepest_corner > 2 * tol || (c.flat && c.front.n.dot(normal[f]) <= 0.0)) {
+      // A flat hull has a facet either way: faces of either side lie on it.
+      if (in_front > 2 * tol || deepest_corner > 2 * tol) {
         ++report.faces_off_hull;
         note(where + "face " + std::to_string(f) + " not on the hull with its normal out (" +
              std::to_string(in_front) + " in front, corner " + std::to_string(deepest_corner) + " deep)");
@@ -337,7 +338,9 @@ CheckReport recheck_hulls(const PreparedMesh& prepared, const std::vector<HullUn
       double in_front = 0.0, off = 0.0;
       for (const auto& p : hull.shape->vertices) in_front = std::max(in_front, normal[f].dot(p - a));
       for (const Eigen::Vector3d* corner : {&a, &b, &c}) off = std::max(off, std::abs(depth_inside(checked[h].facets, *corner)));
-      if (in_front <= 2 * tol && off <= 2 * tol && (!checked[h].flat || checked[h].front.n.dot(normal[f]) > 0.0)) {
+      // A flat hull has a facet either way: a face on it is on its boundary
+      // whichever way it faces (a double-sided sheet's two faces).
+      if (in_front <= 2 * tol && off <= 2 * tol) {
         covered[f] = 1;
         break;
       }
