@@ -281,6 +281,12 @@ CheckReport recheck_hulls(const PreparedMesh& prepared, const std::vector<HullUn
       for (int f : fgrid.query(lo, hi)) {
         if (std::binary_search(hull.faces.begin(), hull.faces.end(), f)) continue;
         const Eigen::Vector3i& t = mesh.triangles[f];
+        // A hull read from a file claims no faces: those lying on it (within
+        // 2 tol, as coverage counts them) are its own.
+        bool on_polygon = hull.faces.empty();
+        for (int k = 0; k < 3; ++k)
+          on_polygon &= std::abs(c.front.n.dot(mesh.positions[t[k]]) - c.front.d) <= 2 * tol;
+        if (on_polygon) continue;
         bool below = false;
         for (int k = 0; k < 3; ++k) below |= c.front.n.dot(mesh.positions[t[k]]) - c.front.d < -tol;
         if (!below) continue;
