@@ -109,11 +109,12 @@ bool witness_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, c
   if (!inside_from) return false;
   const double enter = stand_off + *inside_from;
   if (enter > sweep.reach) return false;
-  const std::optional<MeshRayHit> hit =
-      first_mesh_hit(index, base, dir, stand_off, index.prepared->tolerance.diagonal, scratch);
-  if (hit && hit->t <= enter) return false;              // the mesh ends the free space first
-  if (hit && hit->from_behind && sweep.enclosed_allowed) return false;  // enclosed space
-  return true;
+  // The mesh ends the free space before the hull: most rays, found on a
+  // short stretch.
+  if (first_mesh_hit(index, base, dir, stand_off, enter, scratch)) return false;
+  if (!sweep.enclosed_allowed) return true;
+  const std::optional<MeshRayHit> hit = first_mesh_hit(index, base, dir, enter, index.prepared->tolerance.diagonal, scratch);
+  return !(hit && hit->from_behind);  // enclosed space, when the first face is met from behind
 }
 
 // A region of rays ends differently where different faces stand in their

@@ -2,30 +2,32 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace hullcover {
 
-std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::Vector3d& origin,
-                                         const Eigen::Vector3d& dir, double min_t, double max_t,
-                                         std::vector<int>& scratch) {
+namespace {
+
+// The first hit among faces met on t in [from, to] (nothing when none).
+std::optional<MeshRayHit> first_hit_between(const SceneIndex& index, const Eigen::Vector3d& origin,
+                                            const Eigen::Vector3d& dir, double from, double to,
+                                            std::vector<int>& scratch) {
   const Mesh& mesh = index.mesh();
   const double tol = index.tol();
   scratch.clear();
-  index.face_tree.along_segment(origin + min_t * dir, origin + max_t * dir, tol, scratch);
+  index.face_tree.along_segment(origin + from * dir, origin + to * dir, tol, scratch);
   std::optional<MeshRayHit> first;
-  double first_t = std::numeric_limits<double>::infinity();
   // Each face met: its distance and side; the nearest decide.
   std::vector<std::pair<double, bool>> met;
   for (int f : scratch) {
     const Eigen::Vector3d& n = index.face_normals[f];
     const double rate = n.dot(dir);
-    if (n.isZero() || std::abs(rate) * (max_t - min_t) <= tol) continue;  // zero area, or running along it
+    if (n.isZero() || std::abs(rate) * (to - from) <= tol) continue;  // zero area, or running along it
     const Eigen::Vector3i& tri = mesh.triangles[f];
-    const Eigen::Vector3d& a = mesh.positions[tri[0]];
-    const double t = n.dot(a - origin) / rate;
-    if (t < min_t || t > max_t) continue;
+    const double t = n.dot(mesh.positions[tri[0]] - origin) / rate;
+    if (t < from || t > to) continue;
     const Eigen::Vector3d p = origin + t * dir;
     bool inside = true;
     for (int k = 0; k < 3 && inside; ++k) {
@@ -35,15 +37,37 @@ std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::V
     }
     if (!inside) continue;
     met.emplace_back(t, rate > 0.0);
-    if (t < first_t) {
-      first_t = t;
-      first = MeshRayHit{t, f, false};
-    }
+    if (!first || t < first->t) first = MeshRayHit{t, f, false};
   }
   if (first)
     for (const auto& [t, behind] : met)
-      if (t <= first_t + tol && behind) first->from_behind = true;
+      if (t <= first->t + tol && behind) first->from_behind = true;
   return first;
+}
+
+// The first stretch searched, as a fraction of the diagonal; each next one
+// is kSearchGrowth times longer: most rays meet the mesh soon, and a long
+// segment's tree query visits much of the tree.
+constexpr double kFirstSearchRelative = 1.0 / 64.0;
+constexpr double kSearchGrowth = 4.0;
+
+} // namespace
+
+std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::Vector3d& origin,
+                                         const Eigen::Vector3d& dir, double min_t, double max_t,
+                                         std::vector<int>& scratch) {
+  const double tol = index.tol();
+  double from = min_t;
+  double span = kFirstSearchRelative * index.prepared->tolerance.diagonal;
+  while (from < max_t) {
+    const double to = std::min(max_t, from + span);
+    // Overlapping by tol, so faces coincident at a stretch's end all count.
+    if (std::optional<MeshRayHit> hit = first_hit_between(index, origin, dir, from, std::min(max_t, to + tol), scratch))
+      return hit;
+    from = to;
+    span *= kSearchGrowth;
+  }
+  return std::nullopt;
 }
 
 } // namespace hullcover
