@@ -47,38 +47,39 @@ std::optional<double> ray_entry(const std::vector<Plane>& planes, const Eigen::V
   return enter;
 }
 
-// Quick rejection: a hull plane with every corner of the sweep on its far
-// side (beyond -tol) keeps the sweep out of the interior.
-bool separated(const FreeSpaceSweep& sweep, const ConvexPolytope& hull, double tol) {
-  for (const Plane& plane : hull.planes) {
+// Quick rejection: a plane of the interior with every corner of the sweep
+// on its far side, or a plane of the sweep with the whole interior beyond.
+bool separated(const FreeSpaceSweep& sweep, const HullInterior& interior) {
+  for (const Plane& plane : interior.planes) {
     bool all_out = true;
-    for (const Eigen::Vector3d& c : sweep.corners) all_out &= plane.signed_distance(c) >= -tol;
+    for (const Eigen::Vector3d& c : sweep.corners) all_out &= plane.signed_distance(c) >= 0.0;
     if (all_out) return true;
   }
   for (size_t i = 0; i < sweep.planes.size(); ++i) {
     bool all_out = true;
-    for (const Eigen::Vector3d& v : hull.vertices) all_out &= sweep.planes[i].signed_distance(v) + sweep.insets[i] > 0.0;
+    for (const std::vector<Eigen::Vector3d>& facet : interior.facets)
+      for (const Eigen::Vector3d& v : facet) all_out &= sweep.planes[i].signed_distance(v) + sweep.insets[i] > 0.0;
     if (all_out) return true;
   }
   return false;
 }
 
-// The part of `region` (in an entry facet) from which rays along `dir` leave
-// the hull through facet j: `region` clipped to facet j's column along dir.
-std::vector<Eigen::Vector3d> leaving_through(std::vector<Eigen::Vector3d> region, const ConvexPolytope& hull, size_t j,
-                                             const Eigen::Vector3d& dir, double tol) {
-  const std::vector<int>& facet = hull.facets[j];
+// The part of `region` from which rays along `dir` leave the interior
+// through its facet j: `region` clipped to facet j's column along dir.
+std::vector<Eigen::Vector3d> leaving_through(std::vector<Eigen::Vector3d> region, const HullInterior& interior,
+                                             size_t j, const Eigen::Vector3d& dir, double tol) {
+  const std::vector<Eigen::Vector3d>& facet = interior.facets[j];
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  for (int v : facet) centre += hull.vertices[v];
+  for (const Eigen::Vector3d& v : facet) centre += v;
   centre /= static_cast<double>(facet.size());
   for (size_t i = 0; i < facet.size() && !region.empty(); ++i) {
-    const Eigen::Vector3d& u = hull.vertices[facet[i]];
-    const Eigen::Vector3d& v = hull.vertices[facet[(i + 1) % facet.size()]];
+    const Eigen::Vector3d& u = facet[i];
+    const Eigen::Vector3d& v = facet[(i + 1) % facet.size()];
     const Eigen::Vector3d side = (v - u).cross(dir);
     if (side.norm() <= tol * (v - u).norm()) continue;  // an edge along dir bounds nothing
     Plane plane = plane_through(side.normalized(), u);
     if (plane.signed_distance(centre) > 0.0) plane = {-plane.normal, -plane.offset};
-    region = clip_polygon(region, plane, tol);
+    region = clip_polygon(region, plane, 0.0);
   }
   return region;
 }
@@ -99,13 +100,13 @@ constexpr double kWitnessInset = 0.05;
 // or the reach, and loses space when it lies deeper than tol inside the
 // hull on the way - unless it first meets a face from behind (enclosed
 // space), where the sweep allows that.
-bool witness_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const ConvexPolytope& hull,
+bool witness_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
                          const Eigen::Vector3d& point, std::vector<int>& scratch) {
   const double tol = index.tol();
   const Eigen::Vector3d& dir = sweep.direction;
   const Eigen::Vector3d base = point + sweep.start.signed_distance(point) * dir;
   const double stand_off = kRayStandOffInTolerances * tol;
-  const std::optional<double> inside_from = ray_entry(hull.planes, base + stand_off * dir, dir, tol);
+  const std::optional<double> inside_from = ray_entry(interior.planes, base + stand_off * dir, dir, 0.0);
   if (!inside_from) return false;
   const double enter = stand_off + *inside_from;
   if (enter > sweep.reach) return false;
@@ -121,10 +122,10 @@ bool witness_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, c
 // way: judged by rays on a grid over it (each fan triangle from its middle
 // cut kWitnessGridSteps times a side), pulled in off its edges, where the
 // mesh's own edges lie.
-bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const ConvexPolytope& hull,
+bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
                         const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch) {
   const Eigen::Vector3d middle = centroid(region);
-  if (witness_loses_space(index, sweep, hull, middle, scratch)) return true;
+  if (witness_loses_space(index, sweep, interior, middle, scratch)) return true;
   constexpr int m = kWitnessGridSteps;
   for (size_t e = 0; e < region.size(); ++e) {
     const Eigen::Vector3d u = region[e] - middle;
@@ -133,7 +134,8 @@ bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, co
     for (int i = 1; i <= m; ++i)
       for (int j = 0; i + j <= m; ++j) {
         const Eigen::Vector3d offset = (static_cast<double>(i) * u + static_cast<double>(j) * v) / m;
-        if (witness_loses_space(index, sweep, hull, middle + (1.0 - kWitnessInset) * offset, scratch)) return true;
+        if (witness_loses_space(index, sweep, interior, middle + (1.0 - kWitnessInset) * offset, scratch))
+          return true;
       }
   }
   return false;
@@ -145,6 +147,9 @@ FreeSpaceSweep front_space_sweep(const std::vector<Eigen::Vector3d>& corners, co
                                  double reach, double tol) {
   FreeSpaceSweep sweep;
   sweep.direction = normal;
+  // The probe's rays start a stand-off from the face and run the reach
+  // from there.
+  reach += kRayStandOffInTolerances * tol;
   sweep.reach = reach;
   sweep.enclosed_allowed = true;
   const Eigen::Vector3d centre = (corners[0] + corners[1] + corners[2]) / 3.0;
@@ -176,6 +181,7 @@ FreeSpaceSweep opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p
   Eigen::Vector3d out = along.cross(face_normal).normalized();
   if (out.dot(inner - p0) > 0.0) out = -out;
   sweep.direction = out;
+  reach += kRayStandOffInTolerances * tol;
   sweep.reach = reach;
   // A strip in the face's plane: kept within tol of it either side.
   sweep.planes = {plane_through(face_normal, p0), plane_through(-face_normal, p0), plane_through(along, p1),
@@ -191,50 +197,73 @@ FreeSpaceSweep opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p
   return sweep;
 }
 
-bool sweep_enters_hull(const SceneIndex& index, const FreeSpaceSweep& sweep, const ConvexPolytope& hull,
+HullInterior hull_interior(const ConvexPolytope& hull, double tol) {
+  HullInterior interior;
+  for (const Plane& p : hull.planes) interior.planes.push_back({p.normal, p.offset - tol});
+  // Facet k shrunk: facet k moved in by tol holds it; the other shrunk
+  // planes cut it to size - all but those of facets in its own plane (a
+  // hull grown point by point keeps coplanar triangles), which would cut it
+  // away by rounding. Planes closer than this in direction (1 - cos) differ
+  // by less than tol over the hull.
+  Aabb box;
+  for (const Eigen::Vector3d& v : hull.vertices) box.extend(v);
+  const double ratio = tol / std::max((box.max - box.min).norm(), tol);
+  const double same_plane_gap = 0.5 * ratio * ratio;
+  for (size_t k = 0; k < hull.facets.size(); ++k) {
+    std::vector<Eigen::Vector3d> facet;
+    for (int v : hull.facets[k]) facet.push_back(hull.vertices[v] - tol * hull.planes[k].normal);
+    for (size_t j = 0; j < interior.planes.size() && !facet.empty(); ++j)
+      if (j != k && hull.planes[j].normal.dot(hull.planes[k].normal) < 1.0 - same_plane_gap)
+        facet = clip_polygon(facet, interior.planes[j], 0.0);
+    if (facet.size() < 3) facet.clear();
+    interior.facets.push_back(std::move(facet));
+  }
+  return interior;
+}
+
+bool sweep_enters_hull(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
                        std::vector<int>& scratch) {
-  const double tol = index.tol();
-  if (separated(sweep, hull, tol)) return false;
+  if (interior.empty() || separated(sweep, interior)) return false;
   const Eigen::Vector3d& dir = sweep.direction;
   std::vector<Eigen::Vector3d> part;
-  for (size_t k = 0; k < hull.facets.size(); ++k) {
+  for (size_t k = 0; k < interior.facets.size(); ++k) {
     // The sweep enters through facets it meets from their outer side.
-    if (hull.planes[k].normal.dot(dir) >= 0.0) continue;
-    part.clear();
-    for (int v : hull.facets[k]) part.push_back(hull.vertices[v]);
+    if (interior.facets[k].empty() || interior.planes[k].normal.dot(dir) >= 0.0) continue;
+    part = interior.facets[k];
     for (size_t i = 0; i < sweep.planes.size() && !part.empty(); ++i)
       part = clip_polygon(part, sweep.planes[i], sweep.insets[i]);
     if (part.empty()) continue;
     if (!sweep.enclosed_allowed) {
-      if (region_loses_space(index, sweep, hull, part, scratch)) return true;
+      if (region_loses_space(index, sweep, interior, part, scratch)) return true;
       continue;
     }
     // Rays leaving through different facets may end differently: one
-    // witness per way out.
-    for (size_t j = 0; j < hull.facets.size(); ++j) {
-      if (hull.planes[j].normal.dot(dir) <= 0.0) continue;
-      const std::vector<Eigen::Vector3d> through = leaving_through(part, hull, j, dir, tol);
-      if (!through.empty() && region_loses_space(index, sweep, hull, through, scratch)) return true;
+    // witness grid per way out.
+    for (size_t j = 0; j < interior.facets.size(); ++j) {
+      if (interior.facets[j].empty() || interior.planes[j].normal.dot(dir) <= 0.0) continue;
+      const std::vector<Eigen::Vector3d> through = leaving_through(part, interior, j, dir, index.tol());
+      if (!through.empty() && region_loses_space(index, sweep, interior, through, scratch)) return true;
     }
   }
   return false;
 }
 
-bool crossing_face_leaks(const SceneIndex& index, const FreeSpaceSweep& sweep, const ConvexPolytope& hull,
+bool crossing_face_leaks(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
                          std::vector<int>& scratch) {
-  const double tol = index.tol();
-  for (const Plane& plane : hull.planes) {
+  if (interior.empty()) return false;
+  for (const Plane& plane : interior.planes) {
     bool beyond = true;
-    for (const Eigen::Vector3d& c : sweep.base) beyond &= plane.signed_distance(c) > -tol;
+    for (const Eigen::Vector3d& c : sweep.base) beyond &= plane.signed_distance(c) > 0.0;
     if (beyond) return false;
   }
   std::vector<Eigen::Vector3d> inside = sweep.base;
-  for (size_t k = 0; k < hull.planes.size() && !inside.empty(); ++k) inside = clip_polygon(inside, hull.planes[k], tol);
+  for (size_t k = 0; k < interior.planes.size() && !inside.empty(); ++k)
+    inside = clip_polygon(inside, interior.planes[k], 0.0);
   if (inside.empty()) return false;
-  for (size_t j = 0; j < hull.facets.size(); ++j) {
-    if (hull.planes[j].normal.dot(sweep.direction) <= 0.0) continue;
-    const std::vector<Eigen::Vector3d> through = leaving_through(inside, hull, j, sweep.direction, tol);
-    if (!through.empty() && region_loses_space(index, sweep, hull, through, scratch)) return true;
+  for (size_t j = 0; j < interior.facets.size(); ++j) {
+    if (interior.facets[j].empty() || interior.planes[j].normal.dot(sweep.direction) <= 0.0) continue;
+    const std::vector<Eigen::Vector3d> through = leaving_through(inside, interior, j, sweep.direction, index.tol());
+    if (!through.empty() && region_loses_space(index, sweep, interior, through, scratch)) return true;
   }
   return false;
 }

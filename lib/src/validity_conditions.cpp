@@ -47,14 +47,16 @@ Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& h
   const Aabb reached = grown(box, reach);
   std::vector<Eigen::Vector3d> triangle(3);
   std::vector<int> ray_scratch;
+  const HullInterior interior = hull_interior(hull, tol);
+  if (interior.empty()) return Validity::valid;  // thinner than 2 tol: nothing is strictly inside
   scratch.clear();
   index.face_tree.overlapping(reached, scratch);
   for (int f : scratch) {
     if (index.prepared->connectivity.zero_area[f]) continue;
     for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[f][k]];
     const FreeSpaceSweep front = front_space_sweep(triangle, index.face_normals[f], reach, tol);
-    if (crossing_face_leaks(index, front, hull, ray_scratch)) return Validity::face_crosses_hull;
-    if (sweep_enters_hull(index, front, hull, ray_scratch)) return Validity::front_space_inside;
+    if (crossing_face_leaks(index, front, interior, ray_scratch)) return Validity::face_crosses_hull;
+    if (sweep_enters_hull(index, front, interior, ray_scratch)) return Validity::front_space_inside;
   }
   scratch.clear();
   index.edge_tree.overlapping(reached, scratch);
@@ -68,7 +70,7 @@ Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& h
     const Eigen::Vector3d& inner = mesh.positions[t[0] != c.edges[e].v0 && t[0] != c.edges[e].v1 ? t[0]
                                                   : t[1] != c.edges[e].v0 && t[1] != c.edges[e].v1 ? t[1]
                                                                                                    : t[2]];
-    if (sweep_enters_hull(index, opening_sweep(p0, p1, inner, index.face_normals[face], reach, tol), hull,
+    if (sweep_enters_hull(index, opening_sweep(p0, p1, inner, index.face_normals[face], reach, tol), interior,
                           ray_scratch))
       return Validity::opening_inside;
   }

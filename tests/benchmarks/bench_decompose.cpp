@@ -1,7 +1,9 @@
 // Decomposition benchmark over the shared scenes (not a test): for each
-// scene, compact and random merge order side by side, with faces, hulls,
-// hulls per face and the time per 20K faces (the issue's target: under 1 s
-// on one core; the paper: tens of seconds to a minute for 21K faces).
+// scene, the paper's conditions and exact mode (compact order), and exact
+// mode in random order, side by side, with faces, hulls, hulls per face, the
+// ratio to the prototype's paper-mode count (../shared/DESIGN.md; issue 6's
+// target for exact mode: <= 1) and the time per 20K faces (the paper: tens
+// of seconds to a minute for 21K faces).
 //
 //   build/release/tests/hullcover_bench_decompose [--benchmark_filter=fdm6]
 
@@ -22,9 +24,17 @@ using namespace hullcover;
 // The paper's building: 3,137 hulls for 14,608 faces.
 constexpr double kPaperHullsPerFace = 3137.0 / 14608.0;
 
-void decompose_scene(benchmark::State& state, std::shared_ptr<PreparedMesh> prepared, MergeOrder order) {
+// Hull counts of the prototype with the paper's conditions alone
+// (../shared/DESIGN.md, "Where the paper's four conditions are not enough").
+const std::map<std::string, double> kPrototypePaperHulls = {
+    {"sauerbraten-fdm6.obj", 3112},   {"sauerbraten-pandora.obj", 21098},       {"recast-dungeon.obj", 3231},
+    {"threejs-collision-world.glb", 368}, {"recast-nav_test.obj", 714}};
+
+void decompose_scene(benchmark::State& state, std::shared_ptr<PreparedMesh> prepared, std::string scene,
+                     MergeOrder order, ValidityMode conditions) {
   DecomposeOptions options;
   options.order = order;
+  options.conditions = conditions;
   size_t hulls = 0;
   for (auto _ : state) {
     Result<Covering> covering = decompose(*prepared, options);
@@ -40,6 +50,8 @@ void decompose_scene(benchmark::State& state, std::shared_ptr<PreparedMesh> prep
   state.counters["hulls"] = static_cast<double>(hulls);
   state.counters["hulls_per_face"] = hulls / faces;
   state.counters["vs_paper_ratio"] = hulls / faces / kPaperHullsPerFace;
+  if (const auto prototype = kPrototypePaperHulls.find(scene); prototype != kPrototypePaperHulls.end())
+    state.counters["vs_prototype_paper"] = static_cast<double>(hulls) / prototype->second;
   // Seconds per 20K faces, from the mean iteration time.
   state.counters["s_per_20k_faces"] =
       benchmark::Counter(faces / 20000.0, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
@@ -58,9 +70,14 @@ int main(int argc, char** argv) {
       return 2;
     }
     auto shared = std::make_shared<PreparedMesh>(std::move(prepared).value());
-    for (MergeOrder order : {MergeOrder::compact, MergeOrder::random}) {
-      const std::string name = std::string("decompose/") + scene + (order == MergeOrder::compact ? "/compact" : "/random");
-      benchmark::RegisterBenchmark(name.c_str(), decompose_scene, shared, order)
+    const std::pair<MergeOrder, ValidityMode> runs[] = {{MergeOrder::compact, ValidityMode::paper},
+                                                         {MergeOrder::compact, ValidityMode::exact},
+                                                         {MergeOrder::random, ValidityMode::exact}};
+    for (const auto& [order, conditions] : runs) {
+      const std::string name = std::string("decompose/") + scene +
+                               (order == MergeOrder::compact ? "/compact" : "/random") +
+                               (conditions == ValidityMode::paper ? "/paper" : "/exact");
+      benchmark::RegisterBenchmark(name.c_str(), decompose_scene, shared, std::string(scene), order, conditions)
           ->Unit(benchmark::kMillisecond)
           ->MeasureProcessCPUTime()
           ->UseRealTime();

@@ -44,7 +44,7 @@ struct FreeSpaceSweep {
   Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
   std::vector<Eigen::Vector3d> base;     ///< the face or edge swept
   std::vector<Eigen::Vector3d> corners;  ///< the base at t = 0 and at the reach
-  double reach = 0.0;             ///< scene units
+  double reach = 0.0;             ///< scene units, from the base (the free-space reach plus the rays' stand-off)
   bool enclosed_allowed = false;  ///< front space may be enclosed (first meet a face from behind)
 };
 
@@ -57,6 +57,21 @@ FreeSpaceSweep front_space_sweep(const std::vector<Eigen::Vector3d>& corners, co
 FreeSpaceSweep opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
                              const Eigen::Vector3d& face_normal, double reach, double tol);
 
+/// A solid hull's interior: the hull shrunk by tol (what "strictly inside"
+/// means), as planes and facet polygons. Empty for a hull thinner than 2 tol.
+struct HullInterior {
+  std::vector<Plane> planes;                         ///< the hull's planes moved in by tol
+  std::vector<std::vector<Eigen::Vector3d>> facets;  ///< per plane, its facet (empty when gone)
+  bool empty() const {
+    for (const auto& f : facets)
+      if (!f.empty()) return false;
+    return true;
+  }
+};
+
+/// The interior of `hull` (facets and planes in the same order).
+HullInterior hull_interior(const ConvexPolytope& hull, double tol);
+
 /// Rays of the free space start this many tolerances off the surface they
 /// leave, as the audit's probe rays do.
 inline constexpr double kRayStandOffInTolerances = 2.0;
@@ -68,7 +83,7 @@ inline constexpr double kRayStandOffInTolerances = 2.0;
 /// loses space when it is inside the hull before its first mesh hit and
 /// within the reach; a ray whose first hit is the back of a face runs
 /// through enclosed space, which front space may.
-bool sweep_enters_hull(const SceneIndex& index, const FreeSpaceSweep& sweep, const ConvexPolytope& hull,
+bool sweep_enters_hull(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
                        std::vector<int>& scratch);
 
 /// E2 (and the paper's condition 3) for a flat polygon: true when the bar or
@@ -86,7 +101,7 @@ bool sheet_enters_interior(const std::vector<Plane>& planes, const std::vector<E
 /// E3: true when part of the front sweep's base (a face) lies deeper than
 /// `tol` inside the solid hull and its front space from there, judged like
 /// `sweep_enters_hull`'s, is lost.
-bool crossing_face_leaks(const SceneIndex& index, const FreeSpaceSweep& sweep, const ConvexPolytope& hull,
+bool crossing_face_leaks(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
                          std::vector<int>& scratch);
 
 } // namespace hullcover
