@@ -22,8 +22,8 @@ for scene in threejs-collision-world.glb recast-nav_test.obj recast-dungeon.obj 
     per_face=$(sed -E 's/.* ([0-9.]+) hulls\/face.*/\1/' <<<"$line")
     seconds=$(sed -E 's/.*hulls\/face\), ([0-9.]+) s.*/\1/' <<<"$line")
     audit=$("$bin" audit "$scenes/$scene" "$out/h.hcw" --proxies 100 || true)
-    front=$(grep "front free space" <<<"$audit" | sed -E 's/.*: ([0-9]+) of ([0-9]+) points lost \(([0-9.]+%)\).*/\1 (\3)/')
-    openings=$(grep "openings:" <<<"$audit" | sed -E 's/.*: ([0-9]+) of ([0-9]+) points lost \(([0-9.]+%)\).*/\1 (\3)/')
+    front=$(grep "front free space" <<<"$audit" | sed -E 's/.*: +([0-9]+) of ([0-9]+) points lost \(([0-9.]+%)\).*/\1 (\3)/')
+    openings=$(grep "openings:" <<<"$audit" | sed -E 's/.*: +([0-9]+) of ([0-9]+) points lost \(([0-9.]+%)\).*/\1 (\3)/')
     volume=$(grep "free volume" <<<"$audit" | sed -E 's/.*\(([0-9.]+%)\).*/\1/')
     echo "| $scene | $mode | $hulls | $per_face | $seconds | $front | $openings | $volume |"
   done
