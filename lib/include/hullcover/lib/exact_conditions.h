@@ -31,7 +31,6 @@
 #include "hullcover/lib/planar_hull.h"
 #include "hullcover/lib/scene_index.h"
 
-
 namespace hullcover {
 
 /// A piece of free space: a face's triangle, or an open edge, swept along
@@ -76,13 +75,14 @@ HullInterior hull_interior(const ConvexPolytope& hull, double tol);
 /// leave, as the audit's probe rays do.
 inline constexpr double kRayStandOffInTolerances = 2.0;
 
-/// E1/E2: true when free space of `sweep` lies deeper than tol inside the
-/// solid `hull`. Each region of a facet through which the sweep enters the
-/// hull (and, for front space, leaves it through one facet) is judged by its
-/// middle ray, as the audit's probe would judge it: the ray from the base
-/// loses space when it is inside the hull before its first mesh hit and
-/// within the reach; a ray whose first hit is the back of a face runs
-/// through enclosed space, which front space may.
+/// E1/E2: true when free space of `sweep` lies inside `interior` (a solid
+/// hull shrunk by tol). Each region of an interior facet through which the
+/// sweep enters (and, for front space, each facet it leaves through) is
+/// judged by a grid of witness rays, as the audit's probe judges its rays:
+/// a ray from the base loses space when it is inside before its first mesh
+/// hit and within the reach; a ray whose first hit is the back of a face
+/// runs through enclosed space, which front space may. Exact up to that
+/// sampling: rays between the witnesses are not traced.
 bool sweep_enters_hull(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
                        std::vector<int>& scratch);
 
