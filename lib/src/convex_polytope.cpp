@@ -48,6 +48,15 @@ std::vector<Eigen::Vector3d> clip_polygon(const std::vector<Eigen::Vector3d>& po
   return out;
 }
 
+std::vector<Eigen::Vector3d> clip_polygon_to_planes(std::vector<Eigen::Vector3d> polygon,
+                                                    const std::vector<Plane>& planes, double inset) {
+  for (const Plane& plane : planes) {
+    if (polygon.empty()) break;
+    polygon = clip_polygon(polygon, plane, inset);
+  }
+  return polygon;
+}
+
 double polytope_volume(const ConvexPolytope& polytope) {
   if (polytope.vertices.empty()) return 0.0;
   const Eigen::Vector3d& apex = polytope.vertices.front();

@@ -12,26 +12,18 @@
 namespace hullcover {
 namespace {
 
-std::vector<Eigen::Vector3d> clip_to_planes(std::vector<Eigen::Vector3d> part, const std::vector<Plane>& planes,
-                                            double inset) {
-  for (const Plane& plane : planes) {
-    if (part.empty()) break;
-    part = clip_polygon(part, plane, inset);
-  }
-  return part;
-}
-
 Plane plane_through(const Eigen::Vector3d& normal, const Eigen::Vector3d& point) {
   return {normal, normal.dot(point)};
 }
 
-// Where the ray from `origin` along unit `dir` first lies deeper than tol
-// behind every plane, if it ever does (Cyrus-Beck on t >= 0).
+// Where the ray from `origin` along unit `dir` first lies strictly behind
+// every plane (of an interior, already shrunk by tol), if it ever does
+// (Cyrus-Beck on t >= 0).
 std::optional<double> ray_entry(const std::vector<Plane>& planes, const Eigen::Vector3d& origin,
-                                const Eigen::Vector3d& dir, double tol) {
+                                const Eigen::Vector3d& dir) {
   double enter = 0.0, leave = std::numeric_limits<double>::infinity();
   for (const Plane& plane : planes) {
-    const double start = plane.signed_distance(origin) + tol;  // must become < 0
+    const double start = plane.signed_distance(origin);  // must become < 0
     const double rate = plane.normal.dot(dir);
     if (rate == 0.0) {
       if (start >= 0.0) return std::nullopt;
@@ -106,7 +98,7 @@ bool witness_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, c
   const Eigen::Vector3d& dir = sweep.direction;
   const Eigen::Vector3d base = point + sweep.start.signed_distance(point) * dir;
   const double stand_off = kRayStandOffInTolerances * tol;
-  const std::optional<double> inside_from = ray_entry(interior.planes, base + stand_off * dir, dir, 0.0);
+  const std::optional<double> inside_from = ray_entry(interior.planes, base + stand_off * dir, dir);
   if (!inside_from) return false;
   const double enter = stand_off + *inside_from;
   if (enter > sweep.reach) return false;
@@ -256,9 +248,7 @@ bool crossing_face_leaks(const SceneIndex& index, const FreeSpaceSweep& sweep, c
     for (const Eigen::Vector3d& c : sweep.base) beyond &= plane.signed_distance(c) > 0.0;
     if (beyond) return false;
   }
-  std::vector<Eigen::Vector3d> inside = sweep.base;
-  for (size_t k = 0; k < interior.planes.size() && !inside.empty(); ++k)
-    inside = clip_polygon(inside, interior.planes[k], 0.0);
+  const std::vector<Eigen::Vector3d> inside = clip_polygon_to_planes(sweep.base, interior.planes, 0.0);
   if (inside.empty()) return false;
   for (size_t j = 0; j < interior.facets.size(); ++j) {
     if (interior.facets[j].empty() || interior.planes[j].normal.dot(sweep.direction) <= 0.0) continue;
@@ -269,7 +259,7 @@ bool crossing_face_leaks(const SceneIndex& index, const FreeSpaceSweep& sweep, c
 }
 
 bool sheet_enters_interior(const std::vector<Plane>& planes, const std::vector<Eigen::Vector3d>& sheet, double tol) {
-  return !clip_to_planes(sheet, planes, tol).empty();
+  return !clip_polygon_to_planes(sheet, planes, tol).empty();
 }
 
 bool bar_crosses_polygon(const FlatPolygon& polygon, const BoundaryBar& bar, double tol) {
@@ -291,9 +281,7 @@ bool bar_crosses_polygon(const FlatPolygon& polygon, const BoundaryBar& bar, dou
     highest = std::max(highest, polygon.plane.signed_distance(p));
   }
   if (lowest >= -tol || highest <= tol) return false;
-  std::vector<Eigen::Vector3d> on_plane = clip_polygon(sheet, polygon.plane, -tol);
-  on_plane = clip_polygon(on_plane, {-polygon.plane.normal, -polygon.plane.offset}, -tol);
-  return !clip_to_planes(on_plane, polygon.sides, tol).empty();
+  return meets_polygon_interior(polygon, sheet, tol);
 }
 
 } // namespace hullcover

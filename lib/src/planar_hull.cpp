@@ -117,6 +117,12 @@ FlatPolygon make_flat_polygon(const std::vector<Eigen::Vector3d>& positions, con
   return polygon;
 }
 
+bool meets_polygon_interior(const FlatPolygon& polygon, const std::vector<Eigen::Vector3d>& part, double tol) {
+  std::vector<Eigen::Vector3d> on_plane = clip_polygon(part, polygon.plane, -tol);
+  on_plane = clip_polygon(on_plane, {-polygon.plane.normal, -polygon.plane.offset}, -tol);
+  return !clip_polygon_to_planes(std::move(on_plane), polygon.sides, tol).empty();
+}
+
 ConvexPolytope flat_polytope(const FlatPolygon& polygon, bool side_planes) {
   ConvexPolytope flat;
   flat.vertices = polygon.corners;

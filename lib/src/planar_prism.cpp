@@ -20,17 +20,6 @@ constexpr int kBottomRetries = 8;
 // Depth below the polygon's plane (positive behind the front).
 double depth_below(const FlatPolygon& polygon, const Eigen::Vector3d& p) { return -polygon.plane.signed_distance(p); }
 
-// The part of a convex polygon inside the column bounded by `sides` shrunk
-// by tol; empty when it misses.
-std::vector<Eigen::Vector3d> clip_to_column(std::vector<Eigen::Vector3d> part, const std::vector<Plane>& sides,
-                                            double tol) {
-  for (const Plane& side : sides) {
-    if (part.empty()) break;
-    part = clip_polygon(part, side, tol);
-  }
-  return part;
-}
-
 double distance_to_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   const Eigen::Vector3d ab = b - a;
   const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
@@ -93,7 +82,7 @@ double allowed_prism_thickness(const SceneIndex& index, const FlatPolygon& polyg
   for (int f : scratch) {
     if (in_patch(f)) continue;
     for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[f][k]];
-    const std::vector<Eigen::Vector3d> part = clip_to_column(triangle, sides, tol);
+    const std::vector<Eigen::Vector3d> part = clip_polygon_to_planes(triangle, sides, tol);
     if (part.empty()) continue;
     double shallowest = depth_below(polygon, part[0]), deepest = shallowest;
     for (const Eigen::Vector3d& p : part) {
@@ -114,7 +103,7 @@ double allowed_prism_thickness(const SceneIndex& index, const FlatPolygon& polyg
   index.bars_overlapping(region, scratch);
   for (int b : scratch) {
     const BoundaryBar& bar = index.bars[b];
-    const std::vector<Eigen::Vector3d> segment = clip_to_column(bar.outline(), sides, tol);
+    const std::vector<Eigen::Vector3d> segment = clip_polygon_to_planes(bar.outline(), sides, tol);
     if (segment.empty()) continue;
     double shallowest = depth_below(polygon, segment[0]), deepest = shallowest;
     for (const Eigen::Vector3d& p : segment) {

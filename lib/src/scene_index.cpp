@@ -53,7 +53,7 @@ SceneIndex build_scene_index(const PreparedMesh& prepared, const BarOptions& opt
   index.prepared = &prepared;
   index.mode = options.mode;
   index.free_space_reach = options.free_space_reach;
-  index.open_edge_face.assign(prepared.connectivity.edges.size(), -1);
+  index.open_edge_use.assign(prepared.connectivity.edges.size(), -1);
   const Mesh& mesh = prepared.mesh;
   const MeshConnectivity& c = prepared.connectivity;
   const int face_count = static_cast<int>(mesh.triangles.size());
@@ -72,10 +72,10 @@ SceneIndex build_scene_index(const PreparedMesh& prepared, const BarOptions& opt
       const int face = c.edge_uses[edge.first_use].face;
       if (c.zero_area[face]) continue;
       add_bar(index, e, face, options.half_length);
-      index.open_edge_face[e] = face;
+      index.open_edge_use[e] = edge.first_use;
     } else if (options.mode == ValidityMode::exact && is_fold_edge(prepared, e)) {
       add_bar(index, e, c.edge_uses[edge.first_use].face, options.half_length);
-      index.open_edge_face[e] = c.edge_uses[edge.first_use].face;
+      index.open_edge_use[e] = edge.first_use;
     } else if (options.material_boundaries && edge.kind == EdgeKind::manifold) {
       const int f0 = c.edge_uses[edge.first_use].face, f1 = c.edge_uses[edge.first_use + 1].face;
       if (mesh.material_ids[f0] == mesh.material_ids[f1]) continue;

@@ -62,15 +62,15 @@ Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& h
   index.edge_tree.overlapping(reached, scratch);
   const MeshConnectivity& c = index.prepared->connectivity;
   for (int e : scratch) {
-    const int face = index.open_edge_face[e];
-    if (face < 0) continue;
-    const Eigen::Vector3d& p0 = mesh.positions[c.edges[e].v0];
-    const Eigen::Vector3d& p1 = mesh.positions[c.edges[e].v1];
-    const Eigen::Vector3i& t = mesh.triangles[face];
-    const Eigen::Vector3d& inner = mesh.positions[t[0] != c.edges[e].v0 && t[0] != c.edges[e].v1 ? t[0]
-                                                  : t[1] != c.edges[e].v0 && t[1] != c.edges[e].v1 ? t[1]
-                                                                                                   : t[2]];
-    if (sweep_enters_hull(index, opening_sweep(p0, p1, inner, index.face_normals[face], reach, tol), interior,
+    if (index.open_edge_use[e] < 0) continue;
+    // The use names the face and where the edge sits in it: its far corner
+    // is the face's side of the edge.
+    const EdgeUse& use = c.edge_uses[index.open_edge_use[e]];
+    const Eigen::Vector3i& t = mesh.triangles[use.face];
+    const Eigen::Vector3d& p0 = mesh.positions[t[use.corner]];
+    const Eigen::Vector3d& p1 = mesh.positions[t[(use.corner + 1) % 3]];
+    const Eigen::Vector3d& inner = mesh.positions[t[(use.corner + 2) % 3]];
+    if (sweep_enters_hull(index, opening_sweep(p0, p1, inner, index.face_normals[use.face], reach, tol), interior,
                           ray_scratch))
       return Validity::opening_inside;
   }
@@ -110,23 +110,6 @@ Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, s
   return check_exact_solid_hull(index, hull, box, scratch);
 }
 
-namespace {
-
-// Does the part of triangle t within tol of the polygon's plane reach the
-// polygon's interior (shrunk by tol)?
-bool triangle_touches_polygon_interior(const FlatPolygon& polygon, const std::vector<Eigen::Vector3d>& triangle,
-                                       double tol) {
-  std::vector<Eigen::Vector3d> part = clip_polygon(triangle, polygon.plane, -tol);
-  part = clip_polygon(part, {-polygon.plane.normal, -polygon.plane.offset}, -tol);
-  for (const Plane& side : polygon.sides) {
-    if (part.empty()) return false;
-    part = clip_polygon(part, side, tol);
-  }
-  return !part.empty();
-}
-
-} // namespace
-
 Validity check_flat_polygon(const SceneIndex& index, const FlatPolygon& polygon,
                             const std::function<bool(int)>& in_patch, std::vector<int>& scratch) {
   const double tol = index.tol();
@@ -148,7 +131,7 @@ Validity check_flat_polygon(const SceneIndex& index, const FlatPolygon& polygon,
       triangle[k] = mesh.positions[mesh.triangles[f][k]];
       below |= polygon.plane.signed_distance(triangle[k]) < -tol;
     }
-    if (below && triangle_touches_polygon_interior(polygon, triangle, tol)) return Validity::face_below_polygon;
+    if (below && meets_polygon_interior(polygon, triangle, tol)) return Validity::face_below_polygon;
   }
   return Validity::valid;
 }

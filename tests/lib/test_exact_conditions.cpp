@@ -83,7 +83,9 @@ TEST(ExactConditions, EnclosedSpaceMayBeFilled) {
   const auto exact = decompose_and_check(m, with_conditions(ValidityMode::exact));
   ASSERT_TRUE(exact);
   for (const CoveringHull& h : exact->covering.hulls)
-    if (!h.planar) EXPECT_NEAR(h.volume, 1.0, 1e-9);
+    if (!h.planar) {
+      EXPECT_NEAR(h.volume, 1.0, 1e-9);
+    }
   EXPECT_TRUE(test::point_inside_covering(exact->covering, V(0.5, 0.5, 0.5), exact->tol()));
 }
 

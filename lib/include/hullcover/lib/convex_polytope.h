@@ -53,6 +53,11 @@ bool segment_enters_interior(const std::vector<Plane>& planes, const Eigen::Vect
 std::vector<Eigen::Vector3d> clip_polygon(const std::vector<Eigen::Vector3d>& polygon, const Plane& plane,
                                           double inset);
 
+/// `clip_polygon` by every plane of `planes` in turn, with the same inset;
+/// stops early once nothing is left.
+std::vector<Eigen::Vector3d> clip_polygon_to_planes(std::vector<Eigen::Vector3d> polygon,
+                                                    const std::vector<Plane>& planes, double inset);
+
 /// Volume of a closed polytope (0 for a flat one), from its facets.
 double polytope_volume(const ConvexPolytope& polytope);
 

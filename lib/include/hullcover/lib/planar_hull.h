@@ -65,6 +65,11 @@ struct FlatPolygon {
 FlatPolygon make_flat_polygon(const std::vector<Eigen::Vector3d>& positions, const std::vector<int>& vertex_ids,
                               const Eigen::Vector3d& normal, double tol);
 
+/// True when the part of convex polygon `part` (a triangle, a sheet) lying
+/// within `tol` of `polygon`'s plane reaches the polygon's relative interior
+/// shrunk by `tol`.
+bool meets_polygon_interior(const FlatPolygon& polygon, const std::vector<Eigen::Vector3d>& part, double tol);
+
 /// The flat polygon as a polytope of thickness 0: a front and a back facet
 /// on the same corners; with `side_planes`, also the planes that bound it
 /// sideways (see ConvexPolytope), without them a closed surface that

@@ -56,9 +56,10 @@ struct SceneIndex {
   const PreparedMesh* prepared = nullptr;
   ValidityMode mode = ValidityMode::paper;
   double free_space_reach = 0.0;  ///< exact mode, scene units
-  /// Per edge: the face whose plane holds the opening beyond it (boundary
-  /// and, in exact mode, fold edges), or -1 for an edge that is not open.
-  std::vector<int> open_edge_face;
+  /// Per edge: the use (index into MeshConnectivity::edge_uses) of the face
+  /// whose plane holds the opening beyond it (boundary and, in exact mode,
+  /// fold edges), or -1 for an edge that is not open.
+  std::vector<int> open_edge_use;
   /// Unit front normal per face; zero for zero-area faces.
   std::vector<Eigen::Vector3d> face_normals;
   /// Area per face, scene units squared.
