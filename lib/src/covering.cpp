@@ -23,6 +23,8 @@ Status check_options(const DecomposeOptions& o) {
     return {StatusCode::invalid_argument, "free-space reach must be a positive length"};
   if (o.prism_thickness_cap && !(std::isfinite(*o.prism_thickness_cap) && *o.prism_thickness_cap >= 0.0))
     return {StatusCode::invalid_argument, "prism thickness cap must be a length >= 0"};
+  if (o.near_merge_distance && !(std::isfinite(*o.near_merge_distance) && *o.near_merge_distance >= 0.0))
+    return {StatusCode::invalid_argument, "near-merge distance must be a length >= 0"};
   if (o.max_hull_vertices < 8)
     return {StatusCode::invalid_argument, "max hull vertices must be at least 8 (a prism over a quad)"};
   return Status::success();
@@ -73,6 +75,7 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
       exact ? kExactBarHalfLengthInTolerances * prepared.tolerance.length : kDefaultBarHalfLengthRelative * diagonal);
   covering.free_space_reach = options.free_space_reach.value_or(kDefaultFreeSpaceReachRelative * diagonal);
   covering.prism_thickness_cap = options.prism_thickness_cap.value_or(kDefaultPrismCapRelative * diagonal);
+  covering.near_merge_distance = options.near_merge_distance.value_or(exact ? kDefaultNearMergeRelative * diagonal : 0.0);
   CoveringStatistics& stats = covering.statistics;
   stats.faces = static_cast<int>(prepared.mesh.triangles.size());
 
@@ -83,7 +86,7 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
   stats.seconds_index = seconds_since(start);
 
   start = Clock::now();
-  detail::PatchMerger merger(index, options, stats);
+  detail::PatchMerger merger(index, options, covering.near_merge_distance, stats);
   merger.run();
   stats.seconds_merging = seconds_since(start);
 

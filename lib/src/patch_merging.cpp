@@ -4,6 +4,7 @@
 #include "hullcover/lib/planar_hull.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace hullcover::detail {
@@ -48,8 +49,9 @@ double merged_patch_cost(const Patch& a, const Patch& b, double shared) {
   return boundary / std::sqrt(a.area + b.area);
 }
 
-PatchMerger::PatchMerger(const SceneIndex& index, const DecomposeOptions& options, CoveringStatistics& statistics)
-    : index_(index), options_(options), statistics_(statistics) {
+PatchMerger::PatchMerger(const SceneIndex& index, const DecomposeOptions& options, double near_merge_distance,
+                         CoveringStatistics& statistics)
+    : index_(index), options_(options), statistics_(statistics), near_merge_distance_(near_merge_distance) {
   const Mesh& mesh = index.mesh();
   const MeshConnectivity& c = index.prepared->connectivity;
   const int face_count = static_cast<int>(mesh.triangles.size());
@@ -90,36 +92,46 @@ void PatchMerger::push_pair(int a, int b) {
   if (a > b) std::swap(a, b);
   const Patch& pa = patches_[a];
   const Patch& pb = patches_[b];
+  const auto shared = pa.shared_length.find(b);
   const double cost = options_.order == MergeOrder::compact
-                          ? merged_patch_cost(pa, pb, pa.shared_length.at(b))
+                          ? merged_patch_cost(pa, pb, shared == pa.shared_length.end() ? 0.0 : shared->second)
                           : pseudo_random_cost(options_.seed, a, b, pa.version, pb.version);
   queue_.push_back({cost, a, b, pa.version, pb.version});
   std::push_heap(queue_.begin(), queue_.end(), std::greater<>());
 }
 
-PatchMerger::Candidate PatchMerger::evaluate(int a, int b) {
-  const Patch& pa = patches_[a];
-  const Patch& pb = patches_[b];
+PatchMerger::Candidate PatchMerger::evaluate(const std::vector<int>& group) {
   const Mesh& mesh = index_.mesh();
   const double tol = index_.tol();
   Candidate out;
-  if (options_.keep_materials_apart && pa.material != pb.material) {
-    out.validity = Validity::materials_differ;
-    return out;
-  }
+  for (int p : group)
+    if (options_.keep_materials_apart && patches_[p].material != patches_[group[0]].material) {
+      out.validity = Validity::materials_differ;
+      return out;
+    }
   // Condition 2 first: it needs no hull and rejects every concave pair.
-  if (!planes_support_points(pa.face_planes, positions_of(mesh, pb.hull_vertices), tol) ||
-      !planes_support_points(pb.face_planes, positions_of(mesh, pa.hull_vertices), tol)) {
-    out.validity = Validity::face_not_on_hull;
-    return out;
-  }
+  for (int p : group)
+    for (int q : group)
+      if (p != q && !planes_support_points(patches_[p].face_planes, positions_of(mesh, patches_[q].hull_vertices), tol)) {
+        out.validity = Validity::face_not_on_hull;
+        return out;
+      }
   std::vector<int> ids;
-  std::set_union(pa.hull_vertices.begin(), pa.hull_vertices.end(), pb.hull_vertices.begin(), pb.hull_vertices.end(),
-                 std::back_inserter(ids));
+  for (int p : group) ids.insert(ids.end(), patches_[p].hull_vertices.begin(), patches_[p].hull_vertices.end());
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
   const std::vector<Eigen::Vector3d> points = positions_of(mesh, ids);
 
-  if (pa.planar && pb.planar && pa.area_vector.dot(pb.area_vector) > 0.0) {
-    const Eigen::Vector3d normal = (pa.area_vector + pb.area_vector).normalized();
+  Eigen::Vector3d area_vector = Eigen::Vector3d::Zero();
+  bool all_planar = true;
+  for (int p : group) {
+    area_vector += patches_[p].area_vector;
+    all_planar &= patches_[p].planar;
+  }
+  bool same_side = all_planar;
+  for (int p : group) same_side &= patches_[p].area_vector.dot(area_vector - patches_[p].area_vector) > 0.0;
+  if (same_side) {
+    const Eigen::Vector3d normal = area_vector.normalized();
     double low = normal.dot(points[0]), high = low;
     for (const Eigen::Vector3d& p : points) {
       low = std::min(low, normal.dot(p));
@@ -135,13 +147,15 @@ PatchMerger::Candidate PatchMerger::evaluate(int a, int b) {
         return out;
       }
       out.validity = check_flat_polygon(
-          index_, polygon, [&](int f) { return face_patch_[f] == a || face_patch_[f] == b; }, scratch_);
+          index_, polygon,
+          [&](int f) { return std::find(group.begin(), group.end(), face_patch_[f]) != group.end(); }, scratch_);
       return out;
     }
   }
 
-  std::optional<ConvexPolytope> hull = grow_known_hull(pa, pb);
-  if (!hull) hull = grow_known_hull(pb, pa);
+  std::optional<ConvexPolytope> hull;
+  for (int p : group)
+    if (!hull) hull = grow_known_hull(patches_[p], ids);
   if (!hull) {
     Result<ConvexPolytope> built = hull_builder_.build(points, ids);
     ++statistics_.qhull_calls;
@@ -162,9 +176,9 @@ PatchMerger::Candidate PatchMerger::evaluate(int a, int b) {
   return out;
 }
 
-std::optional<ConvexPolytope> PatchMerger::grow_known_hull(const Patch& base, const Patch& other) {
+std::optional<ConvexPolytope> PatchMerger::grow_known_hull(const Patch& base, const std::vector<int>& all_vertices) {
   std::vector<int> added;
-  std::set_difference(other.hull_vertices.begin(), other.hull_vertices.end(), base.hull_vertices.begin(),
+  std::set_difference(all_vertices.begin(), all_vertices.end(), base.hull_vertices.begin(),
                       base.hull_vertices.end(), std::back_inserter(added));
   if (static_cast<int>(added.size()) > kMostPointsToAddIncrementally) return std::nullopt;
   std::optional<ConvexPolytope> hull;
@@ -189,7 +203,7 @@ std::optional<ConvexPolytope> PatchMerger::grow_known_hull(const Patch& base, co
   return hull;
 }
 
-void PatchMerger::merge(int a, int b, Candidate&& candidate) {
+int PatchMerger::merge(int a, int b, Candidate&& candidate) {
   // The larger patch absorbs the smaller one (ties: the lower id survives),
   // so each face moves O(log n) times.
   int keep = a, gone = b;
@@ -198,7 +212,10 @@ void PatchMerger::merge(int a, int b, Candidate&& candidate) {
   Patch& g = patches_[gone];
   const double cosine_gap = same_plane_cosine_gap(index_);
 
-  k.boundary_length = std::max(0.0, k.boundary_length + g.boundary_length - 2.0 * k.shared_length.at(gone));
+  const auto shared = k.shared_length.find(gone);
+  const bool near_merge = shared == k.shared_length.end();
+  const double shared_length = near_merge ? 0.0 : shared->second;
+  k.boundary_length = std::max(0.0, k.boundary_length + g.boundary_length - 2.0 * shared_length);
   k.area += g.area;
   k.area_vector += g.area_vector;
   for (int f : g.faces) face_patch_[f] = keep;
@@ -221,10 +238,52 @@ void PatchMerger::merge(int a, int b, Candidate&& candidate) {
   g.alive = false;
   ++k.version;
   ++statistics_.merges;
+  statistics_.near_merges += near_merge;
   for (const auto& [neighbour, length] : k.shared_length) push_pair(keep, neighbour);
+  return keep;
+}
+
+int PatchMerger::push_near_pairs() {
+  const Mesh& mesh = index_.mesh();
+  const double tol = index_.tol();
+  const int patch_count = static_cast<int>(patches_.size());
+  std::vector<Aabb> boxes(patch_count);  // empty for dead patches: they overlap nothing
+  for (int p = 0; p < patch_count; ++p)
+    if (patches_[p].alive) boxes[p] = grown(bounding_box_of(positions_of(mesh, patches_[p].hull_vertices)), 0.5 * near_merge_distance_);
+  const AabbTree tree(boxes);
+  int pushed = 0;
+  std::vector<int> near;
+  for (int a = 0; a < patch_count; ++a) {
+    const Patch& pa = patches_[a];
+    if (!pa.alive) continue;
+    near.clear();
+    tree.overlapping(boxes[a], near);
+    for (int b : near) {
+      const Patch& pb = patches_[b];
+      if (b <= a || pa.shared_length.count(b)) continue;
+      if (!near_pairs_tried_.insert({a, pa.version, b, pb.version}).second) continue;
+      if (!planes_support_points(pa.face_planes, positions_of(mesh, pb.hull_vertices), tol) ||
+          !planes_support_points(pb.face_planes, positions_of(mesh, pa.hull_vertices), tol))
+        continue;
+      push_pair(a, b);
+      ++pushed;
+    }
+  }
+  return pushed;
 }
 
 void PatchMerger::run() {
+  run_pairs();
+  if (near_merge_distance_ <= 0.0) return;
+  for (;;) {
+    const int merges = statistics_.merges;
+    if (push_near_pairs() == 0) break;
+    run_pairs();
+    if (statistics_.merges == merges) break;
+  }
+}
+
+void PatchMerger::run_pairs() {
   const int start_patches = static_cast<int>(patches_.size()) - statistics_.zero_area_faces_skipped;
   constexpr int kProgressEvery = 2048;
   while (!queue_.empty()) {
@@ -235,7 +294,7 @@ void PatchMerger::run() {
     const Patch& pb = patches_[entry.b];
     if (!pa.alive || !pb.alive || pa.version != entry.version_a || pb.version != entry.version_b) continue;
     ++statistics_.candidates_tested;
-    Candidate candidate = evaluate(entry.a, entry.b);
+    Candidate candidate = evaluate({entry.a, entry.b});
     if (candidate.validity != Validity::valid) {
       ++statistics_.rejections[static_cast<int>(candidate.validity)];
       continue;

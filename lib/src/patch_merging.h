@@ -7,6 +7,8 @@
 
 #include <map>
 #include <optional>
+#include <set>
+#include <array>
 #include <vector>
 
 namespace hullcover::detail {
@@ -34,9 +36,12 @@ double merged_patch_cost(const Patch& a, const Patch& b, double shared);
 /// Runs the merging to the end and returns the surviving patches.
 class PatchMerger {
 public:
-  PatchMerger(const SceneIndex& index, const DecomposeOptions& options, CoveringStatistics& statistics);
+  /// `near_merge_distance`: see DecomposeOptions (0 = the paper's pass alone).
+  PatchMerger(const SceneIndex& index, const DecomposeOptions& options, double near_merge_distance,
+              CoveringStatistics& statistics);
 
-  /// Merges until no mergeable pair is left.
+  /// Merges until no mergeable pair is left: the paper's pass, then near
+  /// merges and the paper's pass again while they merge anything.
   void run();
 
   const std::vector<Patch>& patches() const { return patches_; }
@@ -50,13 +55,22 @@ private:
     std::optional<ConvexPolytope> solid;
   };
 
-  Candidate evaluate(int a, int b);
-  /// hull(base + other) grown from base's known hull, when other adds few
-  /// points; nothing when that does not apply or fails (then Qhull runs).
-  std::optional<ConvexPolytope> grow_known_hull(const Patch& base, const Patch& other);
+  /// The union of the patches in `group` as one hull, and whether it is valid.
+  Candidate evaluate(const std::vector<int>& group);
+  /// The hull of `all_vertices` (ascending mesh vertex ids) grown from
+  /// base's known hull, when they add few points to it; nothing when that
+  /// does not apply or fails (then Qhull runs).
+  std::optional<ConvexPolytope> grow_known_hull(const Patch& base, const std::vector<int>& all_vertices);
   /// Beyond this many new points a rebuild is as cheap as growing.
   static constexpr int kMostPointsToAddIncrementally = 6;
-  void merge(int a, int b, Candidate&& candidate);
+  /// Merges b into a or a into b; returns the one that is kept.
+  int merge(int a, int b, Candidate&& candidate);
+  /// Takes pairs off the queue until it is empty.
+  void run_pairs();
+  /// Queues every pair of patches sharing no edge whose boxes, grown by the
+  /// near-merge distance, overlap, and that pass condition 2, unless tried
+  /// before as they are; returns how many.
+  int push_near_pairs();
   void push_pair(int a, int b);
 
   struct QueueEntry {
@@ -78,6 +92,8 @@ private:
   std::vector<QueueEntry> queue_;  // a min-heap by QueueEntry::operator>
   ConvexHullBuilder hull_builder_;
   std::vector<int> scratch_;
+  double near_merge_distance_;
+  std::set<std::array<int, 4>> near_pairs_tried_;  // {a, version a, b, version b}
 };
 
 } // namespace hullcover::detail

@@ -7,7 +7,9 @@
 /// consistently oriented edge are mergeable when their union is valid
 /// (validity_conditions.h); the cheapest mergeable pair, cost = 1 /
 /// compactness = boundary length / sqrt(area), is merged until none is
-/// left. Planar patches become prisms (planar_prism.h).
+/// left. Beyond the paper, a near-merge pass then tries patches that share
+/// no edge but lie close (DecomposeOptions::near_merge_distance). Planar
+/// patches become prisms (planar_prism.h).
 
 #include "hullcover/lib/convex_polytope.h"
 #include "hullcover/lib/prepared_mesh.h"
@@ -33,6 +35,10 @@ inline constexpr double kExactBarHalfLengthInTolerances = 4.0;
 /// audit's default probe distance, so the decomposer keeps all the free
 /// space the audit looks at.
 inline constexpr double kDefaultFreeSpaceReachRelative = 0.02;
+/// Default distance of the near-merge pass (exact mode) as a fraction of
+/// the diagonal: the free-space reach, so patches are joined across gaps
+/// no wider than the space the exact conditions look at in front of them.
+inline constexpr double kDefaultNearMergeRelative = kDefaultFreeSpaceReachRelative;
 /// Default cap on prism thickness as a fraction of the diagonal.
 inline constexpr double kDefaultPrismCapRelative = 0.01;
 /// PhysX, Unity and Jolt reject convex shapes with more vertices.
@@ -54,6 +60,12 @@ struct DecomposeOptions {
   std::optional<double> bar_half_length;      ///< > 0
   std::optional<double> free_space_reach;     ///< > 0, exact mode
   std::optional<double> prism_thickness_cap;  ///< >= 0
+  /// Second pass, after the paper's merging of patches that share an edge:
+  /// patches sharing none whose bounding boxes come within this distance are
+  /// tried too (under the same conditions), then the paper's pass resumes,
+  /// until neither merges. >= 0, 0 = off; default exact 0.02 x diagonal,
+  /// paper 0 (the paper's algorithm alone).
+  std::optional<double> near_merge_distance;
   MergeOrder order = MergeOrder::compact;
   std::uint64_t seed = 1;                     ///< for MergeOrder::random
   bool keep_materials_apart = false;          ///< one material per hull, bars on material borders
@@ -77,6 +89,7 @@ struct CoveringStatistics {
   int faces = 0;
   int zero_area_faces_skipped = 0;  ///< faces without a normal: covered by no hull
   int merges = 0;
+  int near_merges = 0;             ///< merges of patches sharing no edge (the near-merge pass)
   long candidates_tested = 0;
   std::array<long, kValidityCount> rejections{};  ///< by Validity
   long qhull_calls = 0;
@@ -95,6 +108,7 @@ struct Covering {
   double bar_half_length = 0.0;
   double free_space_reach = 0.0;  ///< exact mode
   double prism_thickness_cap = 0.0;
+  double near_merge_distance = 0.0;  ///< 0 = the pass was off
   DecomposeOptions options;  ///< as given (progress callback included)
   CoveringStatistics statistics;
 };
