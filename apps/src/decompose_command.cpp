@@ -69,7 +69,7 @@ int run_decompose(DecomposeCommandOptions& o) {
   std::printf("  tolerance %.6g, bar half-length %.6g, prism cap %.6g, order %s, conditions %s\n",
               c.tolerance.length, c.bar_half_length, c.prism_thickness_cap, o.order.c_str(), o.conditions.c_str());
   if (c.near_merge_distance > 0.0)
-    std::printf("  near-merge distance %.6g: %d of %d merges joined patches sharing no edge\n", c.near_merge_distance,
+    std::printf("  near merges (patches sharing no edge, within %.6g): %d of %d merges\n", c.near_merge_distance,
                 c.statistics.near_merges, c.statistics.merges);
   std::printf("  wrote %s%s%s%s%s\n", o.obj_path.c_str(), o.json_path.empty() ? "" : ", ", o.json_path.c_str(),
               o.world_path.empty() ? "" : ", ", o.world_path.c_str());
@@ -101,8 +101,9 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
                   "Exact mode: how far free space is kept in front of faces and beyond open edges, scene units "
                   "(default 0.02 x diagonal, the audit's probe distance)");
   cmd->add_option("--near-merge", o->decompose.near_merge_distance,
-                  "Second pass: also merge patches that share no edge but come within this distance, scene units, "
-                  "under the same conditions; 0 = off (default: exact 0.02 x diagonal, paper 0)")
+                  "After the paper's merging, also try patches that share no edge but come within this distance, "
+                  "scene units, under the same conditions; 0 = off, the paper's algorithm alone (default: exact "
+                  "0.02 x diagonal, paper 0)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--seed", o->decompose.seed, "Seed of the random order")->capture_default_str();
   cmd->add_option("--bar-length", o->decompose.bar_half_length,

@@ -75,7 +75,8 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
       exact ? kExactBarHalfLengthInTolerances * prepared.tolerance.length : kDefaultBarHalfLengthRelative * diagonal);
   covering.free_space_reach = options.free_space_reach.value_or(kDefaultFreeSpaceReachRelative * diagonal);
   covering.prism_thickness_cap = options.prism_thickness_cap.value_or(kDefaultPrismCapRelative * diagonal);
-  covering.near_merge_distance = options.near_merge_distance.value_or(exact ? kDefaultNearMergeRelative * diagonal : 0.0);
+  covering.near_merge_distance =
+      options.near_merge_distance.value_or(exact ? kDefaultNearMergeRelative * diagonal : 0.0);
   CoveringStatistics& stats = covering.statistics;
   stats.faces = static_cast<int>(prepared.mesh.triangles.size());
 

@@ -24,13 +24,6 @@ void add_plane(std::vector<Plane>& planes, const Plane& p, double cosine_gap, do
   planes.push_back(p);
 }
 
-std::vector<Eigen::Vector3d> positions_of(const Mesh& mesh, const std::vector<int>& ids) {
-  std::vector<Eigen::Vector3d> out;
-  out.reserve(ids.size());
-  for (int v : ids) out.push_back(mesh.positions[v]);
-  return out;
-}
-
 // splitmix64: a fixed, portable pseudo-random function of the pair.
 double pseudo_random_cost(std::uint64_t seed, int a, int b, int va, int vb) {
   std::uint64_t z = seed ^ (static_cast<std::uint64_t>(a) << 32 | static_cast<std::uint32_t>(b)) ^
@@ -43,6 +36,13 @@ double pseudo_random_cost(std::uint64_t seed, int a, int b, int va, int vb) {
 }
 
 } // namespace
+
+std::vector<Eigen::Vector3d> positions_of(const Mesh& mesh, const std::vector<int>& ids) {
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(ids.size());
+  for (int v : ids) out.push_back(mesh.positions[v]);
+  return out;
+}
 
 double merged_patch_cost(const Patch& a, const Patch& b, double shared) {
   const double boundary = std::max(0.0, a.boundary_length + b.boundary_length - 2.0 * shared);
@@ -58,22 +58,13 @@ PatchMerger::PatchMerger(const SceneIndex& index, const DecomposeOptions& option
   patches_.resize(face_count);
   face_patch_.resize(face_count);
   for (int f = 0; f < face_count; ++f) {
-    Patch& p = patches_[f];
     face_patch_[f] = f;
     if (c.zero_area[f]) {
-      p.alive = false;
+      patches_[f].alive = false;
       ++statistics_.zero_area_faces_skipped;
       continue;
     }
-    const Eigen::Vector3i& t = mesh.triangles[f];
-    p.faces = {f};
-    p.hull_vertices = {t[0], t[1], t[2]};
-    std::sort(p.hull_vertices.begin(), p.hull_vertices.end());
-    p.face_planes = {{index.face_normals[f], index.face_normals[f].dot(mesh.positions[t[0]])}};
-    p.area = index.face_areas[f];
-    p.area_vector = index.face_normals[f] * p.area;
-    for (int k = 0; k < 3; ++k) p.boundary_length += (mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]]).norm();
-    p.material = mesh.material_ids[f];
+    patches_[f] = single_face_patch(f);
   }
   for (const MeshEdge& e : c.edges) {
     if (e.kind != EdgeKind::manifold) continue;
@@ -86,6 +77,21 @@ PatchMerger::PatchMerger(const SceneIndex& index, const DecomposeOptions& option
   for (int f = 0; f < face_count; ++f)
     for (const auto& [g, length] : patches_[f].shared_length)
       if (f < g) push_pair(f, g);
+}
+
+Patch PatchMerger::single_face_patch(int f) const {
+  const Mesh& mesh = index_.mesh();
+  const Eigen::Vector3i& t = mesh.triangles[f];
+  Patch p;
+  p.faces = {f};
+  p.hull_vertices = {t[0], t[1], t[2]};
+  std::sort(p.hull_vertices.begin(), p.hull_vertices.end());
+  p.face_planes = {{index_.face_normals[f], index_.face_normals[f].dot(mesh.positions[t[0]])}};
+  p.area = index_.face_areas[f];
+  p.area_vector = index_.face_normals[f] * p.area;
+  for (int k = 0; k < 3; ++k) p.boundary_length += (mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]]).norm();
+  p.material = mesh.material_ids[f];
+  return p;
 }
 
 void PatchMerger::push_pair(int a, int b) {
@@ -241,46 +247,6 @@ int PatchMerger::merge(int a, int b, Candidate&& candidate) {
   statistics_.near_merges += near_merge;
   for (const auto& [neighbour, length] : k.shared_length) push_pair(keep, neighbour);
   return keep;
-}
-
-int PatchMerger::push_near_pairs() {
-  const Mesh& mesh = index_.mesh();
-  const double tol = index_.tol();
-  const int patch_count = static_cast<int>(patches_.size());
-  std::vector<Aabb> boxes(patch_count);  // empty for dead patches: they overlap nothing
-  for (int p = 0; p < patch_count; ++p)
-    if (patches_[p].alive) boxes[p] = grown(bounding_box_of(positions_of(mesh, patches_[p].hull_vertices)), 0.5 * near_merge_distance_);
-  const AabbTree tree(boxes);
-  int pushed = 0;
-  std::vector<int> near;
-  for (int a = 0; a < patch_count; ++a) {
-    const Patch& pa = patches_[a];
-    if (!pa.alive) continue;
-    near.clear();
-    tree.overlapping(boxes[a], near);
-    for (int b : near) {
-      const Patch& pb = patches_[b];
-      if (b <= a || pa.shared_length.count(b)) continue;
-      if (!near_pairs_tried_.insert({a, pa.version, b, pb.version}).second) continue;
-      if (!planes_support_points(pa.face_planes, positions_of(mesh, pb.hull_vertices), tol) ||
-          !planes_support_points(pb.face_planes, positions_of(mesh, pa.hull_vertices), tol))
-        continue;
-      push_pair(a, b);
-      ++pushed;
-    }
-  }
-  return pushed;
-}
-
-void PatchMerger::run() {
-  run_pairs();
-  if (near_merge_distance_ <= 0.0) return;
-  for (;;) {
-    const int merges = statistics_.merges;
-    if (push_near_pairs() == 0) break;
-    run_pairs();
-    if (statistics_.merges == merges) break;
-  }
 }
 
 void PatchMerger::run_pairs() {

@@ -29,6 +29,9 @@ struct Patch {
   bool alive = true;
 };
 
+/// The positions of mesh vertices `ids`, in order.
+std::vector<Eigen::Vector3d> positions_of(const Mesh& mesh, const std::vector<int>& ids);
+
 /// Inverse compactness of the union of two patches sharing `shared` length
 /// of boundary: B / sqrt(A) (0 for a closed union).
 double merged_patch_cost(const Patch& a, const Patch& b, double shared);
@@ -36,12 +39,14 @@ double merged_patch_cost(const Patch& a, const Patch& b, double shared);
 /// Runs the merging to the end and returns the surviving patches.
 class PatchMerger {
 public:
-  /// `near_merge_distance`: see DecomposeOptions (0 = the paper's pass alone).
+  /// `near_merge_distance`: see DecomposeOptions (resolved; 0 = the
+  /// paper's pass alone).
   PatchMerger(const SceneIndex& index, const DecomposeOptions& options, double near_merge_distance,
               CoveringStatistics& statistics);
 
   /// Merges until no mergeable pair is left: the paper's pass, then near
-  /// merges and the paper's pass again while they merge anything.
+  /// merges (near_patch_merging.cpp) and the paper's pass again while they
+  /// merge anything.
   void run();
 
   const std::vector<Patch>& patches() const { return patches_; }
@@ -67,6 +72,7 @@ private:
   int merge(int a, int b, Candidate&& candidate);
   /// Takes pairs off the queue until it is empty.
   void run_pairs();
+  Patch single_face_patch(int face) const;
   /// Queues every pair of patches sharing no edge whose boxes, grown by the
   /// near-merge distance, overlap, and that pass condition 2, unless tried
   /// before as they are; returns how many.

@@ -157,17 +157,30 @@ TEST(PaperCases, Figure2cTheSameSolidClosedIsOneHull) {
   EXPECT_EQ(d->covering.hulls.size(), 1u);
 }
 
+// The paper's merging alone (its figures count what it makes), under the
+// exact conditions.
+DecomposeOptions paper_merging() {
+  DecomposeOptions options;
+  options.near_merge_distance = 0.0;
+  return options;
+}
+
 // Figure 7: merge order matters. A plus-shaped floor of five cells (two
 // triangles each) is ideally three rectangles; compactness finds them, while
 // other orders can merge a jagged patch first and end with more.
-TEST(PaperCases, Figure7CompactOrderFindsTheThreeRectangles) {
+Mesh plus_floor() {
   Mesh m;
   for (const auto& [x, z] : {std::pair{1, 0}, {0, 1}, {1, 1}, {2, 1}, {1, 2}})
     add_quad_facing(m, V(x, 0, z), V(x, 0, z + 1), V(x + 1, 0, z + 1), V(x + 1, 0, z), V(0, 1, 0));
-  const auto compact = decompose_and_check(m);
+  return m;
+}
+
+TEST(PaperCases, Figure7CompactOrderFindsTheThreeRectangles) {
+  const Mesh m = plus_floor();
+  const auto compact = decompose_and_check(m, paper_merging());
   ASSERT_TRUE(compact);
   EXPECT_EQ(compact->covering.hulls.size(), 3u);
-  DecomposeOptions random;
+  DecomposeOptions random = paper_merging();
   random.order = MergeOrder::random;
   size_t fewest = SIZE_MAX, most = 0;
   for (std::uint64_t seed = 1; seed <= 15; ++seed) {
@@ -231,13 +244,13 @@ Mesh gear(int teeth) {
 }
 
 TEST(PaperCases, Figure10GearCompactOrderGivesHubAndTeeth) {
-  const auto d = decompose_and_check(gear(32));
+  const auto d = decompose_and_check(gear(32), paper_merging());
   ASSERT_TRUE(d);
   EXPECT_EQ(d->covering.hulls.size(), 33u);
 }
 
 TEST(PaperCases, Figure10GearRandomOrderGivesMore) {
-  DecomposeOptions random;
+  DecomposeOptions random = paper_merging();
   random.order = MergeOrder::random;
   size_t fewest = SIZE_MAX;
   for (std::uint64_t seed : {1, 2, 3}) {

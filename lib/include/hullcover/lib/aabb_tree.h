@@ -6,6 +6,7 @@
 
 #include "hullcover/lib/mesh.h"
 
+#include <functional>
 #include <vector>
 
 namespace hullcover {
@@ -25,6 +26,14 @@ public:
   /// Appends to `out` the index of every box that, grown by `margin`, the
   /// segment from-to passes through, in no particular order.
   void along_segment(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double margin, std::vector<int>& out) const;
+
+  /// Calls `meet(i)` for the boxes that, grown by `margin`, the segment
+  /// from-to passes through, nearest first as far as the tree tells, and
+  /// skips boxes it enters later than the nearest meeting so far plus
+  /// `slack`. `meet` returns where item i is met as a fraction s of the
+  /// segment (s in [0, 1]), or anything above 1 + slack for not met.
+  void nearest_along_segment(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double margin, double slack,
+                             const std::function<double(int)>& meet) const;
 
   bool empty() const { return nodes_.empty(); }
 

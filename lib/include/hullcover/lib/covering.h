@@ -35,9 +35,9 @@ inline constexpr double kExactBarHalfLengthInTolerances = 4.0;
 /// audit's default probe distance, so the decomposer keeps all the free
 /// space the audit looks at.
 inline constexpr double kDefaultFreeSpaceReachRelative = 0.02;
-/// Default distance of the near-merge pass (exact mode) as a fraction of
-/// the diagonal: the free-space reach, so patches are joined across gaps
-/// no wider than the space the exact conditions look at in front of them.
+/// Default distance of the near merges as a fraction of the
+/// diagonal: the free-space reach, so patches are joined across gaps no
+/// wider than the space the exact conditions look at in front of them.
 inline constexpr double kDefaultNearMergeRelative = kDefaultFreeSpaceReachRelative;
 /// Default cap on prism thickness as a fraction of the diagonal.
 inline constexpr double kDefaultPrismCapRelative = 0.01;
@@ -60,11 +60,12 @@ struct DecomposeOptions {
   std::optional<double> bar_half_length;      ///< > 0
   std::optional<double> free_space_reach;     ///< > 0, exact mode
   std::optional<double> prism_thickness_cap;  ///< >= 0
-  /// Second pass, after the paper's merging of patches that share an edge:
-  /// patches sharing none whose bounding boxes come within this distance are
-  /// tried too (under the same conditions), then the paper's pass resumes,
-  /// until neither merges. >= 0, 0 = off; default exact 0.02 x diagonal,
-  /// paper 0 (the paper's algorithm alone).
+  /// Near merges, after the paper's merging of patches that share an edge:
+  /// patches sharing none whose bounding boxes come within this distance,
+  /// scene units, are tried as pairs too, under the same conditions; then
+  /// the paper's pass resumes, until neither merges. >= 0, 0 = off; default
+  /// exact kDefaultNearMergeRelative x diagonal, paper 0 (the paper's
+  /// algorithm alone).
   std::optional<double> near_merge_distance;
   MergeOrder order = MergeOrder::compact;
   std::uint64_t seed = 1;                     ///< for MergeOrder::random
@@ -108,7 +109,7 @@ struct Covering {
   double bar_half_length = 0.0;
   double free_space_reach = 0.0;  ///< exact mode
   double prism_thickness_cap = 0.0;
-  double near_merge_distance = 0.0;  ///< 0 = the pass was off
+  double near_merge_distance = 0.0;  ///< scene units; 0 = no near merges
   DecomposeOptions options;  ///< as given (progress callback included)
   CoveringStatistics statistics;
 };

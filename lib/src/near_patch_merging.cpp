@@ -1,0 +1,55 @@
+// Near merges, the pass that follows the paper's greedy merging
+// (patch_merging.h): once the paper's pass has stopped, patches that share
+// no edge but lie close are tried as pairs too, under the same conditions
+// (the validity conditions never asked for a shared edge: the paper merges
+// across edges only to keep its search local).
+
+#include "patch_merging.h"
+
+#include <algorithm>
+
+namespace hullcover::detail {
+
+int PatchMerger::push_near_pairs() {
+  const Mesh& mesh = index_.mesh();
+  const double tol = index_.tol();
+  const int patch_count = static_cast<int>(patches_.size());
+  std::vector<Aabb> boxes(patch_count);  // empty for dead patches: they overlap nothing
+  for (int p = 0; p < patch_count; ++p)
+    if (patches_[p].alive)
+      boxes[p] = grown(bounding_box_of(positions_of(mesh, patches_[p].hull_vertices)), 0.5 * near_merge_distance_);
+  const AabbTree tree(boxes);
+  int pushed = 0;
+  std::vector<int> near;
+  for (int a = 0; a < patch_count; ++a) {
+    const Patch& pa = patches_[a];
+    if (!pa.alive) continue;
+    near.clear();
+    tree.overlapping(boxes[a], near);
+    for (int b : near) {
+      const Patch& pb = patches_[b];
+      if (b <= a || pa.shared_length.count(b)) continue;
+      if (!near_pairs_tried_.insert({a, pa.version, b, pb.version}).second) continue;
+      if (!planes_support_points(pa.face_planes, positions_of(mesh, pb.hull_vertices), tol) ||
+          !planes_support_points(pb.face_planes, positions_of(mesh, pa.hull_vertices), tol))
+        continue;
+      push_pair(a, b);
+      ++pushed;
+    }
+  }
+  return pushed;
+}
+
+void PatchMerger::run() {
+  run_pairs();
+  if (near_merge_distance_ <= 0.0) return;
+  // Near merges change hulls, which opens new pairs of both kinds.
+  for (;;) {
+    const int merges = statistics_.merges;
+    if (push_near_pairs() == 0) break;
+    run_pairs();
+    if (statistics_.merges == merges) break;
+  }
+}
+
+} // namespace hullcover::detail
