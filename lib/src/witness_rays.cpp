@@ -132,17 +132,119 @@ WitnessRay witness_ray(const SceneIndex& index, const FreeSpaceSweep& sweep, con
   return {true, -1};
 }
 
-// How many times a region is cut along the shadow of a face its witnesses
-// met, at most.
-constexpr int kShadowSplits = 3;
+bool sampled_region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
+                                const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch,
+                                int splits_left);
 
-bool pieces_lose_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
-                       ShadowSplit split, std::vector<int>& scratch, int splits_left);
+// The face plane's distance t along the sweep's ray through `point` (a
+// point where it enters the interior) from the ray's base, and the
+// entry's own distance.
+struct RayDistances {
+  double to_entry = 0.0;
+  double to_face = 0.0;
+};
+
+RayDistances distances_at(const FreeSpaceSweep& sweep, const Plane& face, const Eigen::Vector3d& point) {
+  const double to_entry = -sweep.start.signed_distance(point);
+  const Eigen::Vector3d base = point - to_entry * sweep.direction;
+  return {to_entry, -face.signed_distance(base) / face.normal.dot(sweep.direction)};
+}
+
+// Rays of a sweep meeting a face at more than this slope (|cos| between the
+// face's normal and the ray) are settled from their distances; grazing
+// ones are sampled, as a hit's distance along them is ill-conditioned.
+constexpr double kSettlingSlope = 1e-3;
+
+// Whether every ray through `piece` (inside face f's shadow, grown as rays
+// meet faces) is kept from losing space by f, exactly: the distances to
+// the entry and to f's plane are affine over the piece, so its corners
+// decide. Blocked: f lies between the ray's stand-off and the hull for every
+// corner. Enclosed: f lies beyond the entry, met from behind, and no face
+// met from the front stands between the entry and f anywhere in the piece
+// (faces met from behind there enclose the space as well).
+bool settled_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, const std::vector<Eigen::Vector3d>& piece,
+                     int f, bool enclosed) {
+  const Mesh& mesh = index.mesh();
+  const double tol = index.tol();
+  const Plane face{index.face_normals[f], index.face_normals[f].dot(mesh.positions[mesh.triangles[f][0]])};
+  const double slope = face.normal.dot(sweep.direction);
+  if (std::abs(slope) < kSettlingSlope || (enclosed && slope <= 0.0)) return false;
+  const double stand_off = kRayStandOffInTolerances * tol;
+  double farthest = 0.0;
+  for (const Eigen::Vector3d& p : piece) {
+    const RayDistances d = distances_at(sweep, face, p);
+    if (enclosed ? d.to_face < d.to_entry : (d.to_face < stand_off || d.to_face > d.to_entry)) return false;
+    farthest = std::max(farthest, d.to_face);
+  }
+  if (!enclosed) return true;
+  Aabb column;
+  for (const Eigen::Vector3d& p : piece) {
+    column.extend(p);
+    column.extend(p + (farthest + sweep.start.signed_distance(p)) * sweep.direction);
+  }
+  std::vector<int> near;
+  index.face_tree.overlapping(grown(column, tol), near);
+  std::vector<Eigen::Vector3d> triangle(3);
+  for (int g : near) {
+    if (g == f || index.face_normals[g].dot(sweep.direction) >= 0.0) continue;  // met from behind, or zero area
+    for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[g][k]];
+    const ShadowSplit split = split_by_shadow(piece, triangle, sweep.direction, tol);
+    if (split.inside.empty()) continue;
+    const Plane other{index.face_normals[g], index.face_normals[g].dot(triangle[0])};
+    if (std::abs(other.normal.dot(sweep.direction)) < kSettlingSlope) return false;
+    // g stands clear when it lies beyond f, or before the entry (there it
+    // blocks), over all of its part of the piece.
+    bool beyond = true, before = true;
+    for (const Eigen::Vector3d& p : split.inside) {
+      const double to_other = distances_at(sweep, other, p).to_face;
+      const RayDistances d = distances_at(sweep, face, p);
+      beyond &= to_other > d.to_face + tol;
+      before &= to_other < d.to_entry;
+    }
+    if (!beyond && !before) return false;
+  }
+  return true;
+}
 
 } // namespace
 
 bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
                         const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch, int splits_left) {
+  const WitnessRay ray = witness_ray(index, sweep, interior, centroid(region), scratch);
+  if (ray.loses) return true;
+  if (ray.deciding_face < 0 || splits_left == 0)
+    return sampled_region_loses_space(index, sweep, interior, region, scratch, splits_left);
+  // Cut the region along the shadow of the face that decided its middle:
+  // inside it, that face decides every ray, exactly; beside it, each piece
+  // is a region of its own.
+  const Mesh& mesh = index.mesh();
+  const double tol = index.tol();
+  std::vector<Eigen::Vector3d> triangle(3);
+  for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[ray.deciding_face][k]];
+  const ShadowSplit split = split_by_shadow(region, triangle, sweep.direction, tol);
+  if (!split.inside.empty() && !settled_by_face(index, sweep, split.inside, ray.deciding_face, ray.enclosed_at > 0.0) &&
+      sampled_region_loses_space(index, sweep, interior, split.inside, scratch, splits_left - 1))
+    return true;
+  for (const std::vector<Eigen::Vector3d>& piece : split.beside)
+    if (polygon_area(piece) > tol * tol && region_loses_space(index, sweep, interior, piece, scratch, splits_left - 1))
+      return true;
+  return false;
+}
+
+namespace {
+
+bool pieces_lose_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
+                       ShadowSplit split, std::vector<int>& scratch, int splits_left);
+
+// The fallback where a region is not settled exactly: witness rays on a
+// grid over it (each fan triangle from its middle cut kWitnessGridSteps
+// times a side), pulled in off its edges; where a face that kept witnesses
+// from losing space does not shadow it all, or a face met from the front
+// shadows part of an enclosed region, it is cut along that shadow and each
+// piece judged again.
+bool sampled_region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
+                                const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch,
+                                int splits_left) {
   const double tol = index.tol();
   std::vector<int> deciding;
   double enclosed_to = 0.0;
@@ -196,8 +298,6 @@ bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, co
   }
   return false;
 }
-
-namespace {
 
 bool pieces_lose_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
                        ShadowSplit split, std::vector<int>& scratch, int splits_left) {

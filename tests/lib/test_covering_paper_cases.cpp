@@ -194,6 +194,21 @@ TEST(PaperCases, Figure7CompactOrderFindsTheThreeRectangles) {
   EXPECT_GT(most, 3u);
 }
 
+// Beyond the paper: near merges (DecomposeOptions::near_merge_distance, here
+// a cell wide) join the two side cells across the centre cell, which the
+// other bar already covers: two overlapping bars, and still nothing over the
+// plus's empty corners.
+TEST(PaperCases, Figure7NearMergesCoverThePlusWithTwoOverlappingBars) {
+  DecomposeOptions options;
+  options.near_merge_distance = 1.0;
+  const auto d = decompose_and_check(plus_floor(), options);
+  ASSERT_TRUE(d);
+  EXPECT_EQ(d->covering.hulls.size(), 2u);
+  EXPECT_GE(d->covering.statistics.near_merges, 1);
+  for (const auto& [x, z] : {std::pair{0.5, 0.5}, {2.5, 0.5}, {0.5, 2.5}, {2.5, 2.5}})
+    EXPECT_FALSE(test::segment_hits_covering(d->covering, V(x, -0.5, z), V(x, 0.5, z), d->tol())) << x << ", " << z;
+}
+
 // Figure 10: an extruded gear with 32 teeth; caps tessellated with each
 // tooth's root as an edge, so hub + 32 teeth = 33 patches is reachable.
 Mesh gear(int teeth) {
@@ -247,6 +262,21 @@ TEST(PaperCases, Figure10GearCompactOrderGivesHubAndTeeth) {
   const auto d = decompose_and_check(gear(32), paper_merging());
   ASSERT_TRUE(d);
   EXPECT_EQ(d->covering.hulls.size(), 33u);
+}
+
+// Beyond the paper: near merges pair hub wedges with teeth across the hub
+// hull; fewer hulls, and the gaps between the teeth stay free.
+TEST(PaperCases, Figure10NearMergesNeedFewerHullsAndKeepTheGaps) {
+  const int teeth = 32;
+  const auto d = decompose_and_check(gear(teeth));
+  ASSERT_TRUE(d);
+  EXPECT_LT(d->covering.hulls.size(), 33u);
+  const double pi = std::acos(-1.0);
+  for (int i = 0; i < teeth; ++i) {
+    const double between = 2.0 * pi * (i + 0.5) / teeth;  // the middle of a gap, just off the root
+    const V p(1.05 * std::cos(between), 1.05 * std::sin(between), 0.15);
+    EXPECT_FALSE(test::point_inside_covering(d->covering, p, d->tol())) << "gap " << i;
+  }
 }
 
 TEST(PaperCases, Figure10GearRandomOrderGivesMore) {

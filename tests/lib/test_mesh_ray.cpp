@@ -78,5 +78,71 @@ TEST(HullInterior, IsTheHullShrunkByTolAndVanishesWhenThin) {
   EXPECT_TRUE(hull_interior(builder.build(slab_corners, {}).value(), tol).empty());
 }
 
+// Witness rays (witness_rays.h) through sweep_enters_hull: a wall W at x = 0
+// facing +x looks into a box hull [0.5, 1.5] x [0, 1] x [0, 1]; its front
+// space runs through the box, which only a face closing it from behind may
+// allow.
+struct WallLookingIntoBox {
+  Mesh mesh;
+  ConvexPolytope box;
+
+  WallLookingIntoBox() {
+    add_quad(mesh, V(0, 0, 0), V(0, 1, 0), V(0, 1, 1), V(0, 0, 1));  // faces +x
+    ConvexHullBuilder builder;
+    Mesh hull;
+    add_box(hull, V(0.5, 0, 0), V(1.5, 1, 1), true);
+    box = builder.build(hull.positions, {}).value();
+  }
+
+  // A quad across the box at x, over y in [y0, y1] and z in [z0, z1],
+  // facing `front` (+x: met from behind by W's rays, -x: from the front).
+  void add_screen(double x, double y0, double y1, double z0, double z1, double front) {
+    if (front > 0)
+      add_quad(mesh, V(x, y0, z0), V(x, y1, z0), V(x, y1, z1), V(x, y0, z1));
+    else
+      add_quad(mesh, V(x, y0, z0), V(x, y0, z1), V(x, y1, z1), V(x, y1, z0));
+  }
+
+  bool wall_space_enters_box() const {
+    const auto s = indexed(mesh);
+    const double tol = s->index.tol();
+    const HullInterior interior = hull_interior(box, tol);
+    std::vector<int> scratch;
+    for (int f : {0, 1}) {
+      std::vector<V> triangle;
+      for (int k = 0; k < 3; ++k) triangle.push_back(s->prepared.mesh.positions[s->prepared.mesh.triangles[f][k]]);
+      if (sweep_enters_hull(s->index, front_space_sweep(triangle, s->index.face_normals[f], 2.0, tol), interior,
+                            scratch))
+        return true;
+    }
+    return false;
+  }
+};
+
+TEST(WitnessRays, SpaceClosedFromBehindMayEnterAHull) {
+  WallLookingIntoBox scene;
+  scene.add_screen(1.0, -0.5, 1.5, -0.5, 1.5, +1);
+  EXPECT_FALSE(scene.wall_space_enters_box());
+}
+
+// The screen leaves a strip 1% wide open along y = 0, narrower than the
+// inset of the witness grid: the witnesses all meet the screen, but it
+// shadows only part of their region, which is cut along its shadow.
+TEST(WitnessRays, AFaceShadowingMostOfARegionDoesNotSpeakForTheRest) {
+  WallLookingIntoBox scene;
+  scene.add_screen(1.0, 0.01, 1.5, -0.5, 1.5, +1);
+  EXPECT_TRUE(scene.wall_space_enters_box());
+}
+
+// A sliver facing the wall stands in the box in front of the screen, away
+// from the witnesses: rays meeting it end in front of a face, in free
+// space the box holds.
+TEST(WitnessRays, AFaceMetFromTheFrontInsideEnclosedSpaceIsFound) {
+  WallLookingIntoBox scene;
+  scene.add_screen(1.0, -0.5, 1.5, -0.5, 1.5, +1);
+  scene.add_screen(0.8, 0.437, 0.441, 0.21, 0.29, -1);
+  EXPECT_TRUE(scene.wall_space_enters_box());
+}
+
 } // namespace
 } // namespace hullcover
