@@ -98,31 +98,6 @@ TEST(AccessibleSpace, RefusesBadOptions) {
   EXPECT_EQ(probe_accessible_space(d->prepared, *triangles, *world, o).status().code(), StatusCode::invalid_argument);
 }
 
-// Another tool's hulls (V-HACD 4, 64 hulls at most) are volume
-// approximations: they take a large share of the free space.
-TEST(AccessibleSpace, PeerHullsLoseALargeShare) {
-  HULLCOVER_REQUIRE_SHARED_SCENES(dir);
-  const std::string scene = dir + "/threejs-collision-world.glb";
-  const std::string peer = dir + "/../peer-hulls/threejs-collision-world.vhacd.obj";
-  Result<ImportedMesh> mesh = import_mesh(scene);
-  ASSERT_TRUE(mesh.ok());
-  const PreparedMesh prepared = prepare_mesh(mesh.value().mesh, std::nullopt).value();
-  Result<HullSet> set = load_hull_set(peer);
-  ASSERT_TRUE(set.ok()) << set.status().message();
-  EXPECT_GE(set.value().hulls.size(), 10u);
-  const auto world = bvh::HullWorld::build(std::move(set.value().hulls)).value();
-  const auto triangles = bvh::TriangleWorld::build(prepared.mesh, prepared.tolerance.length).value();
-  ProbeOptions o;
-  o.resolution = prepared.tolerance.diagonal * kDefaultProbeRelative / 4.0;
-  const Result<ProbeReport> r = probe_accessible_space(prepared, *triangles, *world, o);
-  ASSERT_TRUE(r.ok());
-  const double front = static_cast<double>(r.value().front_lost) / r.value().front_points;
-  const double volume = r.value().lost_volume / r.value().free_volume;
-  EXPECT_GT(front, 0.10) << front;
-  EXPECT_LT(front, 0.95) << front;
-  EXPECT_GT(volume, 0.05) << volume;
-}
-
 // Issue 6's target, on the shared scenes small enough for every test run:
 // exact mode's covering loses no accessible space at the audit's default
 // settings, where the paper's conditions alone do.
