@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Paper vs exact conditions on the shared scenes, one Markdown table row per
 # scene and mode: hulls, hulls per face, decomposition seconds, and the
-# audit's lost front / opening points and lost free volume (default probe).
+# audit's lost front / opening points, lost free volume (default probe) and
+# its verdict (CLEAN also means full coverage and no missed contact).
 #   scripts/compare_conditions.sh [SCENES_DIR]   (default ../shared/data/scenes)
 # Needs a Release build (scripts/demo.sh or scripts/test.sh makes one).
 set -euo pipefail
@@ -12,8 +13,8 @@ bin=build/release/apps/hullcover
 [ -d "$scenes" ] || { echo "no shared scenes at $scenes" >&2; exit 2; }
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-echo "| scene | mode | hulls | hulls/face | seconds | front lost | openings lost | free volume lost |"
-echo "|---|---|---|---|---|---|---|---|"
+echo "| scene | mode | hulls | hulls/face | seconds | front lost | openings lost | free volume lost | audit |"
+echo "|---|---|---|---|---|---|---|---|---|"
 for scene in threejs-collision-world.glb recast-nav_test.obj recast-dungeon.obj recast-undulating.obj \
              sauerbraten-fdm6.obj sauerbraten-pandora.obj stanford-bunny-res2.ply thor-art56-gearplate.stl; do
   for mode in paper exact; do
@@ -25,6 +26,7 @@ for scene in threejs-collision-world.glb recast-nav_test.obj recast-dungeon.obj 
     front=$(grep "front free space" <<<"$audit" | sed -E 's/.*: +([0-9]+) of ([0-9]+) points lost \(([0-9.]+%)\).*/\1 (\3)/')
     openings=$(grep "openings:" <<<"$audit" | sed -E 's/.*: +([0-9]+) of ([0-9]+) points lost \(([0-9.]+%)\).*/\1 (\3)/')
     volume=$(grep "free volume" <<<"$audit" | sed -E 's/.*\(([0-9.]+%)\).*/\1/')
-    echo "| $scene | $mode | $hulls | $per_face | $seconds | $front | $openings | $volume |"
+    verdict=$(head -1 <<<"$audit" | sed -E 's/^[^:]*: ([A-Z]+).*/\1/')
+    echo "| $scene | $mode | $hulls | $per_face | $seconds | $front | $openings | $volume | $verdict |"
   done
 done
