@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <string>
 
 namespace hullcover::app {
 namespace {
@@ -68,6 +69,12 @@ int run_decompose(DecomposeCommandOptions& o) {
               faces > 0 ? static_cast<double>(c.hulls.size()) / faces : 0.0, seconds, c.statistics.seconds_merging);
   std::printf("  tolerance %.6g, bar half-length %.6g, prism cap %.6g, order %s, conditions %s\n",
               c.tolerance.length, c.bar_half_length, c.prism_thickness_cap, o.order.c_str(), o.conditions.c_str());
+  if (c.statistics.order_tries > 1) {
+    const std::string kept = c.statistics.kept_try == 0
+                                 ? std::string("the first (") + o.order + ")"
+                                 : "random seed " + std::to_string(o.decompose.seed + c.statistics.kept_try - 1);
+    std::printf("  %d merge orders tried, kept %s\n", c.statistics.order_tries, kept.c_str());
+  }
   if (c.near_merge_distance > 0.0)
     std::printf("  near merges (patches sharing no edge, within %.6g): %d of %d merges\n", c.near_merge_distance,
                 c.statistics.near_merges, c.statistics.merges);
@@ -106,6 +113,11 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
                   "0.02 x diagonal, paper 0)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--seed", o->decompose.seed, "Seed of the random order")->capture_default_str();
+  cmd->add_option("--tries", o->decompose.order_tries,
+                  "Merge N times: in --order, then in random orders seeded --seed, --seed + 1, ...; keep the "
+                  "covering with the fewest hulls (N times the merging time)")
+      ->check(CLI::Range(1, 1 << 16))
+      ->capture_default_str();
   cmd->add_option("--bar-length", o->decompose.bar_half_length,
                   "Half-length of the boundary constraint bars, scene units (default: paper 0.1 x diagonal, exact 4 x tol)")
       ->check(CLI::PositiveNumber);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 
 namespace hullcover {
 namespace {
@@ -25,6 +26,7 @@ Status check_options(const DecomposeOptions& o) {
     return {StatusCode::invalid_argument, "prism thickness cap must be a length >= 0"};
   if (o.near_merge_distance && !(std::isfinite(*o.near_merge_distance) && *o.near_merge_distance >= 0.0))
     return {StatusCode::invalid_argument, "near-merge distance must be a length >= 0"};
+  if (o.order_tries < 1) return {StatusCode::invalid_argument, "order tries must be at least 1"};
   if (o.max_hull_vertices < 8)
     return {StatusCode::invalid_argument, "max hull vertices must be at least 8 (a prism over a quad)"};
   return Status::success();
@@ -87,8 +89,38 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
   stats.seconds_index = seconds_since(start);
 
   start = Clock::now();
-  detail::PatchMerger merger(index, options, covering.near_merge_distance, stats);
-  merger.run();
+  // Each try keeps its own options and statistics: the merger refers to them.
+  struct Try {
+    DecomposeOptions options;
+    CoveringStatistics statistics;
+    std::unique_ptr<detail::PatchMerger> merger;
+    int hulls = 0;
+  };
+  std::unique_ptr<Try> kept;
+  for (int attempt = 0; attempt < options.order_tries; ++attempt) {
+    auto run = std::make_unique<Try>();
+    run->options = options;
+    if (attempt > 0) {
+      run->options.order = MergeOrder::random;
+      run->options.seed = options.seed + static_cast<std::uint64_t>(attempt - 1);
+    }
+    if (options.progress)
+      run->options.progress = [&options, attempt](double fraction) {
+        options.progress((attempt + fraction) / options.order_tries);
+      };
+    run->statistics = stats;
+    run->merger = std::make_unique<detail::PatchMerger>(index, run->options, covering.near_merge_distance,
+                                                        run->statistics);
+    run->merger->run();
+    for (const detail::Patch& patch : run->merger->patches()) run->hulls += patch.alive;
+    if (!kept || run->hulls < kept->hulls) {
+      run->statistics.kept_try = attempt;
+      kept = std::move(run);
+    }
+  }
+  stats = kept->statistics;
+  stats.order_tries = options.order_tries;
+  const detail::PatchMerger& merger = *kept->merger;
   stats.seconds_merging = seconds_since(start);
 
   start = Clock::now();

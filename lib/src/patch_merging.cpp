@@ -4,7 +4,6 @@
 #include "hullcover/lib/planar_hull.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 
 namespace hullcover::detail {
@@ -58,13 +57,22 @@ PatchMerger::PatchMerger(const SceneIndex& index, const DecomposeOptions& option
   patches_.resize(face_count);
   face_patch_.resize(face_count);
   for (int f = 0; f < face_count; ++f) {
+    Patch& p = patches_[f];
     face_patch_[f] = f;
     if (c.zero_area[f]) {
-      patches_[f].alive = false;
+      p.alive = false;
       ++statistics_.zero_area_faces_skipped;
       continue;
     }
-    patches_[f] = single_face_patch(f);
+    const Eigen::Vector3i& t = mesh.triangles[f];
+    p.faces = {f};
+    p.hull_vertices = {t[0], t[1], t[2]};
+    std::sort(p.hull_vertices.begin(), p.hull_vertices.end());
+    p.face_planes = {{index.face_normals[f], index.face_normals[f].dot(mesh.positions[t[0]])}};
+    p.area = index.face_areas[f];
+    p.area_vector = index.face_normals[f] * p.area;
+    for (int k = 0; k < 3; ++k) p.boundary_length += (mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]]).norm();
+    p.material = mesh.material_ids[f];
   }
   for (const MeshEdge& e : c.edges) {
     if (e.kind != EdgeKind::manifold) continue;
@@ -79,26 +87,11 @@ PatchMerger::PatchMerger(const SceneIndex& index, const DecomposeOptions& option
       if (f < g) push_pair(f, g);
 }
 
-Patch PatchMerger::single_face_patch(int f) const {
-  const Mesh& mesh = index_.mesh();
-  const Eigen::Vector3i& t = mesh.triangles[f];
-  Patch p;
-  p.faces = {f};
-  p.hull_vertices = {t[0], t[1], t[2]};
-  std::sort(p.hull_vertices.begin(), p.hull_vertices.end());
-  p.face_planes = {{index_.face_normals[f], index_.face_normals[f].dot(mesh.positions[t[0]])}};
-  p.area = index_.face_areas[f];
-  p.area_vector = index_.face_normals[f] * p.area;
-  for (int k = 0; k < 3; ++k) p.boundary_length += (mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]]).norm();
-  p.material = mesh.material_ids[f];
-  return p;
-}
-
 void PatchMerger::push_pair(int a, int b) {
   if (a > b) std::swap(a, b);
   const Patch& pa = patches_[a];
   const Patch& pb = patches_[b];
-  const auto shared = pa.shared_length.find(b);
+  const auto shared = pa.shared_length.find(b);  // none for a near pair
   const double cost = options_.order == MergeOrder::compact
                           ? merged_patch_cost(pa, pb, shared == pa.shared_length.end() ? 0.0 : shared->second)
                           : pseudo_random_cost(options_.seed, a, b, pa.version, pb.version);
@@ -106,38 +99,29 @@ void PatchMerger::push_pair(int a, int b) {
   std::push_heap(queue_.begin(), queue_.end(), std::greater<>());
 }
 
-PatchMerger::Candidate PatchMerger::evaluate(const std::vector<int>& group) {
+PatchMerger::Candidate PatchMerger::evaluate(int a, int b) {
+  const Patch& pa = patches_[a];
+  const Patch& pb = patches_[b];
   const Mesh& mesh = index_.mesh();
   const double tol = index_.tol();
   Candidate out;
-  for (int p : group)
-    if (options_.keep_materials_apart && patches_[p].material != patches_[group[0]].material) {
-      out.validity = Validity::materials_differ;
-      return out;
-    }
+  if (options_.keep_materials_apart && pa.material != pb.material) {
+    out.validity = Validity::materials_differ;
+    return out;
+  }
   // Condition 2 first: it needs no hull and rejects every concave pair.
-  for (int p : group)
-    for (int q : group)
-      if (p != q && !planes_support_points(patches_[p].face_planes, positions_of(mesh, patches_[q].hull_vertices), tol)) {
-        out.validity = Validity::face_not_on_hull;
-        return out;
-      }
+  if (!planes_support_points(pa.face_planes, positions_of(mesh, pb.hull_vertices), tol) ||
+      !planes_support_points(pb.face_planes, positions_of(mesh, pa.hull_vertices), tol)) {
+    out.validity = Validity::face_not_on_hull;
+    return out;
+  }
   std::vector<int> ids;
-  for (int p : group) ids.insert(ids.end(), patches_[p].hull_vertices.begin(), patches_[p].hull_vertices.end());
-  std::sort(ids.begin(), ids.end());
-  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  std::set_union(pa.hull_vertices.begin(), pa.hull_vertices.end(), pb.hull_vertices.begin(), pb.hull_vertices.end(),
+                 std::back_inserter(ids));
   const std::vector<Eigen::Vector3d> points = positions_of(mesh, ids);
 
-  Eigen::Vector3d area_vector = Eigen::Vector3d::Zero();
-  bool all_planar = true;
-  for (int p : group) {
-    area_vector += patches_[p].area_vector;
-    all_planar &= patches_[p].planar;
-  }
-  bool same_side = all_planar;
-  for (int p : group) same_side &= patches_[p].area_vector.dot(area_vector - patches_[p].area_vector) > 0.0;
-  if (same_side) {
-    const Eigen::Vector3d normal = area_vector.normalized();
+  if (pa.planar && pb.planar && pa.area_vector.dot(pb.area_vector) > 0.0) {
+    const Eigen::Vector3d normal = (pa.area_vector + pb.area_vector).normalized();
     double low = normal.dot(points[0]), high = low;
     for (const Eigen::Vector3d& p : points) {
       low = std::min(low, normal.dot(p));
@@ -153,15 +137,13 @@ PatchMerger::Candidate PatchMerger::evaluate(const std::vector<int>& group) {
         return out;
       }
       out.validity = check_flat_polygon(
-          index_, polygon,
-          [&](int f) { return std::find(group.begin(), group.end(), face_patch_[f]) != group.end(); }, scratch_);
+          index_, polygon, [&](int f) { return face_patch_[f] == a || face_patch_[f] == b; }, scratch_);
       return out;
     }
   }
 
-  std::optional<ConvexPolytope> hull;
-  for (int p : group)
-    if (!hull) hull = grow_known_hull(patches_[p], ids);
+  std::optional<ConvexPolytope> hull = grow_known_hull(pa, pb);
+  if (!hull) hull = grow_known_hull(pb, pa);
   if (!hull) {
     Result<ConvexPolytope> built = hull_builder_.build(points, ids);
     ++statistics_.qhull_calls;
@@ -182,9 +164,9 @@ PatchMerger::Candidate PatchMerger::evaluate(const std::vector<int>& group) {
   return out;
 }
 
-std::optional<ConvexPolytope> PatchMerger::grow_known_hull(const Patch& base, const std::vector<int>& all_vertices) {
+std::optional<ConvexPolytope> PatchMerger::grow_known_hull(const Patch& base, const Patch& other) {
   std::vector<int> added;
-  std::set_difference(all_vertices.begin(), all_vertices.end(), base.hull_vertices.begin(),
+  std::set_difference(other.hull_vertices.begin(), other.hull_vertices.end(), base.hull_vertices.begin(),
                       base.hull_vertices.end(), std::back_inserter(added));
   if (static_cast<int>(added.size()) > kMostPointsToAddIncrementally) return std::nullopt;
   std::optional<ConvexPolytope> hull;
@@ -209,7 +191,7 @@ std::optional<ConvexPolytope> PatchMerger::grow_known_hull(const Patch& base, co
   return hull;
 }
 
-int PatchMerger::merge(int a, int b, Candidate&& candidate) {
+void PatchMerger::merge(int a, int b, Candidate&& candidate) {
   // The larger patch absorbs the smaller one (ties: the lower id survives),
   // so each face moves O(log n) times.
   int keep = a, gone = b;
@@ -246,7 +228,6 @@ int PatchMerger::merge(int a, int b, Candidate&& candidate) {
   ++statistics_.merges;
   statistics_.near_merges += near_merge;
   for (const auto& [neighbour, length] : k.shared_length) push_pair(keep, neighbour);
-  return keep;
 }
 
 void PatchMerger::run_pairs() {
@@ -260,7 +241,7 @@ void PatchMerger::run_pairs() {
     const Patch& pb = patches_[entry.b];
     if (!pa.alive || !pb.alive || pa.version != entry.version_a || pb.version != entry.version_b) continue;
     ++statistics_.candidates_tested;
-    Candidate candidate = evaluate({entry.a, entry.b});
+    Candidate candidate = evaluate(entry.a, entry.b);
     if (candidate.validity != Validity::valid) {
       ++statistics_.rejections[static_cast<int>(candidate.validity)];
       continue;

@@ -5,10 +5,10 @@
 #include "hullcover/lib/covering.h"
 #include "hullcover/lib/scene_index.h"
 
+#include <array>
 #include <map>
 #include <optional>
 #include <set>
-#include <array>
 #include <vector>
 
 namespace hullcover::detail {
@@ -60,24 +60,21 @@ private:
     std::optional<ConvexPolytope> solid;
   };
 
-  /// The union of the patches in `group` as one hull, and whether it is valid.
-  Candidate evaluate(const std::vector<int>& group);
-  /// The hull of `all_vertices` (ascending mesh vertex ids) grown from
-  /// base's known hull, when they add few points to it; nothing when that
-  /// does not apply or fails (then Qhull runs).
-  std::optional<ConvexPolytope> grow_known_hull(const Patch& base, const std::vector<int>& all_vertices);
+  Candidate evaluate(int a, int b);
+  /// hull(base + other) grown from base's known hull, when other adds few
+  /// points; nothing when that does not apply or fails (then Qhull runs).
+  std::optional<ConvexPolytope> grow_known_hull(const Patch& base, const Patch& other);
   /// Beyond this many new points a rebuild is as cheap as growing.
   static constexpr int kMostPointsToAddIncrementally = 6;
-  /// Merges b into a or a into b; returns the one that is kept.
-  int merge(int a, int b, Candidate&& candidate);
+  void merge(int a, int b, Candidate&& candidate);
+  /// Queues the pair at its cost (shared length 0 for a near pair).
+  void push_pair(int a, int b);
   /// Takes pairs off the queue until it is empty.
   void run_pairs();
-  Patch single_face_patch(int face) const;
-  /// Queues every pair of patches sharing no edge whose boxes, grown by the
-  /// near-merge distance, overlap, and that pass condition 2, unless tried
-  /// before as they are; returns how many.
+  /// Queues every pair of patches sharing no edge whose boxes, grown by half
+  /// the near-merge distance, overlap, and that pass condition 2, unless
+  /// tried before as they are; returns how many.
   int push_near_pairs();
-  void push_pair(int a, int b);
 
   struct QueueEntry {
     double cost;

@@ -132,6 +132,9 @@ WitnessRay witness_ray(const SceneIndex& index, const FreeSpaceSweep& sweep, con
   return {true, -1};
 }
 
+bool pieces_lose_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
+                       ShadowSplit split, std::vector<int>& scratch, int splits_left);
+
 bool sampled_region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
                                 const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch,
                                 int splits_left);
@@ -155,28 +158,33 @@ RayDistances distances_at(const FreeSpaceSweep& sweep, const Plane& face, const 
 // ones are sampled, as a hit's distance along them is ill-conditioned.
 constexpr double kSettlingSlope = 1e-3;
 
-// Whether every ray through `piece` (inside face f's shadow, grown as rays
-// meet faces) is kept from losing space by f, exactly: the distances to
-// the entry and to f's plane are affine over the piece, so its corners
-// decide. Blocked: f lies between the ray's stand-off and the hull for every
-// corner. Enclosed: f lies beyond the entry, met from behind, and no face
-// met from the front stands between the entry and f anywhere in the piece
-// (faces met from behind there enclose the space as well).
-bool settled_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, const std::vector<Eigen::Vector3d>& piece,
-                     int f, bool enclosed) {
+// Whether face f keeps every ray through `piece` (inside f's shadow, grown
+// as rays meet faces) from losing space, exactly: the distances to the
+// entry and to f's plane are affine over the piece, so its corners decide.
+// Blocked: f lies between the ray's stand-off and the hull for every corner.
+// Enclosed: f lies beyond the entry, met from behind, and no face met from
+// the front stands between the entry and f anywhere in the piece (faces met
+// from behind there enclose the space as well).
+struct Settling {
+  bool settled = false;
+  int obstacle = -1;  ///< unsettled by this face met from the front in part of the piece; -1 for another reason
+};
+
+Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, const std::vector<Eigen::Vector3d>& piece,
+                        int f, bool enclosed) {
   const Mesh& mesh = index.mesh();
   const double tol = index.tol();
   const Plane face{index.face_normals[f], index.face_normals[f].dot(mesh.positions[mesh.triangles[f][0]])};
   const double slope = face.normal.dot(sweep.direction);
-  if (std::abs(slope) < kSettlingSlope || (enclosed && slope <= 0.0)) return false;
+  if (std::abs(slope) < kSettlingSlope || (enclosed && slope <= 0.0)) return {};
   const double stand_off = kRayStandOffInTolerances * tol;
   double farthest = 0.0;
   for (const Eigen::Vector3d& p : piece) {
     const RayDistances d = distances_at(sweep, face, p);
-    if (enclosed ? d.to_face < d.to_entry : (d.to_face < stand_off || d.to_face > d.to_entry)) return false;
+    if (enclosed ? d.to_face < d.to_entry : (d.to_face < stand_off || d.to_face > d.to_entry)) return {};
     farthest = std::max(farthest, d.to_face);
   }
-  if (!enclosed) return true;
+  if (!enclosed) return {true, -1};
   Aabb column;
   for (const Eigen::Vector3d& p : piece) {
     column.extend(p);
@@ -191,7 +199,7 @@ bool settled_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, const
     const ShadowSplit split = split_by_shadow(piece, triangle, sweep.direction, tol);
     if (split.inside.empty()) continue;
     const Plane other{index.face_normals[g], index.face_normals[g].dot(triangle[0])};
-    if (std::abs(other.normal.dot(sweep.direction)) < kSettlingSlope) return false;
+    if (std::abs(other.normal.dot(sweep.direction)) < kSettlingSlope) return {};
     // g stands clear when it lies beyond f, or before the entry (there it
     // blocks), over all of its part of the piece.
     bool beyond = true, before = true;
@@ -201,9 +209,9 @@ bool settled_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, const
       beyond &= to_other > d.to_face + tol;
       before &= to_other < d.to_entry;
     }
-    if (!beyond && !before) return false;
+    if (!beyond && !before) return {false, g};
   }
-  return true;
+  return {true, -1};
 }
 
 } // namespace
@@ -221,20 +229,24 @@ bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, co
   const double tol = index.tol();
   std::vector<Eigen::Vector3d> triangle(3);
   for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[ray.deciding_face][k]];
-  const ShadowSplit split = split_by_shadow(region, triangle, sweep.direction, tol);
-  if (!split.inside.empty() && !settled_by_face(index, sweep, split.inside, ray.deciding_face, ray.enclosed_at > 0.0) &&
-      sampled_region_loses_space(index, sweep, interior, split.inside, scratch, splits_left - 1))
-    return true;
-  for (const std::vector<Eigen::Vector3d>& piece : split.beside)
-    if (polygon_area(piece) > tol * tol && region_loses_space(index, sweep, interior, piece, scratch, splits_left - 1))
-      return true;
-  return false;
+  ShadowSplit split = split_by_shadow(region, triangle, sweep.direction, tol);
+  if (!split.inside.empty()) {
+    const Settling settling = settle_by_face(index, sweep, split.inside, ray.deciding_face, ray.enclosed_at > 0.0);
+    if (!settling.settled) {
+      if (settling.obstacle < 0 || splits_left == 1)
+        return sampled_region_loses_space(index, sweep, interior, split.inside, scratch, splits_left - 1) ||
+               pieces_lose_space(index, sweep, interior, {{}, std::move(split.beside)}, scratch, splits_left - 1);
+      // A face met from the front in part of the piece: cut along its shadow.
+      for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[settling.obstacle][k]];
+      ShadowSplit cut = split_by_shadow(split.inside, triangle, sweep.direction, tol);
+      if (pieces_lose_space(index, sweep, interior, std::move(cut), scratch, splits_left - 1)) return true;
+    }
+  }
+  return pieces_lose_space(index, sweep, interior, {{}, std::move(split.beside)}, scratch, splits_left - 1);
 }
 
 namespace {
 
-bool pieces_lose_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
-                       ShadowSplit split, std::vector<int>& scratch, int splits_left);
 
 // The fallback where a region is not settled exactly: witness rays on a
 // grid over it (each fan triangle from its middle cut kWitnessGridSteps

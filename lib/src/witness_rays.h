@@ -16,7 +16,7 @@ std::vector<Plane> column_planes(const std::vector<Eigen::Vector3d>& outline, co
 
 /// How many times a region is cut along the shadow of a face its
 /// witnesses met, at most.
-inline constexpr int kShadowSplits = 3;
+inline constexpr int kShadowSplits = 5;
 
 /// True when rays of `sweep` through convex `region` (a polygon on a facet
 /// of `interior`, where they enter it) lose free space. Judged by witness

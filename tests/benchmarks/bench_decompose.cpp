@@ -1,6 +1,6 @@
 // Decomposition benchmark over the shared scenes (not a test): for each
-// scene, the paper's conditions and exact mode (compact order), and exact
-// mode in random order, side by side, with faces, hulls, hulls per face, the
+// scene, the paper's conditions and exact mode (compact order), exact mode
+// without near merges, and exact mode in random order, side by side, with faces, hulls, hulls per face, the
 // ratio to the prototype's paper-mode count (../shared/DESIGN.md; issue 6's
 // target for exact mode: <= 1) and the time per 20K faces (the paper: tens
 // of seconds to a minute for 21K faces).
@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <optional>
 
 namespace {
 
@@ -30,11 +31,22 @@ const std::map<std::string, double> kPrototypePaperHulls = {
     {"sauerbraten-fdm6.obj", 3112},   {"sauerbraten-pandora.obj", 21098},       {"recast-dungeon.obj", 3231},
     {"threejs-collision-world.glb", 368}, {"recast-nav_test.obj", 714}};
 
+// One way of decomposing, named in the benchmark's name.
+struct Variant {
+  const char* name;
+  MergeOrder order;
+  ValidityMode conditions;
+  std::optional<double> near_merge_distance;  // unset: the mode's default
+};
+
+constexpr double kNoNearMerges = 0.0;
+
 void decompose_scene(benchmark::State& state, std::shared_ptr<PreparedMesh> prepared, std::string scene,
-                     MergeOrder order, ValidityMode conditions) {
+                     Variant variant) {
   DecomposeOptions options;
-  options.order = order;
-  options.conditions = conditions;
+  options.order = variant.order;
+  options.conditions = variant.conditions;
+  options.near_merge_distance = variant.near_merge_distance;
   size_t hulls = 0;
   for (auto _ : state) {
     Result<Covering> covering = decompose(*prepared, options);
@@ -70,14 +82,13 @@ int main(int argc, char** argv) {
       return 2;
     }
     auto shared = std::make_shared<PreparedMesh>(std::move(prepared).value());
-    const std::pair<MergeOrder, ValidityMode> runs[] = {{MergeOrder::compact, ValidityMode::paper},
-                                                         {MergeOrder::compact, ValidityMode::exact},
-                                                         {MergeOrder::random, ValidityMode::exact}};
-    for (const auto& [order, conditions] : runs) {
-      const std::string name = std::string("decompose/") + scene +
-                               (order == MergeOrder::compact ? "/compact" : "/random") +
-                               (conditions == ValidityMode::paper ? "/paper" : "/exact");
-      benchmark::RegisterBenchmark(name.c_str(), decompose_scene, shared, std::string(scene), order, conditions)
+    const Variant variants[] = {{"compact/paper", MergeOrder::compact, ValidityMode::paper, std::nullopt},
+                                {"compact/exact", MergeOrder::compact, ValidityMode::exact, std::nullopt},
+                                {"compact/exact_no_near_merges", MergeOrder::compact, ValidityMode::exact, kNoNearMerges},
+                                {"random/exact", MergeOrder::random, ValidityMode::exact, std::nullopt}};
+    for (const Variant& variant : variants) {
+      const std::string name = std::string("decompose/") + scene + "/" + variant.name;
+      benchmark::RegisterBenchmark(name.c_str(), decompose_scene, shared, std::string(scene), variant)
           ->Unit(benchmark::kMillisecond)
           ->MeasureProcessCPUTime()
           ->UseRealTime();

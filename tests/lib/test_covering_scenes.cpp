@@ -11,7 +11,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace hullcover {
@@ -100,6 +102,42 @@ TEST(Decompose, RejectsOptionsOutOfRange) {
   o = {};
   o.max_hull_vertices = 3;
   EXPECT_EQ(decompose(p.value(), o).status().code(), StatusCode::invalid_argument);
+  for (double bad : {-1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    o = {};
+    o.near_merge_distance = bad;
+    EXPECT_EQ(decompose(p.value(), o).status().code(), StatusCode::invalid_argument) << bad;
+  }
+}
+
+// More merge orders keep the best: the covering with the fewest hulls of
+// the given order and the seeded random ones, each valid on its own.
+TEST(Decompose, OrderTriesKeepTheFewestHulls) {
+  const Mesh m = demo_building();
+  DecomposeOptions one;
+  size_t fewest = SIZE_MAX;
+  int best_try = -1;
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    one.order = attempt == 0 ? MergeOrder::compact : MergeOrder::random;
+    one.seed = 7 + static_cast<std::uint64_t>(attempt > 0 ? attempt - 1 : 0);
+    const auto d = test::decompose_and_check(m, one);
+    ASSERT_TRUE(d);
+    if (d->covering.hulls.size() < fewest) {
+      fewest = d->covering.hulls.size();
+      best_try = attempt;
+    }
+  }
+  DecomposeOptions tries;
+  tries.seed = 7;
+  tries.order_tries = 4;
+  const auto d = test::decompose_and_check(m, tries);
+  ASSERT_TRUE(d);
+  EXPECT_EQ(d->covering.hulls.size(), fewest);
+  EXPECT_EQ(d->covering.statistics.kept_try, best_try);
+  EXPECT_EQ(d->covering.statistics.order_tries, 4);
+  tries.order_tries = 0;
+  const Result<PreparedMesh> p = prepare_mesh(m, std::nullopt);
+  ASSERT_TRUE(p.ok());
+  EXPECT_EQ(decompose(p.value(), tries).status().code(), StatusCode::invalid_argument);
 }
 
 // A double-sided wall: two coincident sheets back to back. A prism behind

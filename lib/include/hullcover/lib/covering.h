@@ -69,6 +69,10 @@ struct DecomposeOptions {
   std::optional<double> near_merge_distance;
   MergeOrder order = MergeOrder::compact;
   std::uint64_t seed = 1;                     ///< for MergeOrder::random
+  /// Merge this many times (>= 1): in `order` first, then in random orders
+  /// seeded seed, seed + 1, ...; the covering with the fewest hulls is kept
+  /// (the first of equals). Costs that many times the merging time.
+  int order_tries = 1;
   bool keep_materials_apart = false;          ///< one material per hull, bars on material borders
   int max_hull_vertices = kDefaultMaxHullVertices;  ///< >= 8 (a prism of a quad)
   /// Called now and then with the fraction of work done (0..1); may be empty.
@@ -90,6 +94,8 @@ struct CoveringStatistics {
   int faces = 0;
   int zero_area_faces_skipped = 0;  ///< faces without a normal: covered by no hull
   int merges = 0;
+  int order_tries = 1;             ///< merging runs made; the statistics are the kept run's, times the total
+  int kept_try = 0;                ///< which run was kept (0: the given order)
   int near_merges = 0;             ///< merges of patches sharing no edge (the near-merge pass)
   long candidates_tested = 0;
   std::array<long, kValidityCount> rejections{};  ///< by Validity
