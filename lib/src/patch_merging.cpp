@@ -178,7 +178,9 @@ std::optional<ConvexPolytope> PatchMerger::grow_known_hull(const Patch& base, co
     // plane but outside the polygon is beyond no facet.
     const FlatPolygon polygon =
         make_flat_polygon(index_.mesh().positions, base.hull_vertices, base.area_vector.normalized(), index_.tol());
-    if (polygon.corners.size() < 3) return std::nullopt;
+    // No point off its plane (back-to-back sheets on the same corners): the
+    // union is flat, no solid; Qhull refuses it.
+    if (polygon.corners.size() < 3 || added.empty()) return std::nullopt;
     for (int v : added)
       if (std::abs(polygon.plane.signed_distance(index_.mesh().positions[v])) <= index_.tol()) return std::nullopt;
     hull = flat_polytope(polygon, false);

@@ -41,10 +41,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, SharedSceneCovering,
                                            "stanford-bunny-res2.ply", "thor-art56-gearplate.stl",
                                            "threejs-collision-world.glb"),
                          [](const ::testing::TestParamInfo<const char*>& param_info) {
-                           std::string name = param_info.param;
-                           for (char& ch : name)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return name;
+                           return test::file_test_name(param_info.param);
                          });
 
 std::string obj_bytes(const Covering& covering) {

@@ -3,6 +3,7 @@
 #include "hullcover/lib/prepared_mesh.h"
 #include "hullcover/lib/scene_builder.h"
 
+#include "shared_data.h"
 #include "temp_dir.h"
 
 #include <assimp/Exporter.hpp>
@@ -159,12 +160,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"garbage.stl", "\x01\x02\x03 this is not an stl file at all, just noise \x7f\x10", StatusCode::unreadable_file},
         BadInput{"garbage.glb", "glTF\x02\x00\x00\x00 truncated", StatusCode::unreadable_file},
         BadInput{"truncated.gltf", "{\"asset\":{\"version\":\"2.0\"},\"meshes\":[{\"primitives\":[", StatusCode::unreadable_file}),
-    [](const ::testing::TestParamInfo<BadInput>& param_info) {
-      std::string name = param_info.param.name;
-      for (char& ch : name)
-        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-      return name;
-    });
+    [](const ::testing::TestParamInfo<BadInput>& param_info) { return test::file_test_name(param_info.param.name); });
 
 TEST(ImportMesh, DirectoryIsNotASceneFile) {
   TempDir dir;

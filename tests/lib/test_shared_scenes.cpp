@@ -89,10 +89,7 @@ TEST_P(SharedScene, FiguresMatchSourcesAtATenTimesFinerTolerance) {
 
 INSTANTIATE_TEST_SUITE_P(Sources, SharedScene, ::testing::ValuesIn(kScenes),
                          [](const ::testing::TestParamInfo<SourcesFigures>& param_info) {
-                           std::string name = param_info.param.file;
-                           for (char& ch : name)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return name;
+                           return test::file_test_name(param_info.param.file);
                          });
 
 } // namespace

@@ -2,6 +2,7 @@
 
 #include "hullcover/lib/mesh_import.h"
 
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -27,6 +28,13 @@ Result<PreparedMesh> prepare_shared_scene(const std::string& dir, const std::str
   Result<ImportedMesh> imported = import_mesh(dir + "/" + file);
   if (!imported.ok()) return imported.status();
   return prepare_mesh(imported.value().mesh, std::nullopt);
+}
+
+std::string file_test_name(const std::string& file) {
+  std::string name = file;
+  for (char& ch : name)
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  return name;
 }
 
 } // namespace hullcover::test

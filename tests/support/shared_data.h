@@ -22,6 +22,10 @@ std::optional<std::string> shared_scenes_dir_for_benchmark();
 /// tolerance (for benchmarks; tests assert each step themselves).
 Result<PreparedMesh> prepare_shared_scene(const std::string& dir, const std::string& file);
 
+/// A file name as a test name (GoogleTest allows letters, digits and
+/// underscores only): every other character becomes '_'.
+std::string file_test_name(const std::string& file);
+
 /// The eight shared scenes, by file name.
 inline const char* const kSharedScenes[] = {
     "recast-dungeon.obj",      "recast-nav_test.obj",     "recast-undulating.obj",    "sauerbraten-fdm6.obj",

@@ -14,8 +14,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cctype>
-
 namespace hullcover::validate {
 namespace {
 
@@ -72,10 +70,7 @@ TEST_P(PeerHulls, LoseALargeShareOfFreeSpaceAndSurface) {
 
 INSTANTIATE_TEST_SUITE_P(SharedScenes, PeerHulls, ::testing::ValuesIn(kMeasured),
                          [](const ::testing::TestParamInfo<PeerFigures>& param_info) {
-                           std::string name = param_info.param.scene;
-                           for (char& ch : name)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return name;
+                           return test::file_test_name(param_info.param.scene);
                          });
 
 } // namespace

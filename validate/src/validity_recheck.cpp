@@ -63,6 +63,8 @@ CheckedHull make_checked(const HullUnderCheck& hull) {
       const Eigen::Vector3d out = e.cross(c.front.n).normalized();
       c.sides.push_back({out, out.dot(poly[i])});
     }
+    // A point is on a flat hull when it is on its plane AND within its sides.
+    c.facets.insert(c.facets.end(), c.sides.begin(), c.sides.end());
   }
   return c;
 }
@@ -145,20 +147,28 @@ std::string CheckReport::summary() const {
   return s.str();
 }
 
+namespace {
+
+// Flat: two facets on the same corners in opposite order (front and back),
+// whatever the decomposer calls the hull.
+bool has_flat_facets(const std::vector<std::vector<int>>& f) {
+  bool flat = f.size() == 2 && f[0].size() == f[1].size();
+  for (size_t i = 0; flat && i < f[0].size(); ++i) flat = f[0][i] == f[1][f[1].size() - 1 - i];
+  return flat;
+}
+
+} // namespace
+
 std::vector<HullUnderCheck> hulls_under_check(const Covering& covering) {
   std::vector<HullUnderCheck> out;
-  for (const CoveringHull& h : covering.hulls) out.push_back({&h.polytope, h.planar && h.thickness == 0.0, h.faces});
+  for (const CoveringHull& h : covering.hulls)
+    out.push_back({&h.polytope, (h.planar && h.thickness == 0.0) || has_flat_facets(h.polytope.facets), h.faces});
   return out;
 }
 
 std::vector<HullUnderCheck> hulls_under_check(const std::vector<bvh::RuntimeHull>& hulls) {
   std::vector<HullUnderCheck> out;
-  for (const bvh::RuntimeHull& h : hulls) {
-    const auto& f = h.shape.facets;
-    bool flat = f.size() == 2 && f[0].size() == f[1].size();
-    for (size_t i = 0; flat && i < f[0].size(); ++i) flat = f[0][i] == f[1][f[1].size() - 1 - i];
-    out.push_back({&h.shape, flat, {}});
-  }
+  for (const bvh::RuntimeHull& h : hulls) out.push_back({&h.shape, has_flat_facets(h.shape.facets), {}});
   return out;
 }
 
@@ -239,7 +249,7 @@ CheckReport recheck_hulls(const PreparedMesh& prepared, const std::vector<HullUn
     const std::string where = "hull " + std::to_string(h) + " (" + std::to_string(hull.faces.size()) + " faces" +
                               (hull.flat ? ", flat" : "") + "): ";
     for (const auto& p : hull.shape->vertices)
-      for (size_t fi = 0; fi < c.facets.size(); ++fi)
+      for (size_t fi = 0; fi < hull.shape->facets.size(); ++fi)
         if (const HalfSpace& plane = c.facets[fi]; plane.n.dot(p) - plane.d > tol) {
           std::ostringstream detail;
           detail << "facet " << fi << " of size " << hull.shape->facets[fi].size() << " n " << plane.n.transpose()
@@ -257,14 +267,15 @@ CheckReport recheck_hulls(const PreparedMesh& prepared, const std::vector<HullUn
       covered[f] = 1;
       const Eigen::Vector3i& t = mesh.triangles[f];
       const Eigen::Vector3d& a = mesh.positions[t[0]];
-      double in_front = 0.0, deepest_corner = -INFINITY;
+      double in_front = 0.0, corner_off = 0.0;
       for (const auto& p : hull.shape->vertices) in_front = std::max(in_front, normal[f].dot(p - a));
-      for (int k = 0; k < 3; ++k) deepest_corner = std::max(deepest_corner, depth_inside(c.facets, mesh.positions[t[k]]));
+      // Off the surface either way: deep inside, or outside the hull.
+      for (int k = 0; k < 3; ++k) corner_off = std::max(corner_off, std::abs(depth_inside(c.facets, mesh.positions[t[k]])));
       // A flat hull has a facet either way: faces of either side lie on it.
-      if (in_front > 2 * tol || deepest_corner > 2 * tol) {
+      if (in_front > 2 * tol || corner_off > 2 * tol) {
         ++report.faces_off_hull;
         note(where + "face " + std::to_string(f) + " not on the hull with its normal out (" +
-             std::to_string(in_front) + " in front, corner " + std::to_string(deepest_corner) + " deep)");
+             std::to_string(in_front) + " in front, a corner " + std::to_string(corner_off) + " off its surface)");
       }
     }
     // A flat hull that is one face (claimed, or a bare triangle from another
