@@ -247,7 +247,6 @@ bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, co
 
 namespace {
 
-
 // The fallback where a region is not settled exactly: witness rays on a
 // grid over it (each fan triangle from its middle cut kWitnessGridSteps
 // times a side), pulled in off its edges; where a face that kept witnesses

@@ -270,7 +270,8 @@ CheckReport recheck_hulls(const PreparedMesh& prepared, const std::vector<HullUn
       double in_front = 0.0, corner_off = 0.0;
       for (const auto& p : hull.shape->vertices) in_front = std::max(in_front, normal[f].dot(p - a));
       // Off the surface either way: deep inside, or outside the hull.
-      for (int k = 0; k < 3; ++k) corner_off = std::max(corner_off, std::abs(depth_inside(c.facets, mesh.positions[t[k]])));
+      for (int k = 0; k < 3; ++k)
+        corner_off = std::max(corner_off, std::abs(depth_inside(c.facets, mesh.positions[t[k]])));
       // A flat hull has a facet either way: faces of either side lie on it.
       if (in_front > 2 * tol || corner_off > 2 * tol) {
         ++report.faces_off_hull;
