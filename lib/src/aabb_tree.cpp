@@ -103,27 +103,6 @@ void AabbTree::overlapping(const Aabb& query, std::vector<int>& out) const {
   }
 }
 
-void AabbTree::along_segment(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double margin,
-                             std::vector<int>& out) const {
-  if (nodes_.empty()) return;
-  const Eigen::Vector3d inverse = inverse_of(to - from);
-  int stack[kMaxDepth];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const Node& node = nodes_[stack[--top]];
-    if (std::isinf(segment_box_entry(from, inverse, node.box, margin))) continue;
-    if (node.count > 0) {
-      for (int i = node.first; i < node.first + node.count; ++i)
-        if (!std::isinf(segment_box_entry(from, inverse, item_boxes_[items_[i]], margin))) out.push_back(items_[i]);
-      continue;
-    }
-    assert(top + 2 <= kMaxDepth);
-    stack[top++] = node.left;
-    stack[top++] = node.right;
-  }
-}
-
 void AabbTree::nearest_along_segment(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double margin,
                                      double slack, const std::function<double(int)>& meet) const {
   if (nodes_.empty()) return;

@@ -23,10 +23,6 @@ public:
   /// boxes: touching counts), in no particular order.
   void overlapping(const Aabb& query, std::vector<int>& out) const;
 
-  /// Appends to `out` the index of every box that, grown by `margin`, the
-  /// segment from-to passes through, in no particular order.
-  void along_segment(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double margin, std::vector<int>& out) const;
-
   /// Calls `meet(i)` for the boxes that, grown by `margin`, the segment
   /// from-to passes through, nearest first as far as the tree tells, and
   /// skips boxes it enters later than the nearest meeting so far plus
