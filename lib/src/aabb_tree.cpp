@@ -4,7 +4,6 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
-#include <numeric>
 
 namespace hullcover {
 namespace {
@@ -44,13 +43,15 @@ Eigen::Vector3d inverse_of(const Eigen::Vector3d& delta) {
 } // namespace
 
 AabbTree::AabbTree(const std::vector<Aabb>& boxes) : item_boxes_(boxes) {
-  if (boxes.empty()) return;
-  items_.resize(boxes.size());
-  std::iota(items_.begin(), items_.end(), 0);
+  // Empty boxes overlap nothing: left out, they cannot stretch a node's box
+  // to infinity (an empty box's min is +infinity) or give NaN centres.
+  for (int i = 0; i < static_cast<int>(boxes.size()); ++i)
+    if (!boxes[i].empty()) items_.push_back(i);
+  if (items_.empty()) return;
   std::vector<Eigen::Vector3d> centres(boxes.size());
   for (size_t i = 0; i < boxes.size(); ++i) centres[i] = 0.5 * (boxes[i].min + boxes[i].max);
-  nodes_.reserve(2 * boxes.size() / kLeafSize + 2);
-  build(0, static_cast<int>(boxes.size()), boxes, centres);
+  nodes_.reserve(2 * items_.size() / kLeafSize + 2);
+  build(0, static_cast<int>(items_.size()), boxes, centres);
 }
 
 int AabbTree::build(int begin, int end, const std::vector<Aabb>& boxes, std::vector<Eigen::Vector3d>& centres) {

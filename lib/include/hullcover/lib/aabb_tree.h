@@ -16,7 +16,8 @@ namespace hullcover {
 class AabbTree {
 public:
   AabbTree() = default;
-  /// Builds over `boxes` (index i is reported for boxes[i]). O(n log n).
+  /// Builds over `boxes` (index i is reported for boxes[i]); empty boxes
+  /// are never reported. O(n log n).
   explicit AabbTree(const std::vector<Aabb>& boxes);
 
   /// Appends to `out` the index of every box overlapping `query` (closed
