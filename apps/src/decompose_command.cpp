@@ -23,6 +23,7 @@ struct DecomposeCommandOptions {
   std::optional<double> tolerance;
   std::string order = "compact";
   std::string conditions = "exact";
+  std::string dissolve;  // "", "on" or "off"
   DecomposeOptions decompose;
   bool quiet = false;
 };
@@ -33,6 +34,7 @@ int run_decompose(DecomposeCommandOptions& o) {
   if (!scene) return kExitBadInput;
   o.decompose.order = o.order == "random" ? MergeOrder::random : MergeOrder::compact;
   o.decompose.conditions = o.conditions == "paper" ? ValidityMode::paper : ValidityMode::exact;
+  if (!o.dissolve.empty()) o.decompose.dissolve = o.dissolve == "on";
   if (!o.quiet)
     o.decompose.progress = [](double fraction) {
       std::fprintf(stderr, "\rdecomposing: %3.0f%% of merges at most", 100.0 * fraction);
@@ -78,6 +80,7 @@ int run_decompose(DecomposeCommandOptions& o) {
   if (c.near_merge_distance > 0.0)
     std::printf("  near merges (patches sharing no edge, within %.6g): %d of %d merges\n", c.near_merge_distance,
                 c.statistics.near_merges, c.statistics.merges);
+  if (c.dissolve) std::printf("  dissolved patches (emptied into their neighbours): %d\n", c.statistics.dissolved_patches);
   std::printf("  wrote %s%s%s%s%s\n", o.obj_path.c_str(), o.json_path.empty() ? "" : ", ", o.json_path.c_str(),
               o.world_path.empty() ? "" : ", ", o.world_path.c_str());
   return kExitSuccess;
@@ -112,6 +115,11 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
                   "scene units, under the same conditions; 0 = off, the paper's algorithm alone (default: exact "
                   "0.02 x diagonal, paper 0)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--dissolve", o->dissolve,
+                  "After merging, empty each patch whose faces can each join a patch around it (across an edge or "
+                  "within the near-merge distance) under the same conditions, then merge again: on or off (default: "
+                  "exact on, paper off)")
+      ->check(CLI::IsMember({"on", "off"}));
   cmd->add_option("--seed", o->decompose.seed, "Seed of the random order")->capture_default_str();
   cmd->add_option("--tries", o->decompose.order_tries,
                   "Merge N times: in --order, then in random orders seeded --seed, --seed + 1, ...; keep the "

@@ -79,6 +79,7 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
   covering.prism_thickness_cap = options.prism_thickness_cap.value_or(kDefaultPrismCapRelative * diagonal);
   covering.near_merge_distance =
       options.near_merge_distance.value_or(exact ? kDefaultNearMergeRelative * diagonal : 0.0);
+  covering.dissolve = options.dissolve.value_or(exact);
   CoveringStatistics& stats = covering.statistics;
   stats.faces = static_cast<int>(prepared.mesh.triangles.size());
 
@@ -100,6 +101,7 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
   for (int attempt = 0; attempt < options.order_tries; ++attempt) {
     auto run = std::make_unique<Try>();
     run->options = options;
+    run->options.dissolve = covering.dissolve;
     if (attempt > 0) {
       run->options.order = MergeOrder::random;
       run->options.seed = options.seed + static_cast<std::uint64_t>(attempt - 1);

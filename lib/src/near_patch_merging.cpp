@@ -42,13 +42,20 @@ int PatchMerger::push_near_pairs() {
 
 void PatchMerger::run() {
   run_pairs();
-  if (near_merge_distance_ <= 0.0) return;
-  // Near merges change hulls, which opens new pairs of both kinds.
+  // Near merges and dissolving change hulls, which opens new pairs of both
+  // kinds.
   for (;;) {
-    const int merges = statistics_.merges;
-    if (push_near_pairs() == 0) break;
+    if (near_merge_distance_ > 0.0) {
+      for (;;) {
+        const int merges = statistics_.merges;
+        if (push_near_pairs() == 0) break;
+        run_pairs();
+        if (statistics_.merges == merges) break;
+      }
+    }
+    if (!options_.dissolve.value_or(false) || dissolve_patches() == 0) break;
+    push_neighbour_pairs();
     run_pairs();
-    if (statistics_.merges == merges) break;
   }
 }
 

@@ -9,6 +9,19 @@
 namespace hullcover::detail {
 namespace {
 
+// splitmix64: a fixed, portable pseudo-random function of the pair.
+double pseudo_random_cost(std::uint64_t seed, int a, int b, int va, int vb) {
+  std::uint64_t z = seed ^ (static_cast<std::uint64_t>(a) << 32 | static_cast<std::uint32_t>(b)) ^
+                    (static_cast<std::uint64_t>(va) * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(vb));
+  z += 0x9E3779B97F4A7C15ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return static_cast<double>(z >> 11) / static_cast<double>(1ull << 53);
+}
+
+} // namespace
+
 // Two face planes closer than this in normal direction (1 - cos) and
 // within tol in offset are kept once: over a scene diagonal D their
 // difference stays under tol when 1 - cos <= (tol / D)^2 / 2.
@@ -22,19 +35,6 @@ void add_plane(std::vector<Plane>& planes, const Plane& p, double cosine_gap, do
     if (q.normal.dot(p.normal) >= 1.0 - cosine_gap && std::abs(q.offset - p.offset) <= tol) return;
   planes.push_back(p);
 }
-
-// splitmix64: a fixed, portable pseudo-random function of the pair.
-double pseudo_random_cost(std::uint64_t seed, int a, int b, int va, int vb) {
-  std::uint64_t z = seed ^ (static_cast<std::uint64_t>(a) << 32 | static_cast<std::uint32_t>(b)) ^
-                    (static_cast<std::uint64_t>(va) * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(vb));
-  z += 0x9E3779B97F4A7C15ull;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  z ^= z >> 31;
-  return static_cast<double>(z >> 11) / static_cast<double>(1ull << 53);
-}
-
-} // namespace
 
 std::vector<Eigen::Vector3d> positions_of(const Mesh& mesh, const std::vector<int>& ids) {
   std::vector<Eigen::Vector3d> out;
@@ -57,34 +57,22 @@ PatchMerger::PatchMerger(const SceneIndex& index, const DecomposeOptions& option
   patches_.resize(face_count);
   face_patch_.resize(face_count);
   for (int f = 0; f < face_count; ++f) {
-    Patch& p = patches_[f];
     face_patch_[f] = f;
     if (c.zero_area[f]) {
-      p.alive = false;
+      patches_[f].alive = false;
       ++statistics_.zero_area_faces_skipped;
       continue;
     }
-    const Eigen::Vector3i& t = mesh.triangles[f];
-    p.faces = {f};
-    p.hull_vertices = {t[0], t[1], t[2]};
-    std::sort(p.hull_vertices.begin(), p.hull_vertices.end());
-    p.face_planes = {{index.face_normals[f], index.face_normals[f].dot(mesh.positions[t[0]])}};
-    p.area = index.face_areas[f];
-    p.area_vector = index.face_normals[f] * p.area;
-    for (int k = 0; k < 3; ++k) p.boundary_length += (mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]]).norm();
-    p.material = mesh.material_ids[f];
+    patches_[f] = single_face_patch(f);
   }
-  for (const MeshEdge& e : c.edges) {
-    if (e.kind != EdgeKind::manifold) continue;
-    const int f0 = c.edge_uses[e.first_use].face, f1 = c.edge_uses[e.first_use + 1].face;
-    if (!patches_[f0].alive || !patches_[f1].alive) continue;
-    const double length = (mesh.positions[e.v1] - mesh.positions[e.v0]).norm();
-    patches_[f0].shared_length[f1] += length;
-    patches_[f1].shared_length[f0] += length;
-  }
-  for (int f = 0; f < face_count; ++f)
-    for (const auto& [g, length] : patches_[f].shared_length)
-      if (f < g) push_pair(f, g);
+  recount_shared_edges();
+  push_neighbour_pairs();
+}
+
+void PatchMerger::push_neighbour_pairs() {
+  for (int p = 0; p < static_cast<int>(patches_.size()); ++p)
+    for (const auto& [q, length] : patches_[p].shared_length)
+      if (p < q) push_pair(p, q);
 }
 
 void PatchMerger::push_pair(int a, int b) {
@@ -227,6 +215,7 @@ void PatchMerger::merge(int a, int b, Candidate&& candidate) {
   g = Patch{};
   g.alive = false;
   ++k.version;
+  k.changed_at = ++changes_;
   ++statistics_.merges;
   statistics_.near_merges += near_merge;
   for (const auto& [neighbour, length] : k.shared_length) push_pair(keep, neighbour);

@@ -26,8 +26,18 @@ struct Patch {
   std::optional<ConvexPolytope> solid;  ///< the hull, when not planar
   int material = 0;
   int version = 0;
+  long changed_at = 0;  ///< PatchMerger::changes_ when it last changed
+  long dissolve_failed_at = -1;  ///< PatchMerger::changes_ when dissolving it last failed
+  int dissolve_failed_face = -1;  ///< the face that then found no patch to go to
   bool alive = true;
 };
+
+/// Two face planes closer than this in normal direction (1 - cos) count as
+/// one plane in Patch::face_planes (with offsets within tol).
+double same_plane_cosine_gap(const SceneIndex& index);
+
+/// Adds `p` to `planes` unless one of them is the same plane.
+void add_plane(std::vector<Plane>& planes, const Plane& p, double cosine_gap, double tol);
 
 /// The positions of mesh vertices `ids`, in order.
 std::vector<Eigen::Vector3d> positions_of(const Mesh& mesh, const std::vector<int>& ids);
@@ -45,8 +55,8 @@ public:
               CoveringStatistics& statistics);
 
   /// Merges until no mergeable pair is left: the paper's pass, then near
-  /// merges (near_patch_merging.cpp) and the paper's pass again while they
-  /// merge anything.
+  /// merges (near_patch_merging.cpp) and dissolving (patch_dissolving.cpp),
+  /// and the paper's pass again, while they change anything.
   void run();
 
   const std::vector<Patch>& patches() const { return patches_; }
@@ -61,6 +71,28 @@ private:
   };
 
   Candidate evaluate(int a, int b);
+  /// Face `f` alone, as the merging starts.
+  Patch single_face_patch(int f) const;
+  /// Boundary and shared lengths of every patch, from its faces.
+  void recount_shared_edges();
+  /// Queues every pair of patches sharing an edge.
+  void push_neighbour_pairs();
+  /// Empties every patch it can into the patches around its faces; returns
+  /// how many were emptied.
+  int dissolve_patches();
+  /// Moves each face of patch `h` into a patch across one of its edges or
+  /// in `near_tree` (patch boxes grown by half the near-merge distance),
+  /// the first that stays valid; when one face finds none, puts everything
+  /// back and returns false. `lone`: as in face_fits.
+  bool dissolve(int h, const AabbTree& near_tree, int lone);
+  /// The candidate for face `f` joining patch `q`, if valid; `lone` is a
+  /// spare patch slot to hold the face alone meanwhile.
+  std::optional<Candidate> face_fits(int f, int q, int lone);
+  /// Moves face `f` into patch `q` whose union with it is `candidate`.
+  void move_face(int f, int q, Candidate&& candidate);
+  /// The patches face `f` of patch `h` may move to: across its edges, the
+  /// longest shared first, then those of `near_tree` overlapping it.
+  std::vector<int> receivers_of(int f, int h, const AabbTree& near_tree) const;
   /// hull(base + other) grown from base's known hull, when other adds few
   /// points; nothing when that does not apply or fails (then Qhull runs).
   std::optional<ConvexPolytope> grow_known_hull(const Patch& base, const Patch& other);
@@ -96,7 +128,8 @@ private:
   ConvexHullBuilder hull_builder_;
   std::vector<int> scratch_;
   double near_merge_distance_;
-  std::set<std::array<int, 4>> near_pairs_tried_;  // {a, version a, b, version b}
+  std::set<std::array<int, 4>> near_pairs_tried_;
+  long changes_ = 0;  // counts changes to patches, for Patch::changed_at  // {a, version a, b, version b}
 };
 
 } // namespace hullcover::detail

@@ -67,6 +67,11 @@ struct DecomposeOptions {
   /// exact kDefaultNearMergeRelative x diagonal, paper 0 (the paper's
   /// algorithm alone).
   std::optional<double> near_merge_distance;
+  /// Dissolving, after the merging: a patch whose faces can each join
+  /// another patch (across an edge or within the near-merge distance) under
+  /// the same conditions is emptied into them; then merging resumes. Default
+  /// exact on, paper off (the paper's algorithm alone).
+  std::optional<bool> dissolve;
   MergeOrder order = MergeOrder::compact;
   std::uint64_t seed = 1;                     ///< for MergeOrder::random
   /// Merge this many times (>= 1): in `order` first, then in random orders
@@ -97,6 +102,7 @@ struct CoveringStatistics {
   int order_tries = 1;             ///< merging runs made; the statistics are the kept run's, times the total
   int kept_try = 0;                ///< which run was kept (0: the given order)
   int near_merges = 0;             ///< merges of patches sharing no edge (the near-merge pass)
+  int dissolved_patches = 0;       ///< patches emptied into others (dissolving)
   long candidates_tested = 0;
   std::array<long, kValidityCount> rejections{};  ///< by Validity
   long qhull_calls = 0;
@@ -116,6 +122,7 @@ struct Covering {
   double free_space_reach = 0.0;  ///< exact mode
   double prism_thickness_cap = 0.0;
   double near_merge_distance = 0.0;  ///< scene units; 0 = no near merges
+  bool dissolve = false;             ///< whether dissolving ran (resolved DecomposeOptions::dissolve)
   DecomposeOptions options;  ///< as given (progress callback included)
   CoveringStatistics statistics;
 };

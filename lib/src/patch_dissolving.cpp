@@ -1,0 +1,192 @@
+// Dissolving, the pass after merging (patch_merging.h): a patch whose every
+// face can join some other patch, under the same conditions, is emptied into
+// them: one hull fewer. Greedy merging cannot find these moves, it only ever
+// unites whole patches; a patch that took two faces early may be what keeps
+// both from the two larger patches around them.
+
+#include "patch_merging.h"
+
+#include <algorithm>
+
+namespace hullcover::detail {
+namespace {
+
+double edge_length(const Mesh& mesh, int face, int corner) {
+  const Eigen::Vector3i& t = mesh.triangles[face];
+  return (mesh.positions[t[(corner + 1) % 3]] - mesh.positions[t[corner]]).norm();
+}
+
+} // namespace
+
+Patch PatchMerger::single_face_patch(int f) const {
+  const Mesh& mesh = index_.mesh();
+  const Eigen::Vector3i& t = mesh.triangles[f];
+  Patch p;
+  p.faces = {f};
+  p.hull_vertices = {t[0], t[1], t[2]};
+  std::sort(p.hull_vertices.begin(), p.hull_vertices.end());
+  p.face_planes = {{index_.face_normals[f], index_.face_normals[f].dot(mesh.positions[t[0]])}};
+  p.area = index_.face_areas[f];
+  p.area_vector = index_.face_normals[f] * p.area;
+  for (int k = 0; k < 3; ++k) p.boundary_length += edge_length(mesh, f, k);
+  p.material = mesh.material_ids[f];
+  return p;
+}
+
+void PatchMerger::recount_shared_edges() {
+  const Mesh& mesh = index_.mesh();
+  const MeshConnectivity& c = index_.prepared->connectivity;
+  for (Patch& p : patches_) {
+    p.shared_length.clear();
+    p.boundary_length = 0.0;
+  }
+  for (int f = 0; f < static_cast<int>(face_patch_.size()); ++f) {
+    Patch& p = patches_[face_patch_[f]];
+    if (!p.alive) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int g = c.face_neighbours[f][k];
+      const int q = g < 0 ? -1 : face_patch_[g];
+      if (q == face_patch_[f]) continue;
+      const double length = edge_length(mesh, f, k);
+      p.boundary_length += length;
+      if (q >= 0 && patches_[q].alive) p.shared_length[q] += length;
+    }
+  }
+}
+
+std::vector<int> PatchMerger::receivers_of(int f, int h, const AabbTree& near_tree) const {
+  const MeshConnectivity& c = index_.prepared->connectivity;
+  std::vector<std::pair<double, int>> by_shared;  // (-shared length, patch): most shared first
+  for (int k = 0; k < 3; ++k) {
+    const int g = c.face_neighbours[f][k];
+    if (g < 0) continue;
+    const int q = face_patch_[g];
+    if (q == h || !patches_[q].alive) continue;
+    const double length = edge_length(index_.mesh(), f, k);
+    auto same = std::find_if(by_shared.begin(), by_shared.end(), [q](const auto& e) { return e.second == q; });
+    if (same != by_shared.end()) same->first -= length;
+    else by_shared.push_back({-length, q});
+  }
+  std::sort(by_shared.begin(), by_shared.end());
+  std::vector<int> out;
+  for (const auto& e : by_shared) out.push_back(e.second);
+  if (near_merge_distance_ > 0.0) {
+    const Mesh& mesh = index_.mesh();
+    const Eigen::Vector3i& t = mesh.triangles[f];
+    const Aabb box = grown(bounding_box_of({mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]}),
+                           0.5 * near_merge_distance_);
+    std::vector<int> near;
+    near_tree.overlapping(box, near);
+    std::sort(near.begin(), near.end());
+    for (int q : near)
+      if (q != h && patches_[q].alive && std::find(out.begin(), out.end(), q) == out.end()) out.push_back(q);
+  }
+  return out;
+}
+
+std::optional<PatchMerger::Candidate> PatchMerger::face_fits(int f, int q, int lone) {
+  const int home = face_patch_[f];
+  patches_[lone] = single_face_patch(f);
+  face_patch_[f] = lone;
+  ++statistics_.candidates_tested;
+  Candidate candidate = evaluate(q, lone);
+  face_patch_[f] = home;
+  if (candidate.validity == Validity::valid) return candidate;
+  ++statistics_.rejections[static_cast<int>(candidate.validity)];
+  return std::nullopt;
+}
+
+void PatchMerger::move_face(int f, int q, Candidate&& candidate) {
+  const Patch lone = single_face_patch(f);
+  Patch& r = patches_[q];
+  r.faces.push_back(f);
+  face_patch_[f] = q;
+  add_plane(r.face_planes, lone.face_planes.front(), same_plane_cosine_gap(index_), index_.tol());
+  r.hull_vertices = std::move(candidate.hull_vertices);
+  r.planar = candidate.planar;
+  r.solid = std::move(candidate.solid);
+  r.area += lone.area;
+  r.area_vector += lone.area_vector;
+  r.material = std::min(r.material, lone.material);
+  ++r.version;
+  r.changed_at = ++changes_;
+}
+
+bool PatchMerger::dissolve(int h, const AabbTree& near_tree, int lone) {
+  Patch& patch = patches_[h];
+  // Tried before, unchanged since: only a patch that changed since can take
+  // the face that was stuck (the others gave their verdict on it already).
+  if (patch.dissolve_failed_face >= 0 && patch.changed_at <= patch.dissolve_failed_at) {
+    bool unstuck = false;
+    for (int q : receivers_of(patch.dissolve_failed_face, h, near_tree))
+      if (patches_[q].changed_at > patch.dissolve_failed_at && face_fits(patch.dissolve_failed_face, q, lone)) {
+        unstuck = true;
+        break;
+      }
+    if (!unstuck) {
+      patch.dissolve_failed_at = changes_;
+      return false;
+    }
+  }
+  const std::vector<int> faces = patch.faces;
+  std::vector<std::vector<int>> receivers;
+  for (int f : faces) {
+    receivers.push_back(receivers_of(f, h, near_tree));
+    if (receivers.back().empty()) return false;
+  }
+  // The face with the fewest places to go first: most failures come early.
+  std::vector<int> by_choice(faces.size());
+  for (std::size_t i = 0; i < faces.size(); ++i) by_choice[i] = static_cast<int>(i);
+  std::stable_sort(by_choice.begin(), by_choice.end(),
+                   [&](int x, int y) { return receivers[x].size() < receivers[y].size(); });
+  std::map<int, Patch> before;  // receivers as they were, to put back
+  for (int i : by_choice) {
+    const int f = faces[i];
+    bool moved = false;
+    for (int q : receivers[i]) {
+      std::optional<Candidate> candidate = face_fits(f, q, lone);
+      if (!candidate) continue;
+      before.emplace(q, patches_[q]);
+      move_face(f, q, std::move(*candidate));
+      moved = true;
+      break;
+    }
+    if (!moved) {
+      for (auto& [q, receiver] : before) patches_[q] = std::move(receiver);
+      for (int g : faces) face_patch_[g] = h;
+      patches_[h].dissolve_failed_at = changes_;
+      patches_[h].dissolve_failed_face = f;
+      return false;
+    }
+  }
+  patches_[h] = Patch{};
+  patches_[h].alive = false;
+  ++changes_;
+  return true;
+}
+
+int PatchMerger::dissolve_patches() {
+  const Mesh& mesh = index_.mesh();
+  std::vector<Aabb> boxes(patches_.size());  // empty for dead patches: they overlap nothing
+  std::vector<int> order;
+  for (int p = 0; p < static_cast<int>(patches_.size()); ++p) {
+    if (!patches_[p].alive) continue;
+    boxes[p] = grown(bounding_box_of(positions_of(mesh, patches_[p].hull_vertices)), 0.5 * near_merge_distance_);
+    // A one-face patch has been tried with every neighbour already.
+    if (patches_[p].faces.size() >= 2) order.push_back(p);
+  }
+  const AabbTree near_tree(boxes);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return patches_[a].faces.size() < patches_[b].faces.size(); });
+  const int lone = static_cast<int>(patches_.size());  // where a face is tried alone
+  patches_.emplace_back();
+  int dissolved = 0;
+  for (int h : order)
+    if (patches_[h].alive && dissolve(h, near_tree, lone)) ++dissolved;
+  patches_.pop_back();
+  if (dissolved > 0) recount_shared_edges();
+  statistics_.dissolved_patches += dissolved;
+  return dissolved;
+}
+
+} // namespace hullcover::detail
