@@ -53,8 +53,10 @@ void PatchMerger::run() {
         if (statistics_.merges == merges) break;
       }
     }
+    const long before_dissolving = changes_;
     if (!options_.dissolve.value_or(false) || dissolve_patches() == 0) break;
-    push_neighbour_pairs();
+    // Pairs of unchanged patches were all tried as they are, and failed.
+    push_neighbour_pairs(before_dissolving);
     run_pairs();
   }
 }

@@ -66,13 +66,13 @@ PatchMerger::PatchMerger(const SceneIndex& index, const DecomposeOptions& option
     patches_[f] = single_face_patch(f);
   }
   recount_shared_edges();
-  push_neighbour_pairs();
+  push_neighbour_pairs(-1);
 }
 
-void PatchMerger::push_neighbour_pairs() {
+void PatchMerger::push_neighbour_pairs(long changed_after) {
   for (int p = 0; p < static_cast<int>(patches_.size()); ++p)
     for (const auto& [q, length] : patches_[p].shared_length)
-      if (p < q) push_pair(p, q);
+      if (p < q && std::max(patches_[p].changed_at, patches_[q].changed_at) > changed_after) push_pair(p, q);
 }
 
 void PatchMerger::push_pair(int a, int b) {

@@ -75,8 +75,9 @@ private:
   Patch single_face_patch(int f) const;
   /// Boundary and shared lengths of every patch, from its faces.
   void recount_shared_edges();
-  /// Queues every pair of patches sharing an edge.
-  void push_neighbour_pairs();
+  /// Queues every pair of patches sharing an edge of which one changed
+  /// after `changed_after` (a value of changes_; -1: every pair).
+  void push_neighbour_pairs(long changed_after);
   /// Empties every patch it can into the patches around its faces; returns
   /// how many were emptied.
   int dissolve_patches();

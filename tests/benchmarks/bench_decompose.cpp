@@ -1,6 +1,7 @@
 // Decomposition benchmark over the shared scenes (not a test): for each
 // scene, the paper's conditions and exact mode (compact order), exact mode
-// without near merges, and exact mode in random order, side by side, with faces, hulls, hulls per face, the
+// without dissolving, without near merges (nor dissolving), and exact mode in
+// random order, side by side, with faces, hulls, hulls per face, the
 // ratio to the prototype's paper-mode count (../shared/DESIGN.md; issue 6's
 // target for exact mode: <= 1) and the time per 20K faces (the paper: tens
 // of seconds to a minute for 21K faces).
@@ -37,9 +38,11 @@ struct Variant {
   MergeOrder order;
   ValidityMode conditions;
   std::optional<double> near_merge_distance;  // unset: the mode's default
+  std::optional<bool> dissolve;               // unset: the mode's default
 };
 
 constexpr double kNoNearMerges = 0.0;
+constexpr bool kNoDissolving = false;
 
 void decompose_scene(benchmark::State& state, std::shared_ptr<PreparedMesh> prepared, std::string scene,
                      Variant variant) {
@@ -47,6 +50,7 @@ void decompose_scene(benchmark::State& state, std::shared_ptr<PreparedMesh> prep
   options.order = variant.order;
   options.conditions = variant.conditions;
   options.near_merge_distance = variant.near_merge_distance;
+  options.dissolve = variant.dissolve;
   size_t hulls = 0;
   for (auto _ : state) {
     Result<Covering> covering = decompose(*prepared, options);
@@ -82,10 +86,12 @@ int main(int argc, char** argv) {
       return 2;
     }
     auto shared = std::make_shared<PreparedMesh>(std::move(prepared).value());
-    const Variant variants[] = {{"compact/paper", MergeOrder::compact, ValidityMode::paper, std::nullopt},
-                                {"compact/exact", MergeOrder::compact, ValidityMode::exact, std::nullopt},
-                                {"compact/exact_no_near_merges", MergeOrder::compact, ValidityMode::exact, kNoNearMerges},
-                                {"random/exact", MergeOrder::random, ValidityMode::exact, std::nullopt}};
+    const Variant variants[] = {
+        {"compact/paper", MergeOrder::compact, ValidityMode::paper, std::nullopt, std::nullopt},
+        {"compact/exact", MergeOrder::compact, ValidityMode::exact, std::nullopt, std::nullopt},
+        {"compact/exact_no_dissolving", MergeOrder::compact, ValidityMode::exact, std::nullopt, kNoDissolving},
+        {"compact/exact_no_near_merges", MergeOrder::compact, ValidityMode::exact, kNoNearMerges, kNoDissolving},
+        {"random/exact", MergeOrder::random, ValidityMode::exact, std::nullopt, std::nullopt}};
     for (const Variant& variant : variants) {
       const std::string name = std::string("decompose/") + scene + "/" + variant.name;
       benchmark::RegisterBenchmark(name.c_str(), decompose_scene, shared, std::string(scene), variant)
