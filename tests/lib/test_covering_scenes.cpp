@@ -66,6 +66,24 @@ TEST(Decompose, IsDeterministicToTheByte) {
   }
 }
 
+// Dissolving on a real map: fewer hulls, every one valid (decompose_and_check
+// re-checks), and still the same bytes each time (it moves faces in a fixed
+// order and puts failed moves back).
+TEST(Decompose, DissolvingOnCollisionWorldSavesHullsAndIsDeterministic) {
+  HULLCOVER_REQUIRE_SHARED_SCENES(dir);
+  const Result<ImportedMesh> imported = import_mesh(dir + "/threejs-collision-world.glb");
+  ASSERT_TRUE(imported.ok()) << imported.status().message();
+  DecomposeOptions off;
+  off.dissolve = false;
+  const auto without = test::decompose_and_check(imported.value().mesh, off);
+  const auto first = test::decompose_and_check(imported.value().mesh);
+  const auto second = test::decompose_and_check(imported.value().mesh);
+  ASSERT_TRUE(without && first && second);
+  EXPECT_GT(first->covering.statistics.dissolved_patches, 0);
+  EXPECT_LT(first->covering.hulls.size(), without->covering.hulls.size());
+  EXPECT_EQ(obj_bytes(first->covering), obj_bytes(second->covering));
+}
+
 TEST(Decompose, HullVertexCapIsRespected) {
   Mesh m;
   add_height_field(m, {0, 1, 2, 3, 4, 5, 6, 7, 8}, {0, 1, 2, 3, 4, 5, 6, 7, 8},
