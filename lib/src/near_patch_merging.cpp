@@ -30,9 +30,7 @@ int PatchMerger::push_near_pairs() {
       const Patch& pb = patches_[b];
       if (b <= a || pa.shared_length.count(b)) continue;
       if (!near_pairs_tried_.insert({a, pa.version, b, pb.version}).second) continue;
-      if (!planes_support_points(pa.face_planes, positions_of(mesh, pb.hull_vertices), tol) ||
-          !planes_support_points(pb.face_planes, positions_of(mesh, pa.hull_vertices), tol))
-        continue;
+      if (!patches_support_each_other(mesh, pa, pb, tol)) continue;
       push_pair(a, b);
       ++pushed;
     }

@@ -128,17 +128,27 @@ bool PatchMerger::dissolve(int h, const AabbTree& near_tree, int lone) {
       return false;
     }
   }
+  // Only patches passing condition 2 with a face (cheap) can take it: a
+  // face with none fails the patch before any hull is built.
   const std::vector<int> faces = patch.faces;
   std::vector<std::vector<int>> receivers;
+  std::vector<std::size_t> places;  // receivers of each face before that filter
   for (int f : faces) {
+    const Patch alone = single_face_patch(f);
     receivers.push_back(receivers_of(f, h, near_tree));
-    if (receivers.back().empty()) return false;
+    std::vector<int>& r = receivers.back();
+    places.push_back(r.size());
+    r.erase(std::remove_if(r.begin(), r.end(),
+                           [&](int q) {
+                             return !patches_support_each_other(index_.mesh(), patches_[q], alone, index_.tol());
+                           }),
+            r.end());
+    if (r.empty()) return false;
   }
   // The face with the fewest places to go first: most failures come early.
   std::vector<int> by_choice(faces.size());
   for (std::size_t i = 0; i < faces.size(); ++i) by_choice[i] = static_cast<int>(i);
-  std::stable_sort(by_choice.begin(), by_choice.end(),
-                   [&](int x, int y) { return receivers[x].size() < receivers[y].size(); });
+  std::stable_sort(by_choice.begin(), by_choice.end(), [&](int x, int y) { return places[x] < places[y]; });
   std::map<int, Patch> before;  // receivers as they were, to put back
   for (int i : by_choice) {
     const int f = faces[i];

@@ -43,6 +43,11 @@ std::vector<Eigen::Vector3d> positions_of(const Mesh& mesh, const std::vector<in
   return out;
 }
 
+bool patches_support_each_other(const Mesh& mesh, const Patch& a, const Patch& b, double tol) {
+  return planes_support_points(a.face_planes, positions_of(mesh, b.hull_vertices), tol) &&
+         planes_support_points(b.face_planes, positions_of(mesh, a.hull_vertices), tol);
+}
+
 double merged_patch_cost(const Patch& a, const Patch& b, double shared) {
   const double boundary = std::max(0.0, a.boundary_length + b.boundary_length - 2.0 * shared);
   return boundary / std::sqrt(a.area + b.area);
@@ -98,8 +103,7 @@ PatchMerger::Candidate PatchMerger::evaluate(int a, int b) {
     return out;
   }
   // Condition 2 first: it needs no hull and rejects every concave pair.
-  if (!planes_support_points(pa.face_planes, positions_of(mesh, pb.hull_vertices), tol) ||
-      !planes_support_points(pb.face_planes, positions_of(mesh, pa.hull_vertices), tol)) {
+  if (!patches_support_each_other(mesh, pa, pb, tol)) {
     out.validity = Validity::face_not_on_hull;
     return out;
   }

@@ -42,6 +42,10 @@ void add_plane(std::vector<Plane>& planes, const Plane& p, double cosine_gap, do
 /// The positions of mesh vertices `ids`, in order.
 std::vector<Eigen::Vector3d> positions_of(const Mesh& mesh, const std::vector<int>& ids);
 
+/// Condition 2 both ways: each patch's face planes have the other's hull
+/// vertices behind them (within tol). Cheap, and needs no hull.
+bool patches_support_each_other(const Mesh& mesh, const Patch& a, const Patch& b, double tol);
+
 /// Inverse compactness of the union of two patches sharing `shared` length
 /// of boundary: B / sqrt(A) (0 for a closed union).
 double merged_patch_cost(const Patch& a, const Patch& b, double shared);
