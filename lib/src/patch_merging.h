@@ -133,8 +133,8 @@ private:
   ConvexHullBuilder hull_builder_;
   std::vector<int> scratch_;
   double near_merge_distance_;
-  std::set<std::array<int, 4>> near_pairs_tried_;
-  long changes_ = 0;  // counts changes to patches, for Patch::changed_at  // {a, version a, b, version b}
+  std::set<std::array<int, 4>> near_pairs_tried_;  // {a, version a, b, version b}
+  long changes_ = 0;  // counts changes to patches, for Patch::changed_at
 };
 
 } // namespace hullcover::detail
