@@ -80,7 +80,8 @@ int run_decompose(DecomposeCommandOptions& o) {
   if (c.near_merge_distance > 0.0)
     std::printf("  near merges (patches sharing no edge, within %.6g): %d of %d merges\n", c.near_merge_distance,
                 c.statistics.near_merges, c.statistics.merges);
-  if (c.dissolve) std::printf("  dissolved patches (emptied into their neighbours): %d\n", c.statistics.dissolved_patches);
+  if (c.dissolve)
+    std::printf("  dissolved patches (emptied into their neighbours): %d\n", c.statistics.dissolved_patches);
   std::printf("  wrote %s%s%s%s%s\n", o.obj_path.c_str(), o.json_path.empty() ? "" : ", ", o.json_path.c_str(),
               o.world_path.empty() ? "" : ", ", o.world_path.c_str());
   return kExitSuccess;
@@ -127,7 +128,8 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
       ->check(CLI::Range(1, 1 << 16))
       ->capture_default_str();
   cmd->add_option("--bar-length", o->decompose.bar_half_length,
-                  "Half-length of the boundary constraint bars, scene units (default: paper 0.1 x diagonal, exact 4 x tol)")
+                  "Half-length of the boundary constraint bars, scene units (default: paper 0.1 x diagonal, "
+                  "exact 4 x tol)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--prism-cap", o->decompose.prism_thickness_cap,
                   "Largest thickness of the prisms made from planar patches (default 0.01 x diagonal)")

@@ -20,7 +20,9 @@ constexpr double kRadius = 5.0;
 constexpr double kDepth = 6.0;  // along y: long strips, so the wider middle pair is the most compact
 constexpr double kDegrees = 3.14159265358979323846 / 180.0;
 
-V on_arc(double degrees, double r = kRadius) { return V(r * std::cos(degrees * kDegrees), 0, r * std::sin(degrees * kDegrees)); }
+V on_arc(double degrees, double r = kRadius) {
+  return V(r * std::cos(degrees * kDegrees), 0, r * std::sin(degrees * kDegrees));
+}
 
 // A ridge of four strips A B C D (arc points at 55, 70, 90, 110, 125 degrees,
 // extruded along y, facing away from the arc's centre) and under it two thin
