@@ -14,10 +14,7 @@ int PatchMerger::push_near_pairs() {
   const Mesh& mesh = index_.mesh();
   const double tol = index_.tol();
   const int patch_count = static_cast<int>(patches_.size());
-  std::vector<Aabb> boxes(patch_count);  // empty for dead patches: they overlap nothing
-  for (int p = 0; p < patch_count; ++p)
-    if (patches_[p].alive)
-      boxes[p] = grown(bounding_box_of(positions_of(mesh, patches_[p].hull_vertices)), 0.5 * near_merge_distance_);
+  const std::vector<Aabb> boxes = near_boxes();
   const AabbTree tree(boxes);
   int pushed = 0;
   std::vector<int> near;

@@ -9,50 +9,6 @@
 #include <algorithm>
 
 namespace hullcover::detail {
-namespace {
-
-double edge_length(const Mesh& mesh, int face, int corner) {
-  const Eigen::Vector3i& t = mesh.triangles[face];
-  return (mesh.positions[t[(corner + 1) % 3]] - mesh.positions[t[corner]]).norm();
-}
-
-} // namespace
-
-Patch PatchMerger::single_face_patch(int f) const {
-  const Mesh& mesh = index_.mesh();
-  const Eigen::Vector3i& t = mesh.triangles[f];
-  Patch p;
-  p.faces = {f};
-  p.hull_vertices = {t[0], t[1], t[2]};
-  std::sort(p.hull_vertices.begin(), p.hull_vertices.end());
-  p.face_planes = {{index_.face_normals[f], index_.face_normals[f].dot(mesh.positions[t[0]])}};
-  p.area = index_.face_areas[f];
-  p.area_vector = index_.face_normals[f] * p.area;
-  for (int k = 0; k < 3; ++k) p.boundary_length += edge_length(mesh, f, k);
-  p.material = mesh.material_ids[f];
-  return p;
-}
-
-void PatchMerger::recount_shared_edges() {
-  const Mesh& mesh = index_.mesh();
-  const MeshConnectivity& c = index_.prepared->connectivity;
-  for (Patch& p : patches_) {
-    p.shared_length.clear();
-    p.boundary_length = 0.0;
-  }
-  for (int f = 0; f < static_cast<int>(face_patch_.size()); ++f) {
-    Patch& p = patches_[face_patch_[f]];
-    if (!p.alive) continue;
-    for (int k = 0; k < 3; ++k) {
-      const int g = c.face_neighbours[f][k];
-      const int q = g < 0 ? -1 : face_patch_[g];
-      if (q == face_patch_[f]) continue;
-      const double length = edge_length(mesh, f, k);
-      p.boundary_length += length;
-      if (q >= 0 && patches_[q].alive) p.shared_length[q] += length;
-    }
-  }
-}
 
 std::vector<int> PatchMerger::receivers_of(int f, int h, const AabbTree& near_tree) const {
   const MeshConnectivity& c = index_.prepared->connectivity;
@@ -62,7 +18,7 @@ std::vector<int> PatchMerger::receivers_of(int f, int h, const AabbTree& near_tr
     if (g < 0) continue;
     const int q = face_patch_[g];
     if (q == h || !patches_[q].alive) continue;
-    const double length = edge_length(index_.mesh(), f, k);
+    const double length = face_edge_length(index_.mesh(), f, k);
     auto same = std::find_if(by_shared.begin(), by_shared.end(), [q](const auto& e) { return e.second == q; });
     if (same != by_shared.end()) same->first -= length;
     else by_shared.push_back({-length, q});
@@ -86,7 +42,6 @@ std::vector<int> PatchMerger::receivers_of(int f, int h, const AabbTree& near_tr
 
 std::optional<PatchMerger::Candidate> PatchMerger::face_fits(int f, int q, int lone) {
   const int home = face_patch_[f];
-  patches_[lone] = single_face_patch(f);
   face_patch_[f] = lone;
   ++statistics_.candidates_tested;
   Candidate candidate = evaluate(q, lone);
@@ -96,8 +51,8 @@ std::optional<PatchMerger::Candidate> PatchMerger::face_fits(int f, int q, int l
   return std::nullopt;
 }
 
-void PatchMerger::move_face(int f, int q, Candidate&& candidate) {
-  const Patch lone = single_face_patch(f);
+void PatchMerger::move_face(int f, int q, int lone_id, Candidate&& candidate) {
+  const Patch& lone = patches_[lone_id];
   Patch& r = patches_[q];
   r.faces.push_back(f);
   face_patch_[f] = q;
@@ -117,6 +72,7 @@ bool PatchMerger::dissolve(int h, const AabbTree& near_tree, int lone) {
   // Tried before, unchanged since: only a patch that changed since can take
   // the face that was stuck (the others gave their verdict on it already).
   if (patch.dissolve_failed_face >= 0 && patch.changed_at <= patch.dissolve_failed_at) {
+    patches_[lone] = single_face_patch(patch.dissolve_failed_face);
     bool unstuck = false;
     for (int q : receivers_of(patch.dissolve_failed_face, h, near_tree))
       if (patches_[q].changed_at > patch.dissolve_failed_at && face_fits(patch.dissolve_failed_face, q, lone)) {
@@ -134,7 +90,7 @@ bool PatchMerger::dissolve(int h, const AabbTree& near_tree, int lone) {
   std::vector<std::vector<int>> receivers;
   std::vector<std::size_t> places;  // receivers of each face before that filter
   for (int f : faces) {
-    const Patch alone = single_face_patch(f);
+    const Patch& alone = patches_[lone] = single_face_patch(f);
     receivers.push_back(receivers_of(f, h, near_tree));
     std::vector<int>& r = receivers.back();
     places.push_back(r.size());
@@ -152,12 +108,13 @@ bool PatchMerger::dissolve(int h, const AabbTree& near_tree, int lone) {
   std::map<int, Patch> before;  // receivers as they were, to put back
   for (int i : by_choice) {
     const int f = faces[i];
+    patches_[lone] = single_face_patch(f);
     bool moved = false;
     for (int q : receivers[i]) {
       std::optional<Candidate> candidate = face_fits(f, q, lone);
       if (!candidate) continue;
       before.emplace(q, patches_[q]);
-      move_face(f, q, std::move(*candidate));
+      move_face(f, q, lone, std::move(*candidate));
       moved = true;
       break;
     }
@@ -176,16 +133,11 @@ bool PatchMerger::dissolve(int h, const AabbTree& near_tree, int lone) {
 }
 
 int PatchMerger::dissolve_patches() {
-  const Mesh& mesh = index_.mesh();
-  std::vector<Aabb> boxes(patches_.size());  // empty for dead patches: they overlap nothing
   std::vector<int> order;
-  for (int p = 0; p < static_cast<int>(patches_.size()); ++p) {
-    if (!patches_[p].alive) continue;
-    boxes[p] = grown(bounding_box_of(positions_of(mesh, patches_[p].hull_vertices)), 0.5 * near_merge_distance_);
+  for (int p = 0; p < static_cast<int>(patches_.size()); ++p)
     // A one-face patch has been tried with every neighbour already.
-    if (patches_[p].faces.size() >= 2) order.push_back(p);
-  }
-  const AabbTree near_tree(boxes);
+    if (patches_[p].alive && patches_[p].faces.size() >= 2) order.push_back(p);
+  const AabbTree near_tree(near_boxes());
   std::stable_sort(order.begin(), order.end(),
                    [&](int a, int b) { return patches_[a].faces.size() < patches_[b].faces.size(); });
   const int lone = static_cast<int>(patches_.size());  // where a face is tried alone

@@ -43,6 +43,11 @@ std::vector<Eigen::Vector3d> positions_of(const Mesh& mesh, const std::vector<in
   return out;
 }
 
+double face_edge_length(const Mesh& mesh, int face, int corner) {
+  const Eigen::Vector3i& t = mesh.triangles[face];
+  return (mesh.positions[t[(corner + 1) % 3]] - mesh.positions[t[corner]]).norm();
+}
+
 bool patches_support_each_other(const Mesh& mesh, const Patch& a, const Patch& b, double tol) {
   return planes_support_points(a.face_planes, positions_of(mesh, b.hull_vertices), tol) &&
          planes_support_points(b.face_planes, positions_of(mesh, a.hull_vertices), tol);
@@ -72,6 +77,51 @@ PatchMerger::PatchMerger(const SceneIndex& index, const DecomposeOptions& option
   }
   recount_shared_edges();
   push_neighbour_pairs(-1);
+}
+
+Patch PatchMerger::single_face_patch(int f) const {
+  const Mesh& mesh = index_.mesh();
+  const Eigen::Vector3i& t = mesh.triangles[f];
+  Patch p;
+  p.faces = {f};
+  p.hull_vertices = {t[0], t[1], t[2]};
+  std::sort(p.hull_vertices.begin(), p.hull_vertices.end());
+  p.face_planes = {{index_.face_normals[f], index_.face_normals[f].dot(mesh.positions[t[0]])}};
+  p.area = index_.face_areas[f];
+  p.area_vector = index_.face_normals[f] * p.area;
+  for (int k = 0; k < 3; ++k) p.boundary_length += face_edge_length(mesh, f, k);
+  p.material = mesh.material_ids[f];
+  return p;
+}
+
+void PatchMerger::recount_shared_edges() {
+  const Mesh& mesh = index_.mesh();
+  const MeshConnectivity& c = index_.prepared->connectivity;
+  for (Patch& p : patches_) {
+    p.shared_length.clear();
+    p.boundary_length = 0.0;
+  }
+  for (int f = 0; f < static_cast<int>(face_patch_.size()); ++f) {
+    Patch& p = patches_[face_patch_[f]];
+    if (!p.alive) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int g = c.face_neighbours[f][k];
+      const int q = g < 0 ? -1 : face_patch_[g];
+      if (q == face_patch_[f]) continue;
+      const double length = face_edge_length(mesh, f, k);
+      p.boundary_length += length;
+      if (q >= 0 && patches_[q].alive) p.shared_length[q] += length;
+    }
+  }
+}
+
+std::vector<Aabb> PatchMerger::near_boxes() const {
+  std::vector<Aabb> boxes(patches_.size());  // empty for dead patches: they overlap nothing
+  for (size_t p = 0; p < patches_.size(); ++p)
+    if (patches_[p].alive)
+      boxes[p] =
+          grown(bounding_box_of(positions_of(index_.mesh(), patches_[p].hull_vertices)), 0.5 * near_merge_distance_);
+  return boxes;
 }
 
 void PatchMerger::push_neighbour_pairs(long changed_after) {

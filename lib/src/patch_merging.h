@@ -42,6 +42,9 @@ void add_plane(std::vector<Plane>& planes, const Plane& p, double cosine_gap, do
 /// The positions of mesh vertices `ids`, in order.
 std::vector<Eigen::Vector3d> positions_of(const Mesh& mesh, const std::vector<int>& ids);
 
+/// Length of the edge from corner `corner` of triangle `face` to the next.
+double face_edge_length(const Mesh& mesh, int face, int corner);
+
 /// Condition 2 both ways: each patch's face planes have the other's hull
 /// vertices behind them (within tol). Cheap, and needs no hull.
 bool patches_support_each_other(const Mesh& mesh, const Patch& a, const Patch& b, double tol);
@@ -79,6 +82,9 @@ private:
   Patch single_face_patch(int f) const;
   /// Boundary and shared lengths of every patch, from its faces.
   void recount_shared_edges();
+  /// Each patch's bounding box grown by half the near-merge distance
+  /// (empty for dead patches): boxes that overlap are within that distance.
+  std::vector<Aabb> near_boxes() const;
   /// Queues every pair of patches sharing an edge of which one changed
   /// after `changed_after` (a value of changes_; -1: every pair).
   void push_neighbour_pairs(long changed_after);
@@ -90,11 +96,12 @@ private:
   /// the first that stays valid; when one face finds none, puts everything
   /// back and returns false. `lone`: as in face_fits.
   bool dissolve(int h, const AabbTree& near_tree, int lone);
-  /// The candidate for face `f` joining patch `q`, if valid; `lone` is a
-  /// spare patch slot to hold the face alone meanwhile.
+  /// The candidate for face `f` joining patch `q`, if valid; patch slot
+  /// `lone` holds the face alone (single_face_patch) meanwhile.
   std::optional<Candidate> face_fits(int f, int q, int lone);
-  /// Moves face `f` into patch `q` whose union with it is `candidate`.
-  void move_face(int f, int q, Candidate&& candidate);
+  /// Moves face `f` into patch `q` whose union with it is `candidate`;
+  /// patch slot `lone` holds the face alone.
+  void move_face(int f, int q, int lone, Candidate&& candidate);
   /// The patches face `f` of patch `h` may move to: across its edges, the
   /// longest shared first, then those of `near_tree` overlapping it.
   std::vector<int> receivers_of(int f, int h, const AabbTree& near_tree) const;
