@@ -3,8 +3,9 @@
 #include "commands.h"
 #include "scene_loading.h"
 
+#include "hullcover/bvh/covering_hulls.h"
 #include "hullcover/bvh/runtime_file.h"
-#include "hullcover/lib/covering_export.h"
+#include "hullcover/covering/covering_export.h"
 
 #include <chrono>
 #include <cstdio>

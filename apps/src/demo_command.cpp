@@ -4,9 +4,9 @@
 #include "commands.h"
 #include "mesh_report.h"
 
-#include "hullcover/lib/covering_export.h"
-#include "hullcover/lib/mesh_export.h"
-#include "hullcover/lib/scene_builder.h"
+#include "hullcover/covering/covering_export.h"
+#include "hullcover/mesh/mesh_export.h"
+#include "hullcover/mesh/scene_builder.h"
 
 #include <cstdio>
 #include <filesystem>

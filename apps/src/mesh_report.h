@@ -1,7 +1,7 @@
 #pragma once
 // The figures `hullcover info` prints about a prepared mesh, as text or JSON.
 
-#include "hullcover/lib/prepared_mesh.h"
+#include "hullcover/mesh/prepared_mesh.h"
 
 #include <nlohmann/json.hpp>
 

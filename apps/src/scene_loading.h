@@ -2,8 +2,8 @@
 // Reading and preparing the scene a command works on, with the one-line
 // error every command prints for unreadable input.
 
-#include "hullcover/lib/mesh_import.h"
-#include "hullcover/lib/prepared_mesh.h"
+#include "hullcover/mesh/mesh_import.h"
+#include "hullcover/mesh/prepared_mesh.h"
 
 #include <optional>
 #include <string>

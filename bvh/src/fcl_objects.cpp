@@ -1,6 +1,6 @@
 #include "fcl_objects.h"
 
-#include "hullcover/lib/convex_hull_3d.h"
+#include "hullcover/geometry/point_hull.h"
 
 namespace hullcover::bvh::detail {
 
@@ -20,10 +20,9 @@ std::shared_ptr<fcl::CollisionGeometryd> fcl_geometry(const QueryShape& shape) {
     case ShapeKind::capsule: return std::make_shared<fcl::Capsuled>(shape.radius, 2.0 * shape.half_height);
     case ShapeKind::box: return std::make_shared<fcl::Boxd>(2.0 * shape.half_extents);
     case ShapeKind::convex: {
-      ConvexHullBuilder builder;
-      Result<ConvexPolytope> hull = builder.build(shape.points);
-      if (!hull.ok()) return nullptr;
-      return fcl_convex(hull.value());
+      const std::optional<ConvexPolytope> hull = convex_hull_of_points(shape.points);
+      if (!hull) return nullptr;
+      return fcl_convex(*hull);
     }
   }
   return nullptr;

@@ -4,7 +4,7 @@
 // hundreds of MB per translation unit.
 
 #include "hullcover/bvh/query_shape.h"
-#include "hullcover/lib/convex_polytope.h"
+#include "hullcover/geometry/convex_polytope.h"
 
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/geometry/shape/box.h>

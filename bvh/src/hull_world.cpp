@@ -3,7 +3,7 @@
 #include "fcl_objects.h"
 
 
-#include "hullcover/lib/convex_hull_3d.h"
+#include "hullcover/geometry/point_hull.h"
 
 #include <algorithm>
 #include <mutex>
@@ -65,9 +65,6 @@ Result<std::shared_ptr<const HullWorld>> HullWorld::build(std::vector<RuntimeHul
   }
 }
 
-Result<std::shared_ptr<const HullWorld>> HullWorld::build(const Covering& covering) {
-  return build(runtime_hulls(covering));
-}
 
 void HullWorld::candidates(const Aabb& box, std::vector<int>& out) const {
   using Node = fcl::DynamicAABBTreeCollisionManagerd::DynamicAABBNode;
@@ -135,10 +132,9 @@ std::optional<Contact> contact_with(const RuntimeHull& hull, const QueryShape& s
 std::optional<RuntimeHull> placed_convex(const QueryShape& shape, const Eigen::Isometry3d& pose) {
   std::vector<Eigen::Vector3d> points;
   for (const Eigen::Vector3d& p : shape.points) points.push_back(pose * p);
-  ConvexHullBuilder builder;
-  Result<ConvexPolytope> hull = builder.build(points);
-  if (!hull.ok()) return std::nullopt;
-  return make_runtime_hull(std::move(hull).value(), 0);
+  std::optional<ConvexPolytope> hull = convex_hull_of_points(points);
+  if (!hull) return std::nullopt;
+  return make_runtime_hull(std::move(*hull), 0);
 }
 
 Status HullWorld::contacts(const ContactRequest& request, ContactResult& result) const {

@@ -22,11 +22,4 @@ RuntimeHull make_runtime_hull(ConvexPolytope shape, int material) {
   return hull;
 }
 
-std::vector<RuntimeHull> runtime_hulls(const Covering& covering) {
-  std::vector<RuntimeHull> hulls;
-  hulls.reserve(covering.hulls.size());
-  for (const CoveringHull& h : covering.hulls) hulls.push_back(make_runtime_hull(h.polytope, h.material));
-  return hulls;
-}
-
 } // namespace hullcover::bvh

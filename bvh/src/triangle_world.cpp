@@ -2,7 +2,7 @@
 
 #include "fcl_objects.h"
 
-#include "hullcover/lib/planar_hull.h"
+#include "hullcover/geometry/planar_hull.h"
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/math/bv/OBBRSS.h>

@@ -10,7 +10,7 @@
 
 #include "shared_data.h"
 
-#include "hullcover/lib/covering.h"
+#include "hullcover/covering/covering.h"
 
 #include <benchmark/benchmark.h>
 

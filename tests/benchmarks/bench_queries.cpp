@@ -10,10 +10,11 @@
 #include "shared_data.h"
 #include "temp_dir.h"
 
+#include "hullcover/bvh/covering_hulls.h"
 #include "hullcover/bvh/hull_world.h"
 #include "hullcover/bvh/runtime_file.h"
 #include "hullcover/bvh/triangle_world.h"
-#include "hullcover/lib/covering.h"
+#include "hullcover/covering/covering.h"
 
 #include <benchmark/benchmark.h>
 
@@ -50,7 +51,7 @@ struct Scene {
 
 Scene make_scene(const PreparedMesh& prepared, const Covering& covering, double units_per_metre) {
   Scene s;
-  s.hulls = HullWorld::build(covering).value();
+  s.hulls = build_hull_world(covering).value();
   s.triangles = TriangleWorld::build(prepared.mesh, prepared.tolerance.length).value();
   const double diagonal = prepared.tolerance.diagonal;
   const double metre = units_per_metre > 0.0 ? units_per_metre : diagonal / 50.0;

@@ -2,7 +2,7 @@
 // hull, where the closest point is a clamp in the box's own frame.
 
 #include "hullcover/bvh/hull_contact.h"
-#include "hullcover/lib/convex_hull_3d.h"
+#include "hullcover/covering/convex_hull_3d.h"
 
 #include <gtest/gtest.h>
 

@@ -2,11 +2,12 @@
 // exact narrow phase), a world built from a real covering, and concurrent
 // queries.
 
+#include "hullcover/bvh/covering_hulls.h"
 #include "hullcover/bvh/hull_world.h"
 
 #include "covering_fixture.h"
 
-#include "hullcover/lib/scene_builder.h"
+#include "hullcover/mesh/scene_builder.h"
 
 #include <gtest/gtest.h>
 
@@ -74,7 +75,7 @@ TEST(HullWorld, CapsuleAgainstAPrismEdge) {
   ASSERT_TRUE(d);
   ASSERT_EQ(d->covering.hulls.size(), 1u);
   ASSERT_DOUBLE_EQ(d->covering.hulls[0].thickness, 0.25);
-  const auto world = HullWorld::build(d->covering).value();
+  const auto world = build_hull_world(d->covering).value();
   // Lying along z beyond the prism's edge x = 2, level with its middle.
   ContactResult result;
   ASSERT_TRUE(world->contacts({QueryShape::capsule(0.3, 0.5), at(V(2.2, -0.125, 1))}, result).ok());
@@ -155,7 +156,7 @@ TEST(HullWorld, StuckInTheWallGetsOneConsistentNormal) {
   const auto d = test::decompose_and_check(wall);
   ASSERT_TRUE(d);
   ASSERT_EQ(d->covering.hulls.size(), 1u);
-  const auto world = HullWorld::build(d->covering);
+  const auto world = build_hull_world(d->covering);
   ASSERT_TRUE(world.ok());
   ContactResult result;
   ASSERT_TRUE(world.value()->contacts({QueryShape::sphere(0.25), at(V(0.12, 1.5, 2))}, result).ok());
@@ -181,7 +182,7 @@ TEST(HullWorld, StuckInTheWallGetsOneConsistentNormal) {
 TEST(HullWorld, CoveringOfTheDemoBuilding) {
   const auto d = test::decompose_and_check(demo_building());
   ASSERT_TRUE(d);
-  const auto world = HullWorld::build(d->covering);
+  const auto world = build_hull_world(d->covering);
   ASSERT_TRUE(world.ok());
   ContactResult result;
   // Standing upright in the doorway, 5 cm into the floor: touches only the
@@ -213,7 +214,7 @@ bool same(const ContactResult& a, const ContactResult& b) {
 TEST(HullWorld, EightThreadsGetExactlyWhatOneThreadGets) {
   const auto d = test::decompose_and_check(demo_building());
   ASSERT_TRUE(d);
-  const auto world = HullWorld::build(d->covering).value();
+  const auto world = build_hull_world(d->covering).value();
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> x(-15, 5), y(-0.5, 3.5), z(-6, 6);
   std::vector<ContactRequest> requests;

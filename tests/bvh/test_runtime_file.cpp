@@ -1,10 +1,11 @@
+#include "hullcover/bvh/covering_hulls.h"
 #include "hullcover/bvh/hull_world.h"
 #include "hullcover/bvh/runtime_file.h"
 
 #include "covering_fixture.h"
 #include "temp_dir.h"
 
-#include "hullcover/lib/scene_builder.h"
+#include "hullcover/mesh/scene_builder.h"
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,12 @@
 // The triangle baseline against the hull world on scenes where both must
 // agree, and the case where they must not (stuck in the wall).
 
+#include "hullcover/bvh/covering_hulls.h"
 #include "hullcover/bvh/triangle_world.h"
 
 #include "covering_fixture.h"
 
-#include "hullcover/lib/scene_builder.h"
+#include "hullcover/mesh/scene_builder.h"
 
 #include <gtest/gtest.h>
 
@@ -31,7 +32,7 @@ Worlds worlds_of(const Mesh& mesh) {
   const auto d = test::decompose_and_check(mesh);
   EXPECT_TRUE(d);
   Worlds w;
-  w.hulls = HullWorld::build(d->covering).value();
+  w.hulls = build_hull_world(d->covering).value();
   w.triangles = TriangleWorld::build(d->prepared.mesh, d->tol()).value();
   return w;
 }

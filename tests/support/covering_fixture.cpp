@@ -1,10 +1,15 @@
 #include "covering_fixture.h"
 
-#include "hullcover/lib/scene_builder.h"
+#include "temp_dir.h"
+
+#include "hullcover/covering/covering_export.h"
+#include "hullcover/mesh/scene_builder.h"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <fstream>
+#include <sstream>
 
 namespace hullcover::test {
 
@@ -41,6 +46,16 @@ void add_quad_facing(Mesh& mesh, const Eigen::Vector3d& a, const Eigen::Vector3d
     add_quad(mesh, a, b, c, d, material);
   else
     add_quad(mesh, a, d, c, b, material);
+}
+
+std::string covering_obj_bytes(const Covering& covering) {
+  TempDir dir;
+  const std::string path = dir.path("hulls.obj");
+  EXPECT_TRUE(write_covering_obj(covering, path).ok());
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
 }
 
 } // namespace hullcover::test

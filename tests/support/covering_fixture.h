@@ -3,12 +3,13 @@
 
 #include "hullcover/validate/validity_recheck.h"
 
-#include "hullcover/lib/covering.h"
-#include "hullcover/lib/prepared_mesh.h"
+#include "hullcover/covering/covering.h"
+#include "hullcover/mesh/prepared_mesh.h"
 
 #include <gtest/gtest.h>
 
 #include <optional>
+#include <string>
 
 namespace hullcover::test {
 
@@ -28,6 +29,9 @@ struct Decomposed {
 /// nothing) if either step fails or the independent check finds a violation.
 std::optional<Decomposed> decompose_and_check(const Mesh& mesh, const DecomposeOptions& options = {},
                                               std::optional<double> tolerance = std::nullopt);
+
+/// The covering as write_covering_obj writes it, byte for byte.
+std::string covering_obj_bytes(const Covering& covering);
 
 /// Appends quad a-b-c-d, wound so its front faces along `front`.
 void add_quad_facing(Mesh& mesh, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,

@@ -1,6 +1,6 @@
 #include "shared_data.h"
 
-#include "hullcover/lib/mesh_import.h"
+#include "hullcover/mesh/mesh_import.h"
 
 #include <cctype>
 #include <cstdio>

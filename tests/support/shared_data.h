@@ -2,7 +2,7 @@
 // Where the project's shared data (real game scenes, other tools' hulls)
 // lives, for tests that read it in place.
 
-#include "hullcover/lib/prepared_mesh.h"
+#include "hullcover/mesh/prepared_mesh.h"
 
 #include <optional>
 #include <string>

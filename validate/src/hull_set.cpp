@@ -1,7 +1,7 @@
 #include "hullcover/validate/hull_set.h"
 
 #include "hullcover/bvh/runtime_file.h"
-#include "hullcover/lib/convex_hull_3d.h"
+#include "hullcover/covering/convex_hull_3d.h"
 
 #include <algorithm>
 #include <cmath>

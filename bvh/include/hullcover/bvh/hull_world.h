@@ -12,8 +12,7 @@
 #include "hullcover/bvh/hull_contact.h"
 #include "hullcover/bvh/query_shape.h"
 #include "hullcover/bvh/runtime_hull.h"
-#include "hullcover/lib/covering.h"
-#include "hullcover/lib/status.h"
+#include "hullcover/geometry/status.h"
 
 #include <functional>
 #include <memory>
@@ -93,8 +92,6 @@ public:
   /// Fails with `invalid_argument` for an empty list or a hull with no
   /// facets or non-finite data.
   static Result<std::shared_ptr<const HullWorld>> build(std::vector<RuntimeHull> hulls);
-  /// Builds from a covering's hulls, in its order.
-  static Result<std::shared_ptr<const HullWorld>> build(const Covering& covering);
 
   ~HullWorld();
   HullWorld(const HullWorld&) = delete;

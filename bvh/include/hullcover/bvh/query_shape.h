@@ -7,7 +7,8 @@
 /// +half_height between the centres of its end spheres; a box is centred on
 /// its local origin.
 
-#include "hullcover/lib/mesh.h"
+#include "hullcover/geometry/aabb.h"
+#include "hullcover/geometry/status.h"
 
 #include <Eigen/Geometry>
 

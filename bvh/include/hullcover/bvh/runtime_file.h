@@ -17,7 +17,7 @@
 /// Planes after the first F bound flat hulls sideways (see ConvexPolytope).
 
 #include "hullcover/bvh/runtime_hull.h"
-#include "hullcover/lib/status.h"
+#include "hullcover/geometry/status.h"
 
 #include <string>
 #include <vector>

@@ -4,8 +4,8 @@
 /// outward facet planes, facet polygons, edges, material), nothing per
 /// triangle (../shared/DESIGN.md, "Model only what a scene needs").
 
-#include "hullcover/lib/convex_polytope.h"
-#include "hullcover/lib/covering.h"
+#include "hullcover/geometry/convex_polytope.h"
+#include "hullcover/geometry/aabb.h"
 
 #include <utility>
 #include <vector>
@@ -25,8 +25,5 @@ struct RuntimeHull {
 
 /// The runtime form of a hull (pass the shape by move to avoid a copy).
 RuntimeHull make_runtime_hull(ConvexPolytope shape, int material);
-
-/// The runtime form of every hull of a covering, in its order.
-std::vector<RuntimeHull> runtime_hulls(const Covering& covering);
 
 } // namespace hullcover::bvh

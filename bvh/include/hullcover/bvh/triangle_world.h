@@ -11,7 +11,7 @@
 /// contacts from both sides (the paper's "stuck in the wall").
 
 #include "hullcover/bvh/hull_world.h"
-#include "hullcover/lib/mesh.h"
+#include "hullcover/geometry/mesh.h"
 
 #include <functional>
 #include <memory>

@@ -19,8 +19,8 @@
 
 #include "hullcover/bvh/hull_world.h"
 #include "hullcover/bvh/triangle_world.h"
-#include "hullcover/lib/covering.h"
-#include "hullcover/lib/prepared_mesh.h"
+#include "hullcover/covering/covering.h"
+#include "hullcover/mesh/prepared_mesh.h"
 
 #include <optional>
 #include <string>

@@ -7,7 +7,7 @@
 
 #include "hullcover/bvh/hull_world.h"
 #include "hullcover/bvh/triangle_world.h"
-#include "hullcover/lib/prepared_mesh.h"
+#include "hullcover/mesh/prepared_mesh.h"
 
 #include <cstdint>
 #include <optional>

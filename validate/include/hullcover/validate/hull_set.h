@@ -5,7 +5,7 @@
 /// each hull being the convex hull of the vertices its group's faces use.
 
 #include "hullcover/bvh/runtime_hull.h"
-#include "hullcover/lib/status.h"
+#include "hullcover/geometry/status.h"
 
 #include <string>
 #include <vector>

@@ -8,8 +8,8 @@
 /// it on hulls from any source; the tests run it on every covering.
 
 #include "hullcover/bvh/runtime_hull.h"
-#include "hullcover/lib/covering.h"
-#include "hullcover/lib/prepared_mesh.h"
+#include "hullcover/covering/covering.h"
+#include "hullcover/mesh/prepared_mesh.h"
 
 #include <string>
 #include <vector>

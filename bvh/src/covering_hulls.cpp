@@ -1,0 +1,16 @@
+#include "hullcover/bvh/covering_hulls.h"
+
+namespace hullcover::bvh {
+
+std::vector<RuntimeHull> runtime_hulls(const Covering& covering) {
+  std::vector<RuntimeHull> hulls;
+  hulls.reserve(covering.hulls.size());
+  for (const CoveringHull& h : covering.hulls) hulls.push_back(make_runtime_hull(h.polytope, h.material));
+  return hulls;
+}
+
+Result<std::shared_ptr<const HullWorld>> build_hull_world(const Covering& covering) {
+  return HullWorld::build(runtime_hulls(covering));
+}
+
+} // namespace hullcover::bvh

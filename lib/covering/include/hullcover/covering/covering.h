@@ -1,0 +1,51 @@
+#pragma once
+/// \file covering.h
+/// Convex hull covering of a scene: the paper's algorithm (sections 3-4)
+/// and what it produces.
+///
+/// Every face starts as its own patch. Two patches sharing a manifold,
+/// consistently oriented edge are mergeable when their union is valid
+/// (validity_conditions.h); the cheapest mergeable pair, cost = 1 /
+/// compactness = boundary length / sqrt(area), is merged until none is
+/// left. Beyond the paper, a near-merge pass then tries patches that share
+/// no edge but lie close (DecomposeOptions::near_merge_distance). Planar
+/// patches become prisms (planar_prism.h).
+
+#include "hullcover/covering/decompose_options.h"
+#include "hullcover/geometry/convex_polytope.h"
+#include "hullcover/geometry/status.h"
+#include "hullcover/mesh/prepared_mesh.h"
+
+#include <vector>
+
+namespace hullcover {
+
+/// One convex hull of the covering.
+struct CoveringHull {
+  ConvexPolytope polytope;
+  std::vector<int> faces;  ///< mesh faces it covers, ascending
+  bool planar = false;     ///< from a planar patch (a prism or flat polygon)
+  double thickness = 0.0;  ///< prism thickness (planar only; 0 = flat polygon)
+  int material = 0;        ///< material id of its faces (the smallest, if they differ)
+  double volume = 0.0;
+};
+
+/// The result: hulls and everything needed to reproduce them.
+struct Covering {
+  std::vector<CoveringHull> hulls;  ///< ordered by their first face
+  Tolerance tolerance;
+  double bar_half_length = 0.0;
+  double free_space_reach = 0.0;  ///< exact mode
+  double prism_thickness_cap = 0.0;
+  double near_merge_distance = 0.0;  ///< scene units; 0 = no near merges
+  bool dissolve = false;             ///< whether dissolving ran (resolved DecomposeOptions::dissolve)
+  DecomposeOptions options;  ///< as given (progress callback included)
+  CoveringStatistics statistics;
+};
+
+/// Decomposes the prepared mesh. Deterministic: the same mesh and options
+/// give the same hulls in the same order.
+/// Fails with `invalid_argument` for options out of range.
+Result<Covering> decompose(const PreparedMesh& prepared, const DecomposeOptions& options);
+
+} // namespace hullcover

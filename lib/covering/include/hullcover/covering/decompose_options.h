@@ -1,0 +1,97 @@
+#pragma once
+/// \file decompose_options.h
+/// How to decompose (DecomposeOptions, with the defaults every option
+/// takes) and what a decomposition counted (CoveringStatistics). Kept apart
+/// from covering.h so the merging code, which reads both, does not depend
+/// on the result type it feeds.
+
+#include "hullcover/covering/validity.h"
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <optional>
+
+namespace hullcover {
+
+/// Default bar half-length as a fraction of the bounding-box diagonal (the
+/// value the prototype in ../shared/DESIGN.md measured the paper with).
+inline constexpr double kDefaultBarHalfLengthRelative = 0.1;
+/// Exact mode's default bar half-length, in tolerances: its sheets only have
+/// to stop a flat polygon spanning an open edge in its own plane; the
+/// opening beyond the edge is kept by E2 up to the free-space reach.
+inline constexpr double kExactBarHalfLengthInTolerances = 4.0;
+/// Default free-space reach (exact mode) as a fraction of the diagonal: the
+/// audit's default probe distance, so the decomposer keeps all the free
+/// space the audit looks at.
+inline constexpr double kDefaultFreeSpaceReachRelative = 0.02;
+/// Default distance of the near merges as a fraction of the
+/// diagonal: the free-space reach, so patches are joined across gaps no
+/// wider than the space the exact conditions look at in front of them.
+inline constexpr double kDefaultNearMergeRelative = kDefaultFreeSpaceReachRelative;
+/// Default cap on prism thickness as a fraction of the diagonal.
+inline constexpr double kDefaultPrismCapRelative = 0.01;
+/// PhysX, Unity and Jolt reject convex shapes with more vertices.
+inline constexpr int kDefaultMaxHullVertices = 255;
+
+/// The order in which mergeable pairs are taken.
+enum class MergeOrder {
+  compact,  ///< cheapest 1 / compactness first (the paper's method)
+  random,   ///< pseudo-random, seeded (the paper's comparison)
+};
+
+/// How to decompose. Lengths are in scene units; unset ones take defaults
+/// relative to the scene's bounding-box diagonal.
+struct DecomposeOptions {
+  /// `exact` (default) keeps every condition of exact_conditions.h too, so
+  /// no free space is lost; `paper` applies the paper's four alone, so the
+  /// cost of exactness stays measurable.
+  ValidityMode conditions = ValidityMode::exact;
+  std::optional<double> bar_half_length;      ///< > 0
+  std::optional<double> free_space_reach;     ///< > 0, exact mode
+  std::optional<double> prism_thickness_cap;  ///< >= 0
+  /// Near merges, after the paper's merging of patches that share an edge:
+  /// patches sharing none whose bounding boxes come within this distance,
+  /// scene units, are tried as pairs too, under the same conditions; then
+  /// the paper's pass resumes, until neither merges. >= 0, 0 = off; default
+  /// exact kDefaultNearMergeRelative x diagonal, paper 0 (the paper's
+  /// algorithm alone).
+  std::optional<double> near_merge_distance;
+  /// Dissolving, after the merging: a patch whose faces can each join
+  /// another patch (across an edge or within the near-merge distance) under
+  /// the same conditions is emptied into them; then merging resumes. Default
+  /// exact on, paper off (the paper's algorithm alone).
+  std::optional<bool> dissolve;
+  MergeOrder order = MergeOrder::compact;
+  std::uint64_t seed = 1;                     ///< for MergeOrder::random
+  /// Merge this many times (>= 1): in `order` first, then in random orders
+  /// seeded seed, seed + 1, ...; the covering with the fewest hulls is kept
+  /// (the first of equals). Costs that many times the merging time.
+  int order_tries = 1;
+  bool keep_materials_apart = false;          ///< one material per hull, bars on material borders
+  int max_hull_vertices = kDefaultMaxHullVertices;  ///< >= 8 (a prism of a quad)
+  /// Called now and then with the fraction of work done (0..1); may be empty.
+  std::function<void(double)> progress;
+};
+
+/// Counts and timings of a decomposition.
+struct CoveringStatistics {
+  int faces = 0;
+  int zero_area_faces_skipped = 0;  ///< faces without a normal: covered by no hull
+  int merges = 0;
+  int order_tries = 1;             ///< merging runs made; the statistics are the kept run's, times the total
+  int kept_try = 0;                ///< which run was kept (0: the given order)
+  int near_merges = 0;             ///< merges of patches sharing no edge (the near-merge pass)
+  int dissolved_patches = 0;       ///< patches emptied into others (dissolving)
+  long candidates_tested = 0;
+  std::array<long, kValidityCount> rejections{};  ///< by Validity
+  long qhull_calls = 0;
+  long incremental_hulls = 0;      ///< merge hulls grown from a known hull instead of rebuilt
+  int prisms_made_flat = 0;        ///< planar hulls with thickness 0
+  int solids_kept_as_grown = 0;    ///< solid hulls output as validated during merging (Qhull's rebuild differed)
+  double seconds_index = 0.0;
+  double seconds_merging = 0.0;
+  double seconds_output = 0.0;
+};
+
+} // namespace hullcover

@@ -1,0 +1,104 @@
+#include "hullcover/covering/covering_export.h"
+
+#include <cstdio>
+#include <fstream>
+#include <memory>
+
+namespace hullcover {
+
+Status write_covering_obj(const Covering& covering, const std::string& path) {
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "w"), &std::fclose);
+  if (!file) return {StatusCode::unwritable_file, path + ": cannot open for writing"};
+  std::FILE* out = file.get();
+  std::fprintf(out, "# hullcover covering: %zu hulls of %d faces, tolerance %.17g\n", covering.hulls.size(),
+               covering.statistics.faces, covering.tolerance.length);
+  long base = 1;
+  for (size_t h = 0; h < covering.hulls.size(); ++h) {
+    const CoveringHull& hull = covering.hulls[h];
+    std::fprintf(out, "o hull_%zu\n", h);
+    for (const Eigen::Vector3d& p : hull.polytope.vertices)
+      std::fprintf(out, "v %.17g %.17g %.17g\n", p.x(), p.y(), p.z());
+    const bool flat = hull.planar && hull.thickness == 0.0;
+    const size_t facet_count = flat ? 1 : hull.polytope.facets.size();
+    for (size_t f = 0; f < facet_count; ++f) {
+      std::fputc('f', out);
+      for (int v : hull.polytope.facets[f]) std::fprintf(out, " %ld", base + v);
+      std::fputc('\n', out);
+    }
+    base += static_cast<long>(hull.polytope.vertices.size());
+  }
+  if (std::ferror(out)) return {StatusCode::unwritable_file, path + ": write failed"};
+  return Status::success();
+}
+
+nlohmann::json covering_json(const Covering& covering) {
+  const CoveringStatistics& s = covering.statistics;
+  nlohmann::json hulls = nlohmann::json::array();
+  long vertices = 0, facets = 0;
+  int planar = 0;
+  for (const CoveringHull& hull : covering.hulls) {
+    vertices += static_cast<long>(hull.polytope.vertices.size());
+    facets += static_cast<long>(hull.polytope.facets.size());
+    planar += hull.planar;
+    hulls.push_back({{"faces", hull.faces},
+                     {"vertices", hull.polytope.vertices.size()},
+                     {"facets", hull.polytope.facets.size()},
+                     {"volume", hull.volume},
+                     {"planar", hull.planar},
+                     {"prism_thickness", hull.thickness},
+                     {"material", hull.material}});
+  }
+  nlohmann::json rejections;
+  for (int v = 1; v < kValidityCount; ++v) rejections[validity_name(static_cast<Validity>(v))] = s.rejections[v];
+  const DecomposeOptions& o = covering.options;
+  return {
+      {"hulls", hulls},
+      {"totals",
+       {{"faces", s.faces},
+        {"hulls", covering.hulls.size()},
+        {"hulls_per_face", s.faces > 0 ? static_cast<double>(covering.hulls.size()) / s.faces : 0.0},
+        {"planar_hulls", planar},
+        {"flat_hulls", s.prisms_made_flat},
+        {"vertices", vertices},
+        {"facets", facets},
+        {"zero_area_faces_skipped", s.zero_area_faces_skipped}}},
+      {"options",
+       {{"tolerance", covering.tolerance.length},
+        {"tolerance_user_given", covering.tolerance.user_given},
+        {"bar_half_length", covering.bar_half_length},
+        {"prism_thickness_cap", covering.prism_thickness_cap},
+        {"near_merge_distance", covering.near_merge_distance},
+        {"dissolve", covering.dissolve},
+        {"order", o.order == MergeOrder::compact ? "compact" : "random"},
+        {"conditions", o.conditions == ValidityMode::exact ? "exact" : "paper"},
+        {"seed", o.seed},
+        {"order_tries", o.order_tries},
+        {"keep_materials_apart", o.keep_materials_apart},
+        {"max_hull_vertices", o.max_hull_vertices}}},
+      {"merging",
+       {{"merges", s.merges},
+        {"near_merges", s.near_merges},
+        {"dissolved_patches", s.dissolved_patches},
+        {"kept_try", s.kept_try},
+        {"candidates_tested", s.candidates_tested},
+        {"qhull_calls", s.qhull_calls},
+        {"incremental_hulls", s.incremental_hulls},
+        {"solids_kept_as_grown", s.solids_kept_as_grown},
+        {"rejections", rejections}}},
+      {"seconds",
+       {{"index", s.seconds_index}, {"merging", s.seconds_merging}, {"output", s.seconds_output},
+        {"total", s.seconds_index + s.seconds_merging + s.seconds_output}}},
+  };
+}
+
+Status write_covering_json(const Covering& covering, const nlohmann::json& extra, const std::string& path) {
+  nlohmann::json j = covering_json(covering);
+  for (const auto& [key, value] : extra.items()) j[key] = value;
+  std::ofstream out(path);
+  if (!out) return {StatusCode::unwritable_file, path + ": cannot open for writing"};
+  out << j.dump(1) << "\n";
+  if (!out) return {StatusCode::unwritable_file, path + ": write failed"};
+  return Status::success();
+}
+
+} // namespace hullcover

@@ -1,0 +1,96 @@
+#include "free_space_sweep.h"
+
+#include "hullcover/geometry/aabb.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+
+namespace hullcover {
+namespace {
+
+Plane plane_through(const Eigen::Vector3d& normal, const Eigen::Vector3d& point) {
+  return {normal, normal.dot(point)};
+}
+
+} // namespace
+
+FreeSpaceSweep front_space_sweep(const std::vector<Eigen::Vector3d>& corners, const Eigen::Vector3d& normal,
+                                 double reach, double tol) {
+  FreeSpaceSweep sweep;
+  sweep.direction = normal;
+  // The probe's rays start a stand-off from the face and run the reach
+  // from there.
+  reach += kRayStandOffInTolerances * tol;
+  sweep.reach = reach;
+  sweep.enclosed_allowed = true;
+  const Eigen::Vector3d centre = (corners[0] + corners[1] + corners[2]) / 3.0;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d& a = corners[k];
+    const Eigen::Vector3d& b = corners[(k + 1) % 3];
+    Eigen::Vector3d out = (b - a).cross(normal).normalized();
+    if (out.dot(centre - a) > 0.0) out = -out;
+    sweep.planes.push_back(plane_through(out, a));
+    sweep.insets.push_back(0.0);
+  }
+  sweep.start = plane_through(-normal, corners[0]);
+  sweep.planes.push_back(sweep.start);
+  sweep.insets.push_back(-tol);
+  sweep.planes.push_back(plane_through(normal, corners[0] + reach * normal));
+  sweep.insets.push_back(0.0);
+  sweep.base = corners;
+  for (const Eigen::Vector3d& c : corners) {
+    sweep.corners.push_back(c);
+    sweep.corners.push_back(c + reach * normal);
+  }
+  return sweep;
+}
+
+FreeSpaceSweep opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
+                             const Eigen::Vector3d& face_normal, double reach, double tol) {
+  FreeSpaceSweep sweep;
+  const Eigen::Vector3d along = (p1 - p0).normalized();
+  Eigen::Vector3d out = along.cross(face_normal).normalized();
+  if (out.dot(inner - p0) > 0.0) out = -out;
+  sweep.direction = out;
+  reach += kRayStandOffInTolerances * tol;
+  sweep.reach = reach;
+  // A strip in the face's plane: kept within tol of it either side.
+  sweep.planes = {plane_through(face_normal, p0), plane_through(-face_normal, p0), plane_through(along, p1),
+                  plane_through(-along, p0)};
+  sweep.insets = {-tol, -tol, 0.0, 0.0};
+  sweep.start = plane_through(-out, p0);
+  sweep.planes.push_back(sweep.start);
+  sweep.insets.push_back(-tol);
+  sweep.planes.push_back(plane_through(out, p0 + reach * out));
+  sweep.insets.push_back(0.0);
+  sweep.base = {p0, p1};
+  sweep.corners = {p0, p1, p1 + reach * out, p0 + reach * out};
+  return sweep;
+}
+
+HullInterior hull_interior(const ConvexPolytope& hull, double tol) {
+  HullInterior interior;
+  for (const Plane& p : hull.planes) interior.planes.push_back({p.normal, p.offset - tol});
+  // Facet k shrunk: facet k moved in by tol holds it; the other shrunk
+  // planes cut it to size - all but those of facets in its own plane (a
+  // hull grown point by point keeps coplanar triangles), which would cut it
+  // away by rounding. Planes closer than this in direction (1 - cos) differ
+  // by less than tol over the hull.
+  Aabb box;
+  for (const Eigen::Vector3d& v : hull.vertices) box.extend(v);
+  const double ratio = tol / std::max((box.max - box.min).norm(), tol);
+  const double same_plane_gap = 0.5 * ratio * ratio;
+  for (size_t k = 0; k < hull.facets.size(); ++k) {
+    std::vector<Eigen::Vector3d> facet;
+    for (int v : hull.facets[k]) facet.push_back(hull.vertices[v] - tol * hull.planes[k].normal);
+    for (size_t j = 0; j < interior.planes.size() && !facet.empty(); ++j)
+      if (j != k && hull.planes[j].normal.dot(hull.planes[k].normal) < 1.0 - same_plane_gap)
+        facet = clip_polygon(facet, interior.planes[j], 0.0);
+    if (facet.size() < 3) facet.clear();
+    interior.facets.push_back(std::move(facet));
+  }
+  return interior;
+}
+
+} // namespace hullcover

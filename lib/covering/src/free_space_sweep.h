@@ -1,0 +1,55 @@
+#pragma once
+/// \file free_space_sweep.h
+/// The pieces of free space the exact conditions (exact_conditions.h) and
+/// their witness rays (witness_rays.h) judge, and a hull's interior: the
+/// shapes both read, kept apart so neither includes the other.
+
+#include "hullcover/geometry/convex_polytope.h"
+
+#include <vector>
+
+namespace hullcover {
+
+/// A piece of free space: a face's triangle, or an open edge, swept along
+/// unit `direction` from t = 0 to the reach. It is the inner side of
+/// `planes`, each shrunk by its `insets` entry (negative: grown).
+struct FreeSpaceSweep {
+  std::vector<Plane> planes;
+  std::vector<double> insets;
+  Plane start;  ///< the base's plane facing back: signed distance = -t
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
+  std::vector<Eigen::Vector3d> base;     ///< the face or edge swept
+  std::vector<Eigen::Vector3d> corners;  ///< the base at t = 0 and at the reach
+  double reach = 0.0;             ///< scene units, from the base (the free-space reach plus the rays' stand-off)
+  bool enclosed_allowed = false;  ///< front space may be enclosed (first meet a face from behind)
+};
+
+/// The front space of triangle `corners` (unit front `normal`); it starts
+/// `tol` behind the face, so faces coincident with it are met.
+FreeSpaceSweep front_space_sweep(const std::vector<Eigen::Vector3d>& corners, const Eigen::Vector3d& normal,
+                                 double reach, double tol);
+/// The opening beyond the edge p0-p1 of a face with unit normal
+/// `face_normal`, whose far corner is `inner` (the sweep runs away from it).
+FreeSpaceSweep opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
+                             const Eigen::Vector3d& face_normal, double reach, double tol);
+
+/// A solid hull's interior: the hull shrunk by tol (what "strictly inside"
+/// means), as planes and facet polygons. Empty for a hull thinner than 2 tol.
+struct HullInterior {
+  std::vector<Plane> planes;                         ///< the hull's planes moved in by tol
+  std::vector<std::vector<Eigen::Vector3d>> facets;  ///< per plane, its facet (empty when gone)
+  bool empty() const {
+    for (const auto& f : facets)
+      if (!f.empty()) return false;
+    return true;
+  }
+};
+
+/// The interior of `hull` (facets and planes in the same order).
+HullInterior hull_interior(const ConvexPolytope& hull, double tol);
+
+/// Rays of the free space start this many tolerances off the surface they
+/// leave, as the audit's probe rays do.
+inline constexpr double kRayStandOffInTolerances = 2.0;
+
+} // namespace hullcover

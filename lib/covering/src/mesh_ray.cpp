@@ -1,0 +1,48 @@
+#include "mesh_ray.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace hullcover {
+
+std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::Vector3d& origin,
+                                         const Eigen::Vector3d& dir, double min_t, double max_t,
+                                         std::vector<int>& scratch) {
+  (void)scratch;
+  const Mesh& mesh = index.mesh();
+  const double tol = index.tol();
+  const double length = max_t - min_t;
+  if (!(length > 0.0)) return std::nullopt;
+  constexpr double kNotMet = std::numeric_limits<double>::infinity();
+  // Each face met: its distance and side; the nearest decide.
+  std::vector<std::pair<double, bool>> met;
+  std::optional<MeshRayHit> first;
+  index.face_tree.nearest_along_segment(
+      origin + min_t * dir, origin + max_t * dir, tol, tol / length, [&](int f) {
+        const Eigen::Vector3d& n = index.face_normals[f];
+        const double rate = n.dot(dir);
+        if (n.isZero() || std::abs(rate) * length <= tol) return kNotMet;  // zero area, or running along it
+        const Eigen::Vector3i& tri = mesh.triangles[f];
+        const double t = n.dot(mesh.positions[tri[0]] - origin) / rate;
+        if (t < min_t || t > max_t + tol) return kNotMet;
+        const Eigen::Vector3d p = origin + t * dir;
+        for (int k = 0; k < 3; ++k) {
+          const Eigen::Vector3d& u = mesh.positions[tri[k]];
+          const Eigen::Vector3d& v = mesh.positions[tri[(k + 1) % 3]];
+          if ((v - u).cross(n).normalized().dot(p - u) > tol) return kNotMet;
+        }
+        met.emplace_back(t, rate > 0.0);
+        if (!first || t < first->t) first = MeshRayHit{t, f, false};
+        return (t - min_t) / length;
+      });
+  if (first && first->t > max_t) first.reset();
+  if (first)
+    for (const auto& [t, behind] : met)
+      if (t <= first->t + tol && behind) first->from_behind = true;
+  return first;
+}
+
+} // namespace hullcover

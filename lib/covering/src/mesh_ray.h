@@ -1,0 +1,30 @@
+#pragma once
+/// \file mesh_ray.h
+/// The first mesh faces a ray meets, as the accessible-space probe of
+/// ../shared/DESIGN.md sees them: a ray that first meets the BACK of a face
+/// runs through enclosed space.
+
+#include "scene_index.h"
+
+#include <optional>
+
+namespace hullcover {
+
+/// Where a ray first meets the mesh.
+struct MeshRayHit {
+  double t = 0.0;            ///< distance along the ray, scene units
+  int face = -1;             ///< a face met there
+  bool from_behind = false;  ///< some face met there (within tol) is met from its back
+};
+
+/// The first face the ray `origin + t dir` (unit `dir`) meets for t in
+/// [min_t, max_t], a face counting when the ray passes within tol of it.
+/// Faces met within tol of the first hit all decide `from_behind`
+/// (coincident faces: boxes resting face to face). Nothing when the ray
+/// meets no face; faces the ray runs along (within tol of their plane) are
+/// not met.
+std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::Vector3d& origin,
+                                         const Eigen::Vector3d& dir, double min_t, double max_t,
+                                         std::vector<int>& scratch);
+
+} // namespace hullcover

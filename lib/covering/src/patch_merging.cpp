@@ -1,0 +1,321 @@
+#include "patch_merging.h"
+
+#include "hullcover/geometry/incremental_hull.h"
+#include "hullcover/geometry/planar_hull.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hullcover::detail {
+namespace {
+
+// splitmix64: a fixed, portable pseudo-random function of the pair.
+double pseudo_random_cost(std::uint64_t seed, int a, int b, int va, int vb) {
+  std::uint64_t z = seed ^ (static_cast<std::uint64_t>(a) << 32 | static_cast<std::uint32_t>(b)) ^
+                    (static_cast<std::uint64_t>(va) * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(vb));
+  z += 0x9E3779B97F4A7C15ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return static_cast<double>(z >> 11) / static_cast<double>(1ull << 53);
+}
+
+} // namespace
+
+// Two face planes closer than this in normal direction (1 - cos) and
+// within tol in offset are kept once: over a scene diagonal D their
+// difference stays under tol when 1 - cos <= (tol / D)^2 / 2.
+double same_plane_cosine_gap(const SceneIndex& index) {
+  const double ratio = index.tol() / index.prepared->tolerance.diagonal;
+  return 0.5 * ratio * ratio;
+}
+
+void add_plane(std::vector<Plane>& planes, const Plane& p, double cosine_gap, double tol) {
+  for (const Plane& q : planes)
+    if (q.normal.dot(p.normal) >= 1.0 - cosine_gap && std::abs(q.offset - p.offset) <= tol) return;
+  planes.push_back(p);
+}
+
+std::vector<Eigen::Vector3d> positions_of(const Mesh& mesh, const std::vector<int>& ids) {
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(ids.size());
+  for (int v : ids) out.push_back(mesh.positions[v]);
+  return out;
+}
+
+double face_edge_length(const Mesh& mesh, int face, int corner) {
+  const Eigen::Vector3i& t = mesh.triangles[face];
+  return (mesh.positions[t[(corner + 1) % 3]] - mesh.positions[t[corner]]).norm();
+}
+
+bool patches_support_each_other(const Mesh& mesh, const Patch& a, const Patch& b, double tol) {
+  return planes_support_points(a.face_planes, positions_of(mesh, b.hull_vertices), tol) &&
+         planes_support_points(b.face_planes, positions_of(mesh, a.hull_vertices), tol);
+}
+
+double merged_patch_cost(const Patch& a, const Patch& b, double shared) {
+  const double boundary = std::max(0.0, a.boundary_length + b.boundary_length - 2.0 * shared);
+  return boundary / std::sqrt(a.area + b.area);
+}
+
+PatchMerger::PatchMerger(const SceneIndex& index, const DecomposeOptions& options, double near_merge_distance,
+                         CoveringStatistics& statistics)
+    : index_(index), options_(options), statistics_(statistics), near_merge_distance_(near_merge_distance) {
+  const Mesh& mesh = index.mesh();
+  const MeshConnectivity& c = index.prepared->connectivity;
+  const int face_count = static_cast<int>(mesh.triangles.size());
+  patches_.resize(face_count);
+  face_patch_.resize(face_count);
+  for (int f = 0; f < face_count; ++f) {
+    face_patch_[f] = f;
+    if (c.zero_area[f]) {
+      patches_[f].alive = false;
+      ++statistics_.zero_area_faces_skipped;
+      continue;
+    }
+    patches_[f] = single_face_patch(f);
+  }
+  recount_shared_edges();
+  push_neighbour_pairs(-1);
+}
+
+Patch PatchMerger::single_face_patch(int f) const {
+  const Mesh& mesh = index_.mesh();
+  const Eigen::Vector3i& t = mesh.triangles[f];
+  Patch p;
+  p.faces = {f};
+  p.hull_vertices = {t[0], t[1], t[2]};
+  std::sort(p.hull_vertices.begin(), p.hull_vertices.end());
+  p.face_planes = {{index_.face_normals[f], index_.face_normals[f].dot(mesh.positions[t[0]])}};
+  p.area = index_.face_areas[f];
+  p.area_vector = index_.face_normals[f] * p.area;
+  for (int k = 0; k < 3; ++k) p.boundary_length += face_edge_length(mesh, f, k);
+  p.material = mesh.material_ids[f];
+  return p;
+}
+
+void PatchMerger::recount_shared_edges() {
+  const Mesh& mesh = index_.mesh();
+  const MeshConnectivity& c = index_.prepared->connectivity;
+  for (Patch& p : patches_) {
+    p.shared_length.clear();
+    p.boundary_length = 0.0;
+  }
+  for (int f = 0; f < static_cast<int>(face_patch_.size()); ++f) {
+    Patch& p = patches_[face_patch_[f]];
+    if (!p.alive) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int g = c.face_neighbours[f][k];
+      const int q = g < 0 ? -1 : face_patch_[g];
+      if (q == face_patch_[f]) continue;
+      const double length = face_edge_length(mesh, f, k);
+      p.boundary_length += length;
+      if (q >= 0 && patches_[q].alive) p.shared_length[q] += length;
+    }
+  }
+}
+
+std::vector<Aabb> PatchMerger::near_boxes() const {
+  std::vector<Aabb> boxes(patches_.size());  // empty for dead patches: they overlap nothing
+  for (size_t p = 0; p < patches_.size(); ++p)
+    if (patches_[p].alive)
+      boxes[p] =
+          grown(bounding_box_of(positions_of(index_.mesh(), patches_[p].hull_vertices)), 0.5 * near_merge_distance_);
+  return boxes;
+}
+
+void PatchMerger::push_neighbour_pairs(long changed_after) {
+  for (int p = 0; p < static_cast<int>(patches_.size()); ++p)
+    for (const auto& [q, length] : patches_[p].shared_length)
+      if (p < q && std::max(patches_[p].changed_at, patches_[q].changed_at) > changed_after) push_pair(p, q);
+}
+
+void PatchMerger::push_pair(int a, int b) {
+  if (a > b) std::swap(a, b);
+  const Patch& pa = patches_[a];
+  const Patch& pb = patches_[b];
+  const auto shared = pa.shared_length.find(b);  // none for a near pair
+  const double cost = options_.order == MergeOrder::compact
+                          ? merged_patch_cost(pa, pb, shared == pa.shared_length.end() ? 0.0 : shared->second)
+                          : pseudo_random_cost(options_.seed, a, b, pa.version, pb.version);
+  queue_.push_back({cost, a, b, pa.version, pb.version});
+  std::push_heap(queue_.begin(), queue_.end(), std::greater<>());
+}
+
+PatchMerger::Candidate PatchMerger::evaluate(int a, int b) {
+  const Patch& pa = patches_[a];
+  const Patch& pb = patches_[b];
+  const Mesh& mesh = index_.mesh();
+  const double tol = index_.tol();
+  Candidate out;
+  if (options_.keep_materials_apart && pa.material != pb.material) {
+    out.validity = Validity::materials_differ;
+    return out;
+  }
+  // Condition 2 first: it needs no hull and rejects every concave pair.
+  if (!patches_support_each_other(mesh, pa, pb, tol)) {
+    out.validity = Validity::face_not_on_hull;
+    return out;
+  }
+  std::vector<int> ids;
+  std::set_union(pa.hull_vertices.begin(), pa.hull_vertices.end(), pb.hull_vertices.begin(), pb.hull_vertices.end(),
+                 std::back_inserter(ids));
+  const std::vector<Eigen::Vector3d> points = positions_of(mesh, ids);
+
+  if (pa.planar && pb.planar && pa.area_vector.dot(pb.area_vector) > 0.0) {
+    const Eigen::Vector3d normal = (pa.area_vector + pb.area_vector).normalized();
+    double low = normal.dot(points[0]), high = low;
+    for (const Eigen::Vector3d& p : points) {
+      low = std::min(low, normal.dot(p));
+      high = std::max(high, normal.dot(p));
+    }
+    if (high - low <= 2.0 * tol) {
+      const FlatPolygon polygon = make_flat_polygon(mesh.positions, ids, normal, tol);
+      out.planar = true;
+      out.hull_vertices = polygon.corner_vertices;
+      std::sort(out.hull_vertices.begin(), out.hull_vertices.end());
+      if (2 * static_cast<int>(polygon.corners.size()) > options_.max_hull_vertices) {
+        out.validity = Validity::too_many_vertices;
+        return out;
+      }
+      out.validity = check_flat_polygon(
+          index_, polygon, [&](int f) { return face_patch_[f] == a || face_patch_[f] == b; }, scratch_);
+      return out;
+    }
+  }
+
+  std::optional<ConvexPolytope> hull = grow_known_hull(pa, pb);
+  if (!hull) hull = grow_known_hull(pb, pa);
+  if (!hull) {
+    Result<ConvexPolytope> built = hull_builder_.build(points, ids);
+    ++statistics_.qhull_calls;
+    if (!built.ok()) {
+      out.validity = Validity::hull_failed;
+      return out;
+    }
+    hull = std::move(built).value();
+  }
+  if (static_cast<int>(hull->vertices.size()) > options_.max_hull_vertices) {
+    out.validity = Validity::too_many_vertices;
+    return out;
+  }
+  out.validity = check_solid_hull(index_, *hull, scratch_);
+  out.hull_vertices = hull->vertex_ids;
+  std::sort(out.hull_vertices.begin(), out.hull_vertices.end());
+  out.solid = std::move(hull);
+  return out;
+}
+
+std::optional<ConvexPolytope> PatchMerger::grow_known_hull(const Patch& base, const Patch& other) {
+  std::vector<int> added;
+  std::set_difference(other.hull_vertices.begin(), other.hull_vertices.end(), base.hull_vertices.begin(),
+                      base.hull_vertices.end(), std::back_inserter(added));
+  if (static_cast<int>(added.size()) > kMostPointsToAddIncrementally) return std::nullopt;
+  std::optional<ConvexPolytope> hull;
+  if (base.solid) {
+    hull = *base.solid;
+  } else {
+    // A planar base is a flat polytope, its front and back facets on the
+    // same corners. Growing it only works off its plane: a point on the
+    // plane but outside the polygon is beyond no facet.
+    const FlatPolygon polygon =
+        make_flat_polygon(index_.mesh().positions, base.hull_vertices, base.area_vector.normalized(), index_.tol());
+    // No point off its plane (back-to-back sheets on the same corners): the
+    // union is flat, no solid; Qhull refuses it.
+    if (polygon.corners.size() < 3 || added.empty()) return std::nullopt;
+    for (int v : added)
+      if (std::abs(polygon.plane.signed_distance(index_.mesh().positions[v])) <= index_.tol()) return std::nullopt;
+    hull = flat_polytope(polygon, false);
+  }
+  for (int v : added) {
+    hull = add_point_to_hull(*hull, index_.mesh().positions[v], v, index_.tol());
+    if (!hull) return std::nullopt;
+  }
+  ++statistics_.incremental_hulls;
+  return hull;
+}
+
+void PatchMerger::merge(int a, int b, Candidate&& candidate) {
+  // The larger patch absorbs the smaller one (ties: the lower id survives),
+  // so each face moves O(log n) times.
+  int keep = a, gone = b;
+  if (patches_[b].faces.size() > patches_[a].faces.size()) std::swap(keep, gone);
+  Patch& k = patches_[keep];
+  Patch& g = patches_[gone];
+  const double cosine_gap = same_plane_cosine_gap(index_);
+
+  const auto shared = k.shared_length.find(gone);
+  const bool near_merge = shared == k.shared_length.end();
+  const double shared_length = near_merge ? 0.0 : shared->second;
+  k.boundary_length = std::max(0.0, k.boundary_length + g.boundary_length - 2.0 * shared_length);
+  k.area += g.area;
+  k.area_vector += g.area_vector;
+  for (int f : g.faces) face_patch_[f] = keep;
+  k.faces.insert(k.faces.end(), g.faces.begin(), g.faces.end());
+  for (const Plane& p : g.face_planes) add_plane(k.face_planes, p, cosine_gap, index_.tol());
+  k.hull_vertices = std::move(candidate.hull_vertices);
+  k.planar = candidate.planar;
+  k.solid = std::move(candidate.solid);
+  k.material = std::min(k.material, g.material);
+
+  k.shared_length.erase(gone);
+  for (const auto& [neighbour, length] : g.shared_length) {
+    if (neighbour == keep) continue;
+    Patch& n = patches_[neighbour];
+    n.shared_length.erase(gone);
+    n.shared_length[keep] += length;
+    k.shared_length[neighbour] += length;
+  }
+  g = Patch{};
+  g.alive = false;
+  ++k.version;
+  k.changed_at = ++changes_;
+  ++statistics_.merges;
+  statistics_.near_merges += near_merge;
+  for (const auto& [neighbour, length] : k.shared_length) push_pair(keep, neighbour);
+}
+
+void PatchMerger::run_pairs() {
+  const int start_patches = static_cast<int>(patches_.size()) - statistics_.zero_area_faces_skipped;
+  constexpr int kProgressEvery = 2048;
+  while (!queue_.empty()) {
+    std::pop_heap(queue_.begin(), queue_.end(), std::greater<>());
+    const QueueEntry entry = queue_.back();
+    queue_.pop_back();
+    const Patch& pa = patches_[entry.a];
+    const Patch& pb = patches_[entry.b];
+    if (!pa.alive || !pb.alive || pa.version != entry.version_a || pb.version != entry.version_b) continue;
+    ++statistics_.candidates_tested;
+    Candidate candidate = evaluate(entry.a, entry.b);
+    if (candidate.validity != Validity::valid) {
+      ++statistics_.rejections[static_cast<int>(candidate.validity)];
+      continue;
+    }
+    merge(entry.a, entry.b, std::move(candidate));
+    if (options_.progress && statistics_.merges % kProgressEvery == 0 && start_patches > 1)
+      options_.progress(static_cast<double>(statistics_.merges) / (start_patches - 1));
+  }
+}
+
+void PatchMerger::run() {
+  run_pairs();
+  // Near merges and dissolving change hulls, which opens new pairs of both
+  // kinds.
+  for (;;) {
+    if (near_merge_distance_ > 0.0) {
+      for (;;) {
+        const int merges = statistics_.merges;
+        if (push_near_pairs() == 0) break;
+        run_pairs();
+        if (statistics_.merges == merges) break;
+      }
+    }
+    const long before_dissolving = changes_;
+    if (!options_.dissolve.value_or(false) || dissolve_patches() == 0) break;
+    // Pairs of unchanged patches were all tried as they are, and failed.
+    push_neighbour_pairs(before_dissolving);
+    run_pairs();
+  }
+}
+
+} // namespace hullcover::detail

@@ -1,0 +1,148 @@
+#pragma once
+// Greedy patch merging (paper 4, 4.2): internal to the decomposer.
+
+#include "hullcover/covering/convex_hull_3d.h"
+#include "hullcover/covering/decompose_options.h"
+#include "validity_conditions.h"
+#include "scene_index.h"
+
+#include <array>
+#include <map>
+#include <optional>
+#include <set>
+#include <vector>
+
+namespace hullcover::detail {
+
+/// A set of faces that will become one hull.
+struct Patch {
+  std::vector<int> faces;
+  std::vector<int> hull_vertices;  ///< mesh vertex ids of its hull's corners
+  std::vector<Plane> face_planes;  ///< distinct planes of its faces, outward
+  std::map<int, double> shared_length;  ///< neighbour patch -> length of the edges they share
+  double area = 0.0;
+  double boundary_length = 0.0;
+  Eigen::Vector3d area_vector = Eigen::Vector3d::Zero();  ///< sum of face normals x areas
+  bool planar = true;
+  std::optional<ConvexPolytope> solid;  ///< the hull, when not planar
+  int material = 0;
+  int version = 0;
+  long changed_at = 0;  ///< PatchMerger::changes_ when it last changed
+  long dissolve_failed_at = -1;  ///< PatchMerger::changes_ when dissolving it last failed
+  int dissolve_failed_face = -1;  ///< the face that then found no patch to go to
+  bool alive = true;
+};
+
+/// Two face planes closer than this in normal direction (1 - cos) count as
+/// one plane in Patch::face_planes (with offsets within tol).
+double same_plane_cosine_gap(const SceneIndex& index);
+
+/// Adds `p` to `planes` unless one of them is the same plane.
+void add_plane(std::vector<Plane>& planes, const Plane& p, double cosine_gap, double tol);
+
+/// The positions of mesh vertices `ids`, in order.
+std::vector<Eigen::Vector3d> positions_of(const Mesh& mesh, const std::vector<int>& ids);
+
+/// Length of the edge from corner `corner` of triangle `face` to the next.
+double face_edge_length(const Mesh& mesh, int face, int corner);
+
+/// Condition 2 both ways: each patch's face planes have the other's hull
+/// vertices behind them (within tol). Cheap, and needs no hull.
+bool patches_support_each_other(const Mesh& mesh, const Patch& a, const Patch& b, double tol);
+
+/// Inverse compactness of the union of two patches sharing `shared` length
+/// of boundary: B / sqrt(A) (0 for a closed union).
+double merged_patch_cost(const Patch& a, const Patch& b, double shared);
+
+/// Runs the merging to the end and returns the surviving patches.
+class PatchMerger {
+public:
+  /// `near_merge_distance`: see DecomposeOptions (resolved; 0 = the
+  /// paper's pass alone).
+  PatchMerger(const SceneIndex& index, const DecomposeOptions& options, double near_merge_distance,
+              CoveringStatistics& statistics);
+
+  /// Merges until no mergeable pair is left: the paper's pass, then near
+  /// merges (near_patch_merging.cpp) and dissolving (patch_dissolving.cpp),
+  /// and the paper's pass again, while they change anything.
+  void run();
+
+  const std::vector<Patch>& patches() const { return patches_; }
+  bool in_patch(int face, int patch) const { return face_patch_[face] == patch; }
+
+private:
+  struct Candidate {
+    Validity validity = Validity::valid;
+    std::vector<int> hull_vertices;
+    bool planar = false;
+    std::optional<ConvexPolytope> solid;
+  };
+
+  Candidate evaluate(int a, int b);
+  /// Face `f` alone, as the merging starts.
+  Patch single_face_patch(int f) const;
+  /// Boundary and shared lengths of every patch, from its faces.
+  void recount_shared_edges();
+  /// Each patch's bounding box grown by half the near-merge distance
+  /// (empty for dead patches): boxes that overlap are within that distance.
+  std::vector<Aabb> near_boxes() const;
+  /// Queues every pair of patches sharing an edge of which one changed
+  /// after `changed_after` (a value of changes_; -1: every pair).
+  void push_neighbour_pairs(long changed_after);
+  /// Empties every patch it can into the patches around its faces; returns
+  /// how many were emptied.
+  int dissolve_patches();
+  /// Moves each face of patch `h` into a patch across one of its edges or
+  /// in `near_tree` (patch boxes grown by half the near-merge distance),
+  /// the first that stays valid; when one face finds none, puts everything
+  /// back and returns false. `lone`: as in face_fits.
+  bool dissolve(int h, const AabbTree& near_tree, int lone);
+  /// The candidate for face `f` joining patch `q`, if valid; patch slot
+  /// `lone` holds the face alone (single_face_patch) meanwhile.
+  std::optional<Candidate> face_fits(int f, int q, int lone);
+  /// Moves face `f` into patch `q` whose union with it is `candidate`;
+  /// patch slot `lone` holds the face alone.
+  void move_face(int f, int q, int lone, Candidate&& candidate);
+  /// The patches face `f` of patch `h` may move to: across its edges, the
+  /// longest shared first, then those of `near_tree` overlapping it.
+  std::vector<int> receivers_of(int f, int h, const AabbTree& near_tree) const;
+  /// hull(base + other) grown from base's known hull, when other adds few
+  /// points; nothing when that does not apply or fails (then Qhull runs).
+  std::optional<ConvexPolytope> grow_known_hull(const Patch& base, const Patch& other);
+  /// Beyond this many new points a rebuild is as cheap as growing.
+  static constexpr int kMostPointsToAddIncrementally = 6;
+  void merge(int a, int b, Candidate&& candidate);
+  /// Queues the pair at its cost (shared length 0 for a near pair).
+  void push_pair(int a, int b);
+  /// Takes pairs off the queue until it is empty.
+  void run_pairs();
+  /// Queues every pair of patches sharing no edge whose boxes, grown by half
+  /// the near-merge distance, overlap, and that pass condition 2, unless
+  /// tried before as they are; returns how many.
+  int push_near_pairs();
+
+  struct QueueEntry {
+    double cost;
+    int a, b;
+    int version_a, version_b;
+    bool operator>(const QueueEntry& o) const {
+      if (cost != o.cost) return cost > o.cost;
+      if (a != o.a) return a > o.a;
+      return b > o.b;
+    }
+  };
+
+  const SceneIndex& index_;
+  const DecomposeOptions& options_;
+  CoveringStatistics& statistics_;
+  std::vector<Patch> patches_;
+  std::vector<int> face_patch_;
+  std::vector<QueueEntry> queue_;  // a min-heap by QueueEntry::operator>
+  ConvexHullBuilder hull_builder_;
+  std::vector<int> scratch_;
+  double near_merge_distance_;
+  std::set<std::array<int, 4>> near_pairs_tried_;  // {a, version a, b, version b}
+  long changes_ = 0;  // counts changes to patches, for Patch::changed_at
+};
+
+} // namespace hullcover::detail

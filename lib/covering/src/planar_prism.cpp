@@ -1,0 +1,143 @@
+#include "planar_prism.h"
+
+#include "validity_conditions.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+
+namespace hullcover {
+namespace {
+
+// A prism thinner than this many tolerances is no thicker than the noise of
+// the data: it is made flat instead.
+constexpr double kMinThicknessInTolerances = 2.0;
+// A bevel clears the face it avoids by this factor on its slope.
+constexpr double kBevelClearance = 1.05;
+// Halvings tried when the beveled sides meet above the wanted bottom.
+constexpr int kBottomRetries = 8;
+
+// Depth below the polygon's plane (positive behind the front).
+double depth_below(const FlatPolygon& polygon, const Eigen::Vector3d& p) { return -polygon.plane.signed_distance(p); }
+
+double distance_to_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return (a + t * ab - p).norm();
+}
+
+} // namespace
+
+std::vector<Plane> beveled_side_planes(const SceneIndex& index, const FlatPolygon& polygon,
+                                       const std::function<bool(int)>& in_patch, std::vector<int>& scratch) {
+  const double tol = index.tol();
+  const Mesh& mesh = index.mesh();
+  const Eigen::Vector3d& n = polygon.plane.normal;
+  std::vector<Plane> sides = polygon.sides;
+  const size_t count = polygon.corners.size();
+  for (size_t i = 0; i < count; ++i) {
+    const Eigen::Vector3d& a = polygon.corners[i];
+    const Eigen::Vector3d& b = polygon.corners[(i + 1) % count];
+    const Eigen::Vector3d& out = polygon.sides[i].normal;
+    Aabb edge_box;
+    edge_box.extend(a);
+    edge_box.extend(b);
+    scratch.clear();
+    index.face_tree.overlapping(grown(edge_box, tol), scratch);
+    double slope = 0.0;  // inward run per unit depth the side must exceed
+    for (int f : scratch) {
+      if (in_patch(f)) continue;
+      bool touches = false;
+      for (int k = 0; k < 3; ++k) touches |= distance_to_segment(mesh.positions[mesh.triangles[f][k]], a, b) <= tol;
+      if (!touches) continue;
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d d = mesh.positions[mesh.triangles[f][k]] - a;
+        const double depth = -n.dot(d), inward = -out.dot(d);
+        if (depth > tol && inward > 0.0) slope = std::max(slope, kBevelClearance * (inward + tol) / depth);
+      }
+    }
+    slope = std::min(slope, kMaxBevelSlope);
+    if (slope == 0.0) continue;
+    Plane tilted;
+    tilted.normal = (out - slope * n).normalized();
+    tilted.offset = tilted.normal.dot(a);
+    sides[i] = tilted;
+  }
+  return sides;
+}
+
+double allowed_prism_thickness(const SceneIndex& index, const FlatPolygon& polygon, const std::vector<Plane>& sides,
+                               const std::function<bool(int)>& in_patch, double cap, std::vector<int>& scratch) {
+  const double tol = index.tol();
+  const Mesh& mesh = index.mesh();
+  const Eigen::Vector3d& n = polygon.plane.normal;
+  Aabb region = bounding_box_of(polygon.corners);
+  for (const Eigen::Vector3d& c : polygon.corners) region.extend(c - cap * n);
+  region = grown(region, tol);
+
+  double thickness = cap;
+  scratch.clear();
+  index.face_tree.overlapping(region, scratch);
+  std::vector<Eigen::Vector3d> triangle(3);
+  for (int f : scratch) {
+    if (in_patch(f)) continue;
+    for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[f][k]];
+    const std::vector<Eigen::Vector3d> part = clip_polygon_to_planes(triangle, sides, tol);
+    if (part.empty()) continue;
+    double shallowest = depth_below(polygon, part[0]), deepest = shallowest;
+    for (const Eigen::Vector3d& p : part) {
+      shallowest = std::min(shallowest, depth_below(polygon, p));
+      deepest = std::max(deepest, depth_below(polygon, p));
+    }
+    if (deepest < -tol) continue;  // wholly in front of the polygon
+    if (deepest <= tol) {
+      // Lies on the polygon: harmless unless it faces into the prism (the
+      // back of a double-sided wall), whose front space a prism would fill.
+      if (index.face_normals[f].dot(n) < 0.0) return 0.0;
+      continue;
+    }
+    thickness = std::min(thickness, std::max(shallowest, 0.0));
+  }
+
+  scratch.clear();
+  index.bars_overlapping(region, scratch);
+  for (int b : scratch) {
+    const BoundaryBar& bar = index.bars[b];
+    const std::vector<Eigen::Vector3d> segment = clip_polygon_to_planes(bar.outline(), sides, tol);
+    if (segment.empty()) continue;
+    double shallowest = depth_below(polygon, segment[0]), deepest = shallowest;
+    for (const Eigen::Vector3d& p : segment) {
+      shallowest = std::min(shallowest, depth_below(polygon, p));
+      deepest = std::max(deepest, depth_below(polygon, p));
+    }
+    if (deepest > tol) thickness = std::min(thickness, std::max(shallowest, 0.0));
+  }
+  return thickness < kMinThicknessInTolerances * tol ? 0.0 : thickness;
+}
+
+ConvexPolytope prism_polytope(const FlatPolygon& polygon, const std::vector<Plane>& sides, double& thickness,
+                              double tol, ConvexHullBuilder& hulls) {
+  const Eigen::Vector3d& n = polygon.plane.normal;
+  for (int attempt = 0; thickness > 0.0 && attempt <= kBottomRetries; ++attempt, thickness *= 0.5) {
+    std::vector<Eigen::Vector3d> bottom;
+    for (const Eigen::Vector3d& c : polygon.corners) bottom.push_back(c - thickness * n);
+    for (const Plane& side : sides) bottom = clip_polygon(bottom, side, 0.0);
+    // Clipping leaves points on edges and near-duplicates; keep corners only,
+    // so the hull gets no sliver facets.
+    const PlaneFrame frame = PlaneFrame::from_normal(polygon.corners.front(), n);
+    std::vector<Eigen::Vector2d> flat;
+    for (const Eigen::Vector3d& p : bottom) flat.push_back(frame.to_plane(p));
+    const std::vector<int> corners = convex_hull_2d(flat, tol);
+    if (corners.size() < 3) continue;
+    std::vector<Eigen::Vector3d> points = polygon.corners;
+    std::vector<int> ids = polygon.corner_vertices;
+    for (int c : corners) points.push_back(bottom[c]);
+    ids.resize(points.size(), -1);
+    Result<ConvexPolytope> prism = hulls.build(points, ids);
+    if (prism.ok() && prism.value().facets.size() >= 4) return std::move(prism).value();
+  }
+  thickness = 0.0;
+  return flat_polytope(polygon, true);
+}
+
+} // namespace hullcover

@@ -1,0 +1,90 @@
+#pragma once
+/// \file scene_index.h
+/// Everything the validity conditions test a candidate hull against, for
+/// the WHOLE mesh (paper section 3: checks run on the entire mesh, not the
+/// patch's component): vertices, edges, faces and boundary constraint bars,
+/// each in a bounding-volume tree.
+
+#include "hullcover/covering/validity.h"
+#include "hullcover/geometry/aabb_tree.h"
+#include "hullcover/mesh/prepared_mesh.h"
+
+#include <vector>
+
+namespace hullcover {
+
+/// A boundary constraint bar (paper 4.1, condition 3): the segment through
+/// an open edge's midpoint along its face's unit normal, `bar_half_length`
+/// to each side. In exact mode the bar is swept along the whole edge (a
+/// *sheet*: the quad a, a + along, b + along, b), so the opening is guarded
+/// at every point of the edge, not only at its midpoint.
+struct BoundaryBar {
+  Eigen::Vector3d a = Eigen::Vector3d::Zero();  ///< behind the face (at the edge's start for a sheet)
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();  ///< in front of the face
+  Eigen::Vector3d along = Eigen::Vector3d::Zero();  ///< edge vector of a sheet; zero for a bar
+  int edge = -1;  ///< the mesh edge it guards
+  int face = -1;  ///< the face whose normal it follows
+
+  bool is_sheet() const { return !along.isZero(); }
+  /// Its outline: the segment a-b, or the sheet's four corners in order.
+  std::vector<Eigen::Vector3d> outline() const;
+};
+
+/// What bars guard.
+struct BarOptions {
+  /// Half-length of each bar, scene units (> 0).
+  double half_length = 1.0;
+  /// Also put bars on edges between faces of different materials (one per
+  /// face), so hulls keep materials apart (paper 4.3).
+  bool material_boundaries = false;
+  /// `exact`: sheets along whole edges, on boundary AND fold edges (the rim
+  /// of a double-sided sheet), and the checks of exact_conditions.h.
+  ValidityMode mode = ValidityMode::paper;
+  /// Exact mode: how far free space is kept, scene units (> 0).
+  double free_space_reach = 1.0;
+};
+
+/// The mesh as the validity checks see it. Holds a reference to `prepared`,
+/// which must outlive it.
+struct SceneIndex {
+  const PreparedMesh* prepared = nullptr;
+  ValidityMode mode = ValidityMode::paper;
+  double free_space_reach = 0.0;  ///< exact mode, scene units
+  /// Per edge: the use (index into MeshConnectivity::edge_uses) of the face
+  /// whose plane holds the opening beyond it (boundary and, in exact mode,
+  /// fold edges), or -1 for an edge that is not open.
+  std::vector<int> open_edge_use;
+  /// Unit front normal per face; zero for zero-area faces.
+  std::vector<Eigen::Vector3d> face_normals;
+  /// Area per face, scene units squared.
+  std::vector<double> face_areas;
+  std::vector<BoundaryBar> bars;
+  AabbTree vertex_tree;  ///< over mesh vertices
+  AabbTree edge_tree;    ///< over MeshConnectivity::edges
+  AabbTree face_tree;    ///< over faces
+  AabbTree bar_tree;     ///< over pieces of bars (long bars are split, so boxes stay small)
+  std::vector<int> bar_of_piece;  ///< bar index of each piece in bar_tree
+
+  /// Appends, once each and ascending, the bars with a piece overlapping `box`.
+  void bars_overlapping(const Aabb& box, std::vector<int>& out) const;
+
+  const Mesh& mesh() const { return prepared->mesh; }
+  double tol() const { return prepared->tolerance.length; }
+};
+
+/// Bars are indexed in pieces no longer than the diagonal / this: a bar
+/// is long (a tenth of the scene by default), and one long box per bar would
+/// make every query visit most of the tree.
+inline constexpr double kBarPiecesPerDiagonal = 64.0;
+
+/// True for a fold edge: a manifold edge whose second face folds back onto
+/// the first (its far corner within `tol` of the first face's plane, normals
+/// opposite): the rim of a double-sided sheet, as open as a boundary edge.
+bool is_fold_edge(const PreparedMesh& prepared, int edge);
+
+/// Builds the index: face normals and areas, bars on every boundary edge
+/// (exact mode: sheets on every boundary and fold edge; and material
+/// boundaries when asked), and the four trees. O(n log n).
+SceneIndex build_scene_index(const PreparedMesh& prepared, const BarOptions& bars);
+
+} // namespace hullcover

@@ -1,0 +1,114 @@
+#include "validity_conditions.h"
+
+#include "exact_conditions.h"
+
+namespace hullcover {
+
+bool planes_support_points(const std::vector<Plane>& planes, const std::vector<Eigen::Vector3d>& points, double tol) {
+  for (const Plane& plane : planes)
+    for (const Eigen::Vector3d& p : points)
+      if (plane.signed_distance(p) > tol) return false;
+  return true;
+}
+
+namespace {
+
+// E1-E3 (exact_conditions.h) for a solid hull whose box grown by tol is `box`.
+Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, const Aabb& box,
+                                std::vector<int>& scratch) {
+  const double tol = index.tol();
+  const double reach = index.free_space_reach;
+  const Mesh& mesh = index.mesh();
+  const Aabb reached = grown(box, reach);
+  std::vector<Eigen::Vector3d> triangle(3);
+  std::vector<int> ray_scratch;
+  const HullInterior interior = hull_interior(hull, tol);
+  if (interior.empty()) return Validity::valid;  // thinner than 2 tol: nothing is strictly inside
+  scratch.clear();
+  index.face_tree.overlapping(reached, scratch);
+  for (int f : scratch) {
+    if (index.prepared->connectivity.zero_area[f]) continue;
+    for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[f][k]];
+    const FreeSpaceSweep front = front_space_sweep(triangle, index.face_normals[f], reach, tol);
+    if (crossing_face_leaks(index, front, interior, ray_scratch)) return Validity::face_crosses_hull;
+    if (sweep_enters_hull(index, front, interior, ray_scratch)) return Validity::front_space_inside;
+  }
+  scratch.clear();
+  index.edge_tree.overlapping(reached, scratch);
+  const MeshConnectivity& c = index.prepared->connectivity;
+  for (int e : scratch) {
+    if (index.open_edge_use[e] < 0) continue;
+    // The use names the face and where the edge sits in it: its far corner
+    // is the face's side of the edge.
+    const EdgeUse& use = c.edge_uses[index.open_edge_use[e]];
+    const Eigen::Vector3i& t = mesh.triangles[use.face];
+    const Eigen::Vector3d& p0 = mesh.positions[t[use.corner]];
+    const Eigen::Vector3d& p1 = mesh.positions[t[(use.corner + 1) % 3]];
+    const Eigen::Vector3d& inner = mesh.positions[t[(use.corner + 2) % 3]];
+    if (sweep_enters_hull(index, opening_sweep(p0, p1, inner, index.face_normals[use.face], reach, tol), interior,
+                          ray_scratch))
+      return Validity::opening_inside;
+  }
+  return Validity::valid;
+}
+
+} // namespace
+
+Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, std::vector<int>& scratch) {
+  const double tol = index.tol();
+  const Aabb box = grown(bounding_box_of(hull.vertices), tol);
+  const Mesh& mesh = index.mesh();
+
+  scratch.clear();
+  index.vertex_tree.overlapping(box, scratch);
+  for (int v : scratch)
+    if (deepest_signed_distance(hull.planes, mesh.positions[v]) < -tol) return Validity::vertex_inside;
+
+  scratch.clear();
+  index.edge_tree.overlapping(box, scratch);
+  for (int e : scratch) {
+    const MeshEdge& edge = index.prepared->connectivity.edges[e];
+    if (segment_enters_interior(hull.planes, mesh.positions[edge.v0], mesh.positions[edge.v1], tol))
+      return Validity::edge_inside;
+  }
+
+  scratch.clear();
+  index.bars_overlapping(box, scratch);
+  for (int b : scratch) {
+    const BoundaryBar& bar = index.bars[b];
+    if (bar.is_sheet() ? sheet_enters_interior(hull.planes, bar.outline(), tol)
+                       : segment_enters_interior(hull.planes, bar.a, bar.b, tol))
+      return Validity::bar_inside;
+  }
+  if (index.mode != ValidityMode::exact) return Validity::valid;
+
+  return check_exact_solid_hull(index, hull, box, scratch);
+}
+
+Validity check_flat_polygon(const SceneIndex& index, const FlatPolygon& polygon,
+                            const std::function<bool(int)>& in_patch, std::vector<int>& scratch) {
+  const double tol = index.tol();
+  const Aabb box = grown(bounding_box_of(polygon.corners), tol);
+  const Mesh& mesh = index.mesh();
+
+  scratch.clear();
+  index.bars_overlapping(box, scratch);
+  for (int b : scratch)
+    if (bar_crosses_polygon(polygon, index.bars[b], tol)) return Validity::bar_crosses_polygon;
+
+  scratch.clear();
+  index.face_tree.overlapping(box, scratch);
+  std::vector<Eigen::Vector3d> triangle(3);
+  for (int f : scratch) {
+    if (in_patch(f)) continue;
+    bool below = false;
+    for (int k = 0; k < 3; ++k) {
+      triangle[k] = mesh.positions[mesh.triangles[f][k]];
+      below |= polygon.plane.signed_distance(triangle[k]) < -tol;
+    }
+    if (below && meets_polygon_interior(polygon, triangle, tol)) return Validity::face_below_polygon;
+  }
+  return Validity::valid;
+}
+
+} // namespace hullcover

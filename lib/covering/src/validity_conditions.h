@@ -1,0 +1,44 @@
+#pragma once
+/// \file validity_conditions.h
+/// The paper's validity conditions (section 4.1) for a candidate hull,
+/// tested against the whole mesh with the one tolerance.
+///
+///  1. the hull contains no mesh vertex and no part of a mesh edge in its
+///     interior;
+///  2. every face of the patch lies on the hull's boundary with its normal
+///     pointing out (`planes_support_points`);
+///  3. no boundary constraint bar penetrates the hull (for a flat polygon:
+///     crosses its relative interior);
+///  4. for a flat polygon, no face outside the patch that touches the
+///     polygon's relative interior has a vertex on its negative side.
+///
+/// In `ValidityMode::exact` (the index's mode) the conditions of
+/// exact_conditions.h are checked too: bars become sheets along whole open
+/// edges, and faces must not face into or cross a solid hull.
+
+#include "hullcover/geometry/convex_polytope.h"
+#include "hullcover/geometry/planar_hull.h"
+#include "scene_index.h"
+#include "hullcover/covering/validity.h"
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace hullcover {
+
+/// Condition 2 between two point sets: every plane (outward, from faces of
+/// one patch) has every point (hull vertices of the other patch) behind it
+/// or within `tol` in front.
+bool planes_support_points(const std::vector<Plane>& planes, const std::vector<Eigen::Vector3d>& points, double tol);
+
+/// Conditions 1 and 3 (exact mode: and E1-E3) for a solid hull. `scratch`
+/// is reused storage.
+Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, std::vector<int>& scratch);
+
+/// Conditions 3 (exact mode: E2) and 4 for a flat polygon; `in_patch(face)` tells whether a
+/// face belongs to the patch (condition 4 looks only at faces outside it).
+Validity check_flat_polygon(const SceneIndex& index, const FlatPolygon& polygon,
+                            const std::function<bool(int)>& in_patch, std::vector<int>& scratch);
+
+} // namespace hullcover

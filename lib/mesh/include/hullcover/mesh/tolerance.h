@@ -1,0 +1,57 @@
+#pragma once
+/// \file tolerance.h
+/// hullcover's ONE length tolerance, and how it is chosen.
+///
+/// Every sidedness and containment test in hullcover uses `Tolerance::length`
+/// ("strictly inside" means deeper than it; "coincident" means closer than
+/// it). Any other length threshold is a named multiple of it, declared next
+/// to its use. See ../shared/DESIGN.md, "tolerance".
+///
+/// Default: `kDefaultRelativeTolerance` x the scene's bounding-box diagonal.
+/// A user may override it with an absolute length, but never below the floor
+/// the data itself imposes (its own rounding error, as Jolt and Manifold do):
+/// a tolerance under the noise of the coordinates would turn rounding into
+/// geometry.
+
+#include "hullcover/geometry/mesh.h"
+#include "hullcover/geometry/status.h"
+
+#include <optional>
+
+namespace hullcover {
+
+/// Default tolerance as a fraction of the bounding-box diagonal.
+inline constexpr double kDefaultRelativeTolerance = 1e-5;
+
+/// How many units of rounding error one sidedness test (a plane through three
+/// rounded points, evaluated at a fourth) may accumulate; the floor is this
+/// multiple of the data's own error bound.
+inline constexpr double kRoundingErrorsPerPlaneTest = 8.0;
+
+/// The tolerance in force and where it came from.
+struct Tolerance {
+  /// The tolerance, an absolute length in scene units (> 0).
+  double length = 0.0;
+  /// Smallest length the data can support: rounding error of its coordinates
+  /// (input error plus double-precision arithmetic at its magnitude), times
+  /// `kRoundingErrorsPerPlaneTest`.
+  double floor = 0.0;
+  /// The scene's bounding-box diagonal the default was derived from.
+  double diagonal = 0.0;
+  /// True when the user gave the length.
+  bool user_given = false;
+  /// True when the requested (or default) length was below `floor` and was
+  /// raised to it.
+  bool raised_to_floor = false;
+};
+
+/// Chooses the tolerance for a mesh.
+///
+/// `user_length`, when given, is an absolute length in scene units.
+/// Fails with `invalid_argument` when `user_length` is not a positive finite
+/// number, and with `degenerate_scene` when the mesh has no extent (all
+/// referenced vertices coincide), since then no relative default exists.
+/// The mesh must already pass `validate_mesh`.
+Result<Tolerance> choose_tolerance(const Mesh& mesh, std::optional<double> user_length);
+
+} // namespace hullcover

@@ -1,0 +1,28 @@
+#include "hullcover/mesh/tolerance.h"
+
+#include <cmath>
+#include <limits>
+
+namespace hullcover {
+
+Result<Tolerance> choose_tolerance(const Mesh& mesh, std::optional<double> user_length) {
+  if (user_length && !(std::isfinite(*user_length) && *user_length > 0.0))
+    return Status{StatusCode::invalid_argument,
+                  "tolerance must be a positive finite length, got " + std::to_string(*user_length)};
+
+  Tolerance tol;
+  tol.diagonal = referenced_bounding_box(mesh).diagonal();
+  if (!(tol.diagonal > 0.0))
+    return Status{StatusCode::degenerate_scene, "all vertices coincide: the scene has no extent"};
+
+  const double arithmetic_error = largest_coordinate_magnitude(mesh) * std::numeric_limits<double>::epsilon();
+  tol.floor = kRoundingErrorsPerPlaneTest * std::max(mesh.coordinate_error, arithmetic_error);
+
+  tol.user_given = user_length.has_value();
+  const double requested = user_length ? *user_length : kDefaultRelativeTolerance * tol.diagonal;
+  tol.raised_to_floor = requested < tol.floor;
+  tol.length = std::max(requested, tol.floor);
+  return tol;
+}
+
+} // namespace hullcover

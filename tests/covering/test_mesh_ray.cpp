@@ -1,0 +1,148 @@
+// The decomposer's own ray against the mesh (mesh_ray.h) and a hull's
+// interior (exact_conditions.h): the two things exact mode's witness rays
+// are made of.
+
+#include "hullcover/covering/convex_hull_3d.h"
+#include "exact_conditions.h"
+#include "mesh_ray.h"
+#include "hullcover/mesh/scene_builder.h"
+
+#include <gtest/gtest.h>
+
+namespace hullcover {
+namespace {
+
+using V = Eigen::Vector3d;
+
+struct Indexed {
+  PreparedMesh prepared;
+  SceneIndex index;
+};
+
+std::unique_ptr<Indexed> indexed(const Mesh& m) {
+  auto out = std::make_unique<Indexed>();
+  out->prepared = prepare_mesh(m, std::nullopt).value();
+  out->index = build_scene_index(out->prepared, {1.0, false, ValidityMode::exact, 1.0});
+  return out;
+}
+
+TEST(MeshRay, ARayThroughTheEdgeTwoTrianglesShareMeetsThem) {
+  Mesh m;
+  add_quad(m, V(0, 0, 0), V(2, 0, 0), V(2, 0, 2), V(0, 0, 2));  // its diagonal runs (0,0,0)-(2,0,2)
+  const auto s = indexed(m);
+  std::vector<int> scratch;
+  for (const V& through : {V(1, 0, 1), V(0.5, 0, 0.5), V(1.3, 0, 0.7)}) {
+    const auto hit = first_mesh_hit(s->index, through + V(0, 5, 0), V(0, -1, 0), 0.0, 10.0, scratch);
+    ASSERT_TRUE(hit) << through.transpose();
+    EXPECT_NEAR(hit->t, 5.0, 1e-12);
+  }
+  EXPECT_FALSE(first_mesh_hit(s->index, V(3, 5, 1), V(0, -1, 0), 0.0, 10.0, scratch));
+}
+
+TEST(MeshRay, TellsWhichSideItMeetsAndCoincidentFacesAllCount) {
+  Mesh m;
+  add_quad(m, V(0, 0, 0), V(1, 0, 0), V(1, 0, 1), V(0, 0, 1));  // facing one way
+  const auto one = indexed(m);
+  std::vector<int> scratch;
+  const V normal = one->index.face_normals[0];
+  const auto from_front = first_mesh_hit(one->index, V(0.3, 0, 0.6) + 2 * normal, -normal, 0.0, 4.0, scratch);
+  const auto from_back = first_mesh_hit(one->index, V(0.3, 0, 0.6) - 2 * normal, normal, 0.0, 4.0, scratch);
+  ASSERT_TRUE(from_front && from_back);
+  EXPECT_FALSE(from_front->from_behind);
+  EXPECT_TRUE(from_back->from_behind);
+  // A second copy facing the other way: met at the same distance, from behind.
+  add_quad(m, V(0, 0, 0), V(0, 0, 1), V(1, 0, 1), V(1, 0, 0));
+  const auto two = indexed(m);
+  const auto both = first_mesh_hit(two->index, V(0.3, 0, 0.6) + 2 * normal, -normal, 0.0, 4.0, scratch);
+  ASSERT_TRUE(both);
+  EXPECT_TRUE(both->from_behind);
+}
+
+TEST(HullInterior, IsTheHullShrunkByTolAndVanishesWhenThin) {
+  Mesh m;
+  add_box(m, V(0, 0, 0), V(1, 1, 1), true);
+  ConvexHullBuilder builder;
+  std::vector<V> corners = m.positions;
+  const ConvexPolytope cube = builder.build(corners, {}).value();
+  const double tol = 0.01;
+  const HullInterior inside = hull_interior(cube, tol);
+  ASSERT_FALSE(inside.empty());
+  for (size_t k = 0; k < inside.facets.size(); ++k)
+    for (const V& p : inside.facets[k]) {
+      EXPECT_NEAR(deepest_signed_distance(cube.planes, p), -tol, 1e-12);
+      EXPECT_LE(deepest_signed_distance(inside.planes, p), 1e-12);
+    }
+  Mesh slab;
+  add_box(slab, V(0, 0, 0), V(1, 1.5 * tol, 1), true);
+  std::vector<V> slab_corners = slab.positions;
+  EXPECT_TRUE(hull_interior(builder.build(slab_corners, {}).value(), tol).empty());
+}
+
+// Witness rays (witness_rays.h) through sweep_enters_hull: a wall W at x = 0
+// facing +x looks into a box hull [0.5, 1.5] x [0, 1] x [0, 1]; its front
+// space runs through the box, which only a face closing it from behind may
+// allow.
+struct WallLookingIntoBox {
+  Mesh mesh;
+  ConvexPolytope box;
+
+  WallLookingIntoBox() {
+    add_quad(mesh, V(0, 0, 0), V(0, 1, 0), V(0, 1, 1), V(0, 0, 1));  // faces +x
+    ConvexHullBuilder builder;
+    Mesh hull;
+    add_box(hull, V(0.5, 0, 0), V(1.5, 1, 1), true);
+    box = builder.build(hull.positions, {}).value();
+  }
+
+  // A quad across the box at x, over y in [y0, y1] and z in [z0, z1],
+  // facing `front` (+x: met from behind by W's rays, -x: from the front).
+  void add_screen(double x, double y0, double y1, double z0, double z1, double front) {
+    if (front > 0)
+      add_quad(mesh, V(x, y0, z0), V(x, y1, z0), V(x, y1, z1), V(x, y0, z1));
+    else
+      add_quad(mesh, V(x, y0, z0), V(x, y0, z1), V(x, y1, z1), V(x, y1, z0));
+  }
+
+  bool wall_space_enters_box() const {
+    const auto s = indexed(mesh);
+    const double tol = s->index.tol();
+    const HullInterior interior = hull_interior(box, tol);
+    std::vector<int> scratch;
+    for (int f : {0, 1}) {
+      std::vector<V> triangle;
+      for (int k = 0; k < 3; ++k) triangle.push_back(s->prepared.mesh.positions[s->prepared.mesh.triangles[f][k]]);
+      if (sweep_enters_hull(s->index, front_space_sweep(triangle, s->index.face_normals[f], 2.0, tol), interior,
+                            scratch))
+        return true;
+    }
+    return false;
+  }
+};
+
+TEST(WitnessRays, SpaceClosedFromBehindMayEnterAHull) {
+  WallLookingIntoBox scene;
+  scene.add_screen(1.0, -0.5, 1.5, -0.5, 1.5, +1);
+  EXPECT_FALSE(scene.wall_space_enters_box());
+}
+
+// The screen leaves a strip 1% wide open along y = 0, narrower than the
+// inset of the witness grid: the witnesses all meet the screen, but it
+// shadows only part of their region, which is cut along its shadow.
+TEST(WitnessRays, AFaceShadowingMostOfARegionDoesNotSpeakForTheRest) {
+  WallLookingIntoBox scene;
+  scene.add_screen(1.0, 0.01, 1.5, -0.5, 1.5, +1);
+  EXPECT_TRUE(scene.wall_space_enters_box());
+}
+
+// A sliver facing the wall stands in the box in front of the screen, away
+// from the witnesses: rays meeting it end in front of a face, in free
+// space the box holds.
+TEST(WitnessRays, AFaceMetFromTheFrontInsideEnclosedSpaceIsFound) {
+  WallLookingIntoBox scene;
+  scene.add_screen(1.0, -0.5, 1.5, -0.5, 1.5, +1);
+  scene.add_screen(0.8, 0.437, 0.441, 0.21, 0.29, -1);
+  EXPECT_TRUE(scene.wall_space_enters_box());
+}
+
+} // namespace
+} // namespace hullcover

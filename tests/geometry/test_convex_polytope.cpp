@@ -1,0 +1,70 @@
+#include "hullcover/covering/convex_hull_3d.h"
+#include "hullcover/geometry/convex_polytope.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <random>
+
+namespace hullcover {
+namespace {
+
+std::vector<Eigen::Vector3d> cube_points(const Eigen::Vector3d& offset) {
+  std::vector<Eigen::Vector3d> p;
+  for (int i = 0; i < 8; ++i) p.push_back(offset + Eigen::Vector3d(i & 1, (i >> 1) & 1, (i >> 2) & 1));
+  p.push_back(offset + Eigen::Vector3d(0.5, 0.5, 0.5));  // interior: not a vertex
+  return p;
+}
+
+TEST(ConvexHullBuilder, CubeFarFromTheOriginHasSixSquareFacets) {
+  ConvexHullBuilder builder;
+  const Eigen::Vector3d offset(1e5, -2e5, 5e4);
+  const Result<ConvexPolytope> hull = builder.build(cube_points(offset), {0, 1, 2, 3, 4, 5, 6, 7, 8});
+  ASSERT_TRUE(hull.ok()) << hull.status().message();
+  EXPECT_EQ(hull.value().vertices.size(), 8u);
+  EXPECT_EQ(hull.value().facets.size(), 6u);
+  EXPECT_NEAR(polytope_volume(hull.value()), 1.0, 1e-6);
+  for (int id : hull.value().vertex_ids) EXPECT_NE(id, 8);
+  // Facets wind counter-clockwise seen from outside: Newell normal agrees with the plane.
+  for (size_t f = 0; f < hull.value().facets.size(); ++f) {
+    const auto& facet = hull.value().facets[f];
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    for (size_t i = 0; i < facet.size(); ++i)
+      n += (hull.value().vertices[facet[i]] - offset).cross(hull.value().vertices[facet[(i + 1) % facet.size()]] - offset);
+    EXPECT_GT(n.dot(hull.value().planes[f].normal), 0.0);
+  }
+}
+
+TEST(ConvexHullBuilder, FlatInputFailsWithAStatusNotAnExit) {
+  ConvexHullBuilder builder;
+  const Result<ConvexPolytope> hull = builder.build({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}});
+  EXPECT_FALSE(hull.ok());
+  EXPECT_EQ(hull.status().code(), StatusCode::degenerate_scene);
+}
+
+TEST(SegmentEntersInterior, CountsOnlyDepthBeyondTheTolerance) {
+  ConvexHullBuilder builder;
+  const Result<ConvexPolytope> hull = builder.build(cube_points(Eigen::Vector3d::Zero()));
+  ASSERT_TRUE(hull.ok());
+  const auto& planes = hull.value().planes;
+  const double tol = 1e-3;
+  EXPECT_TRUE(segment_enters_interior(planes, {-1, 0.5, 0.5}, {2, 0.5, 0.5}, tol));   // through
+  EXPECT_FALSE(segment_enters_interior(planes, {-1, 0, 0.5}, {2, 0, 0.5}, tol));      // along a face
+  EXPECT_FALSE(segment_enters_interior(planes, {-1, 0.0005, 0.5}, {2, 0.0005, 0.5}, tol));  // within tol of it
+  EXPECT_TRUE(segment_enters_interior(planes, {-1, 0.01, 0.5}, {2, 0.01, 0.5}, tol));
+  EXPECT_FALSE(segment_enters_interior(planes, {-1, 2, 2}, {-0.5, 2, 2}, tol));      // away
+  EXPECT_LT(deepest_signed_distance(planes, {0.5, 0.5, 0.5}), -0.4);
+}
+
+TEST(ClipPolygon, KeepsTheInnerPart) {
+  const Plane x_below_one{{1, 0, 0}, 1.0};
+  const std::vector<Eigen::Vector3d> square = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}};
+  const auto half = clip_polygon(square, x_below_one, 0.0);
+  ASSERT_EQ(half.size(), 4u);
+  for (const auto& p : half) EXPECT_LE(p.x(), 1.0 + 1e-12);
+  EXPECT_TRUE(clip_polygon(square, {{1, 0, 0}, -1.0}, 0.0).empty());
+}
+
+} // namespace
+} // namespace hullcover

@@ -1,0 +1,131 @@
+// The decomposer on the shared real scenes, each decomposed ONCE at the
+// defaults (exact mode) in this test program: every hull passes the
+// independent re-check (decompose_and_check), respects the vertex cap and
+// is finite; the audit's probe finds no lost front or opening point and no
+// lost cell; behaviour proxies miss no contact. On the three small scenes the
+// probe runs at the audit's default spacing and the paper's conditions alone
+// are shown to lose space where exact mode does not; the five larger ones
+// are probed at R/4 (twice the default spacing) to keep pandora and the gear
+// fast (scripts/compare_conditions.sh audits all eight at the defaults).
+
+#include "covering_fixture.h"
+#include "shared_data.h"
+#include "temp_dir.h"
+
+#include "hullcover/bvh/covering_hulls.h"
+#include "hullcover/bvh/triangle_world.h"
+#include "hullcover/covering/covering_export.h"
+#include "hullcover/mesh/mesh_import.h"
+#include "hullcover/validate/accessible_space.h"
+#include "hullcover/validate/behaviour_equivalence.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace hullcover::validate {
+namespace {
+
+struct SceneCase {
+  const char* scene;
+  /// Probe spacing as a fraction of the probe distance R (the audit's
+  /// default is 1/8).
+  double spacing_per_distance;
+  /// The three small scenes also run the paper's conditions alone.
+  bool compare_paper;
+  /// DESIGN.md's prototype measured the paper's conditions losing space here.
+  bool paper_loses;
+};
+
+constexpr SceneCase kCases[] = {
+    {"threejs-collision-world.glb", 1.0 / 8.0, true, true},
+    {"recast-nav_test.obj", 1.0 / 8.0, true, true},
+    {"recast-undulating.obj", 1.0 / 8.0, true, false},
+    {"recast-dungeon.obj", 1.0 / 4.0, false, false},
+    {"sauerbraten-fdm6.obj", 1.0 / 4.0, false, false},
+    {"sauerbraten-pandora.obj", 1.0 / 4.0, false, false},
+    {"stanford-bunny-res2.ply", 1.0 / 4.0, false, false},
+    {"thor-art56-gearplate.stl", 1.0 / 4.0, false, false},
+};
+
+// Lost front and opening points and lost cells of `covering`'s hulls.
+long lost_space(const test::Decomposed& d, double spacing_per_distance, long& front_points) {
+  const auto world = bvh::build_hull_world(d.covering).value();
+  const auto triangles = bvh::TriangleWorld::build(d.prepared.mesh, d.tol()).value();
+  ProbeOptions options;
+  options.resolution = d.prepared.tolerance.diagonal * kDefaultProbeRelative * spacing_per_distance;
+  const Result<ProbeReport> r = probe_accessible_space(d.prepared, *triangles, *world, options);
+  EXPECT_TRUE(r.ok()) << r.status().message();
+  if (!r.ok()) return -1;
+  front_points = r.value().front_points;
+  return r.value().front_lost + r.value().opening_lost + r.value().lost_cells;
+}
+
+class SharedSceneCovering : public ::testing::TestWithParam<SceneCase> {};
+
+TEST_P(SharedSceneCovering, EveryHullIsValidAndNoSpaceOrContactIsLost) {
+  HULLCOVER_REQUIRE_SHARED_SCENES(dir);
+  const SceneCase& c = GetParam();
+  const Result<ImportedMesh> imported = import_mesh(dir + "/" + c.scene);
+  ASSERT_TRUE(imported.ok()) << imported.status().message();
+  const auto d = test::decompose_and_check(imported.value().mesh);
+  ASSERT_TRUE(d);
+  const int faces = d->covering.statistics.faces;
+  EXPECT_LT(static_cast<int>(d->covering.hulls.size()), faces);
+  for (const CoveringHull& h : d->covering.hulls) {
+    EXPECT_LE(static_cast<int>(h.polytope.vertices.size()), kDefaultMaxHullVertices);
+    for (const Eigen::Vector3d& v : h.polytope.vertices) ASSERT_TRUE(v.allFinite());
+  }
+
+  long front_points = 0;
+  EXPECT_EQ(lost_space(*d, c.spacing_per_distance, front_points), 0);
+  EXPECT_GT(front_points, 10000);
+
+  const auto world = bvh::build_hull_world(d->covering).value();
+  const auto triangles = bvh::TriangleWorld::build(d->prepared.mesh, d->tol()).value();
+  BehaviourOptions proxies;
+  proxies.proxies = 600;
+  const Result<BehaviourReport> behaviour = compare_behaviour(d->prepared, *triangles, *world, proxies);
+  ASSERT_TRUE(behaviour.ok());
+  EXPECT_GT(behaviour.value().both_touch, 50);
+  EXPECT_EQ(behaviour.value().missed, 0);
+
+  if (c.compare_paper) {
+    DecomposeOptions paper;
+    paper.conditions = ValidityMode::paper;
+    const auto p = test::decompose_and_check(imported.value().mesh, paper);
+    ASSERT_TRUE(p);
+    long paper_front_points = 0;
+    const long paper_lost = lost_space(*p, c.spacing_per_distance, paper_front_points);
+    if (c.paper_loses) {
+      EXPECT_GT(paper_lost, 0);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, SharedSceneCovering, ::testing::ValuesIn(kCases),
+                         [](const ::testing::TestParamInfo<SceneCase>& param_info) {
+                           return test::file_test_name(param_info.param.scene);
+                         });
+
+// Dissolving on a real map: fewer hulls, every one valid (decompose_and_check
+// re-checks), and still the same bytes each time (it moves faces in a fixed
+// order and puts failed moves back).
+TEST(Decompose, DissolvingOnCollisionWorldSavesHullsAndIsDeterministic) {
+  HULLCOVER_REQUIRE_SHARED_SCENES(dir);
+  const Result<ImportedMesh> imported = import_mesh(dir + "/threejs-collision-world.glb");
+  ASSERT_TRUE(imported.ok()) << imported.status().message();
+  DecomposeOptions off;
+  off.dissolve = false;
+  const auto without = test::decompose_and_check(imported.value().mesh, off);
+  const auto first = test::decompose_and_check(imported.value().mesh);
+  const auto second = test::decompose_and_check(imported.value().mesh);
+  ASSERT_TRUE(without && first && second);
+  EXPECT_GT(first->covering.statistics.dissolved_patches, 0);
+  EXPECT_LT(first->covering.hulls.size(), without->covering.hulls.size());
+  EXPECT_EQ(test::covering_obj_bytes(first->covering), test::covering_obj_bytes(second->covering));
+}
+
+} // namespace
+} // namespace hullcover::validate
