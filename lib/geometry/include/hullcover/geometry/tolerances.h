@@ -1,0 +1,74 @@
+#pragma once
+/// \file tolerances.h
+/// Every tolerance hullcover uses, in one place (as Box2D's constants.h and
+/// Jolt's PhysicsSettings.h do). Read this before adding a threshold.
+///
+/// The base: ONE length per scene, `tol` (hullcover/mesh/tolerance.h chooses
+/// it: `kDefaultRelativeTolerance` x the local extent, never below the data's
+/// own rounding floor; printed by every command; overridable with --tol).
+/// Every sidedness and containment test uses it: "strictly inside" means
+/// deeper than tol, "coincident" closer than tol. Every other length
+/// threshold is a named multiple of tol below. Directions have their own,
+/// dimensionless tolerance (`kParallelSine`); a length is never compared
+/// with a sine. The runtime (bvh) answers queries on hulls that carry no
+/// scene tolerance: its thresholds are relative to each query's own size
+/// (section "Runtime").
+
+#include <algorithm>
+
+namespace hullcover {
+
+// ---- The scene tolerance ---------------------------------------------------
+
+/// Default tolerance as a fraction of the bounding-box diagonal.
+inline constexpr double kDefaultRelativeTolerance = 1e-5;
+
+/// How many units of rounding error one sidedness test (a plane through three
+/// rounded points, evaluated at a fourth) may accumulate; the floor is this
+/// multiple of the data's own error bound.
+inline constexpr double kRoundingErrorsPerPlaneTest = 8.0;
+
+// ---- Named multiples of tol ------------------------------------------------
+
+/// Rays of free space (the decomposer's witness rays, the audit's probe
+/// rays) start this many tolerances off the surface they leave, and the
+/// audit's stop as many short of the surface they hit: surfaces themselves
+/// are not free.
+inline constexpr double kRayStandOffInTolerances = 2.0;
+
+/// A prism thinner than this many tolerances is no thicker than the noise
+/// of the data: it is made flat instead.
+inline constexpr double kMinPrismThicknessInTolerances = 2.0;
+
+/// Exact mode's bar half-length: its sheets only have to stop a flat polygon
+/// spanning an open edge in its own plane; the opening beyond the edge is
+/// kept by the exact conditions.
+inline constexpr double kExactBarHalfLengthInTolerances = 4.0;
+
+/// A hull grown point by point (incremental_hull.h) gives up on a new
+/// triangle less high than this many tolerances (no reliable normal).
+inline constexpr double kMinTriangleHeightInTolerances = 1.0;
+
+/// A point less than this many tolerances in front of every facet is taken
+/// as on a hull being grown: the hull kept differs from the exact one by a
+/// small fraction of the tolerance every later test allows.
+inline constexpr double kVisibleBeyondTolerances = 1.0 / 16.0;
+
+/// The triangle baseline inflates query shapes by this many tolerances in
+/// its broad phase, so a triangle FCL's iterative narrow phase misses by
+/// rounding still reaches the exact test.
+inline constexpr double kTriangleMarginInTolerances = 4.0;
+
+// ---- Directions -------------------------------------------------------------
+
+/// Two planes whose normals differ by less than this in 1 - cos are one
+/// plane across `extent`: over that length their offsets drift apart by at
+/// most tol, since 1 - cos(a) ~ a^2 / 2 and the drift is extent x a.
+/// Used for the planes of a patch's faces (extent: the scene's diagonal) and
+/// for a hull's facets (extent: the hull's).
+inline double same_plane_cosine_gap(double tol, double extent) {
+  const double ratio = tol / std::max(extent, tol);
+  return 0.5 * ratio * ratio;
+}
+
+} // namespace hullcover
