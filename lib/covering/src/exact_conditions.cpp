@@ -32,8 +32,8 @@ bool separated(const FreeSpaceSweep& sweep, const HullInterior& interior) {
 // The part of `region` from which rays along `dir` leave the interior
 // through its facet j: `region` clipped to facet j's column along dir.
 std::vector<Eigen::Vector3d> leaving_through(const std::vector<Eigen::Vector3d>& region, const HullInterior& interior,
-                                             size_t j, const Eigen::Vector3d& dir, double tol) {
-  return clip_polygon_to_planes(region, detail::column_planes(interior.facets[j], dir, tol), 0.0);
+                                             size_t j, const Eigen::Vector3d& dir) {
+  return clip_polygon_to_planes(region, detail::column_planes(interior.facets[j], dir), 0.0);
 }
 
 } // namespace
@@ -58,7 +58,7 @@ bool sweep_enters_hull(const SceneIndex& index, const FreeSpaceSweep& sweep, con
     // witness grid per way out.
     for (size_t j = 0; j < interior.facets.size(); ++j) {
       if (interior.facets[j].empty() || interior.planes[j].normal.dot(dir) <= 0.0) continue;
-      const std::vector<Eigen::Vector3d> through = leaving_through(part, interior, j, dir, index.tol());
+      const std::vector<Eigen::Vector3d> through = leaving_through(part, interior, j, dir);
       if (!through.empty() && detail::region_loses_space(index, sweep, interior, through, scratch)) return true;
     }
   }
@@ -77,7 +77,7 @@ bool crossing_face_leaks(const SceneIndex& index, const FreeSpaceSweep& sweep, c
   if (inside.empty()) return false;
   for (size_t j = 0; j < interior.facets.size(); ++j) {
     if (interior.facets[j].empty() || interior.planes[j].normal.dot(sweep.direction) <= 0.0) continue;
-    const std::vector<Eigen::Vector3d> through = leaving_through(inside, interior, j, sweep.direction, index.tol());
+    const std::vector<Eigen::Vector3d> through = leaving_through(inside, interior, j, sweep.direction);
     if (!through.empty() && detail::region_loses_space(index, sweep, interior, through, scratch)) return true;
   }
   return false;

@@ -75,12 +75,9 @@ HullInterior hull_interior(const ConvexPolytope& hull, double tol) {
   // Facet k shrunk: facet k moved in by tol holds it; the other shrunk
   // planes cut it to size - all but those of facets in its own plane (a
   // hull grown point by point keeps coplanar triangles), which would cut it
-  // away by rounding. Planes closer than this in direction (1 - cos) differ
-  // by less than tol over the hull.
-  Aabb box;
-  for (const Eigen::Vector3d& v : hull.vertices) box.extend(v);
-  const double ratio = tol / std::max((box.max - box.min).norm(), tol);
-  const double same_plane_gap = 0.5 * ratio * ratio;
+  // away by rounding.
+  const Aabb box = bounding_box_of(hull.vertices);
+  const double same_plane_gap = same_plane_cosine_gap(tol, (box.max - box.min).norm());
   for (size_t k = 0; k < hull.facets.size(); ++k) {
     std::vector<Eigen::Vector3d> facet;
     for (int v : hull.facets[k]) facet.push_back(hull.vertices[v] - tol * hull.planes[k].normal);

@@ -5,6 +5,7 @@
 /// shapes both read, kept apart so neither includes the other.
 
 #include "hullcover/geometry/convex_polytope.h"
+#include "hullcover/geometry/tolerances.h"
 
 #include <vector>
 
@@ -47,9 +48,5 @@ struct HullInterior {
 
 /// The interior of `hull` (facets and planes in the same order).
 HullInterior hull_interior(const ConvexPolytope& hull, double tol);
-
-/// Rays of the free space start this many tolerances off the surface they
-/// leave, as the audit's probe rays do.
-inline constexpr double kRayStandOffInTolerances = 2.0;
 
 } // namespace hullcover

@@ -22,12 +22,10 @@ double pseudo_random_cost(std::uint64_t seed, int a, int b, int va, int vb) {
 
 } // namespace
 
-// Two face planes closer than this in normal direction (1 - cos) and
-// within tol in offset are kept once: over a scene diagonal D their
-// difference stays under tol when 1 - cos <= (tol / D)^2 / 2.
+// Face planes within tolerances.h's same-plane gap across the scene are kept
+// once: a patch's faces can lie anywhere in it.
 double same_plane_cosine_gap(const SceneIndex& index) {
-  const double ratio = index.tol() / index.prepared->tolerance.diagonal;
-  return 0.5 * ratio * ratio;
+  return hullcover::same_plane_cosine_gap(index.tol(), index.prepared->tolerance.diagonal);
 }
 
 void add_plane(std::vector<Plane>& planes, const Plane& p, double cosine_gap, double tol) {

@@ -9,9 +9,6 @@
 namespace hullcover {
 namespace {
 
-// A prism thinner than this many tolerances is no thicker than the noise of
-// the data: it is made flat instead.
-constexpr double kMinThicknessInTolerances = 2.0;
 // A bevel clears the face it avoids by this factor on its slope.
 constexpr double kBevelClearance = 1.05;
 // Halvings tried when the beveled sides meet above the wanted bottom.
@@ -112,7 +109,7 @@ double allowed_prism_thickness(const SceneIndex& index, const FlatPolygon& polyg
     }
     if (deepest > tol) thickness = std::min(thickness, std::max(shallowest, 0.0));
   }
-  return thickness < kMinThicknessInTolerances * tol ? 0.0 : thickness;
+  return thickness < kMinPrismThicknessInTolerances * tol ? 0.0 : thickness;
 }
 
 ConvexPolytope prism_polytope(const FlatPolygon& polygon, const std::vector<Plane>& sides, double& thickness,

@@ -11,7 +11,7 @@
 
 namespace hullcover::detail {
 
-std::vector<Plane> column_planes(const std::vector<Eigen::Vector3d>& outline, const Eigen::Vector3d& dir, double tol) {
+std::vector<Plane> column_planes(const std::vector<Eigen::Vector3d>& outline, const Eigen::Vector3d& dir) {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& v : outline) centre += v;
   centre /= static_cast<double>(outline.size());
@@ -20,7 +20,7 @@ std::vector<Plane> column_planes(const std::vector<Eigen::Vector3d>& outline, co
     const Eigen::Vector3d& u = outline[i];
     const Eigen::Vector3d& v = outline[(i + 1) % outline.size()];
     const Eigen::Vector3d side = (v - u).cross(dir);
-    if (side.norm() <= tol * (v - u).norm()) continue;
+    if (side.norm() <= kParallelSine * (v - u).norm()) continue;
     Plane plane{side.normalized(), side.normalized().dot(u)};
     if (plane.signed_distance(centre) > 0.0) plane = {-plane.normal, -plane.offset};
     planes.push_back(plane);
@@ -66,7 +66,7 @@ ShadowSplit split_by_shadow(const std::vector<Eigen::Vector3d>& region, const st
   const Eigen::Vector3d normal = (triangle[1] - triangle[0]).cross(triangle[2] - triangle[0]).normalized();
   ShadowSplit split;
   split.inside = region;
-  for (Plane plane : column_planes(triangle, dir, tol)) {
+  for (Plane plane : column_planes(triangle, dir)) {
     // The side's edge moved out by tol in the triangle's plane moves the
     // column's side by tol times the cosine between the two outward
     // normals (the edge's, in the plane, is the side's projected into it).

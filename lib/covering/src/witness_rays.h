@@ -11,9 +11,9 @@
 namespace hullcover::detail {
 
 /// The outward planes of the column that convex polygon `outline` sweeps
-/// along unit `dir`; edges running along dir (within `tol`) bound nothing
-/// and give no plane.
-std::vector<Plane> column_planes(const std::vector<Eigen::Vector3d>& outline, const Eigen::Vector3d& dir, double tol);
+/// along unit `dir`; edges running along dir (their sine with it within
+/// kParallelSine) bound nothing and give no plane.
+std::vector<Plane> column_planes(const std::vector<Eigen::Vector3d>& outline, const Eigen::Vector3d& dir);
 
 /// How many times a region is cut along the shadow of a face its
 /// witnesses met, at most.

@@ -1,23 +1,13 @@
 #include "hullcover/geometry/incremental_hull.h"
 
+#include "hullcover/geometry/tolerances.h"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <map>
 
 namespace hullcover {
-namespace {
-
-// A new triangle thinner than this many tolerances in height has no
-// reliable normal: the update gives up and the caller rebuilds.
-constexpr double kMinTriangleHeightInTolerances = 1.0;
-// A point less than this many tolerances in front of every facet is taken
-// as on the hull: the hull kept differs from the exact one by at most that
-// much, a small fraction of the tolerance every later test allows.
-constexpr double kVisibleBeyondTolerances = 1.0 / 16.0;
-
-} // namespace
-
 std::optional<ConvexPolytope> add_point_to_hull(const ConvexPolytope& hull, const Eigen::Vector3d& p, int id,
                                                 double tol) {
   const int facet_count = static_cast<int>(hull.facets.size());

@@ -6,6 +6,7 @@
 /// on the result type it feeds.
 
 #include "hullcover/covering/validity.h"
+#include "hullcover/geometry/tolerances.h"
 
 #include <array>
 #include <cstdint>
@@ -17,10 +18,6 @@ namespace hullcover {
 /// Default bar half-length as a fraction of the bounding-box diagonal (the
 /// value the prototype in ../shared/DESIGN.md measured the paper with).
 inline constexpr double kDefaultBarHalfLengthRelative = 0.1;
-/// Exact mode's default bar half-length, in tolerances: its sheets only have
-/// to stop a flat polygon spanning an open edge in its own plane; the
-/// opening beyond the edge is kept by E2 up to the free-space reach.
-inline constexpr double kExactBarHalfLengthInTolerances = 4.0;
 /// Default free-space reach (exact mode) as a fraction of the diagonal: the
 /// audit's default probe distance, so the decomposer keeps all the free
 /// space the audit looks at.

@@ -4,7 +4,7 @@
 /// Jolt's PhysicsSettings.h do). Read this before adding a threshold.
 ///
 /// The base: ONE length per scene, `tol` (hullcover/mesh/tolerance.h chooses
-/// it: `kDefaultRelativeTolerance` x the local extent, never below the data's
+/// it: `kDefaultRelativeTolerance` x the scene's diagonal, never below the data's
 /// own rounding floor; printed by every command; overridable with --tol).
 /// Every sidedness and containment test uses it: "strictly inside" means
 /// deeper than tol, "coincident" closer than tol. Every other length
@@ -60,6 +60,12 @@ inline constexpr double kVisibleBeyondTolerances = 1.0 / 16.0;
 inline constexpr double kTriangleMarginInTolerances = 4.0;
 
 // ---- Directions -------------------------------------------------------------
+
+/// An edge whose sine with a direction is below this runs along it (a face
+/// seen edge-on bounds no column of rays). Dimensionless; far above the
+/// relative rounding of a cross product (about 1e-16), so the plane of any
+/// edge it keeps has a well-defined normal.
+inline constexpr double kParallelSine = 1e-9;
 
 /// Two planes whose normals differ by less than this in 1 - cos are one
 /// plane across `extent`: over that length their offsets drift apart by at

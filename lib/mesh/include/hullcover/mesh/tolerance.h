@@ -4,8 +4,8 @@
 ///
 /// Every sidedness and containment test in hullcover uses `Tolerance::length`
 /// ("strictly inside" means deeper than it; "coincident" means closer than
-/// it). Any other length threshold is a named multiple of it, declared next
-/// to its use. See ../shared/DESIGN.md, "tolerance".
+/// it). Any other threshold is a named multiple of it, declared in
+/// hullcover/geometry/tolerances.h. See ../shared/DESIGN.md, "tolerance".
 ///
 /// Default: `kDefaultRelativeTolerance` x the scene's bounding-box diagonal.
 /// A user may override it with an absolute length, but never below the floor
@@ -15,18 +15,12 @@
 
 #include "hullcover/geometry/mesh.h"
 #include "hullcover/geometry/status.h"
+#include "hullcover/geometry/tolerances.h"
 
 #include <optional>
 
 namespace hullcover {
 
-/// Default tolerance as a fraction of the bounding-box diagonal.
-inline constexpr double kDefaultRelativeTolerance = 1e-5;
-
-/// How many units of rounding error one sidedness test (a plane through three
-/// rounded points, evaluated at a fourth) may accumulate; the floor is this
-/// multiple of the data's own error bound.
-inline constexpr double kRoundingErrorsPerPlaneTest = 8.0;
 
 /// The tolerance in force and where it came from.
 struct Tolerance {
