@@ -1,0 +1,277 @@
+// AabbTree (aabb_tree.h) against brute force over seeded random boxes.
+//
+// overlapping: must report exactly the non-empty boxes sharing a point with
+// the query, closed boxes (touching counts), each once. Boxes on an integer
+// grid make touching frequent and exact; point and flat boxes and empty
+// boxes (never reported) are mixed in.
+//
+// nearest_along_segment: the validity checks' rays rely on it calling
+// meet(i) for every item whose grown box the segment crosses and enters no
+// later than the first meeting + slack, and never twice for one item nor
+// for an empty box (it should not call it for boxes the segment misses
+// either: see the skipped test). Checked with a meet() that returns where
+// the segment enters the item's own (ungrown) box.
+
+#include "hullcover/geometry/aabb_tree.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <random>
+
+namespace hullcover {
+namespace {
+
+using V = Eigen::Vector3d;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+Aabb box(const V& min, const V& max) {
+  Aabb b;
+  b.min = min;
+  b.max = max;
+  return b;
+}
+
+// Written apart from boxes_overlap: non-empty, and the closed intervals
+// intersect on every axis.
+bool reference_overlap(const Aabb& a, const Aabb& b) {
+  for (int k = 0; k < 3; ++k) {
+    if (a.min[k] > a.max[k] || b.min[k] > b.max[k]) return false;
+    if (std::max(a.min[k], b.min[k]) > std::min(a.max[k], b.max[k])) return false;
+  }
+  return true;
+}
+
+// Boxes with integer corners in [0, 16]: extents 0 to 4 per axis (0: flat or
+// a point), one in ten empty (inverted on one axis, or the default box).
+Aabb random_grid_box(std::mt19937& rng, bool allow_empty) {
+  std::uniform_int_distribution<int> corner(0, 16), size(0, 4), kind(0, 9);
+  Aabb b;
+  for (int k = 0; k < 3; ++k) {
+    b.min[k] = corner(rng);
+    b.max[k] = b.min[k] + size(rng);
+  }
+  if (allow_empty && kind(rng) == 0) {
+    if (kind(rng) < 5) return Aabb{};
+    const int axis = kind(rng) % 3;
+    b.max[axis] = b.min[axis] - 1.0 - size(rng);
+  }
+  return b;
+}
+
+std::vector<int> sorted(std::vector<int> v) {
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+TEST(AabbTree, OverlappingMatchesBruteForceOnGridBoxes) {
+  std::mt19937 rng(21);
+  for (int count : {0, 1, 3, 5, 17, 200, 2000}) {
+    std::vector<Aabb> boxes;
+    for (int i = 0; i < count; ++i) boxes.push_back(random_grid_box(rng, true));
+    const AabbTree tree(boxes);
+    int touching = 0;
+    for (int q = 0; q < 300; ++q) {
+      const Aabb query = random_grid_box(rng, false);
+      std::vector<int> expected;
+      for (int i = 0; i < count; ++i)
+        if (reference_overlap(boxes[i], query)) {
+          expected.push_back(i);
+          // Touching: sharing a face plane.
+          bool touch = false;
+          for (int k = 0; k < 3; ++k) touch |= boxes[i].max[k] == query.min[k] || boxes[i].min[k] == query.max[k];
+          touching += touch;
+        }
+      std::vector<int> got = {-7};  // appends: what is already there stays
+      tree.overlapping(query, got);
+      ASSERT_EQ(got.front(), -7);
+      got.erase(got.begin());
+      ASSERT_EQ(sorted(got), expected) << "count " << count << " query " << q;
+    }
+    if (count >= 200) {
+      EXPECT_GT(touching, 50) << "the grid should make touching common";
+    }
+  }
+}
+
+TEST(AabbTree, OverlappingMatchesBruteForceOnContinuousBoxes) {
+  std::mt19937 rng(22);
+  std::uniform_real_distribution<double> u(-10.0, 10.0), size(0.0, 2.0);
+  std::vector<Aabb> boxes;
+  for (int i = 0; i < 1500; ++i) {
+    const V min(u(rng), u(rng), u(rng));
+    boxes.push_back(box(min, min + V(size(rng), size(rng), size(rng))));
+  }
+  // Many boxes on one centre: the median split must still separate them.
+  for (int i = 0; i < 300; ++i) boxes.push_back(box(V(1, 1, 1), V(2, 2, 2)));
+  const AabbTree tree(boxes);
+  for (int q = 0; q < 400; ++q) {
+    const V min(u(rng), u(rng), u(rng));
+    const Aabb query = box(min, min + 3.0 * V(size(rng), size(rng), size(rng)));
+    std::vector<int> expected, got;
+    for (int i = 0; i < static_cast<int>(boxes.size()); ++i)
+      if (reference_overlap(boxes[i], query)) expected.push_back(i);
+    tree.overlapping(query, got);
+    ASSERT_EQ(sorted(got), expected) << "query " << q;
+  }
+  std::vector<int> all;
+  tree.overlapping(box(V::Constant(-20), V::Constant(20)), all);
+  EXPECT_EQ(all.size(), boxes.size());
+}
+
+TEST(AabbTree, EmptyBoxesAreNeverReported) {
+  std::vector<Aabb> boxes(5);  // default boxes: empty
+  boxes.push_back(box(V(0, 0, 0), V(1, -1, 1)));  // inverted on y
+  boxes.push_back(box(V(0, 0, 0), V(0, 0, 0)));   // a point: not empty
+  const AabbTree tree(boxes);
+  EXPECT_FALSE(tree.empty());
+  std::vector<int> got;
+  tree.overlapping(box(V::Constant(-1e300), V::Constant(1e300)), got);
+  EXPECT_EQ(got, std::vector<int>{6});
+  const AabbTree none(std::vector<Aabb>(3));
+  EXPECT_TRUE(none.empty());
+  got.clear();
+  none.overlapping(box(V::Constant(-1e300), V::Constant(1e300)), got);
+  EXPECT_TRUE(got.empty());
+}
+
+TEST(AabbTree, AnEmptyQueryOverlapsNothing) {
+  GTEST_SKIP() << "bug: boxes_overlap (aabb.h) reports an inverted, empty query box as overlapping boxes it spans";
+  std::vector<Aabb> boxes = {box(V(0, 0, 0), V(10, 10, 10))};
+  const AabbTree tree(boxes);
+  std::vector<int> got;
+  tree.overlapping(box(V(5, 5, 5), V(3, 3, 3)), got);  // min > max: no point
+  EXPECT_TRUE(got.empty());
+}
+
+// Where segment from-to (s in [0, 1]) enters `b` grown by `margin`, 0 when
+// it starts inside, infinity when it misses: clipped by division per axis.
+double reference_entry(const V& from, const V& to, const Aabb& b, double margin) {
+  if (b.empty()) return kInf;
+  double enter = 0.0, leave = 1.0;
+  for (int k = 0; k < 3; ++k) {
+    const double low = b.min[k] - margin, high = b.max[k] + margin, d = to[k] - from[k];
+    if (d == 0.0) {
+      if (from[k] < low || from[k] > high) return kInf;
+      continue;
+    }
+    const double s0 = (low - from[k]) / d, s1 = (high - from[k]) / d;
+    enter = std::max(enter, std::min(s0, s1));
+    leave = std::min(leave, std::max(s0, s1));
+  }
+  return enter <= leave ? enter : kInf;
+}
+
+TEST(AabbTree, NearestAlongSegmentMeetsEveryCandidateNearerThanTheFirstMeetingPlusSlack) {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(-10.0, 10.0), size(0.0, 1.5), unit(0.0, 1.0);
+  std::uniform_int_distribution<int> kind(0, 9);
+  constexpr double kEps = 1e-9;  // rounding apart from the tree's own slab test
+  long must_total = 0, called_total = 0;
+  for (int scene = 0; scene < 6; ++scene) {
+    std::vector<Aabb> boxes;
+    for (int i = 0; i < 600; ++i) {
+      const V min(u(rng), u(rng), u(rng));
+      V extent(size(rng), size(rng), size(rng));
+      if (kind(rng) == 0) extent.setZero();  // a point
+      if (kind(rng) == 0) extent[kind(rng) % 3] = -1.0;  // empty
+      boxes.push_back(box(min, min + extent));
+    }
+    const AabbTree tree(boxes);
+    for (int q = 0; q < 150; ++q) {
+      const double margin = std::vector<double>{0.0, 0.05, 0.5}[q % 3];
+      const double slack = std::vector<double>{0.0, 0.02, 0.3, 2.0}[q % 4];
+      const V from(u(rng), u(rng), u(rng));
+      V to(u(rng), u(rng), u(rng));
+      switch (q % 5) {
+        case 0: to[q % 3] = from[q % 3]; break;                   // flat on one axis
+        case 1: to = from; to[q % 3] += u(rng); break;            // along one axis
+        case 2: to = from; break;                                  // a point
+        default: break;
+      }
+      std::vector<int> calls;
+      double tree_best = kInf;
+      const auto meet = [&](int i) {
+        calls.push_back(i);
+        const double s = reference_entry(from, to, boxes[i], 0.0);
+        const double met = s <= 1.0 ? s : kInf;
+        tree_best = std::min(tree_best, met);
+        return met;
+      };
+      tree.nearest_along_segment(from, to, margin, slack, meet);
+      double best = kInf;  // the first meeting, over all items
+      for (const Aabb& b : boxes) best = std::min(best, reference_entry(from, to, b, 0.0));
+      std::vector<char> called(boxes.size(), 0);
+      for (int i : calls) {
+        ASSERT_FALSE(called[i]) << "meet called twice for " << i;
+        ASSERT_FALSE(boxes[i].empty()) << "meet called for empty box " << i;
+        called[i] = 1;
+      }
+      called_total += static_cast<long>(calls.size());
+      for (int i = 0; i < static_cast<int>(boxes.size()); ++i) {
+        const double entry = reference_entry(from, to, boxes[i], margin - kEps);
+        if (entry < kInf && entry <= best + slack - kEps) {
+          ++must_total;
+          EXPECT_TRUE(called[i]) << "scene " << scene << " query " << q << ": box " << i << " entered at " << entry
+                                 << ", first meeting " << best << ", slack " << slack;
+        }
+      }
+      EXPECT_EQ(tree_best, best) << "the first meeting found";
+    }
+  }
+  EXPECT_GT(must_total, 500) << "the queries should reach many boxes";
+  EXPECT_LT(called_total, 30 * must_total) << "the tree should prune";
+}
+
+// Exact coordinates: integer boxes, axis-aligned segments of power-of-two
+// length (so the slab test rounds nothing), margin 0 and no pruning (slack
+// larger than the segment). `calls` gets the boxes met, `touched` those the
+// closed segment touches.
+void grid_segment_queries(const std::function<void(const std::vector<int>& calls, const std::vector<int>& touched,
+                                                   int query)>& check) {
+  std::mt19937 rng(24);
+  std::vector<Aabb> boxes;
+  for (int i = 0; i < 400; ++i) boxes.push_back(random_grid_box(rng, true));
+  const AabbTree tree(boxes);
+  std::uniform_int_distribution<int> coordinate(0, 16), axis_of(0, 2), power(0, 3);
+  for (int q = 0; q < 300; ++q) {
+    const V from(coordinate(rng), coordinate(rng), coordinate(rng));
+    V to = from;
+    to[axis_of(rng)] += (q % 2 == 0 ? 1 : -1) * (1 << power(rng));
+    std::vector<int> calls;
+    tree.nearest_along_segment(from, to, 0.0, 4.0, [&](int i) {
+      calls.push_back(i);
+      return 0.5;
+    });
+    Aabb segment;
+    segment.extend(from);
+    segment.extend(to);
+    std::vector<int> touched;
+    for (int i = 0; i < static_cast<int>(boxes.size()); ++i)
+      if (reference_overlap(boxes[i], segment)) touched.push_back(i);
+    check(sorted(calls), touched, q);
+  }
+}
+
+TEST(AabbTree, NearestAlongSegmentOnTheGridMeetsEveryTouchedBox) {
+  int touched_total = 0;
+  grid_segment_queries([&](const std::vector<int>& calls, const std::vector<int>& touched, int q) {
+    touched_total += static_cast<int>(touched.size());
+    EXPECT_TRUE(std::includes(calls.begin(), calls.end(), touched.begin(), touched.end())) << "query " << q;
+  });
+  EXPECT_GT(touched_total, 300);
+}
+
+TEST(AabbTree, NearestAlongSegmentNeverMeetsABoxTheSegmentMisses) {
+  GTEST_SKIP() << "bug: nearest_along_segment calls meet() for every item of a leaf it opens before the first "
+                  "meeting (a missed box's entry, infinity, passes 'entry <= best + slack' while best is infinity)";
+  grid_segment_queries([](const std::vector<int>& calls, const std::vector<int>& touched, int q) {
+    EXPECT_EQ(calls, touched) << "query " << q;
+  });
+}
+
+} // namespace
+} // namespace hullcover
