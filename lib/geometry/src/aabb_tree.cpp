@@ -83,7 +83,7 @@ int AabbTree::build(int begin, int end, const std::vector<Aabb>& boxes, std::vec
 }
 
 void AabbTree::overlapping(const Aabb& query, std::vector<int>& out) const {
-  if (nodes_.empty()) return;
+  if (nodes_.empty() || query.empty()) return;
   // The tree is balanced (median splits), so its depth is about log2(n / 4):
   // a fixed stack of kMaxDepth entries holds any traversal.
   int stack[kMaxDepth];
@@ -121,9 +121,12 @@ void AabbTree::nearest_along_segment(const Eigen::Vector3d& from, const Eigen::V
     if (entry > best + slack) continue;
     const Node& node = nodes_[n];
     if (node.count > 0) {
-      for (int i = node.first; i < node.first + node.count; ++i)
-        if (segment_box_entry(from, inverse, item_boxes_[items_[i]], margin) <= best + slack)
-          best = std::min(best, meet(items_[i]));
+      for (int i = node.first; i < node.first + node.count; ++i) {
+        // A missed box's entry is infinite, and so is `best` until a first
+        // meeting: test the miss on its own.
+        const double item_entry = segment_box_entry(from, inverse, item_boxes_[items_[i]], margin);
+        if (!std::isinf(item_entry) && item_entry <= best + slack) best = std::min(best, meet(items_[i]));
+      }
       continue;
     }
     const double left = segment_box_entry(from, inverse, nodes_[node.left].box, margin);

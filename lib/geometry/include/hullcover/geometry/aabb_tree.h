@@ -23,7 +23,8 @@ public:
   explicit AabbTree(const std::vector<Aabb>& boxes);
 
   /// Appends to `out` the index of every box overlapping `query` (closed
-  /// boxes: touching counts), in no particular order.
+  /// boxes: touching counts), in no particular order; nothing for an empty
+  /// query.
   void overlapping(const Aabb& query, std::vector<int>& out) const;
 
   /// Calls `meet(i)` for the boxes that, grown by `margin`, the segment
