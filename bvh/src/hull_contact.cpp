@@ -1,5 +1,7 @@
 #include "hullcover/bvh/hull_contact.h"
 
+#include "hullcover/geometry/tolerances.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -8,10 +10,6 @@ namespace hullcover::bvh {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-// Below this fraction of the hull's size, a distance is "zero": the
-// direction between closest points is then noise, and the separating-axis
-// path gives the normal instead.
-constexpr double kTouchingFraction = 1e-12;
 
 double touching_distance(const RuntimeHull& hull) { return kTouchingFraction * (1.0 + hull.box.diagonal()); }
 
