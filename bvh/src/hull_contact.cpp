@@ -293,8 +293,9 @@ std::optional<Contact> convex_contact(const RuntimeHull& hull, const RuntimeHull
 
 ClosestPoints closest_between(const RuntimeHull& hull, const RuntimeHull& shape) {
   if (convex_contact(hull, shape)) {
-    // They meet: report a common point (the shape's vertex deepest in the hull
-    // side or any point of the overlap will do for "distance 0").
+    // They meet: "distance 0" needs no exact common point, so the hull point
+    // nearest one vertex of the shape (that vertex when it is inside) only
+    // locates the meeting; it need not lie in the shape.
     const Eigen::Vector3d& p = shape.shape.vertices.front();
     const ClosestPoints c = closest_to_point(hull, p);
     return {0.0, c.on_hull, c.on_hull};
