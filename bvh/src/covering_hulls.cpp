@@ -1,5 +1,7 @@
 #include "hullcover/bvh/covering_hulls.h"
 
+#include "query_guard.h"
+
 namespace hullcover::bvh {
 
 std::vector<RuntimeHull> runtime_hulls(const Covering& covering) {
@@ -10,7 +12,8 @@ std::vector<RuntimeHull> runtime_hulls(const Covering& covering) {
 }
 
 Result<std::shared_ptr<const HullWorld>> build_hull_world(const Covering& covering) {
-  return HullWorld::build(runtime_hulls(covering));
+  // Guarded too: converting the hulls allocates before HullWorld::build runs.
+  return detail::guarded("building the hull world", [&] { return HullWorld::build(runtime_hulls(covering)); });
 }
 
 } // namespace hullcover::bvh

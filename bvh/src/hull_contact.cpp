@@ -1,5 +1,7 @@
 #include "hullcover/bvh/hull_contact.h"
 
+#include "hullcover/geometry/tolerances.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -8,10 +10,6 @@ namespace hullcover::bvh {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-// Below this fraction of the hull's size, a distance is "zero": the
-// direction between closest points is then noise, and the separating-axis
-// path gives the normal instead.
-constexpr double kTouchingFraction = 1e-12;
 
 double touching_distance(const RuntimeHull& hull) { return kTouchingFraction * (1.0 + hull.box.diagonal()); }
 
@@ -295,8 +293,9 @@ std::optional<Contact> convex_contact(const RuntimeHull& hull, const RuntimeHull
 
 ClosestPoints closest_between(const RuntimeHull& hull, const RuntimeHull& shape) {
   if (convex_contact(hull, shape)) {
-    // They meet: report a common point (the shape's vertex deepest in the hull
-    // side or any point of the overlap will do for "distance 0").
+    // They meet: "distance 0" needs no exact common point, so the hull point
+    // nearest one vertex of the shape (that vertex when it is inside) only
+    // locates the meeting; it need not lie in the shape.
     const Eigen::Vector3d& p = shape.shape.vertices.front();
     const ClosestPoints c = closest_to_point(hull, p);
     return {0.0, c.on_hull, c.on_hull};

@@ -1,14 +1,15 @@
 #include "hullcover/bvh/hull_world.h"
 
 #include "fcl_objects.h"
-
+#include "query_guard.h"
 
 #include "hullcover/geometry/point_hull.h"
+#include "hullcover/geometry/tolerances.h"
 
 #include <algorithm>
-#include <mutex>
 #include <cmath>
 #include <limits>
+#include <mutex>
 
 namespace hullcover::bvh {
 
@@ -26,7 +27,8 @@ struct HullWorld::Fcl {
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> narrow;
 
   const fcl::CollisionObjectd& convex(const RuntimeHull& hull, int h) {
-    std::call_once(built[h], [&] { narrow[h] = std::make_unique<fcl::CollisionObjectd>(detail::fcl_convex(hull.shape)); });
+    std::call_once(built[h],
+                   [&] { narrow[h] = std::make_unique<fcl::CollisionObjectd>(detail::fcl_convex(hull.shape)); });
     return *narrow[h];
   }
 };
@@ -34,16 +36,17 @@ struct HullWorld::Fcl {
 HullWorld::~HullWorld() = default;
 
 Result<std::shared_ptr<const HullWorld>> HullWorld::build(std::vector<RuntimeHull> hulls) {
-  if (hulls.empty()) return Status{StatusCode::invalid_argument, "a hull world needs at least one hull"};
-  for (size_t i = 0; i < hulls.size(); ++i) {
-    const ConvexPolytope& s = hulls[i].shape;
-    bool finite = !s.vertices.empty() && s.facets.size() >= 2 && s.planes.size() >= s.facets.size();
-    for (const Eigen::Vector3d& v : s.vertices) finite = finite && v.allFinite();
-    for (const Plane& p : s.planes) finite = finite && p.normal.allFinite() && std::isfinite(p.offset);
-    if (!finite)
-      return Status{StatusCode::invalid_argument, "hull " + std::to_string(i) + " has no facets or non-finite data"};
-  }
-  try {
+  using Built = Result<std::shared_ptr<const HullWorld>>;
+  return detail::guarded("building the hull world", [&]() -> Built {
+    if (hulls.empty()) return Status{StatusCode::invalid_argument, "a hull world needs at least one hull"};
+    for (size_t i = 0; i < hulls.size(); ++i) {
+      const ConvexPolytope& s = hulls[i].shape;
+      bool finite = !s.vertices.empty() && s.facets.size() >= 2 && s.planes.size() >= s.facets.size();
+      for (const Eigen::Vector3d& v : s.vertices) finite = finite && v.allFinite();
+      for (const Plane& p : s.planes) finite = finite && p.normal.allFinite() && std::isfinite(p.offset);
+      if (!finite)
+        return Status{StatusCode::invalid_argument, "hull " + std::to_string(i) + " has no facets or non-finite data"};
+    }
     std::shared_ptr<HullWorld> world(new HullWorld());
     world->hulls_ = std::move(hulls);
     world->fcl_ = std::make_unique<Fcl>();
@@ -60,11 +63,8 @@ Result<std::shared_ptr<const HullWorld>> HullWorld::build(std::vector<RuntimeHul
     f.manager.registerObjects(registered);
     f.manager.setup();
     return std::shared_ptr<const HullWorld>(std::move(world));
-  } catch (const std::exception& e) {
-    return Status{StatusCode::internal_error, std::string("building the hull world failed: ") + e.what()};
-  }
+  });
 }
-
 
 void HullWorld::candidates(const Aabb& box, std::vector<int>& out) const {
   using Node = fcl::DynamicAABBTreeCollisionManagerd::DynamicAABBNode;
@@ -87,10 +87,9 @@ void HullWorld::candidates(const Aabb& box, std::vector<int>& out) const {
 }
 
 Status HullWorld::overlap(const OverlapRequest& request, OverlapResult& result) const {
-  result.hulls.clear();
-  const char* why = nullptr;
-  if (!check_query_shape(request.shape, request.pose, &why)) return {StatusCode::invalid_argument, why};
-  try {
+  return detail::guarded("overlap query", [&]() -> Status {
+    result.hulls.clear();
+    if (Status s = check_query_shape(request.shape, request.pose); !s.ok()) return s;
     const std::shared_ptr<fcl::CollisionGeometryd> geometry = detail::fcl_geometry(request.shape);
     if (!geometry) return {StatusCode::invalid_argument, "the convex query shape has no 3D hull"};
     const detail::QueryObject query(geometry, request.pose, world_box(request.shape, request.pose));
@@ -102,9 +101,7 @@ Status HullWorld::overlap(const OverlapRequest& request, OverlapResult& result) 
       if (fcl::collide(&query, &fcl_->convex(hulls_[h], h), yes_no, answer) > 0) result.hulls.push_back(h);
     }
     return Status::success();
-  } catch (const std::exception& e) {
-    return {StatusCode::internal_error, std::string("overlap query failed: ") + e.what()};
-  }
+  });
 }
 
 namespace {
@@ -138,78 +135,85 @@ std::optional<RuntimeHull> placed_convex(const QueryShape& shape, const Eigen::I
 }
 
 Status HullWorld::contacts(const ContactRequest& request, ContactResult& result) const {
-  result.contacts.clear();
-  const char* why = nullptr;
-  if (!check_query_shape(request.shape, request.pose, &why)) return {StatusCode::invalid_argument, why};
-  if (request.max_contacts < 1) return {StatusCode::invalid_argument, "max_contacts must be at least 1"};
-  std::optional<RuntimeHull> convex;
-  if (request.shape.kind == ShapeKind::convex) {
-    convex = placed_convex(request.shape, request.pose);
-    if (!convex) return {StatusCode::invalid_argument, "the convex query shape has no 3D hull"};
-  }
-  std::vector<int> near;
-  candidates(world_box(request.shape, request.pose), near);
-  for (int h : near)
-    if (std::optional<Contact> c = contact_with(hulls_[h], request.shape, request.pose, convex ? &*convex : nullptr)) {
-      c->hull = h;
-      result.contacts.push_back(*c);
+  return detail::guarded("contact query", [&]() -> Status {
+    result.contacts.clear();
+    if (Status s = check_query_shape(request.shape, request.pose); !s.ok()) return s;
+    if (request.max_contacts < 1) return {StatusCode::invalid_argument, "max_contacts must be at least 1"};
+    std::optional<RuntimeHull> convex;
+    if (request.shape.kind == ShapeKind::convex) {
+      convex = placed_convex(request.shape, request.pose);
+      if (!convex) return {StatusCode::invalid_argument, "the convex query shape has no 3D hull"};
     }
-  std::stable_sort(result.contacts.begin(), result.contacts.end(),
-                   [](const Contact& x, const Contact& y) { return x.depth > y.depth; });
-  if (static_cast<int>(result.contacts.size()) > request.max_contacts) result.contacts.resize(request.max_contacts);
-  return Status::success();
+    std::vector<int> near;
+    candidates(world_box(request.shape, request.pose), near);
+    const RuntimeHull* placed = convex ? &*convex : nullptr;
+    for (int h : near)
+      if (std::optional<Contact> c = contact_with(hulls_[h], request.shape, request.pose, placed)) {
+        c->hull = h;
+        result.contacts.push_back(*c);
+      }
+    std::stable_sort(result.contacts.begin(), result.contacts.end(),
+                     [](const Contact& x, const Contact& y) { return x.depth > y.depth; });
+    if (static_cast<int>(result.contacts.size()) > request.max_contacts) result.contacts.resize(request.max_contacts);
+    return Status::success();
+  });
 }
 
 Status check_ray_request(const RayRequest& request, Eigen::Vector3d& unit_direction) {
-  const double length = request.direction.norm();
-  if (!(length > 0.0) || !request.direction.allFinite() || !request.origin.allFinite() ||
-      !(request.max_distance >= 0.0))
-    return {StatusCode::invalid_argument, "a ray needs a finite origin, a non-zero direction and max_distance >= 0"};
-  unit_direction = request.direction / length;
-  return Status::success();
+  // Guarded: the message is allocated.
+  return detail::guarded("checking a ray", [&]() -> Status {
+    const double length = request.direction.norm();
+    if (!(length > 0.0) || !request.direction.allFinite() || !request.origin.allFinite() ||
+        !(request.max_distance >= 0.0))
+      return {StatusCode::invalid_argument, "a ray needs a finite origin, a non-zero direction and max_distance >= 0"};
+    unit_direction = request.direction / length;
+    return Status::success();
+  });
 }
 
 Status HullWorld::ray_cast(const RayRequest& request, RayResult& result) const {
-  result = {};
-  Eigen::Vector3d dir;
-  if (Status s = check_ray_request(request, dir); !s.ok()) return s;
-  const Eigen::Vector3d inverse = dir.cwiseInverse();
-  using Node = fcl::DynamicAABBTreeCollisionManagerd::DynamicAABBNode;
-  double best = request.max_distance;
-  std::vector<const Node*> stack = {fcl_->manager.getTree().getRoot()};
-  while (!stack.empty()) {
-    const Node* node = stack.back();
-    stack.pop_back();
-    if (node == nullptr) continue;
-    // Slab test of the node's box against the ray, up to the best hit so far.
-    double t0 = 0.0, t1 = best;
-    for (int k = 0; k < 3 && t0 <= t1; ++k) {
-      double near = (node->bv.min_[k] - request.origin[k]) * inverse[k];
-      double far = (node->bv.max_[k] - request.origin[k]) * inverse[k];
-      if (std::isnan(near) || std::isnan(far)) {  // parallel and on the slab's face
-        near = -std::numeric_limits<double>::infinity();
-        far = std::numeric_limits<double>::infinity();
+  return detail::guarded("ray query", [&]() -> Status {
+    result = {};
+    Eigen::Vector3d dir;
+    if (Status s = check_ray_request(request, dir); !s.ok()) return s;
+    const Eigen::Vector3d inverse = dir.cwiseInverse();
+    using Node = fcl::DynamicAABBTreeCollisionManagerd::DynamicAABBNode;
+    double best = request.max_distance;
+    std::vector<const Node*> stack = {fcl_->manager.getTree().getRoot()};
+    while (!stack.empty()) {
+      const Node* node = stack.back();
+      stack.pop_back();
+      if (node == nullptr) continue;
+      // Slab test of the node's box against the ray, up to the best hit so far.
+      double t0 = 0.0, t1 = best;
+      for (int k = 0; k < 3 && t0 <= t1; ++k) {
+        double near = (node->bv.min_[k] - request.origin[k]) * inverse[k];
+        double far = (node->bv.max_[k] - request.origin[k]) * inverse[k];
+        if (std::isnan(near) || std::isnan(far)) {  // parallel and on the slab's face
+          near = -std::numeric_limits<double>::infinity();
+          far = std::numeric_limits<double>::infinity();
+        }
+        if (near > far) std::swap(near, far);
+        t0 = std::max(t0, near);
+        t1 = std::min(t1, far);
       }
-      if (near > far) std::swap(near, far);
-      t0 = std::max(t0, near);
-      t1 = std::min(t1, far);
+      if (t0 > t1) continue;
+      if (!node->isLeaf()) {
+        stack.push_back(node->children[0]);
+        stack.push_back(node->children[1]);
+        continue;
+      }
+      const int h = static_cast<const detail::HullEntry*>(node->data)->index;
+      std::optional<RayHit> hit = ray_hit(hulls_[h], request.origin, dir, best);
+      if (hit && (!result.hit || hit->t < result.first.t || (hit->t == result.first.t && h < result.first.hull))) {
+        hit->hull = h;
+        result.hit = true;
+        result.first = *hit;
+        best = hit->t;
+      }
     }
-    if (t0 > t1) continue;
-    if (!node->isLeaf()) {
-      stack.push_back(node->children[0]);
-      stack.push_back(node->children[1]);
-      continue;
-    }
-    const int h = static_cast<const detail::HullEntry*>(node->data)->index;
-    std::optional<RayHit> hit = ray_hit(hulls_[h], request.origin, dir, best);
-    if (hit && (!result.hit || hit->t < result.first.t || (hit->t == result.first.t && h < result.first.hull))) {
-      hit->hull = h;
-      result.hit = true;
-      result.first = *hit;
-      best = hit->t;
-    }
-  }
-  return Status::success();
+    return Status::success();
+  });
 }
 
 std::function<double(int, Eigen::Vector3d&, Eigen::Vector3d&)> HullWorld::separation_from(
@@ -240,17 +244,17 @@ std::function<double(int, Eigen::Vector3d&, Eigen::Vector3d&)> HullWorld::separa
 }
 
 Status HullWorld::distance(const DistanceRequest& request, DistanceResult& result) const {
-  result = {};
-  const char* why = nullptr;
-  if (!check_query_shape(request.shape, request.pose, &why)) return {StatusCode::invalid_argument, why};
-  const QueryShape& s = request.shape;
-  const Aabb core = world_box(s, request.pose);
-  try {
+  return detail::guarded("distance query", [&]() -> Status {
+    result = {};
+    if (Status s = check_query_shape(request.shape, request.pose); !s.ok()) return s;
+    const QueryShape& s = request.shape;
+    const Aabb core = world_box(s, request.pose);
     const auto separation = separation_from(s, request.pose);
     if (!separation) return {StatusCode::invalid_argument, "the convex query shape has no 3D hull"};
     // Grow the search box until it holds a hull, then until it holds every
     // hull nearer than the best found.
-    const double scene = (fcl_->manager.getTree().getRoot()->bv.max_ - fcl_->manager.getTree().getRoot()->bv.min_).norm();
+    const fcl::AABBd& world = fcl_->manager.getTree().getRoot()->bv;
+    const double scene = (world.max_ - world.min_).norm();
     result.distance = std::numeric_limits<double>::infinity();
     double reach = 0.0;
     for (int round = 0; round < 64; ++round) {
@@ -268,38 +272,34 @@ Status HullWorld::distance(const DistanceRequest& request, DistanceResult& resul
       }
       if (result.hull >= 0 && result.distance <= reach) break;
       if (reach > 4.0 * scene) break;
-      reach = result.hull >= 0 ? result.distance : 2.0 * reach + 1e-3 * (1.0 + scene);
+      reach = result.hull >= 0 ? result.distance : 2.0 * reach + kDistanceReachGrowth * (1.0 + scene);
     }
     result.touching = result.hull >= 0 && result.distance == 0.0;
     return Status::success();
-  } catch (const std::exception& e) {
-    return {StatusCode::internal_error, std::string("distance query failed: ") + e.what()};
-  }
+  });
 }
 
 Status HullWorld::sweep(const SweepRequest& request, SweepResult& result, double touch) const {
-  result = {};
-  const char* why = nullptr;
-  if (!check_query_shape(request.shape, request.start, &why) || !check_query_shape(request.shape, request.end, &why))
-    return {StatusCode::invalid_argument, why};
-  const QueryShape& s = request.shape;
-  if (!request.start.linear().isApprox(request.end.linear(), 1e-12))
-    return {StatusCode::invalid_argument, "a sweep moves without turning: start and end need the same rotation"};
-  if (!(touch > 0.0) || !std::isfinite(touch)) return {StatusCode::invalid_argument, "touch must be a positive length"};
-  const Eigen::Vector3d travel = request.end.translation() - request.start.translation();
-  const double length = travel.norm();
-  Aabb swept = world_box(s, request.start);
-  const Aabb at_end = world_box(s, request.end);
-  swept.extend(at_end.min);
-  swept.extend(at_end.max);
-  std::vector<int> near;
-  candidates(swept, near);
-  // Most steps before giving up and reporting a (conservative) touch where
-  // it stands: a grazing approach advances ever more slowly.
-  constexpr int kMaxSteps = 200;
-  double t = 0.0;
-  try {
-    for (int step = 0; step < kMaxSteps; ++step) {
+  return detail::guarded("sweep", [&]() -> Status {
+    result = {};
+    if (Status s = check_query_shape(request.shape, request.start); !s.ok()) return s;
+    if (Status s = check_query_shape(request.shape, request.end); !s.ok()) return s;
+    const QueryShape& s = request.shape;
+    if (!request.start.linear().isApprox(request.end.linear(), kSweepSameRotation))
+      return {StatusCode::invalid_argument, "a sweep moves without turning: start and end need the same rotation"};
+    if (!(touch > 0.0) || !std::isfinite(touch))
+      return {StatusCode::invalid_argument, "touch must be a positive length"};
+    if (request.max_steps < 1) return {StatusCode::invalid_argument, "max_steps must be at least 1"};
+    const Eigen::Vector3d travel = request.end.translation() - request.start.translation();
+    const double length = travel.norm();
+    Aabb swept = world_box(s, request.start);
+    const Aabb at_end = world_box(s, request.end);
+    swept.extend(at_end.min);
+    swept.extend(at_end.max);
+    std::vector<int> near;
+    candidates(swept, near);
+    double t = 0.0;
+    for (int step = 0; step < request.max_steps; ++step) {
       Eigen::Isometry3d pose = request.start;
       pose.translation() += t * travel;
       const auto separation = separation_from(s, pose);
@@ -315,7 +315,9 @@ Status HullWorld::sweep(const SweepRequest& request, SweepResult& result, double
         }
       }
       if (nearest_hull < 0) return Status::success();  // nothing on the way
-      if (nearest <= touch || step + 1 == kMaxSteps) {
+      // Out of steps (a grazing approach advances ever more slowly): a hit
+      // where the shape stands is conservative, as it is still apart there.
+      if (nearest <= touch || step + 1 == request.max_steps) {
         result.hit = true;
         result.fraction = t;
         result.hull = nearest_hull;
@@ -334,9 +336,7 @@ Status HullWorld::sweep(const SweepRequest& request, SweepResult& result, double
       if (t > 1.0) return Status::success();
     }
     return Status::success();
-  } catch (const std::exception& e) {
-    return {StatusCode::internal_error, std::string("sweep failed: ") + e.what()};
-  }
+  });
 }
 
 } // namespace hullcover::bvh

@@ -1,5 +1,7 @@
 #include "hullcover/bvh/query_shape.h"
 
+#include "query_guard.h"
+
 #include <cmath>
 
 namespace hullcover::bvh {
@@ -34,28 +36,39 @@ Aabb world_box(const QueryShape& shape, const Eigen::Isometry3d& pose) {
   return box;
 }
 
-bool check_query_shape(const QueryShape& shape, const Eigen::Isometry3d& pose, const char** why) {
+namespace {
+// What makes the shape or pose unusable, or nullptr.
+const char* shape_problem(const QueryShape& shape, const Eigen::Isometry3d& pose) {
   const auto positive = [](double x) { return std::isfinite(x) && x > 0.0; };
-  if (!pose.matrix().allFinite()) return *why = "the pose is not finite", false;
+  if (!pose.matrix().allFinite()) return "the pose is not finite";
   switch (shape.kind) {
     case ShapeKind::sphere:
-      if (!positive(shape.radius)) return *why = "sphere radius must be positive", false;
+      if (!positive(shape.radius)) return "sphere radius must be positive";
       break;
     case ShapeKind::capsule:
       if (!positive(shape.radius) || !(std::isfinite(shape.half_height) && shape.half_height >= 0.0))
-        return *why = "capsule radius must be positive and half height >= 0", false;
+        return "capsule radius must be positive and half height >= 0";
       break;
     case ShapeKind::box:
       if (!(shape.half_extents.array() > 0.0).all() || !shape.half_extents.allFinite())
-        return *why = "box half extents must be positive", false;
+        return "box half extents must be positive";
       break;
     case ShapeKind::convex:
-      if (shape.points.size() < 4) return *why = "a convex query shape needs at least 4 points", false;
+      if (shape.points.size() < 4) return "a convex query shape needs at least 4 points";
       for (const Eigen::Vector3d& p : shape.points)
-        if (!p.allFinite()) return *why = "convex query shape has a non-finite point", false;
+        if (!p.allFinite()) return "convex query shape has a non-finite point";
       break;
   }
-  return true;
+  return nullptr;
+}
+} // namespace
+
+Status check_query_shape(const QueryShape& shape, const Eigen::Isometry3d& pose) {
+  // Guarded: the message is allocated.
+  return detail::guarded("checking a query shape", [&] {
+    const char* why = shape_problem(shape, pose);
+    return why != nullptr ? Status{StatusCode::invalid_argument, why} : Status::success();
+  });
 }
 
 } // namespace hullcover::bvh

@@ -1,5 +1,9 @@
 #include "hullcover/bvh/runtime_file.h"
 
+#include "query_guard.h"
+
+#include "hullcover/geometry/tolerances.h"
+
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -10,8 +14,6 @@ namespace {
 constexpr char kMagic[8] = {'H', 'C', 'W', 'O', 'R', 'L', 'D', '\0'};
 constexpr size_t kHeaderBytes = 8 + 4 + 4 + 8 + 8 + 8;
 constexpr size_t kHullFixedBytes = 5 * 4 + 6 * 8;
-// A unit normal read back may differ from 1 by rounding only.
-constexpr double kUnitNormalSlack = 1e-9;
 
 std::uint64_t fnv1a(const unsigned char* data, size_t size) {
   std::uint64_t h = 0xcbf29ce484222325ull;
@@ -78,9 +80,7 @@ Status broken(const std::string& path, const std::string& what) {
   return {StatusCode::unreadable_file, path + ": broken runtime file: " + what};
 }
 
-} // namespace
-
-Status write_runtime_file(const std::vector<RuntimeHull>& hulls, const std::string& path) {
+Status write_hulls(const std::vector<RuntimeHull>& hulls, const std::string& path) {
   Writer payload;
   for (const RuntimeHull& h : hulls) {
     const ConvexPolytope& s = h.shape;
@@ -118,7 +118,7 @@ Status write_runtime_file(const std::vector<RuntimeHull>& hulls, const std::stri
   return Status::success();
 }
 
-Result<std::vector<RuntimeHull>> read_runtime_file(const std::string& path) {
+Result<std::vector<RuntimeHull>> read_hulls(const std::string& path) {
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) return Status{StatusCode::file_not_found, path + ": no such file"};
   const std::streamoff length = in.tellg();
@@ -193,6 +193,16 @@ Result<std::vector<RuntimeHull>> read_runtime_file(const std::string& path) {
   }
   if (r.at != bytes.size()) return broken(path, "bytes left after the last hull");
   return hulls;
+}
+
+} // namespace
+
+Status write_runtime_file(const std::vector<RuntimeHull>& hulls, const std::string& path) {
+  return detail::guarded("writing the runtime file", [&] { return write_hulls(hulls, path); });
+}
+
+Result<std::vector<RuntimeHull>> read_runtime_file(const std::string& path) {
+  return detail::guarded("reading the runtime file", [&] { return read_hulls(path); });
 }
 
 } // namespace hullcover::bvh

@@ -1,8 +1,10 @@
 #include "hullcover/bvh/triangle_world.h"
 
 #include "fcl_objects.h"
+#include "query_guard.h"
 
 #include "hullcover/geometry/planar_hull.h"
+#include "hullcover/geometry/tolerances.h"
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/math/bv/OBBRSS.h>
@@ -23,11 +25,6 @@ struct TriangleWorld::Fcl {
 TriangleWorld::~TriangleWorld() = default;
 
 namespace {
-// The broad phase inflates query shapes by this many tolerances, so a
-// triangle FCL's iterative narrow phase misses by rounding still reaches
-// the exact test.
-constexpr double kMarginInTolerances = 4.0;
-
 RuntimeHull flat_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
   FlatPolygon triangle;
   triangle.corners = {a, b, c};
@@ -63,10 +60,11 @@ QueryShape inflated(QueryShape s, double by) {
 } // namespace
 
 Result<std::shared_ptr<const TriangleWorld>> TriangleWorld::build(const Mesh& mesh, double tol) {
-  if (Status s = validate_mesh(mesh); !s.ok()) return Status{StatusCode::invalid_argument, s.message()};
-  try {
+  using Built = Result<std::shared_ptr<const TriangleWorld>>;
+  return detail::guarded("building the triangle world", [&]() -> Built {
+    if (Status s = validate_mesh(mesh); !s.ok()) return Status{StatusCode::invalid_argument, s.message()};
     std::shared_ptr<TriangleWorld> world(new TriangleWorld());
-    world->margin_ = kMarginInTolerances * tol;
+    world->margin_ = kTriangleMarginInTolerances * tol;
     world->tol_ = tol;
     std::vector<fcl::Triangle> tris;
     for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) {
@@ -87,9 +85,7 @@ Result<std::shared_ptr<const TriangleWorld>> TriangleWorld::build(const Mesh& me
     world->fcl_->model = model;
     world->fcl_->object = std::make_unique<fcl::CollisionObjectd>(model);
     return std::shared_ptr<const TriangleWorld>(std::move(world));
-  } catch (const std::exception& e) {
-    return Status{StatusCode::internal_error, std::string("building the triangle world failed: ") + e.what()};
-  }
+  });
 }
 
 void TriangleWorld::candidates(const QueryShape& shape, const Eigen::Isometry3d& pose, double inflate,
@@ -109,22 +105,18 @@ void TriangleWorld::candidates(const QueryShape& shape, const Eigen::Isometry3d&
 }
 
 Status TriangleWorld::overlap(const OverlapRequest& request, OverlapResult& result) const {
-  result.hulls.clear();
-  const char* why = nullptr;
-  if (!check_query_shape(request.shape, request.pose, &why)) return {StatusCode::invalid_argument, why};
-  try {
+  return detail::guarded("overlap query", [&]() -> Status {
+    result.hulls.clear();
+    if (Status s = check_query_shape(request.shape, request.pose); !s.ok()) return s;
     candidates(request.shape, request.pose, 0.0, result.hulls);
     return Status::success();
-  } catch (const std::exception& e) {
-    return {StatusCode::internal_error, std::string("overlap query failed: ") + e.what()};
-  }
+  });
 }
 
 Status TriangleWorld::contacts(const ContactRequest& request, ContactResult& result) const {
-  result.contacts.clear();
-  const char* why = nullptr;
-  if (!check_query_shape(request.shape, request.pose, &why)) return {StatusCode::invalid_argument, why};
-  try {
+  return detail::guarded("contact query", [&]() -> Status {
+    result.contacts.clear();
+    if (Status s = check_query_shape(request.shape, request.pose); !s.ok()) return s;
     std::optional<RuntimeHull> convex;
     if (request.shape.kind == ShapeKind::convex) {
       convex = placed_convex(request.shape, request.pose);
@@ -155,9 +147,7 @@ Status TriangleWorld::contacts(const ContactRequest& request, ContactResult& res
                      [](const Contact& x, const Contact& y) { return x.depth > y.depth; });
     if (static_cast<int>(result.contacts.size()) > request.max_contacts) result.contacts.resize(request.max_contacts);
     return Status::success();
-  } catch (const std::exception& e) {
-    return {StatusCode::internal_error, std::string("contact query failed: ") + e.what()};
-  }
+  });
 }
 
 void TriangleWorld::traverse_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double& reach,
@@ -201,39 +191,42 @@ void TriangleWorld::traverse_ray(const Eigen::Vector3d& origin, const Eigen::Vec
 }
 
 Status TriangleWorld::ray_cast(const RayRequest& request, RayResult& result) const {
-  result = {};
-  Eigen::Vector3d dir;
-  if (Status s = check_ray_request(request, dir); !s.ok()) return s;
-  double best = request.max_distance;
-  traverse_ray(request.origin, dir, best, [&](const RayHit& hit) {
-    if (!result.hit || hit.t < result.first.t || (hit.t == result.first.t && hit.hull < result.first.hull)) {
-      result.hit = true;
-      result.first = hit;
-      best = hit.t;
-    }
+  return detail::guarded("ray query", [&]() -> Status {
+    result = {};
+    Eigen::Vector3d dir;
+    if (Status s = check_ray_request(request, dir); !s.ok()) return s;
+    double best = request.max_distance;
+    traverse_ray(request.origin, dir, best, [&](const RayHit& hit) {
+      if (!result.hit || hit.t < result.first.t || (hit.t == result.first.t && hit.hull < result.first.hull)) {
+        result.hit = true;
+        result.first = hit;
+        best = hit.t;
+      }
+    });
+    return Status::success();
   });
-  return Status::success();
 }
 
 Status TriangleWorld::ray_hits(const RayRequest& request, std::vector<RayHit>& hits) const {
-  hits.clear();
-  Eigen::Vector3d dir;
-  if (Status s = check_ray_request(request, dir); !s.ok()) return s;
-  double reach = request.max_distance;
-  traverse_ray(request.origin, dir, reach, [&](const RayHit& hit) { hits.push_back(hit); });
-  std::sort(hits.begin(), hits.end(), [](const RayHit& a, const RayHit& b) {
-    return a.t < b.t || (a.t == b.t && a.hull < b.hull);
+  return detail::guarded("ray hits query", [&]() -> Status {
+    hits.clear();
+    Eigen::Vector3d dir;
+    if (Status s = check_ray_request(request, dir); !s.ok()) return s;
+    double reach = request.max_distance;
+    traverse_ray(request.origin, dir, reach, [&](const RayHit& hit) { hits.push_back(hit); });
+    std::sort(hits.begin(), hits.end(), [](const RayHit& a, const RayHit& b) {
+      return a.t < b.t || (a.t == b.t && a.hull < b.hull);
+    });
+    return Status::success();
   });
-  return Status::success();
 }
 
 Status TriangleWorld::distance(const DistanceRequest& request, DistanceResult& result) const {
-  result = {};
-  const char* why = nullptr;
-  if (!check_query_shape(request.shape, request.pose, &why)) return {StatusCode::invalid_argument, why};
-  if (request.shape.kind != ShapeKind::sphere && request.shape.kind != ShapeKind::capsule)
-    return {StatusCode::invalid_argument, "distance is implemented for spheres and capsules"};
-  try {
+  return detail::guarded("distance query", [&]() -> Status {
+    result = {};
+    if (Status s = check_query_shape(request.shape, request.pose); !s.ok()) return s;
+    if (request.shape.kind != ShapeKind::sphere && request.shape.kind != ShapeKind::capsule)
+      return {StatusCode::invalid_argument, "distance is implemented for spheres and capsules"};
     const std::shared_ptr<fcl::CollisionGeometryd> geometry = detail::fcl_geometry(request.shape);
     const detail::QueryObject query(geometry, request.pose, world_box(request.shape, request.pose));
     fcl::DistanceRequestd d_request(true);
@@ -247,9 +240,7 @@ Status TriangleWorld::distance(const DistanceRequest& request, DistanceResult& r
     result.on_world = d_result.nearest_points[model_first ? 0 : 1];
     result.on_shape = d_result.nearest_points[model_first ? 1 : 0];
     return Status::success();
-  } catch (const std::exception& e) {
-    return {StatusCode::internal_error, std::string("distance query failed: ") + e.what()};
-  }
+  });
 }
 
 } // namespace hullcover::bvh

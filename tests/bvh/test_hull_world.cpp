@@ -6,12 +6,18 @@
 #include "hullcover/bvh/hull_world.h"
 
 #include "covering_fixture.h"
+// Private to bvh/: its barrier is tested directly, as no public input makes a
+// query throw.
+#include "../../bvh/src/query_guard.h"
 
 #include "hullcover/mesh/scene_builder.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <new>
 #include <random>
+#include <stdexcept>
 #include <thread>
 
 namespace hullcover::bvh {
@@ -278,13 +284,74 @@ TEST(HullWorld, SweepNeverTunnelsThroughAThinWall) {
   ASSERT_TRUE(world->sweep({QueryShape::sphere(0.1), at(V(0.05, 1, 1)), at(V(1, 1, 1))}, r, 1e-9).ok());
   EXPECT_TRUE(r.hit);
   EXPECT_EQ(r.fraction, 0.0);
-  // A box, stepping on FCL's distance.
+  // A box, stepping on the exact closest-feature distance.
   ASSERT_TRUE(world->sweep({QueryShape::box(V(0.1, 0.1, 0.1)), at(V(-5, 1.5, 1.5)), at(V(5, 1.5, 1.5))}, r, 1e-7).ok());
   ASSERT_TRUE(r.hit);
   EXPECT_NEAR(r.fraction, (5.0 - 0.1) / 10.0, 1e-6);
   Eigen::Isometry3d turned = at(V(1, 1, 1));
   turned.linear() = Eigen::AngleAxisd(0.3, V::UnitY()).toRotationMatrix();
-  EXPECT_EQ(world->sweep({QueryShape::sphere(0.1), at(V(-1, 1, 1)), turned}, r, 1e-9).code(), StatusCode::invalid_argument);
+  EXPECT_EQ(world->sweep({QueryShape::sphere(0.1), at(V(-1, 1, 1)), turned}, r, 1e-9).code(),
+            StatusCode::invalid_argument);
+}
+
+// Out of steps, a sweep reports a hit where the shape stands (still apart):
+// at once with one step, and on a path grazing the wall's top edge 1e-6
+// away, where advancement slows to 1e-6 a step.
+TEST(HullWorld, SweepOutOfStepsStopsWhereItStands) {
+  auto built = HullWorld::build({box_hull(V(0, 0, 0), V(0.01, 3, 3))});
+  ASSERT_TRUE(built.ok());
+  const auto& world = built.value();
+  SweepRequest request{QueryShape::sphere(0.1), at(V(-5, 1.5, 1.5)), at(V(5, 1.5, 1.5))};
+  SweepResult r;
+  for (int bad : {0, -3}) {
+    request.max_steps = bad;
+    EXPECT_EQ(world->sweep(request, r, 1e-9).code(), StatusCode::invalid_argument) << bad;
+  }
+  request.max_steps = 1;
+  ASSERT_TRUE(world->sweep(request, r, 1e-9).ok());
+  EXPECT_TRUE(r.hit);
+  EXPECT_EQ(r.fraction, 0.0);
+  EXPECT_EQ(r.hull, 0);
+  EXPECT_EQ(r.normal, V(-1, 0, 0));  // no contact a touch further on: against the travel
+
+  const double over = 3.0 + (0.1 + 1e-6) / std::sqrt(2.0);  // off the edge y = z = 3, diagonally
+  request = {QueryShape::sphere(0.1), at(V(-5, over, over)), at(V(5, over, over))};
+  ASSERT_TRUE(world->sweep(request, r, 1e-9).ok());  // the default 200 steps
+  ASSERT_TRUE(r.hit);
+  EXPECT_EQ(r.hull, 0);
+  EXPECT_LT(r.fraction, 0.5);
+  DistanceResult d;
+  ASSERT_TRUE(world->distance({request.shape, at(V(-5 + 10 * r.fraction, over, over))}, d).ok());
+  EXPECT_GT(d.distance, 1e-9);
+  request.max_steps = 1000000;
+  ASSERT_TRUE(world->sweep(request, r, 1e-9).ok());
+  EXPECT_FALSE(r.hit);
+}
+
+TEST(HullWorld, QueryShapeCheckNamesTheProblem) {
+  const Eigen::Isometry3d pose = at(V(1, 2, 3));
+  EXPECT_TRUE(check_query_shape(QueryShape::capsule(0.4, 0.0), pose).ok());
+  const Status negative = check_query_shape(QueryShape::sphere(-1), pose);
+  EXPECT_EQ(negative.code(), StatusCode::invalid_argument);
+  EXPECT_EQ(negative.message(), "sphere radius must be positive");
+  QueryShape flat;
+  flat.kind = ShapeKind::convex;
+  flat.points = {V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)};
+  EXPECT_EQ(check_query_shape(flat, pose).code(), StatusCode::invalid_argument);
+  EXPECT_EQ(check_query_shape(QueryShape::box(V(1, 1, 1)), at(V(0, INFINITY, 0))).code(),
+            StatusCode::invalid_argument);
+}
+
+// The barrier every public query runs in: nothing thrown gets out.
+TEST(HullWorld, ExceptionsComeBackAsInternalErrors) {
+  const Status no_memory = detail::guarded("overlap query", []() -> Status { throw std::bad_alloc(); });
+  EXPECT_EQ(no_memory.code(), StatusCode::internal_error);
+  EXPECT_EQ(no_memory.message(), "overlap query failed: out of memory");
+  const Result<int> thrown = detail::guarded("building", []() -> Result<int> { throw std::runtime_error("boom"); });
+  EXPECT_EQ(thrown.status().code(), StatusCode::internal_error);
+  EXPECT_EQ(thrown.status().message(), "building failed: boom");
+  EXPECT_EQ(detail::guarded("x", []() -> Status { throw 7; }).code(), StatusCode::internal_error);
+  EXPECT_EQ(detail::guarded("x", [] { return Result<int>(3); }).value(), 3);
 }
 
 } // namespace

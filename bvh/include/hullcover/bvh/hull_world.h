@@ -1,9 +1,9 @@
 #pragma once
 /// \file hull_world.h
-/// The runtime a game server links: a covering's hulls as `fcl::Convex`
-/// objects in FCL's dynamic AABB tree (broad phase, yes/no overlap,
-/// separated distance) with hullcover's exact narrow phase for contacts
-/// and rays (hull_contact.h).
+/// The runtime a game server links: a covering's hulls in FCL's dynamic
+/// AABB tree (broad phase; FCL's fcl::Convex for yes/no overlap) with
+/// hullcover's exact narrow phase for contacts, rays, distances and sweeps
+/// (hull_contact.h).
 ///
 /// Every query takes a Request and fills a Result (as FCL does), returns a
 /// [[nodiscard]] Status and never throws. Queries are const and safe to run
@@ -22,70 +22,154 @@ namespace hullcover::bvh {
 
 /// Which hulls a shape at a pose touches.
 struct OverlapRequest {
+  /// Any kind; limits in check_query_shape.
   QueryShape shape;
+  /// The shape's local frame in the world: rotation and translation (scene
+  /// units), finite. Default: identity.
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
 };
 struct OverlapResult {
-  std::vector<int> hulls;  ///< ascending hull indices
+  /// Ascending indices of the hulls that meet the shape, by FCL's yes/no
+  /// test on each hull's fcl::Convex (not the exact narrow phase: a shape
+  /// grazing a hull within rounding may be listed here and not by
+  /// contacts(), or the other way round).
+  std::vector<int> hulls;
 };
 
 /// Up to `max_contacts` contacts of a shape at a pose, deepest first.
 struct ContactRequest {
+  /// Any kind; limits in check_query_shape.
   QueryShape shape;
+  /// The shape's local frame in the world (scene units), finite. Default:
+  /// identity.
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  /// Most contacts returned, >= 1 (else `invalid_argument`); the deepest
+  /// are kept. Default 8.
   int max_contacts = 8;
 };
 struct ContactResult {
-  std::vector<Contact> contacts;  ///< deepest first; ties by hull index
+  /// At most one per hull the shape overlaps or touches (depth 0), at most
+  /// `max_contacts` in all; deepest first, equal depths by hull index.
+  std::vector<Contact> contacts;
 };
 
 /// First hit along a ray.
 struct RayRequest {
+  /// Where the ray starts (scene units), finite. Default: the origin.
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  Eigen::Vector3d direction = Eigen::Vector3d::UnitX();  ///< need not be unit; t is in length units
+  /// Finite and non-zero; need not be unit: the ray is normalised, so the
+  /// hit's t is a length in scene units. Default: +x.
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
+  /// Hits farther than this (scene units, >= 0, may be infinite) are
+  /// ignored. Default 1e30: unlimited.
   double max_distance = 1e30;
 };
 struct RayResult {
-  bool hit = false;
-  RayHit first;  ///< valid when hit
+  bool hit = false;  ///< some hull is hit within max_distance
+  /// The nearest hit (equal t: the lower hull index); valid when `hit`. A
+  /// ray starting inside a hull hits it at t = 0.
+  RayHit first;
 };
 
 /// Fails with `invalid_argument` for a non-finite origin, a zero or
-/// non-finite direction or a negative max_distance; else gives the unit
-/// direction.
-Status check_ray_request(const RayRequest& request, Eigen::Vector3d& unit_direction);
+/// non-finite direction or a negative (or NaN) max_distance; else gives the
+/// unit direction.
+[[nodiscard]] Status check_ray_request(const RayRequest& request, Eigen::Vector3d& unit_direction);
 
-/// Minimum separation of a shape from the world, when not touching.
+/// The nearest hull to a shape and the gap between them.
 struct DistanceRequest {
+  /// Any kind; limits in check_query_shape.
   QueryShape shape;
+  /// The shape's local frame in the world (scene units), finite. Default:
+  /// identity.
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
 };
 struct DistanceResult {
-  bool touching = false;  ///< some hull overlaps the shape (then distance is 0)
+  /// The shape overlaps or touches a hull: `distance` is exactly 0.
+  bool touching = false;
+  /// Gap from the shape to the nearest hull, scene units, >= 0; infinite
+  /// when no hull was found (`hull` -1, see HullWorld::distance).
   double distance = 0.0;
-  int hull = -1;          ///< the nearest hull
+  /// The nearest hull (equal distances: the lower index), or -1.
+  int hull = -1;
+  /// Closest point on the hull when apart. When touching it only locates
+  /// the meeting (a point in or on the hull): contacts() gives depth and
+  /// normal.
   Eigen::Vector3d on_world = Eigen::Vector3d::Zero();
+  /// Closest point on the shape when apart; when touching, like on_world,
+  /// a point in or on the hull.
   Eigen::Vector3d on_shape = Eigen::Vector3d::Zero();
 };
 
 /// A shape moving in a straight line, without turning, from `start` to
 /// `end` (the two poses must share their rotation).
 struct SweepRequest {
+  /// Any kind; limits in check_query_shape.
   QueryShape shape;
+  /// The shape's pose at fraction 0 (scene units), finite. Default:
+  /// identity.
   Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
+  /// The pose at fraction 1, finite, with start's rotation (relative
+  /// difference up to kSweepSameRotation, else `invalid_argument`): the
+  /// shape moves at start's rotation throughout. Default: identity.
   Eigen::Isometry3d end = Eigen::Isometry3d::Identity();
+  /// Most advancement steps, >= 1 (else `invalid_argument`); each costs one
+  /// exact distance to every hull whose box meets the swept box. A head-on
+  /// approach needs a few; one grazing a hull advances ever more slowly.
+  /// When they run out the sweep stops where it stands and reports that as
+  /// a hit: `hit` true, `fraction` how far it got (the shape is still apart
+  /// from every hull there, by more than `touch`), `hull` the nearest one,
+  /// `normal` as for any hit. Conservative: it never reports a pose inside
+  /// a hull, but the hit may come short of the real touch, or be reported
+  /// for a path that would only graze past. Default 200.
+  int max_steps = 200;
 };
 struct SweepResult {
+  /// The shape comes within `touch` of a hull on the way (or ran out of
+  /// steps, see SweepRequest::max_steps).
   bool hit = false;
-  double fraction = 1.0;  ///< of the way from start to end where it first touches (0 if touching at start)
+  /// Of the way from start to end, in [0, 1], where the shape first comes
+  /// within `touch` of a hull: 0 when it is that near (or overlapping) at
+  /// start, 1 when no hit. Advancement never steps into a hull, so a shape
+  /// that starts apart is apart (by at most `touch`) at this fraction.
+  double fraction = 1.0;
+  /// The hull hit, or -1.
   int hull = -1;
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< out of the hull, at the first touch
+  /// Unit, out of the hull: the normal of the exact contact of the shape
+  /// moved a further 2 x `touch` along the way; when that still makes no
+  /// contact (out of steps, a grazing approach), minus the direction of
+  /// travel (zero for a sweep that does not move).
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
 };
 
 /// A convex query shape's hull placed at `pose`; nothing when its points
 /// have no 3D hull.
 std::optional<RuntimeHull> placed_convex(const QueryShape& shape, const Eigen::Isometry3d& pose);
 
+/// A covering's hulls, built once, then queried from any number of threads.
+/// What a game server writes (tests/support/runtime_only_example.cpp runs
+/// it):
+///
+///     using namespace hullcover;
+///     Result<std::vector<bvh::RuntimeHull>> hulls = bvh::read_runtime_file("level.hcw");
+///     if (!hulls.ok()) return fail(hulls.status());  // message says what and where
+///     Result<std::shared_ptr<const bvh::HullWorld>> built = bvh::HullWorld::build(std::move(hulls).value());
+///     if (!built.ok()) return fail(built.status());
+///     const std::shared_ptr<const bvh::HullWorld> world = built.value();
+///
+///     // Once per character per tick, from any thread:
+///     bvh::ContactRequest request;
+///     request.shape = bvh::QueryShape::capsule(0.4, 0.5);  // radius, half height (scene units)
+///     request.pose.linear() = up_is_y;                     // the capsule's axis is its local z
+///     request.pose.translation() = position;
+///     bvh::ContactResult result;
+///     if (Status s = world->contacts(request, result); !s.ok()) return fail(s);
+///     if (!result.contacts.empty()) {                      // deepest first
+///       const bvh::Contact& c = result.contacts.front();
+///       position += c.depth * c.normal;                    // out of that hull, to touching
+///     }
+///
+/// Every query leaves its result meaningful only when the Status is ok.
 class HullWorld {
 public:
   /// Builds from runtime hulls (index i is hull i in every result).
@@ -97,23 +181,33 @@ public:
   HullWorld(const HullWorld&) = delete;
   HullWorld& operator=(const HullWorld&) = delete;
 
-  /// Fails with `invalid_argument` for a bad shape or pose (check_query_shape).
+  /// Fails with `invalid_argument` for a bad shape or pose
+  /// (check_query_shape) or a convex shape whose points have no 3D hull.
   [[nodiscard]] Status overlap(const OverlapRequest& request, OverlapResult& result) const;
-  /// As overlap; exact contacts for every shape (a convex one is hulled
-  /// once per call, then tested by separating axes).
+  /// Fails as overlap does, and for max_contacts < 1. Exact contacts for
+  /// every shape (a convex one is hulled once per call, then tested by
+  /// separating axes).
   [[nodiscard]] Status contacts(const ContactRequest& request, ContactResult& result) const;
-  /// Fails with `invalid_argument` for a zero or non-finite direction.
+  /// Fails with `invalid_argument` as check_ray_request does.
   [[nodiscard]] Status ray_cast(const RayRequest& request, RayResult& result) const;
-  /// Exact for every shape (closest features; FCL's GJK distance between a
-  /// box and a hull was found to overestimate, see hull_contact.h).
+  /// Fails as overlap does. The distance is exact for every shape: spheres
+  /// and capsules from their axis, boxes and convex shapes from closest
+  /// features (closest_between; FCL's GJK distance was found to
+  /// overestimate). The search box grows from the shape's box until it
+  /// holds the nearest hull, but stops once it reaches more than four world
+  /// diagonals out: from farther away `hull` is -1 (distance infinite) or
+  /// a hull that need not be the nearest.
   [[nodiscard]] Status distance(const DistanceRequest& request, DistanceResult& result) const;
 
   /// Time of impact by conservative advancement on the exact distance:
   /// every step is at most the current distance, so a thin wall is never
-  /// tunnelled through; the touch is found within `touch` (scene units, > 0).
-  /// Any shape; `invalid_argument` for poses that turn.
+  /// tunnelled through; the touch is found within `touch` (scene units,
+  /// finite, > 0; a smaller one costs more steps near a hull). Any shape.
+  /// Fails with `invalid_argument` for a bad shape, poses that turn, a bad
+  /// `touch` or max_steps < 1.
   [[nodiscard]] Status sweep(const SweepRequest& request, SweepResult& result, double touch) const;
 
+  /// The hulls, in the order given to build (hull i of every result).
   const std::vector<RuntimeHull>& hulls() const { return hulls_; }
 
 private:

@@ -18,13 +18,25 @@ namespace hullcover::bvh {
 
 enum class ShapeKind { sphere, capsule, box, convex };
 
-/// A query shape in its local frame.
+/// A query shape in its local frame. Only the fields of its `kind` are read;
+/// check_query_shape gives the limits every query enforces.
 struct QueryShape {
-  ShapeKind kind = ShapeKind::sphere;
-  double radius = 0.5;                                      ///< sphere, capsule
-  double half_height = 0.5;                                 ///< capsule: half the axis segment
-  Eigen::Vector3d half_extents = Eigen::Vector3d::Constant(0.5);  ///< box
-  std::vector<Eigen::Vector3d> points;                      ///< convex: its vertices
+  ShapeKind kind = ShapeKind::sphere;  ///< default sphere
+  /// Sphere and capsule: radius in scene units, finite and > 0. Default 0.5.
+  double radius = 0.5;
+  /// Capsule: half the length of its axis segment (local z, between the
+  /// centres of its end spheres) in scene units, finite and >= 0 (0 is a
+  /// sphere). Default 0.5. The capsule is 2 * (half_height + radius) long.
+  double half_height = 0.5;
+  /// Box: half its size along local x, y, z in scene units, each finite and
+  /// > 0. Default 0.5 (a unit cube).
+  Eigen::Vector3d half_extents = Eigen::Vector3d::Constant(0.5);
+  /// Convex: points in the local frame (scene units), at least 4, finite;
+  /// the shape is their hull. Points with no 3D hull (all coplanar) make
+  /// HullWorld's queries fail with `invalid_argument`. Every query hulls
+  /// them again and its narrow phase costs edges x hull edges: keep the
+  /// hull small. Default empty.
+  std::vector<Eigen::Vector3d> points;
 
   static QueryShape sphere(double r) { QueryShape s; s.kind = ShapeKind::sphere; s.radius = r; return s; }
   static QueryShape capsule(double r, double half_height) {
@@ -39,9 +51,10 @@ struct QueryShape {
 /// bounding sphere that FCL computes for rotated objects).
 Aabb world_box(const QueryShape& shape, const Eigen::Isometry3d& pose);
 
-/// Fails (false, with `why`) for a shape FCL or the narrow phase cannot use:
-/// non-positive or non-finite sizes, a convex with fewer than 4 points, a
-/// non-finite pose.
-bool check_query_shape(const QueryShape& shape, const Eigen::Isometry3d& pose, const char** why);
+/// Fails with `invalid_argument` (and a message naming the problem) for a
+/// shape FCL or the narrow phase cannot use: non-positive or non-finite
+/// sizes, a convex with fewer than 4 points or a non-finite one, a
+/// non-finite pose. Every query runs it first.
+[[nodiscard]] Status check_query_shape(const QueryShape& shape, const Eigen::Isometry3d& pose);
 
 } // namespace hullcover::bvh

@@ -7,6 +7,7 @@
 /// holding a code a program can branch on and one line a person can read.
 /// Asserts are kept for programmer errors only.
 
+#include <cassert>
 #include <optional>
 #include <string>
 #include <utility>
@@ -60,11 +61,20 @@ public:
   const Status& status() const { return status_; }
 
   /// The value. Calling these on a failed result is a programmer error.
-  T& value() & { return *value_; }
-  const T& value() const& { return *value_; }
+  T& value() & {
+    assert(value_.has_value());
+    return *value_;
+  }
+  const T& value() const& {
+    assert(value_.has_value());
+    return *value_;
+  }
   /// Moved out of a temporary result: returned by value, so a range-for
   /// over a member of `f().value()` does not dangle.
-  T value() && { return std::move(*value_); }
+  T value() && {
+    assert(value_.has_value());
+    return std::move(*value_);
+  }
 
 private:
   Status status_;

@@ -77,4 +77,43 @@ inline double same_plane_cosine_gap(double tol, double extent) {
   return 0.5 * ratio * ratio;
 }
 
+// ---- Runtime ----------------------------------------------------------------
+// The runtime (bvh) reads hulls that carry no scene tolerance, so its
+// thresholds are fractions of the sizes a test compares, or dimensionless.
+
+/// The narrow phase (hull_contact.cpp) takes a distance below this fraction
+/// of a hull's size (1 + its box diagonal) as zero: the direction between
+/// closest points that near is rounding noise, so the separating-axis path
+/// gives the normal instead. The same relative slack decides its other
+/// exact-arithmetic ties: an edge pair whose cross product is below this
+/// fraction of their lengths' product (a sine) is parallel and yields no
+/// axis, and a point whose closest point on its front facet is as far as
+/// that facet's plane, to this fraction, projects inside the facet. 1e-12 is thousands of ulps (above the
+/// rounding of the few dozen operations behind each value) yet far below
+/// any feature a covering keeps.
+inline constexpr double kTouchingFraction = 1e-12;
+
+/// A plane normal read from a runtime file may differ from unit length by
+/// this much. The narrow phase reads signed distances straight off these
+/// planes, so a normal's length scales every distance: 1e-9 lets through
+/// the rounding of any normalisation in double precision (~1e-16) and
+/// distances off by at most a billionth, and refuses a corrupt or
+/// mis-scaled file.
+inline constexpr double kUnitNormalSlack = 1e-9;
+
+/// HullWorld::distance grows its search box around the shape, while it
+/// holds no hull, to twice its reach plus this fraction of (1 + the world
+/// box's diagonal): the first ring is small next to the world, so the first
+/// hulls found are near ones (few exact distances to compute), and doubling
+/// reaches past the far side of the world in about a dozen rounds. The 1
+/// keeps a world of zero extent growing.
+inline constexpr double kDistanceReachGrowth = 1e-3;
+
+/// A sweep translates without turning: its start and end rotations must
+/// agree to this relative precision (Eigen's isApprox, Frobenius norm).
+/// Two poses built from one rotation differ by rounding only (~1e-16); a
+/// turn small enough to pass moves a point 1e6 units away by about 1e-6,
+/// so sweeping at the start's rotation throughout stays exact enough.
+inline constexpr double kSweepSameRotation = 1e-12;
+
 } // namespace hullcover
