@@ -1,5 +1,7 @@
 #include "hullcover/validate/accessible_space.h"
 
+#include "hullcover/geometry/tolerances.h"
+
 #include <octomap/OcTree.h>
 
 #include <Eigen/Geometry>
@@ -11,12 +13,8 @@
 namespace hullcover::validate {
 namespace {
 
-// Rays start this many tolerances off the surface they leave, and stop as
-// many short of the surface they hit: the surfaces themselves are not free.
-constexpr double kStandOffInTolerances = 2.0;
 // OctoMap keys have 16 bits per axis: 32768 cells either side of its origin.
 constexpr double kMaxCellsPerAxis = 32768.0;
-
 
 // Closest point of triangle abc to p (Ericson, Real-Time Collision
 // Detection, 5.1.5).
@@ -74,7 +72,9 @@ public:
   // Walks the ray from `origin` along unit `dir` to R or the first mesh
   // hit; every `resolution` a free point, tested against the hulls.
   void walk(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, int face, bool opening) {
-    const double stand_off = kStandOffInTolerances * tol_;
+    // Off the surface it leaves, and as far short of the one it hits: the
+    // surfaces themselves are not free (the decomposer's witness rays too).
+    const double stand_off = kRayStandOffInTolerances * tol_;
     const Eigen::Vector3d start = origin + dir * stand_off;
     // The first face along the whole ray (not only within R) tells whether
     // the space is enclosed: met from behind, the ray runs inside something

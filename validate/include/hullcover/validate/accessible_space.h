@@ -34,6 +34,7 @@ inline constexpr double kDefaultProbeRelative = kDefaultFreeSpaceReachRelative;
 /// Default octree resolution (and sample spacing) per probe distance.
 inline constexpr double kDefaultCellsPerProbe = 8.0;
 
+/// How far and how finely the probe looks; every default is relative to the scene.
 struct ProbeOptions {
   std::optional<double> probe_distance;  ///< R, scene units (> 0)
   std::optional<double> resolution;      ///< octree cell size and sample spacing, scene units (> 0)
@@ -42,26 +43,29 @@ struct ProbeOptions {
 
 /// One place where free space is lost.
 struct LostPlace {
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< the lost sample, scene coordinates
   int face = -1;  ///< the face (or open edge's face) the probing ray came from
   int hull = -1;  ///< the hull it is inside
-  double depth = 0.0;
+  double depth = 0.0;    ///< how deep inside the hull
   bool opening = false;  ///< found by an opening ray
 };
 
+/// What the probe found. Points are free samples; "lost" ones lie deeper
+/// than the tolerance inside a hull.
 struct ProbeReport {
-  double probe_distance = 0.0;
-  double resolution = 0.0;
-  long front_points = 0, front_lost = 0;
+  double probe_distance = 0.0;  ///< R used, scene units
+  double resolution = 0.0;      ///< octree cell and sample spacing used, scene units
+  long front_points = 0, front_lost = 0;  ///< samples in front of faces (accessible), and the lost ones
   long enclosed_points = 0, enclosed_in_hulls = 0;  ///< allowed, reported
-  long opening_points = 0, opening_lost = 0;
+  long opening_points = 0, opening_lost = 0;  ///< samples beyond open edges, and the lost ones
   long free_cells = 0, lost_cells = 0;  ///< lost: holds a lost free sample, or lies wholly inside a hull
   long straddling_cells = 0;  ///< free cells whose centre alone is inside a hull (a hull's surface crosses them)
   double free_volume = 0.0, lost_volume = 0.0;  ///< scene units cubed
-  double max_lost_depth = 0.0;
+  double max_lost_depth = 0.0;  ///< the deepest lost sample's depth
   Eigen::Vector3d octree_origin = Eigen::Vector3d::Zero();  ///< scene point at the octree's origin (the box centre)
   std::vector<LostPlace> worst;  ///< deepest first, at most kWorstPlaces
 };
+/// How many of the deepest lost places a report keeps.
 inline constexpr size_t kWorstPlaces = 10;
 
 /// Probes `prepared`'s free space (ray casts on `triangles`) and tests it

@@ -14,21 +14,23 @@
 
 namespace hullcover::validate {
 
+/// How many proxies, where from, how big.
 struct BehaviourOptions {
   int proxies = 3000;            ///< poses tried (a third of each shape)
-  std::uint64_t seed = 1;
+  std::uint64_t seed = 1;        ///< seed of the poses: the same seed, the same poses
   std::optional<double> size;    ///< proxy radius / half extent, scene units (default 0.005 x diagonal)
 };
 
+/// How the proxies collided with both worlds.
 struct BehaviourReport {
-  double size = 0.0;
+  double size = 0.0;             ///< proxy radius / half extent used, scene units
   long poses = 0;                ///< poses used (accessible ones)
-  long both_touch = 0, neither_touches = 0;
+  long both_touch = 0, neither_touches = 0;  ///< poses on which the two worlds agree
   long missed = 0;               ///< triangles touched, hulls not
   long false_contacts = 0;       ///< hulls touched, triangles not
   double max_false_depth = 0.0;  ///< deepest such false contact
   double max_normal_angle = 0.0; ///< degrees, from the hulls' deepest normal to the nearest triangle normal, when both touch
-  double mean_normal_angle = 0.0;
+  double mean_normal_angle = 0.0;  ///< degrees, the same angle on average
 };
 
 /// Runs the proxies. Fails with `invalid_argument` for proxies < 1 or a

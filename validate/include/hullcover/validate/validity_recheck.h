@@ -29,17 +29,20 @@ std::vector<HullUnderCheck> hulls_under_check(const Covering& covering);
 /// facets share their corners.
 std::vector<HullUnderCheck> hulls_under_check(const std::vector<bvh::RuntimeHull>& hulls);
 
+/// What the re-check found: counts per condition, and the first few findings.
 struct CheckReport {
-  long vertices_inside = 0;       // condition 1
-  long edges_inside = 0;          // condition 1
-  long faces_off_hull = 0;        // condition 2 (a covered face whose plane does not support its hull)
-  long bars_inside = 0;           // condition 3
-  long faces_below_polygon = 0;   // condition 4
-  long faces_uncovered = 0;       // coverage: a face with area on no hull's boundary
-  double uncovered_area = 0.0, total_area = 0.0;
-  long hulls_not_convex = 0;      // a hull vertex in front of one of its own facets
-  std::vector<std::string> examples;  // the first few, for the failure message
+  long vertices_inside = 0;      ///< condition 1: mesh vertices strictly inside a solid hull
+  long edges_inside = 0;         ///< condition 1: mesh edges with a part strictly inside a solid hull
+  long faces_off_hull = 0;       ///< condition 2: claimed faces not on their hull with their normal out
+  long bars_inside = 0;          ///< condition 3: the paper's bars entering a hull
+  long faces_below_polygon = 0;  ///< condition 4: faces reaching a flat hull's interior from below
+  long faces_uncovered = 0;      ///< coverage: faces with area on no hull's boundary
+  double uncovered_area = 0.0;   ///< their area, scene units squared
+  double total_area = 0.0;       ///< the area of every face with a surface
+  long hulls_not_convex = 0;     ///< hulls with a vertex in front of one of their own facets
+  std::vector<std::string> examples;  ///< the first few findings, for a failure message
 
+  /// Every finding, the paper's bars included (what paper mode must pass).
   long total() const { return violations() + bars_inside; }
   /// What the audit's verdict counts: everything but the paper's bars, which
   /// stand in for openings at one point per edge; the probe measures the
@@ -47,14 +50,16 @@ struct CheckReport {
   long violations() const {
     return vertices_inside + edges_inside + faces_off_hull + faces_below_polygon + faces_uncovered + hulls_not_convex;
   }
+  /// The counts on one line, then the examples one per line.
   std::string summary() const;
 };
 
 /// Re-checks every hull against the whole of `prepared`, with bars of the
 /// given half-length. Conditions 3 and 4 are skipped for a flat hull that
-/// claims exactly one face (it is that face: whatever crosses it crosses
-/// the mesh). A face no hull claims counts as covered when it lies on some
-/// hull's boundary with its normal out.
+/// is one face (claims exactly one, or is a bare triangle claiming none):
+/// whatever crosses it crosses the mesh. A face no hull claims counts as
+/// covered when it lies on some hull's boundary with its normal out ("on":
+/// within `kOnHullInTolerances` tolerances, hullcover/geometry/tolerances.h).
 CheckReport recheck_hulls(const PreparedMesh& prepared, const std::vector<HullUnderCheck>& hulls,
                           double bar_half_length);
 

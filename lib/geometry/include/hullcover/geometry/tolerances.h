@@ -116,4 +116,19 @@ inline constexpr double kDistanceReachGrowth = 1e-3;
 /// so sweeping at the start's rotation throughout stays exact enough.
 inline constexpr double kSweepSameRotation = 1e-12;
 
+// ---- Audit ------------------------------------------------------------------
+
+/// The independent re-check (hullcover/validate/validity_recheck.h) takes a
+/// point within this many tolerances of a hull's surface as ON it: a face is
+/// on a hull (condition 2, and coverage of faces no hull claims) when its
+/// corners lie within 2 tol of the hull's surface and no hull vertex is
+/// more than 2 tol in front of the face's plane; a face within 2 tol of a
+/// flat hull's plane is that hull's own (condition 4); a point within 2 tol
+/// of a flat polygon's rim is on the rim, not in the interior a face below
+/// must not reach. Twice the base: the face may be up to tol off a facet
+/// (the decomposer's tests allow that), and the facet's own corners up to
+/// tol off the plane the re-check fits through them (Newell's method, not
+/// the decomposer's planes). "Strictly inside" stays deeper than one tol.
+inline constexpr double kOnHullInTolerances = 2.0;
+
 } // namespace hullcover

@@ -1,0 +1,114 @@
+// The audit's verdict, as a library user gets it: the decomposer's hulls of
+// the demo building are clean, and a hull closing its doorway is caught for
+// the space it takes (not for anything else).
+
+#include "hullcover/bvh/covering_hulls.h"
+#include "hullcover/bvh/hull_contact.h"
+#include "hullcover/validate/audit.h"
+
+#include "covering_fixture.h"
+
+#include "hullcover/mesh/scene_builder.h"
+
+#include <gtest/gtest.h>
+
+#include <ostream>
+#include <string>
+
+namespace hullcover::validate {
+
+// GoogleTest prints findings by name (found by argument-dependent lookup).
+void PrintTo(AuditFinding finding, std::ostream* os) { *os << audit_finding_name(finding); }
+
+namespace {
+
+using V = Eigen::Vector3d;
+
+bvh::RuntimeHull box_hull(const V& lo, const V& hi) {
+  Eigen::Isometry3d centre = Eigen::Isometry3d::Identity();
+  centre.translation() = 0.5 * (lo + hi);
+  return bvh::placed_box(centre, 0.5 * (hi - lo));
+}
+
+std::string names(const std::vector<AuditFinding>& findings) {
+  std::string s;
+  for (AuditFinding f : findings) s += std::string(audit_finding_name(f)) + " ";
+  return s;
+}
+
+// Coarser than the defaults (R / 8 = 0.06 m here) and fewer proxies: the
+// unit tier stays fast, and a 1.2 x 2.1 x 0.2 m doorway still holds samples.
+AuditOptions quick_options() {
+  AuditOptions o;
+  o.probe.resolution = 0.15;
+  o.behaviour.proxies = 600;
+  return o;
+}
+
+TEST(Audit, TheDecomposedBuildingIsCleanAndAClosedDoorwayLosesSpace) {
+  const auto d = test::decompose_and_check(demo_building());
+  ASSERT_TRUE(d);
+  HullSet set;
+  set.hulls = bvh::runtime_hulls(d->covering);
+  const Result<AuditReport> clean = run_audit(d->prepared, set, quick_options());
+  ASSERT_TRUE(clean.ok()) << clean.status().message();
+  EXPECT_TRUE(clean.value().clean()) << names(clean.value().findings);
+  EXPECT_EQ(clean.value().hull_count, d->covering.hulls.size());
+  EXPECT_GT(clean.value().probe.front_points, 1000);
+  EXPECT_GT(clean.value().behaviour.poses, 300);
+
+  // The same hulls plus one that fills the doorway exactly: it touches the
+  // mesh only on its surface, so the re-check and the proxies find nothing;
+  // the space in front of the floor and the door jambs is lost.
+  set.hulls.push_back(box_hull(V(-0.6, 0.0, 3.8), V(0.6, 2.1, 4.0)));
+  const Result<AuditReport> closed = run_audit(d->prepared, set, quick_options());
+  ASSERT_TRUE(closed.ok()) << closed.status().message();
+  EXPECT_FALSE(closed.value().clean());
+  EXPECT_EQ(closed.value().findings,
+            (std::vector<AuditFinding>{AuditFinding::front_space_lost, AuditFinding::free_cells_lost}))
+      << names(closed.value().findings);
+  ASSERT_FALSE(closed.value().probe.worst.empty());
+  EXPECT_EQ(closed.value().probe.worst[0].hull, static_cast<int>(set.hulls.size()) - 1);
+}
+
+// The verdict counts lost space, re-check violations and missed contacts;
+// the paper's bars and false contacts are reported only.
+TEST(Audit, TheVerdictCountsLossesNotBarsOrFalseContacts) {
+  EXPECT_TRUE(audit_findings({}, {}, {}).empty());
+  ProbeReport probe;
+  CheckReport recheck;
+  BehaviourReport behaviour;
+  recheck.bars_inside = 3;
+  behaviour.false_contacts = 5;
+  EXPECT_TRUE(audit_findings(probe, recheck, behaviour).empty());
+  probe.opening_lost = 1;
+  recheck.faces_uncovered = 1;
+  behaviour.missed = 2;
+  EXPECT_EQ(audit_findings(probe, recheck, behaviour),
+            (std::vector<AuditFinding>{AuditFinding::openings_lost, AuditFinding::recheck_violations,
+                                       AuditFinding::contacts_missed}));
+  probe = {};
+  probe.front_lost = 1;
+  probe.lost_cells = 1;
+  EXPECT_EQ(audit_findings(probe, {}, {}),
+            (std::vector<AuditFinding>{AuditFinding::front_space_lost, AuditFinding::free_cells_lost}));
+}
+
+TEST(Audit, RefusesBadOptionsWithAStatus) {
+  Mesh room;
+  add_box(room, V(0, 0, 0), V(4, 3, 5), false);
+  const auto d = test::decompose_and_check(room);
+  ASSERT_TRUE(d);
+  HullSet set;
+  set.hulls = bvh::runtime_hulls(d->covering);
+  AuditOptions o = quick_options();
+  o.bar_half_length = -1.0;
+  EXPECT_EQ(run_audit(d->prepared, set, o).status().code(), StatusCode::invalid_argument);
+  o = quick_options();
+  o.behaviour.proxies = 0;
+  EXPECT_EQ(run_audit(d->prepared, set, o).status().code(), StatusCode::invalid_argument);
+  EXPECT_EQ(run_audit(d->prepared, HullSet{}, quick_options()).status().code(), StatusCode::invalid_argument);
+}
+
+} // namespace
+} // namespace hullcover::validate

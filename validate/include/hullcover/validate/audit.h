@@ -1,0 +1,76 @@
+#pragma once
+/// \file audit.h
+/// The whole audit of a set of hulls against the scene they stand for, and
+/// its verdict: what `hullcover audit` runs and prints, for a program that
+/// links the library instead. Three independent looks: the accessible-space
+/// probe (accessible_space.h), the re-check of the paper's conditions
+/// (validity_recheck.h) and the character proxies (behaviour_equivalence.h).
+
+#include "hullcover/validate/accessible_space.h"
+#include "hullcover/validate/behaviour_equivalence.h"
+#include "hullcover/validate/hull_set.h"
+#include "hullcover/validate/validity_recheck.h"
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+namespace hullcover::validate {
+
+/// Everything the audit can be told; every default is the command's.
+struct AuditOptions {
+  /// The accessible-space probe: distance R, octree resolution, and where
+  /// to write the octree (nowhere when empty).
+  ProbeOptions probe;
+  /// Half-length of the re-check's boundary bars, scene units (> 0);
+  /// default `kDefaultBarHalfLengthRelative` x the diagonal, as decompose.
+  std::optional<double> bar_half_length;
+  /// The character proxies: how many, their seed and their size.
+  BehaviourOptions behaviour;
+};
+
+/// One reason the audit is not clean.
+enum class AuditFinding {
+  front_space_lost,    ///< probe points in front of faces lie inside hulls
+  openings_lost,       ///< probe points beyond open edges lie inside hulls
+  free_cells_lost,     ///< free octree cells lost to hulls
+  recheck_violations,  ///< the re-check's violations() (all but the paper's bars)
+  contacts_missed,     ///< proxies touch the triangles but no hull
+};
+
+/// Short stable name of a finding ("front_space_lost", ...), for logs and JSON.
+const char* audit_finding_name(AuditFinding finding);
+
+/// The audit's figures and its verdict.
+struct AuditReport {
+  ProbeReport probe;          ///< free space lost, openings lost, lost volume
+  CheckReport recheck;        ///< the paper's conditions 1-4 and coverage, re-checked
+  BehaviourReport behaviour;  ///< missed and false contacts of the proxies
+  size_t hull_count = 0;      ///< hulls audited
+  int groups_without_volume = 0;      ///< OBJ groups skipped for spanning no volume (from the HullSet)
+  std::vector<AuditFinding> findings;  ///< why it is not clean, in enum order; empty when clean
+
+  /// No accessible space lost: no finding.
+  bool clean() const { return findings.empty(); }
+};
+
+/// The verdict on the three reports: one finding per kind of loss. The
+/// paper's bars are not counted: they stand in for openings at one point
+/// per edge, and the probe measures the openings themselves. False contacts
+/// and normal angles are reported, not judged (hullcover's own clean
+/// coverings have a few false contacts); enclosed space is allowed.
+std::vector<AuditFinding> audit_findings(const ProbeReport& probe, const CheckReport& recheck,
+                                         const BehaviourReport& behaviour);
+
+/// Audits `hulls` against `prepared` (whose tolerance the audit uses): the
+/// re-check, then the probe, then the proxies. Fails with the first failing
+/// step's status: `invalid_argument` for a bar half-length <= 0 or
+/// infinite, for no hull or a malformed one (HullWorld::build), for a
+/// mesh with no face with a surface (TriangleWorld::build), or for the
+/// probe's and the proxies' own bad options (probe_accessible_space,
+/// compare_behaviour); `unwritable_file` when the octree cannot be written;
+/// `internal_error` when anything else goes wrong. Never throws.
+[[nodiscard]] Result<AuditReport> run_audit(const PreparedMesh& prepared, const HullSet& hulls,
+                                            const AuditOptions& options);
+
+} // namespace hullcover::validate
