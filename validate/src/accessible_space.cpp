@@ -84,12 +84,16 @@ public:
     bool enclosed = false;
     if (triangles_.ray_cast({start, dir, prepared_.tolerance.diagonal}, hit).ok() && hit.hit) {
       reach = std::min(reach, hit.first.t - stand_off);
-      // Faces coincident at the first hit (boxes touching face to face) all
-      // count: any of them met from behind closes the space.
+      // Enclosed only when every face at the first hit (coincident ones
+      // included) is met from behind: one met from the front there (a
+      // ceiling coincident with the floor above) ends the ray on a front,
+      // which is open space (DESIGN.md). Front and opening rays alike.
       std::vector<bvh::RayHit> at_hit;
-      if (!opening && triangles_.ray_hits({start, dir, hit.first.t + stand_off}, at_hit).ok())
+      if (triangles_.ray_hits({start, dir, hit.first.t + stand_off}, at_hit).ok() && !at_hit.empty()) {
+        enclosed = true;
         for (const bvh::RayHit& h : at_hit)
-          enclosed |= triangle_area_vector(prepared_.mesh, h.hull).dot(dir) > 0.0;
+          enclosed &= triangle_area_vector(prepared_.mesh, h.hull).dot(dir) > 0.0;
+      }
     }
     for (double t = std::min(report_.resolution, reach); t <= reach && reach > 0.0; t += report_.resolution) {
       const Eigen::Vector3d q = start + t * dir;
@@ -97,12 +101,12 @@ public:
       int hull = -1;
       const double depth = depth_in_hulls(q, hull);
       const bool lost = depth > tol_;
-      if (opening) {
-        ++report_.opening_points;
-        report_.opening_lost += lost;
-      } else if (enclosed) {
+      if (enclosed) {
         ++report_.enclosed_points;
         report_.enclosed_in_hulls += lost;
+      } else if (opening) {
+        ++report_.opening_points;
+        report_.opening_lost += lost;
       } else {
         ++report_.front_points;
         report_.front_lost += lost;
