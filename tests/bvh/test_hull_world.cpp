@@ -2,6 +2,7 @@
 // exact narrow phase), a world built from a real covering, and concurrent
 // queries.
 
+#include "box_hulls.h"
 #include "hullcover/bvh/covering_hulls.h"
 #include "hullcover/bvh/hull_world.h"
 
@@ -25,11 +26,7 @@ namespace {
 
 using V = Eigen::Vector3d;
 
-RuntimeHull box_hull(const V& lo, const V& hi) {
-  Eigen::Isometry3d centre = Eigen::Isometry3d::Identity();
-  centre.translation() = 0.5 * (lo + hi);
-  return placed_box(centre, 0.5 * (hi - lo));
-}
+using test::box_hull;
 
 std::shared_ptr<const HullWorld> floor_and_block() {
   auto world = HullWorld::build({box_hull(V(-5, -1, -5), V(5, 0, 5)), box_hull(V(0, 0, 0), V(1, 1, 1))});

@@ -1,6 +1,7 @@
 // The accessible-space probe catches hulls that take free space, and passes
 // the decomposer's hulls on scenes where the paper's conditions suffice.
 
+#include "box_hulls.h"
 #include "hullcover/bvh/covering_hulls.h"
 #include "hullcover/validate/accessible_space.h"
 #include "hullcover/validate/behaviour_equivalence.h"
@@ -20,11 +21,7 @@ namespace {
 
 using V = Eigen::Vector3d;
 
-bvh::RuntimeHull box_hull(const V& lo, const V& hi) {
-  Eigen::Isometry3d centre = Eigen::Isometry3d::Identity();
-  centre.translation() = 0.5 * (lo + hi);
-  return bvh::placed_box(centre, 0.5 * (hi - lo));
-}
+using test::box_hull;
 
 std::vector<bvh::RuntimeHull> hulls_of(const Covering& covering) { return bvh::runtime_hulls(covering); }
 

@@ -2,6 +2,7 @@
 // the demo building are clean, and a hull closing its doorway is caught for
 // the space it takes (not for anything else).
 
+#include "box_hulls.h"
 #include "hullcover/bvh/covering_hulls.h"
 #include "hullcover/bvh/hull_contact.h"
 #include "hullcover/validate/audit.h"
@@ -24,11 +25,7 @@ namespace {
 
 using V = Eigen::Vector3d;
 
-bvh::RuntimeHull box_hull(const V& lo, const V& hi) {
-  Eigen::Isometry3d centre = Eigen::Isometry3d::Identity();
-  centre.translation() = 0.5 * (lo + hi);
-  return bvh::placed_box(centre, 0.5 * (hi - lo));
-}
+using test::box_hull;
 
 std::string names(const std::vector<AuditFinding>& findings) {
   std::string s;
