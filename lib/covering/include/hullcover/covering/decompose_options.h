@@ -18,11 +18,13 @@ namespace hullcover {
 /// Default bar half-length as a fraction of the bounding-box diagonal (the
 /// value the prototype in ../shared/DESIGN.md measured the paper with).
 inline constexpr double kDefaultBarHalfLengthRelative = 0.1;
-/// The audit's default probe distance as a fraction of the diagonal (the
-/// decomposer itself keeps free space with no cap unless asked for one).
+/// Default free-space reach (exact mode) as a fraction of the diagonal: the
+/// audit's default probe distance, so the decomposer keeps all the free
+/// space the audit looks at.
 inline constexpr double kDefaultFreeSpaceReachRelative = 0.02;
-/// Default distance of the near merges as a fraction of the diagonal: gaps
-/// as wide as the audit's probe distance.
+/// Default distance of the near merges as a fraction of the
+/// diagonal: the free-space reach, so patches are joined across gaps no
+/// wider than the space the exact conditions look at in front of them.
 inline constexpr double kDefaultNearMergeRelative = kDefaultFreeSpaceReachRelative;
 /// Default cap on prism thickness as a fraction of the diagonal.
 inline constexpr double kDefaultPrismCapRelative = 0.01;
@@ -43,10 +45,7 @@ struct DecomposeOptions {
   /// cost of exactness stays measurable.
   ValidityMode conditions = ValidityMode::exact;
   std::optional<double> bar_half_length;      ///< > 0
-  /// Exact mode: how far in front of faces and beyond open edges free space
-  /// is kept, scene units (> 0). Unset (the default): no cap, as DESIGN.md
-  /// defines free space; a cap trades exactness for speed.
-  std::optional<double> free_space_reach;
+  std::optional<double> free_space_reach;     ///< > 0, exact mode
   std::optional<double> prism_thickness_cap;  ///< >= 0
   /// Near merges, after the paper's merging of patches that share an edge:
   /// patches sharing none whose bounding boxes come within this distance,
