@@ -39,7 +39,7 @@ TEST(MeshRay, ARayThroughTheEdgeTwoTrianglesShareMeetsThem) {
   EXPECT_FALSE(first_mesh_hit(s->index, V(3, 5, 1), V(0, -1, 0), 0.0, 10.0, scratch));
 }
 
-TEST(MeshRay, TellsWhichSideItMeetsAndCoincidentFacesAllCount) {
+TEST(MeshRay, TellsWhichSideItMeetsAndACoincidentFrontMakesItOpen) {
   Mesh m;
   add_quad(m, V(0, 0, 0), V(1, 0, 0), V(1, 0, 1), V(0, 0, 1));  // facing one way
   const auto one = indexed(m);
@@ -50,12 +50,24 @@ TEST(MeshRay, TellsWhichSideItMeetsAndCoincidentFacesAllCount) {
   ASSERT_TRUE(from_front && from_back);
   EXPECT_FALSE(from_front->from_behind);
   EXPECT_TRUE(from_back->from_behind);
-  // A second copy facing the other way: met at the same distance, from behind.
+  // A second copy facing the other way (a double-sided sheet): the ray meets
+  // one from behind and one from the front at the same distance. Under
+  // DESIGN.md's strict definition it ends on a front: open, from either side.
   add_quad(m, V(0, 0, 0), V(0, 0, 1), V(1, 0, 1), V(1, 0, 0));
   const auto two = indexed(m);
-  const auto both = first_mesh_hit(two->index, V(0.3, 0, 0.6) + 2 * normal, -normal, 0.0, 4.0, scratch);
-  ASSERT_TRUE(both);
-  EXPECT_TRUE(both->from_behind);
+  for (const double side : {1.0, -1.0}) {
+    const auto both = first_mesh_hit(two->index, V(0.3, 0, 0.6) + 2 * side * normal, -side * normal, 0.0, 4.0, scratch);
+    ASSERT_TRUE(both);
+    EXPECT_FALSE(both->from_behind) << side;
+  }
+  // Two coincident copies facing the same way, met from behind: enclosed.
+  Mesh same;
+  add_quad(same, V(0, 0, 0), V(1, 0, 0), V(1, 0, 1), V(0, 0, 1));
+  add_quad(same, V(0, 0, 0), V(1, 0, 0), V(1, 0, 1), V(0, 0, 1));
+  const auto twins = indexed(same);
+  const auto behind_both = first_mesh_hit(twins->index, V(0.3, 0, 0.6) - 2 * normal, normal, 0.0, 4.0, scratch);
+  ASSERT_TRUE(behind_both);
+  EXPECT_TRUE(behind_both->from_behind);
 }
 
 TEST(HullInterior, IsTheHullShrunkByTolAndVanishesWhenThin) {

@@ -87,9 +87,10 @@ public:
       // Enclosed only when every face at the first hit (coincident ones
       // included) is met from behind: one met from the front there (a
       // ceiling coincident with the floor above) ends the ray on a front,
-      // which is open space (DESIGN.md). Front and opening rays alike.
+      // which is open space (DESIGN.md). Opening rays are never enclosed
+      // here, as the decomposer's E2 still has it.
       std::vector<bvh::RayHit> at_hit;
-      if (triangles_.ray_hits({start, dir, hit.first.t + stand_off}, at_hit).ok() && !at_hit.empty()) {
+      if (!opening && triangles_.ray_hits({start, dir, hit.first.t + stand_off}, at_hit).ok() && !at_hit.empty()) {
         enclosed = true;
         for (const bvh::RayHit& h : at_hit)
           enclosed &= triangle_area_vector(prepared_.mesh, h.hull).dot(dir) > 0.0;
@@ -101,12 +102,12 @@ public:
       int hull = -1;
       const double depth = depth_in_hulls(q, hull);
       const bool lost = depth > tol_;
-      if (enclosed) {
-        ++report_.enclosed_points;
-        report_.enclosed_in_hulls += lost;
-      } else if (opening) {
+      if (opening) {
         ++report_.opening_points;
         report_.opening_lost += lost;
+      } else if (enclosed) {
+        ++report_.enclosed_points;
+        report_.enclosed_in_hulls += lost;
       } else {
         ++report_.front_points;
         report_.front_lost += lost;

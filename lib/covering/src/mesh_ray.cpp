@@ -39,9 +39,14 @@ std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::V
         return (t - min_t) / length;
       });
   if (first && first->t > max_t) first.reset();
-  if (first)
+  // Enclosed only when every face met there is met from behind: where a
+  // face met from the front coincides with one met from behind (a ceiling
+  // under the floor above), the ray ends on the front of a face: open space.
+  if (first) {
+    first->from_behind = true;
     for (const auto& [t, behind] : met)
-      if (t <= first->t + tol && behind) first->from_behind = true;
+      if (t <= first->t + tol && !behind) first->from_behind = false;
+  }
   return first;
 }
 

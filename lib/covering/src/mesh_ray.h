@@ -14,13 +14,14 @@ namespace hullcover {
 struct MeshRayHit {
   double t = 0.0;            ///< distance along the ray, scene units
   int face = -1;             ///< a face met there
-  bool from_behind = false;  ///< some face met there (within tol) is met from its back
+  bool from_behind = false;  ///< every face met there (within tol) is met from its back: enclosed space
 };
 
 /// The first face the ray `origin + t dir` (unit `dir`) meets for t in
 /// [min_t, max_t], a face counting when the ray passes within tol of it.
-/// Faces met within tol of the first hit all decide `from_behind`
-/// (coincident faces: boxes resting face to face). Nothing when the ray
+/// Faces met within tol of the first hit all decide `from_behind`: one met
+/// from the front among them (a ceiling coincident with the floor above)
+/// makes the ray end on a front, as DESIGN.md's strict definition says. Nothing when the ray
 /// meets no face; faces the ray runs along (within tol of their plane) are
 /// not met.
 std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::Vector3d& origin,

@@ -8,12 +8,12 @@
 ///   normal, up to the probe distance R or the first mesh hit.
 /// - openings: rays from points along every boundary edge, outward in the
 ///   face's plane, up to R or the first hit (a doorway stays open).
-/// A ray whose first hit is the BACK of every face met there is *enclosed*
-/// space (a floor under a table top): counted apart, allowed. One face met
-/// from the front at that hit (a ceiling coincident with the floor above)
-/// makes the ray open, as DESIGN.md's strict definition says.
-/// Not yet the strict definition in full: R caps the rays and points along
-/// them are sampled (see the README, "The audit").
+/// A front ray whose first hit is the BACK of every face met there is
+/// *enclosed* space (a floor under a table top): counted apart, allowed. One
+/// face met from the front at that hit (a ceiling coincident with the floor
+/// above) makes the ray open, as DESIGN.md's strict definition says.
+/// Not yet the strict definition in full: R caps the rays, points along
+/// them are sampled, and opening rays are never enclosed.
 /// The accessible (not enclosed) points go into an OctoMap octree as free
 /// cells, the surface as occupied; every free cell is tested too, which
 /// gives the lost volume: a cell counts as lost when a free sample in it
