@@ -174,7 +174,7 @@ void register_audit_command(CLI::App& app, int& exit_status) {
   cmd->add_option("--resolution", o->audit.probe.resolution, "Octree cell and sample spacing (default R / 8)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--bar-length", o->audit.bar_half_length,
-                  "Half-length of the boundary bars of the re-check (default 0.1 x diagonal, as decompose)")
+                  "Half-length of the boundary bars of the re-check (default 0.1 x diagonal, the paper-mode default)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--proxies", o->audit.behaviour.proxies,
                   "Character proxies (sphere, capsule, box) compared on both worlds")

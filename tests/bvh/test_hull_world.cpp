@@ -7,8 +7,6 @@
 #include "hullcover/bvh/hull_world.h"
 
 #include "covering_fixture.h"
-// Private to bvh/: its barrier is tested directly, as no public input makes a
-// query throw.
 #include "query_guard.h"  // private to bvh: no public input makes a query throw
 
 #include "hullcover/mesh/scene_builder.h"

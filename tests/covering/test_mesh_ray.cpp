@@ -1,5 +1,5 @@
 // The decomposer's own ray against the mesh (mesh_ray.h) and a hull's
-// interior (exact_conditions.h): the two things exact mode's witness rays
+// interior (free_space_sweep.h): the two things exact mode's witness rays
 // are made of.
 
 #include "hullcover/covering/convex_hull_3d.h"

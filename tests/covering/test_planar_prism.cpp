@@ -32,10 +32,8 @@ namespace {
 
 using V = Eigen::Vector3d;
 constexpr double kTol = 1e-3;
-// A prism thinner than this is made flat (planar_prism.cpp; tolerances.h's
-// kMinPrismThicknessInTolerances, which cannot be included beside
-// hullcover/mesh/tolerance.h yet).
-constexpr double kMinThickness = 2.0 * kTol;
+// A prism thinner than this is made flat (planar_prism.cpp).
+constexpr double kMinThickness = kMinPrismThicknessInTolerances * kTol;
 
 void add_triangle(Mesh& m, const V& a, const V& b, const V& c) {
   const int base = static_cast<int>(m.positions.size());

@@ -23,8 +23,6 @@ using V = Eigen::Vector3d;
 
 using test::box_hull;
 
-std::vector<bvh::RuntimeHull> hulls_of(const Covering& covering) { return bvh::runtime_hulls(covering); }
-
 ProbeReport probe(const test::Decomposed& d, std::vector<bvh::RuntimeHull> hulls, ProbeOptions options = {}) {
   const auto world = bvh::HullWorld::build(std::move(hulls)).value();
   const auto triangles = bvh::TriangleWorld::build(d.prepared.mesh, d.tol()).value();
@@ -37,7 +35,7 @@ ProbeReport probe(const test::Decomposed& d, std::vector<bvh::RuntimeHull> hulls
 TEST(AccessibleSpace, DecomposedBuildingIsCleanAndAClosedDoorwayIsCaught) {
   const auto d = test::decompose_and_check(demo_building());
   ASSERT_TRUE(d);
-  const ProbeReport clean = probe(*d, hulls_of(d->covering));
+  const ProbeReport clean = probe(*d, bvh::runtime_hulls(d->covering));
   EXPECT_GT(clean.front_points, 1000);
   EXPECT_GT(clean.opening_points, 100);
   EXPECT_EQ(clean.front_lost, 0);
@@ -46,7 +44,7 @@ TEST(AccessibleSpace, DecomposedBuildingIsCleanAndAClosedDoorwayIsCaught) {
   EXPECT_GT(clean.enclosed_points, 0);  // inside the wall boxes and stairs
 
   // The same hulls plus one that fills the doorway.
-  std::vector<bvh::RuntimeHull> closed = hulls_of(d->covering);
+  std::vector<bvh::RuntimeHull> closed = bvh::runtime_hulls(d->covering);
   closed.push_back(box_hull(V(-0.6, 0.0, 3.8), V(0.6, 2.1, 4.0)));
   const ProbeReport caught = probe(*d, closed);
   EXPECT_GT(caught.front_lost + caught.opening_lost, 0);
@@ -64,8 +62,8 @@ TEST(AccessibleSpace, AHullAboveTheTerrainIsCaught) {
   ProbeOptions metre;  // the default (2% of the diagonal) is 17 cm here
   metre.probe_distance = 1.0;
   metre.resolution = 0.1;
-  EXPECT_EQ(probe(*d, hulls_of(d->covering), metre).front_lost, 0);
-  std::vector<bvh::RuntimeHull> hulls = hulls_of(d->covering);
+  EXPECT_EQ(probe(*d, bvh::runtime_hulls(d->covering), metre).front_lost, 0);
+  std::vector<bvh::RuntimeHull> hulls = bvh::runtime_hulls(d->covering);
   hulls.push_back(box_hull(V(2, 0.25, 2), V(3, 0.6, 3)));  // floating above the ground
   const ProbeReport r = probe(*d, hulls, metre);
   EXPECT_GT(r.front_lost, 0);
@@ -76,7 +74,7 @@ TEST(AccessibleSpace, AHullFillingARoomSeenFromInsideIsCaught) {
   add_box(room, V(0, 0, 0), V(4, 3, 5), false);
   const auto d = test::decompose_and_check(room);
   ASSERT_TRUE(d);
-  EXPECT_EQ(probe(*d, hulls_of(d->covering)).front_lost, 0);
+  EXPECT_EQ(probe(*d, bvh::runtime_hulls(d->covering)).front_lost, 0);
   const ProbeReport filled = probe(*d, {box_hull(V(0, 0, 0), V(4, 3, 5))});
   EXPECT_GT(filled.front_lost, filled.front_points / 2);
   EXPECT_NEAR(filled.lost_volume / filled.free_volume, 1.0, 0.2);
@@ -85,7 +83,7 @@ TEST(AccessibleSpace, AHullFillingARoomSeenFromInsideIsCaught) {
 TEST(AccessibleSpace, RefusesBadOptions) {
   const auto d = test::decompose_and_check(demo_building());
   ASSERT_TRUE(d);
-  const auto world = bvh::HullWorld::build(hulls_of(d->covering)).value();
+  const auto world = bvh::HullWorld::build(bvh::runtime_hulls(d->covering)).value();
   const auto triangles = bvh::TriangleWorld::build(d->prepared.mesh, d->tol()).value();
   ProbeOptions o;
   o.probe_distance = -1.0;
@@ -98,7 +96,7 @@ TEST(AccessibleSpace, RefusesBadOptions) {
 TEST(Recheck, AVertexPokingIntoAHullIsCaught) {
   const auto d = test::decompose_and_check(demo_building());
   ASSERT_TRUE(d);
-  std::vector<bvh::RuntimeHull> hulls = hulls_of(d->covering);
+  std::vector<bvh::RuntimeHull> hulls = bvh::runtime_hulls(d->covering);
   EXPECT_EQ(recheck_hulls(d->prepared, hulls_under_check(hulls), d->covering.bar_half_length).total(), 0);
   hulls.push_back(box_hull(V(4.5, 2.5, -4.2), V(5.2, 3.4, -3.5)));  // around the building's back right top corner
   const CheckReport poked = recheck_hulls(d->prepared, hulls_under_check(hulls), d->covering.bar_half_length);
@@ -129,7 +127,7 @@ TEST(Behaviour, TheDecomposedBuildingCollidesLikeItsTrianglesAndABlobDoesNot) {
   const auto d = test::decompose_and_check(demo_building());
   ASSERT_TRUE(d);
   const auto triangles = bvh::TriangleWorld::build(d->prepared.mesh, d->tol()).value();
-  const auto hulls = bvh::HullWorld::build(hulls_of(d->covering)).value();
+  const auto hulls = bvh::HullWorld::build(bvh::runtime_hulls(d->covering)).value();
   BehaviourOptions o;
   o.proxies = 900;
   const Result<BehaviourReport> same = compare_behaviour(d->prepared, *triangles, *hulls, o);

@@ -30,7 +30,7 @@ Result<Worlds> build_worlds(const PreparedMesh& prepared, const HullSet& set) {
 Result<AuditReport> audit(const PreparedMesh& prepared, const HullSet& set, const AuditOptions& options) {
   const double bar_half_length =
       options.bar_half_length.value_or(kDefaultBarHalfLengthRelative * prepared.tolerance.diagonal);
-  if (bar_half_length <= 0.0 || std::isinf(bar_half_length))
+  if (!(bar_half_length > 0.0) || std::isinf(bar_half_length))
     return Status{StatusCode::invalid_argument, "the bar half-length must be a positive length"};
   AuditReport report;
   report.hull_count = set.hulls.size();

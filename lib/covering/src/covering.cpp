@@ -1,5 +1,7 @@
 #include "hullcover/covering/covering.h"
 
+#include "hullcover/geometry/tolerances.h"
+
 #include "planar_prism.h"
 #include "patch_merging.h"
 

@@ -56,7 +56,7 @@ void PatchMerger::move_face(int f, int q, int lone_id, Candidate&& candidate) {
   Patch& r = patches_[q];
   r.faces.push_back(f);
   face_patch_[f] = q;
-  add_plane(r.face_planes, lone.face_planes.front(), same_plane_cosine_gap(index_), index_.tol());
+  add_plane(r.face_planes, lone.face_planes.front(), scene_same_plane_gap(index_), index_.tol());
   r.hull_vertices = std::move(candidate.hull_vertices);
   r.planar = candidate.planar;
   r.solid = std::move(candidate.solid);

@@ -24,8 +24,8 @@ double pseudo_random_cost(std::uint64_t seed, int a, int b, int va, int vb) {
 
 // Face planes within tolerances.h's same-plane gap across the scene are kept
 // once: a patch's faces can lie anywhere in it.
-double same_plane_cosine_gap(const SceneIndex& index) {
-  return hullcover::same_plane_cosine_gap(index.tol(), index.prepared->tolerance.diagonal);
+double scene_same_plane_gap(const SceneIndex& index) {
+  return same_plane_cosine_gap(index.tol(), index.prepared->tolerance.diagonal);
 }
 
 void add_plane(std::vector<Plane>& planes, const Plane& p, double cosine_gap, double tol) {
@@ -240,7 +240,7 @@ void PatchMerger::merge(int a, int b, Candidate&& candidate) {
   if (patches_[b].faces.size() > patches_[a].faces.size()) std::swap(keep, gone);
   Patch& k = patches_[keep];
   Patch& g = patches_[gone];
-  const double cosine_gap = same_plane_cosine_gap(index_);
+  const double cosine_gap = scene_same_plane_gap(index_);
 
   const auto shared = k.shared_length.find(gone);
   const bool near_merge = shared == k.shared_length.end();

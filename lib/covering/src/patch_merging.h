@@ -35,7 +35,7 @@ struct Patch {
 
 /// Two face planes closer than this in normal direction (1 - cos) count as
 /// one plane in Patch::face_planes (with offsets within tol).
-double same_plane_cosine_gap(const SceneIndex& index);
+double scene_same_plane_gap(const SceneIndex& index);
 
 /// Adds `p` to `planes` unless one of them is the same plane.
 void add_plane(std::vector<Plane>& planes, const Plane& p, double cosine_gap, double tol);

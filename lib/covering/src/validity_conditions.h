@@ -21,7 +21,6 @@
 #include "scene_index.h"
 #include "hullcover/covering/validity.h"
 
-#include <cstdint>
 #include <functional>
 #include <vector>
 

@@ -153,10 +153,6 @@ RayDistances distances_at(const FreeSpaceSweep& sweep, const Plane& face, const 
   return {to_entry, -face.signed_distance(base) / face.normal.dot(sweep.direction)};
 }
 
-// Rays of a sweep meeting a face at more than this slope (|cos| between the
-// face's normal and the ray) are settled from their distances; grazing
-// ones are sampled, as a hit's distance along them is ill-conditioned.
-constexpr double kSettlingSlope = 1e-3;
 
 // Whether face f keeps every ray through `piece` (inside f's shadow, grown
 // as rays meet faces) from losing space, exactly: the distances to the

@@ -1,5 +1,6 @@
 #include "hullcover/geometry/point_hull.h"
 
+#include "hullcover/geometry/aabb.h"
 #include "hullcover/geometry/incremental_hull.h"
 
 #include <Eigen/Geometry>
@@ -30,12 +31,9 @@ std::optional<ConvexPolytope> convex_hull_of_points(const std::vector<Eigen::Vec
   if (points.size() < 4) return std::nullopt;
   for (const Eigen::Vector3d& p : points)
     if (!p.allFinite()) return std::nullopt;
-  Eigen::Vector3d low = points[0], high = points[0];
-  for (const Eigen::Vector3d& p : points) {
-    low = low.cwiseMin(p);
-    high = high.cwiseMax(p);
-  }
-  const double tol = kPointHullRelativeTolerance * (high - low).norm();
+  const Aabb bounds = bounding_box_of(points);
+  const Eigen::Vector3d& low = bounds.min;
+  const double tol = kPointHullRelativeTolerance * bounds.diagonal();
   if (!(tol > 0.0)) return std::nullopt;
 
   // The largest tetrahedron the extremes give: two far points, the point

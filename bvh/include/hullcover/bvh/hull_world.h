@@ -97,7 +97,8 @@ struct DistanceResult {
   /// normal.
   Eigen::Vector3d on_world = Eigen::Vector3d::Zero();
   /// Closest point on the shape when apart; when touching, like on_world,
-  /// a point in or on the hull.
+  /// it only locates the meeting (for a sphere or capsule, the point of its
+  /// surface toward on_world).
   Eigen::Vector3d on_shape = Eigen::Vector3d::Zero();
 };
 

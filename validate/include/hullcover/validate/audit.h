@@ -23,7 +23,9 @@ struct AuditOptions {
   /// to write the octree (nowhere when empty).
   ProbeOptions probe;
   /// Half-length of the re-check's boundary bars, scene units (> 0);
-  /// default `kDefaultBarHalfLengthRelative` x the diagonal, as decompose.
+  /// default `kDefaultBarHalfLengthRelative` x the diagonal (the paper-mode default;
+  /// exact mode decomposes with 4 x tol sheets, and the re-check reports bars
+  /// without judging them).
   std::optional<double> bar_half_length;
   /// The character proxies: how many, their seed and their size.
   BehaviourOptions behaviour;

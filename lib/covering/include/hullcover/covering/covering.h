@@ -5,11 +5,11 @@
 ///
 /// Every face starts as its own patch. Two patches sharing a manifold,
 /// consistently oriented edge are mergeable when their union is valid
-/// (validity_conditions.h); the cheapest mergeable pair, cost = 1 /
+/// (lib/covering/src/validity_conditions.h); the cheapest mergeable pair, cost = 1 /
 /// compactness = boundary length / sqrt(area), is merged until none is
 /// left. Beyond the paper, a near-merge pass then tries patches that share
 /// no edge but lie close (DecomposeOptions::near_merge_distance). Planar
-/// patches become prisms (planar_prism.h).
+/// patches become prisms (lib/covering/src/planar_prism.h).
 
 #include "hullcover/covering/decompose_options.h"
 #include "hullcover/geometry/convex_polytope.h"

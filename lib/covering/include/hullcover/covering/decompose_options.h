@@ -6,7 +6,6 @@
 /// on the result type it feeds.
 
 #include "hullcover/covering/validity.h"
-#include "hullcover/geometry/tolerances.h"
 
 #include <array>
 #include <cstdint>
@@ -37,16 +36,24 @@ enum class MergeOrder {
   random,   ///< pseudo-random, seeded (the paper's comparison)
 };
 
-/// How to decompose. Lengths are in scene units; unset ones take defaults
-/// relative to the scene's bounding-box diagonal.
+/// How to decompose. Lengths are in scene units; unset ones take the
+/// defaults named beside them (relative to the scene's bounding-box diagonal,
+/// or to the tolerance).
 struct DecomposeOptions {
-  /// `exact` (default) keeps every condition of exact_conditions.h too, so
+  /// `exact` (default) keeps every condition of lib/covering/src/exact_conditions.h too, so
   /// no free space is lost; `paper` applies the paper's four alone, so the
   /// cost of exactness stays measurable.
   ValidityMode conditions = ValidityMode::exact;
-  std::optional<double> bar_half_length;      ///< > 0
-  std::optional<double> free_space_reach;     ///< > 0, exact mode
-  std::optional<double> prism_thickness_cap;  ///< >= 0
+  /// Half-length of the boundary bars (> 0); default exact
+  /// kExactBarHalfLengthInTolerances x tol, paper kDefaultBarHalfLengthRelative
+  /// x diagonal.
+  std::optional<double> bar_half_length;
+  /// Exact mode: how far free space is kept in front of faces and beyond
+  /// open edges (> 0); default kDefaultFreeSpaceReachRelative x diagonal.
+  std::optional<double> free_space_reach;
+  /// Cap on a planar patch's prism thickness (>= 0); default
+  /// kDefaultPrismCapRelative x diagonal.
+  std::optional<double> prism_thickness_cap;
   /// Near merges, after the paper's merging of patches that share an edge:
   /// patches sharing none whose bounding boxes come within this distance,
   /// scene units, are tried as pairs too, under the same conditions; then

@@ -11,12 +11,12 @@ namespace hullcover {
 /// the paper's four conditions are not enough").
 enum class ValidityMode {
   paper,  ///< the paper's conditions 1-4 alone (bars at edge midpoints)
-  exact,  ///< the paper's plus exact_conditions.h: no free space lost
+  exact,  ///< the paper's plus lib/covering/src/exact_conditions.h: no free space lost
 };
 
 /// Which condition a candidate broke first (or `valid`).
 enum class Validity : std::uint8_t {
-  valid,
+  valid,               ///< every condition holds
   vertex_inside,       ///< condition 1
   edge_inside,         ///< condition 1
   face_not_on_hull,    ///< condition 2
@@ -30,7 +30,8 @@ enum class Validity : std::uint8_t {
   opening_inside,        ///< exact E2: the opening beyond an open edge enters the hull
   face_crosses_hull,     ///< exact E3: a face's interior deeper than tol inside
 };
-inline constexpr int kValidityCount = 13;
+/// How many Validity values there are (rejection counters per value).
+inline constexpr int kValidityCount = static_cast<int>(Validity::face_crosses_hull) + 1;
 
 /// Stable snake_case name, for reports.
 const char* validity_name(Validity v);

@@ -12,12 +12,16 @@ namespace hullcover {
 
 /// Axis-aligned bounding box. An empty box has min > max.
 struct Aabb {
+  /// Lowest corner, scene units (+infinity when empty).
   Eigen::Vector3d min = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  /// Highest corner, scene units (-infinity when empty).
   Eigen::Vector3d max = Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity());
 
+  /// True when the box holds no point (min > max on some axis).
   bool empty() const { return (min.array() > max.array()).any(); }
   /// Length of the diagonal; 0 for a point, 0 for an empty box.
   double diagonal() const { return empty() ? 0.0 : (max - min).norm(); }
+  /// Grows the box to hold `p`.
   void extend(const Eigen::Vector3d& p) {
     min = min.cwiseMin(p);
     max = max.cwiseMax(p);

@@ -14,7 +14,7 @@ namespace hullcover {
 
 /// `hull` with point `p` (mesh vertex id `id`) added: the facets `p` sees
 /// are replaced by triangles from `p` to their horizon. A point less than
-/// tol / 16 in front of every facet leaves the hull unchanged. New facets
+/// kVisibleBeyondTolerances x tol in front of every facet leaves the hull unchanged. New facets
 /// are triangles even where nearly coplanar with a neighbour (a rebuild by
 /// Qhull merges those).
 ///

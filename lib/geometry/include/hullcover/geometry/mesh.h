@@ -31,7 +31,7 @@ struct Mesh {
   /// Absolute bound, in scene units, on the rounding error the positions
   /// carried in before hullcover saw them (e.g. a float32 importer). It is a
   /// property of the data, separate from the user's tolerance, and sets that
-  /// tolerance's floor (see tolerance.h). 0 for exact input.
+  /// tolerance's floor (see hullcover/mesh/tolerance.h). 0 for exact input.
   double coordinate_error = 0.0;
 };
 

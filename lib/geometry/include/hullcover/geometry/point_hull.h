@@ -6,16 +6,12 @@
 /// merges coplanar facets; this one keeps triangles.
 
 #include "hullcover/geometry/convex_polytope.h"
+#include "hullcover/geometry/tolerances.h"
 
 #include <optional>
 #include <vector>
 
 namespace hullcover {
-
-/// Points closer than this fraction of the point set's extent to a plane
-/// count as on it (the hull's tolerance is relative: a query shape carries
-/// no scene tolerance).
-inline constexpr double kPointHullRelativeTolerance = 1e-9;
 
 /// The convex hull of `points`: triangle facets counter-clockwise seen from
 /// outside, outward unit planes, `vertex_ids` the indices of the points used.

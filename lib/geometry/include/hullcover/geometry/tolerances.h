@@ -4,15 +4,16 @@
 /// Jolt's PhysicsSettings.h do). Read this before adding a threshold.
 ///
 /// The base: ONE length per scene, `tol` (hullcover/mesh/tolerance.h chooses
-/// it: `kDefaultRelativeTolerance` x the scene's diagonal, never below the data's
-/// own rounding floor; printed by every command; overridable with --tol).
-/// Every sidedness and containment test uses it: "strictly inside" means
-/// deeper than tol, "coincident" closer than tol. Every other length
-/// threshold is a named multiple of tol below. Directions have their own,
-/// dimensionless tolerance (`kParallelSine`); a length is never compared
-/// with a sine. The runtime (bvh) answers queries on hulls that carry no
-/// scene tolerance: its thresholds are relative to each query's own size
-/// (section "Runtime").
+/// it: `kDefaultRelativeTolerance` x the scene's diagonal, never below the
+/// data's own rounding floor; printed by every command; overridable with
+/// --tol). Every sidedness and containment test uses it: "strictly inside"
+/// means deeper than tol, "coincident" closer than tol. Every other length
+/// threshold of the decomposer and the audit is a named multiple of tol
+/// below. Directions have their own, dimensionless tolerances
+/// (`kParallelSine`, `kSettlingSlope`); a length is never compared with a
+/// sine. The runtime (bvh) answers queries on hulls that carry no scene
+/// tolerance: its thresholds are relative to each query's own size (section
+/// "Runtime").
 
 #include <algorithm>
 
@@ -54,11 +55,6 @@ inline constexpr double kMinTriangleHeightInTolerances = 1.0;
 /// small fraction of the tolerance every later test allows.
 inline constexpr double kVisibleBeyondTolerances = 1.0 / 16.0;
 
-/// The triangle baseline inflates query shapes by this many tolerances in
-/// its broad phase, so a triangle FCL's iterative narrow phase misses by
-/// rounding still reaches the exact test.
-inline constexpr double kTriangleMarginInTolerances = 4.0;
-
 // ---- Directions -------------------------------------------------------------
 
 /// An edge whose sine with a direction is below this runs along it (a face
@@ -66,6 +62,11 @@ inline constexpr double kTriangleMarginInTolerances = 4.0;
 /// relative rounding of a cross product (about 1e-16), so the plane of any
 /// edge it keeps has a well-defined normal.
 inline constexpr double kParallelSine = 1e-9;
+
+/// Witness rays meeting a face at more than this slope (|cos| between the
+/// face's normal and the ray) are settled from their distances; grazing
+/// ones are sampled, as a hit's distance along them is ill-conditioned.
+inline constexpr double kSettlingSlope = 1e-3;
 
 /// Two planes whose normals differ by less than this in 1 - cos are one
 /// plane across `extent`: over that length their offsets drift apart by at
@@ -80,6 +81,16 @@ inline double same_plane_cosine_gap(double tol, double extent) {
 // ---- Runtime ----------------------------------------------------------------
 // The runtime (bvh) reads hulls that carry no scene tolerance, so its
 // thresholds are fractions of the sizes a test compares, or dimensionless.
+
+/// The triangle baseline (TriangleWorld, which is given the scene's tol)
+/// inflates query shapes by this many tolerances in its broad phase, so a triangle FCL's iterative narrow phase misses by
+/// rounding still reaches the exact test.
+inline constexpr double kTriangleMarginInTolerances = 4.0;
+
+/// A query's convex shape is hulled without Qhull (point_hull.h): points
+/// closer than this fraction of the point set's extent to a plane count as
+/// on it (a query shape carries no scene tolerance).
+inline constexpr double kPointHullRelativeTolerance = 1e-9;
 
 /// The narrow phase (hull_contact.cpp) takes a distance below this fraction
 /// of a hull's size (1 + its box diagonal) as zero: the direction between

@@ -4,8 +4,9 @@
 ///
 /// Every sidedness and containment test in hullcover uses `Tolerance::length`
 /// ("strictly inside" means deeper than it; "coincident" means closer than
-/// it). Any other threshold is a named multiple of it, declared in
-/// hullcover/geometry/tolerances.h. See ../shared/DESIGN.md, "tolerance".
+/// it). Every other threshold is declared in hullcover/geometry/tolerances.h:
+/// lengths as named multiples of it, directions and the runtime's as
+/// dimensionless numbers. See ../shared/DESIGN.md, "tolerance".
 ///
 /// Default: `kDefaultRelativeTolerance` x the scene's bounding-box diagonal.
 /// A user may override it with an absolute length, but never below the floor
@@ -20,7 +21,6 @@
 #include <optional>
 
 namespace hullcover {
-
 
 /// The tolerance in force and where it came from.
 struct Tolerance {
