@@ -2,6 +2,7 @@
 // interior (free_space_sweep.h): the two things exact mode's witness rays
 // are made of.
 
+#include "indexed_scene.h"
 #include "hullcover/covering/convex_hull_3d.h"
 #include "exact_conditions.h"
 #include "mesh_ray.h"
@@ -14,16 +15,8 @@ namespace {
 
 using V = Eigen::Vector3d;
 
-struct Indexed {
-  PreparedMesh prepared;
-  SceneIndex index;
-};
-
-std::unique_ptr<Indexed> indexed(const Mesh& m) {
-  auto out = std::make_unique<Indexed>();
-  out->prepared = prepare_mesh(m, std::nullopt).value();
-  out->index = build_scene_index(out->prepared, {1.0, false, ValidityMode::exact, 1.0});
-  return out;
+std::unique_ptr<test::IndexedScene> indexed(const Mesh& m) {
+  return test::index_scene(m, std::nullopt, {1.0, false, ValidityMode::exact, 1.0});
 }
 
 TEST(MeshRay, ARayThroughTheEdgeTwoTrianglesShareMeetsThem) {

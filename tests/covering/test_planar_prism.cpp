@@ -12,6 +12,7 @@
 // right behind the polygon at depth d limits the thickness to d, and one
 // coincident with the polygon facing into it (back-to-back walls) to 0.
 
+#include "covering_fixture.h"
 #include "planar_prism.h"
 
 #include "hullcover/mesh/prepared_mesh.h"
@@ -35,17 +36,8 @@ constexpr double kTol = 1e-3;
 // A prism thinner than this is made flat (planar_prism.cpp).
 constexpr double kMinThickness = kMinPrismThicknessInTolerances * kTol;
 
-void add_triangle(Mesh& m, const V& a, const V& b, const V& c) {
-  const int base = static_cast<int>(m.positions.size());
-  m.positions.insert(m.positions.end(), {a, b, c});
-  m.triangles.emplace_back(base, base + 1, base + 2);
-  m.material_ids.push_back(0);
-}
-
-V random_unit(std::mt19937& rng) {
-  std::normal_distribution<double> g(0.0, 1.0);
-  return V(g(rng), g(rng), g(rng)).normalized();
-}
+using test::add_triangle;
+using test::random_unit;
 
 // The patch: a fan over `corners` corners on a circle (angles jittered) in
 // the plane of `frame`, counter-clockwise seen from its normal. Its faces

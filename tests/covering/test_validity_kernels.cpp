@@ -13,6 +13,8 @@
 // These kernels decide what the decomposer may merge; a wrong verdict either
 // swallows geometry or splits hulls needlessly.
 
+#include "covering_fixture.h"
+#include "indexed_scene.h"
 #include "validity_conditions.h"
 
 #include "hullcover/covering/convex_hull_3d.h"
@@ -31,25 +33,14 @@ namespace {
 using V = Eigen::Vector3d;
 constexpr double kTol = 1e-3;
 
-struct Indexed {
-  PreparedMesh prepared;
-  SceneIndex index;
-};
-
-std::unique_ptr<Indexed> indexed(const Mesh& m, double bar_half_length) {
-  auto out = std::make_unique<Indexed>();
-  Result<PreparedMesh> prepared = prepare_mesh(m, kTol);
-  EXPECT_TRUE(prepared.ok()) << prepared.status().message();
-  out->prepared = std::move(prepared).value();
+std::unique_ptr<test::IndexedScene> indexed(const Mesh& m, double bar_half_length) {
+  auto out = test::index_scene(m, kTol, {bar_half_length, false, ValidityMode::paper, 1.0});
   EXPECT_EQ(out->prepared.tolerance.length, kTol);
-  out->index = build_scene_index(out->prepared, {bar_half_length, false, ValidityMode::paper, 1.0});
   return out;
 }
 
-V random_unit(std::mt19937& rng) {
-  std::normal_distribution<double> g(0.0, 1.0);
-  return V(g(rng), g(rng), g(rng)).normalized();
-}
+using test::add_triangle;
+using test::random_unit;
 
 // A closed tetrahedron of size 0.1 at `where`, far from the rest: a scene
 // of one small triangle has a tiny diagonal, and bars are indexed in pieces
@@ -62,13 +53,6 @@ void add_anchor(Mesh& m, const V& where) {
     m.triangles.push_back(t + Eigen::Vector3i::Constant(base));
     m.material_ids.push_back(0);
   }
-}
-
-void add_triangle(Mesh& m, const V& a, const V& b, const V& c) {
-  const int base = static_cast<int>(m.positions.size());
-  m.positions.insert(m.positions.end(), {a, b, c});
-  m.triangles.emplace_back(base, base + 1, base + 2);
-  m.material_ids.push_back(0);
 }
 
 // The triangle whose edge mid -/+ l across has its midpoint at `mid` and

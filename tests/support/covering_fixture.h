@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <optional>
+#include <random>
 #include <string>
 
 namespace hullcover::test {
@@ -29,6 +30,20 @@ struct Decomposed {
 /// nothing) if either step fails or the independent check finds a violation.
 std::optional<Decomposed> decompose_and_check(const Mesh& mesh, const DecomposeOptions& options = {},
                                               std::optional<double> tolerance = std::nullopt);
+
+/// Appends triangle a-b-c (counter-clockwise seen from its front), material 0.
+inline void add_triangle(Mesh& mesh, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  const int base = static_cast<int>(mesh.positions.size());
+  mesh.positions.insert(mesh.positions.end(), {a, b, c});
+  mesh.triangles.emplace_back(base, base + 1, base + 2);
+  mesh.material_ids.push_back(0);
+}
+
+/// A uniformly random unit vector.
+inline Eigen::Vector3d random_unit(std::mt19937& rng) {
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  return Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)).normalized();
+}
 
 /// The covering as write_covering_obj writes it, byte for byte.
 std::string covering_obj_bytes(const Covering& covering);
