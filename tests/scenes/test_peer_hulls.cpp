@@ -16,6 +16,8 @@
 
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 namespace hullcover::validate {
 namespace {
 
@@ -28,6 +30,9 @@ struct PeerFigures {
   double front_lost;
   double volume_lost;
 };
+
+// GoogleTest prints a parameter in a failure's name: the scene's file.
+void PrintTo(const PeerFigures& p, std::ostream* os) { *os << p.scene; }
 
 constexpr PeerFigures kMeasured[] = {
     {"threejs-collision-world.glb", 0.484, 0.397}, {"recast-nav_test.obj", 0.269, 0.200},
