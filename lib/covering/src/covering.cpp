@@ -77,8 +77,11 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
   const bool exact = options.conditions == ValidityMode::exact;
   covering.bar_half_length = options.bar_half_length.value_or(
       exact ? kExactBarHalfLengthInTolerances * prepared.tolerance.length : kDefaultBarHalfLengthRelative * diagonal);
-  covering.free_space_reach = options.free_space_reach.value_or(kDefaultFreeSpaceReachRelative * diagonal);
   covering.prism_thickness_cap = options.prism_thickness_cap.value_or(kDefaultPrismCapRelative * diagonal);
+  // Free space has no distance cap (DESIGN.md) unless the user gives one.
+  const double hull_margin = covering.prism_thickness_cap;
+  covering.free_space_capped = options.free_space_reach.has_value();
+  covering.free_space_reach = options.free_space_reach.value_or(uncapped_free_space_reach(prepared, hull_margin));
   covering.near_merge_distance =
       options.near_merge_distance.value_or(exact ? kDefaultNearMergeRelative * diagonal : 0.0);
   covering.dissolve = options.dissolve.value_or(exact);
@@ -88,7 +91,7 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
   Clock::time_point start = Clock::now();
   const SceneIndex index =
       build_scene_index(prepared, {covering.bar_half_length, options.keep_materials_apart, options.conditions,
-                                   covering.free_space_reach});
+                                   covering.free_space_reach, hull_margin});
   stats.seconds_index = seconds_since(start);
 
   start = Clock::now();

@@ -7,7 +7,11 @@
 /// the paper's four conditions are not enough", causes 1-3). Each condition
 /// below closes one cause. Free space is what DESIGN.md's probe samples:
 /// the space swept from every face along its normal, and from every open
-/// edge outward in its face's plane, up to the free-space reach.
+/// edge outward in its face's plane, up to each ray's first mesh hit, with
+/// no distance cap (the free-space reach is a cap only when a user sets one).
+/// A ray whose first hit is the back of every face met there runs through
+/// enclosed space, which hulls may fill; a ray that escapes or ends on the
+/// front of a face is open.
 ///
 ///  E1 front space: no face's front space enters the hull's interior,
 ///     except through the hull's own faces met from the front (there the
@@ -18,8 +22,9 @@
 ///     under a prism's beveled side, a hull reaching over free space.
 ///  E2 openings: the same for the opening beyond every open edge, boundary
 ///     or fold (the rim of a double-sided sheet), along the whole edge, with
-///     no allowance for enclosed space; for flat polygons the bar becomes a
-///     sheet along the whole edge.
+///     the same allowance for enclosed space (DESIGN.md: a doorway stays open
+///     because its rays end on the next room's walls from the front); for
+///     flat polygons the bar becomes a sheet along the whole edge.
 ///  E3 crossing faces: where a face's interior crosses the hull's interior
 ///     (self-intersecting input, where vertices and edges stay outside), its
 ///     front space there must leave the hull only through the hull's own

@@ -23,7 +23,6 @@ FreeSpaceSweep front_space_sweep(const std::vector<Eigen::Vector3d>& corners, co
   // from there.
   reach += kRayStandOffInTolerances * tol;
   sweep.reach = reach;
-  sweep.enclosed_allowed = true;
   const Eigen::Vector3d centre = (corners[0] + corners[1] + corners[2]) / 3.0;
   for (int k = 0; k < 3; ++k) {
     const Eigen::Vector3d& a = corners[k];

@@ -22,7 +22,6 @@ struct FreeSpaceSweep {
   std::vector<Eigen::Vector3d> base;     ///< the face or edge swept
   std::vector<Eigen::Vector3d> corners;  ///< the base at t = 0 and at the reach
   double reach = 0.0;             ///< scene units, from the base (the free-space reach plus the rays' stand-off)
-  bool enclosed_allowed = false;  ///< front space may be enclosed (first meet a face from behind)
 };
 
 /// The front space of triangle `corners` (unit front `normal`); it starts

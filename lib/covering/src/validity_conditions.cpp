@@ -19,25 +19,24 @@ Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& h
   const double tol = index.tol();
   const double reach = index.free_space_reach;
   const Mesh& mesh = index.mesh();
-  const Aabb reached = grown(box, reach);
   std::vector<Eigen::Vector3d> triangle(3);
   std::vector<int> ray_scratch;
   const HullInterior interior = hull_interior(hull, tol);
   if (interior.empty()) return Validity::valid;  // thinner than 2 tol: nothing is strictly inside
   scratch.clear();
-  index.face_tree.overlapping(reached, scratch);
-  for (int f : scratch) {
-    if (index.prepared->connectivity.zero_area[f]) continue;
+  index.front_sweep_tree.overlapping(box, scratch);
+  for (int item : scratch) {
+    const int f = index.front_sweep_face[item];
     for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[f][k]];
     const FreeSpaceSweep front = front_space_sweep(triangle, index.face_normals[f], reach, tol);
     if (crossing_face_leaks(index, front, interior, ray_scratch)) return Validity::face_crosses_hull;
     if (sweep_enters_hull(index, front, interior, ray_scratch)) return Validity::front_space_inside;
   }
   scratch.clear();
-  index.edge_tree.overlapping(reached, scratch);
+  index.opening_sweep_tree.overlapping(box, scratch);
   const MeshConnectivity& c = index.prepared->connectivity;
-  for (int e : scratch) {
-    if (index.open_edge_use[e] < 0) continue;
+  for (int item : scratch) {
+    const int e = index.opening_sweep_edge[item];
     // The use names the face and where the edge sits in it: its far corner
     // is the face's side of the edge.
     const EdgeUse& use = c.edge_uses[index.open_edge_use[e]];

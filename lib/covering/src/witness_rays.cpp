@@ -125,7 +125,6 @@ WitnessRay witness_ray(const SceneIndex& index, const FreeSpaceSweep& sweep, con
   // short stretch.
   if (const std::optional<MeshRayHit> hit = first_mesh_hit(index, base, dir, stand_off, enter, scratch))
     return {false, hit->face};
-  if (!sweep.enclosed_allowed) return {true, -1};
   const std::optional<MeshRayHit> hit = first_mesh_hit(index, base, dir, enter, index.prepared->tolerance.diagonal, scratch);
   // Enclosed space, when the first face is met from behind.
   if (hit && hit->from_behind) return {false, hit->face, hit->t};
