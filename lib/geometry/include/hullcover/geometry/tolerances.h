@@ -55,6 +55,16 @@ inline constexpr double kMinTriangleHeightInTolerances = 1.0;
 /// small fraction of the tolerance every later test allows.
 inline constexpr double kVisibleBeyondTolerances = 1.0 / 16.0;
 
+// ---- The free-space definition ----------------------------------------------
+
+/// Openings (../shared/DESIGN.md, "Accuracy") run from every open edge
+/// outward in its face's plane, and tilted "a little" to either side of
+/// it: by the angle whose sine this is (about 5.7 degrees). The decomposer
+/// keeps the three fans of rays (in the plane, and tilted either way) free,
+/// and the audit traces the same three; a definition, not a tolerance, so
+/// both read it here.
+inline constexpr double kOpeningTiltSine = 0.1;
+
 // ---- Directions -------------------------------------------------------------
 
 /// An edge whose sine with a direction is below this runs along it (a face
