@@ -40,12 +40,12 @@ namespace hullcover {
 
 /// E1/E2: true when free space of `sweep` lies inside `interior` (a solid
 /// hull shrunk by tol). Each region of an interior facet through which the
-/// sweep enters (and, for front space, each facet it leaves through) is
-/// judged by a grid of witness rays, as the audit's probe judges its rays:
-/// a ray from the base loses space when it is inside before its first mesh
-/// hit and within the reach; a ray whose first hit is the back of a face
-/// runs through enclosed space, which front space may. Exact up to that
-/// sampling: rays between the witnesses are not traced.
+/// sweep enters, split by the facet it leaves through, is decided by
+/// region_loses_space (witness_rays.h), as the audit decides its rays: a
+/// ray from the base loses space when it is inside before its first mesh
+/// hit; a ray whose first hit is the back of a face runs through enclosed
+/// space, which hulls may fill. Exact, and conservative where the work
+/// bound runs out.
 bool sweep_enters_hull(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
                        std::vector<int>& scratch);
 
