@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <cmath>
 
 namespace hullcover {
 namespace {
@@ -66,6 +67,20 @@ FreeSpaceSweep opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p
   sweep.base = {p0, p1};
   sweep.corners = {p0, p1, p1 + reach * out, p0 + reach * out};
   return sweep;
+}
+
+std::array<FreeSpaceSweep, 3> opening_sweeps(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                                             const Eigen::Vector3d& inner, const Eigen::Vector3d& face_normal,
+                                             double reach, double tol) {
+  // Turning the plane about the edge turns its normal with it: a fan
+  // tilted by s toward the front runs along c out + s n, in the plane whose
+  // normal is c n - s out.
+  Eigen::Vector3d out = (p1 - p0).cross(face_normal).normalized();
+  if (out.dot(inner - p0) > 0.0) out = -out;
+  const double s = kOpeningTiltSine, c = std::sqrt(1.0 - s * s);
+  return {opening_sweep(p0, p1, inner, face_normal, reach, tol),
+          opening_sweep(p0, p1, inner, c * face_normal - s * out, reach, tol),
+          opening_sweep(p0, p1, inner, c * face_normal + s * out, reach, tol)};
 }
 
 HullInterior hull_interior(const ConvexPolytope& hull, double tol) {

@@ -7,6 +7,7 @@
 #include "hullcover/geometry/convex_polytope.h"
 #include "hullcover/geometry/tolerances.h"
 
+#include <array>
 #include <vector>
 
 namespace hullcover {
@@ -29,9 +30,15 @@ struct FreeSpaceSweep {
 FreeSpaceSweep front_space_sweep(const std::vector<Eigen::Vector3d>& corners, const Eigen::Vector3d& normal,
                                  double reach, double tol);
 /// The opening beyond the edge p0-p1 of a face with unit normal
-/// `face_normal`, whose far corner is `inner` (the sweep runs away from it).
+/// `face_normal`, whose far corner is `inner` (the sweep runs away from it),
+/// in the plane through the edge normal to `face_normal`.
 FreeSpaceSweep opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
                              const Eigen::Vector3d& face_normal, double reach, double tol);
+/// The three fans of an opening (DESIGN.md): in the face's plane, then
+/// tilted by kOpeningTiltSine to its front and to its back.
+std::array<FreeSpaceSweep, 3> opening_sweeps(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                                             const Eigen::Vector3d& inner, const Eigen::Vector3d& face_normal,
+                                             double reach, double tol);
 
 /// A solid hull's interior: the hull shrunk by tol (what "strictly inside"
 /// means), as planes and facet polygons. Empty for a hull thinner than 2 tol.

@@ -1,5 +1,6 @@
 #include "scene_index.h"
 
+#include "free_space_sweep.h"
 #include "hullcover/geometry/tolerances.h"
 
 #include <Eigen/Geometry>
@@ -69,9 +70,10 @@ void index_sweeps(SceneIndex& index, double hull_margin) {
     const Eigen::Vector3d& p0 = mesh.positions[t[use.corner]];
     const Eigen::Vector3d& p1 = mesh.positions[t[(use.corner + 1) % 3]];
     const Eigen::Vector3d& inner = mesh.positions[t[(use.corner + 2) % 3]];
-    Eigen::Vector3d out = (p1 - p0).cross(index.face_normals[use.face]).normalized();
-    if (out.dot(inner - p0) > 0.0) out = -out;
-    Aabb box = clipped(grown(box_of({p0, p1, p0 + reach * out, p1 + reach * out}), tol), bounds);
+    Aabb box;
+    for (const FreeSpaceSweep& opening : opening_sweeps(p0, p1, inner, index.face_normals[use.face], index.free_space_reach, tol))
+      for (const Eigen::Vector3d& corner : opening.corners) box.extend(corner);
+    box = clipped(grown(box, tol), bounds);
     if (box.empty()) continue;
     boxes.push_back(box);
     index.opening_sweep_edge.push_back(e);

@@ -44,9 +44,8 @@ Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& h
     const Eigen::Vector3d& p0 = mesh.positions[t[use.corner]];
     const Eigen::Vector3d& p1 = mesh.positions[t[(use.corner + 1) % 3]];
     const Eigen::Vector3d& inner = mesh.positions[t[(use.corner + 2) % 3]];
-    if (sweep_enters_hull(index, opening_sweep(p0, p1, inner, index.face_normals[use.face], reach, tol), interior,
-                          ray_scratch))
-      return Validity::opening_inside;
+    for (const FreeSpaceSweep& opening : opening_sweeps(p0, p1, inner, index.face_normals[use.face], reach, tol))
+      if (sweep_enters_hull(index, opening, interior, ray_scratch)) return Validity::opening_inside;
   }
   return Validity::valid;
 }

@@ -28,8 +28,7 @@ inline constexpr int kMaxJudgedPieces = 4096;
 /// shadow the face decides every ray at once (distances along the rays are
 /// affine over a piece, so its corners decide), cutting the piece where
 /// that changes; the rest of the region is judged the same way. A region
-/// not settled in kMaxJudgedPieces pieces, or where a face runs nearly
-/// along the rays (kSettlingSlope), counts as losing space. `scratch` is
+/// not settled in kMaxJudgedPieces pieces counts as losing space. `scratch` is
 /// reused storage.
 bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
                         const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch);

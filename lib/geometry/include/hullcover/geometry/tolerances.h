@@ -10,7 +10,7 @@
 /// means deeper than tol, "coincident" closer than tol. Every other length
 /// threshold of the decomposer and the audit is a named multiple of tol
 /// below. Directions have their own, dimensionless tolerances
-/// (`kParallelSine`, `kSettlingSlope`); a length is never compared with a
+/// (`kParallelSine`); a length is never compared with a
 /// sine. The runtime (bvh) answers queries on hulls that carry no scene
 /// tolerance: its thresholds are relative to each query's own size (section
 /// "Runtime").
@@ -72,11 +72,6 @@ inline constexpr double kOpeningTiltSine = 0.1;
 /// relative rounding of a cross product (about 1e-16), so the plane of any
 /// edge it keeps has a well-defined normal.
 inline constexpr double kParallelSine = 1e-9;
-
-/// Witness rays meeting a face at more than this slope (|cos| between the
-/// face's normal and the ray) are settled from their distances; grazing
-/// ones are sampled, as a hit's distance along them is ill-conditioned.
-inline constexpr double kSettlingSlope = 1e-3;
 
 /// Two planes whose normals differ by less than this in 1 - cos are one
 /// plane across `extent`: over that length their offsets drift apart by at
