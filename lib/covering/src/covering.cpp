@@ -41,7 +41,8 @@ CoveringHull planar_hull(const SceneIndex& index, const detail::PatchMerger& mer
   CoveringHull hull;
   hull.planar = true;
   const FlatPolygon polygon =
-      make_flat_polygon(index.mesh().positions, patch.hull_vertices, patch.area_vector.normalized(), index.tol());
+      make_flat_polygon(index.mesh().positions, detail::vertices_of_faces(index.mesh(), patch.faces),
+                        patch.area_vector.normalized(), index.tol());
   const auto in_patch = [&](int f) { return merger.in_patch(f, patch_id); };
   const std::vector<Plane> sides = beveled_side_planes(index, polygon, in_patch, scratch);
   hull.thickness = allowed_prism_thickness(index, polygon, sides, in_patch, cap, scratch);

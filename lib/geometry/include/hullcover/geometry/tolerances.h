@@ -37,6 +37,13 @@ inline constexpr double kRoundingErrorsPerPlaneTest = 8.0;
 /// are not free.
 inline constexpr double kRayStandOffInTolerances = 2.0;
 
+/// Patches join as one planar patch only when every vertex of theirs lies in
+/// a slab this many tolerances wide along their normal; the polygon's plane
+/// runs through its middle, so every face lies within half a tol of its
+/// hull's surface: coverage (within tol, DESIGN.md) holds with room to
+/// spare for a reader of rounded output.
+inline constexpr double kPlanarSlabInTolerances = 1.0;
+
 /// A prism thinner than this many tolerances is no thicker than the noise
 /// of the data: it is made flat instead.
 inline constexpr double kMinPrismThicknessInTolerances = 2.0;
