@@ -69,18 +69,17 @@ FreeSpaceSweep opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p
   return sweep;
 }
 
-std::array<FreeSpaceSweep, 3> opening_sweeps(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
-                                             const Eigen::Vector3d& inner, const Eigen::Vector3d& face_normal,
-                                             double reach, double tol) {
+FreeSpaceSweep opening_fan(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
+                           const Eigen::Vector3d& face_normal, int fan, double reach, double tol) {
+  if (fan == 0) return opening_sweep(p0, p1, inner, face_normal, reach, tol);
   // Turning the plane about the edge turns its normal with it: a fan
   // tilted by s toward the front runs along c out + s n, in the plane whose
   // normal is c n - s out.
   Eigen::Vector3d out = (p1 - p0).cross(face_normal).normalized();
   if (out.dot(inner - p0) > 0.0) out = -out;
-  const double s = kOpeningTiltSine, c = std::sqrt(1.0 - s * s);
-  return {opening_sweep(p0, p1, inner, face_normal, reach, tol),
-          opening_sweep(p0, p1, inner, c * face_normal - s * out, reach, tol),
-          opening_sweep(p0, p1, inner, c * face_normal + s * out, reach, tol)};
+  const double s = fan == 1 ? kOpeningTiltSine : -kOpeningTiltSine;
+  const double c = std::sqrt(1.0 - s * s);
+  return opening_sweep(p0, p1, inner, c * face_normal - s * out, reach, tol);
 }
 
 HullInterior hull_interior(const ConvexPolytope& hull, double tol) {

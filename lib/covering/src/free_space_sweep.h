@@ -7,7 +7,6 @@
 #include "hullcover/geometry/convex_polytope.h"
 #include "hullcover/geometry/tolerances.h"
 
-#include <array>
 #include <vector>
 
 namespace hullcover {
@@ -34,11 +33,13 @@ FreeSpaceSweep front_space_sweep(const std::vector<Eigen::Vector3d>& corners, co
 /// in the plane through the edge normal to `face_normal`.
 FreeSpaceSweep opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
                              const Eigen::Vector3d& face_normal, double reach, double tol);
-/// The three fans of an opening (DESIGN.md): in the face's plane, then
+/// How many fans an opening has (DESIGN.md): in the face's plane, then
 /// tilted by kOpeningTiltSine to its front and to its back.
-std::array<FreeSpaceSweep, 3> opening_sweeps(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
-                                             const Eigen::Vector3d& inner, const Eigen::Vector3d& face_normal,
-                                             double reach, double tol);
+inline constexpr int kOpeningFans = 3;
+/// Fan `fan` (0 <= fan < kOpeningFans) of the opening beyond the edge p0-p1
+/// (as opening_sweep).
+FreeSpaceSweep opening_fan(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
+                           const Eigen::Vector3d& face_normal, int fan, double reach, double tol);
 
 /// A solid hull's interior: the hull shrunk by tol (what "strictly inside"
 /// means), as planes and facet polygons. Empty for a hull thinner than 2 tol.

@@ -1,6 +1,6 @@
 #include "scene_index.h"
 
-#include "free_space_sweep.h"
+#include "witness_rays.h"
 #include "hullcover/geometry/tolerances.h"
 
 #include <Eigen/Geometry>
@@ -38,24 +38,27 @@ Aabb clipped(const Aabb& box, const Aabb& bounds) {
   return out;
 }
 
-// The boxes of every face's front sweep and every open edge's opening sweep,
-// clipped to where hulls can be: the trees the exact conditions look up.
+// How far every face's front sweep and every open edge's fans run, and
+// their boxes, clipped to where hulls can be: the trees the exact
+// conditions look up.
 void index_sweeps(SceneIndex& index, double hull_margin) {
   const Mesh& mesh = index.mesh();
   const MeshConnectivity& c = index.prepared->connectivity;
-  const double reach = index.free_space_reach + kRayStandOffInTolerances * index.tol();
+  const double reach = index.free_space_reach;
   const double tol = index.tol();
   const Aabb bounds = grown(referenced_bounding_box(mesh), hull_margin + tol);
+  std::vector<int> scratch;
+  std::vector<Eigen::Vector3d> triangle(3);
   std::vector<Aabb> boxes;
+  index.front_reach.assign(mesh.triangles.size(), 0.0);
   for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) {
     if (c.zero_area[f]) continue;
+    for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[f][k]];
+    const FreeSpaceSweep full = front_space_sweep(triangle, index.face_normals[f], reach, tol);
+    index.front_reach[f] = std::min(reach, detail::first_hit_bound(index, full, scratch));
+    const FreeSpaceSweep sweep = front_space_sweep(triangle, index.face_normals[f], index.front_reach[f], tol);
     Aabb box;
-    const Eigen::Vector3d ahead = reach * index.face_normals[f];
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d& p = mesh.positions[mesh.triangles[f][k]];
-      box.extend(p);
-      box.extend(p + ahead);
-    }
+    for (const Eigen::Vector3d& corner : sweep.corners) box.extend(corner);
     box = clipped(grown(box, tol), bounds);
     if (box.empty()) continue;
     boxes.push_back(box);
@@ -63,6 +66,7 @@ void index_sweeps(SceneIndex& index, double hull_margin) {
   }
   index.front_sweep_tree = AabbTree(boxes);
   boxes.clear();
+  index.opening_reach.assign(c.edges.size(), {});
   for (int e = 0; e < static_cast<int>(c.edges.size()); ++e) {
     if (index.open_edge_use[e] < 0) continue;
     const EdgeUse& use = c.edge_uses[index.open_edge_use[e]];
@@ -71,8 +75,13 @@ void index_sweeps(SceneIndex& index, double hull_margin) {
     const Eigen::Vector3d& p1 = mesh.positions[t[(use.corner + 1) % 3]];
     const Eigen::Vector3d& inner = mesh.positions[t[(use.corner + 2) % 3]];
     Aabb box;
-    for (const FreeSpaceSweep& opening : opening_sweeps(p0, p1, inner, index.face_normals[use.face], index.free_space_reach, tol))
-      for (const Eigen::Vector3d& corner : opening.corners) box.extend(corner);
+    for (int fan = 0; fan < kOpeningFans; ++fan) {
+      const Eigen::Vector3d& n = index.face_normals[use.face];
+      const FreeSpaceSweep full = opening_fan(p0, p1, inner, n, fan, reach, tol);
+      index.opening_reach[e][fan] = std::min(reach, detail::first_hit_bound(index, full, scratch));
+      for (const Eigen::Vector3d& corner : opening_fan(p0, p1, inner, n, fan, index.opening_reach[e][fan], tol).corners)
+        box.extend(corner);
+    }
     box = clipped(grown(box, tol), bounds);
     if (box.empty()) continue;
     boxes.push_back(box);

@@ -5,10 +5,12 @@
 /// patch's component): vertices, edges, faces and boundary constraint bars,
 /// each in a bounding-volume tree.
 
+#include "free_space_sweep.h"
 #include "hullcover/covering/validity.h"
 #include "hullcover/geometry/aabb_tree.h"
 #include "hullcover/mesh/prepared_mesh.h"
 
+#include <array>
 #include <vector>
 
 namespace hullcover {
@@ -75,10 +77,17 @@ struct SceneIndex {
   /// only where its box meets that face's sweep box.
   AabbTree front_sweep_tree;
   std::vector<int> front_sweep_face;
+  /// Exact mode, per face: how far its front sweep runs, scene units: the
+  /// free-space reach, or less where every ray of it meets a face sooner
+  /// (first_hit_bound, witness_rays.h). 0 for a face with no sweep.
+  std::vector<double> front_reach;
   /// Exact mode: the same for the openings beyond open edges; item i is
   /// edge opening_sweep_edge[i].
   AabbTree opening_sweep_tree;
   std::vector<int> opening_sweep_edge;
+  /// Exact mode, per open edge and fan (free_space_sweep.h): how far that
+  /// fan runs, as front_reach.
+  std::vector<std::array<double, kOpeningFans>> opening_reach;
   std::vector<int> bar_of_piece;  ///< bar index of each piece in bar_tree
 
   /// Appends, once each and ascending, the bars with a piece overlapping `box`.

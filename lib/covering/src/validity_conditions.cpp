@@ -17,7 +17,6 @@ namespace {
 Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, const Aabb& box,
                                 std::vector<int>& scratch) {
   const double tol = index.tol();
-  const double reach = index.free_space_reach;
   const Mesh& mesh = index.mesh();
   std::vector<Eigen::Vector3d> triangle(3);
   std::vector<int> ray_scratch;
@@ -28,7 +27,7 @@ Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& h
   for (int item : scratch) {
     const int f = index.front_sweep_face[item];
     for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[f][k]];
-    const FreeSpaceSweep front = front_space_sweep(triangle, index.face_normals[f], reach, tol);
+    const FreeSpaceSweep front = front_space_sweep(triangle, index.face_normals[f], index.front_reach[f], tol);
     if (crossing_face_leaks(index, front, interior, ray_scratch)) return Validity::face_crosses_hull;
     if (sweep_enters_hull(index, front, interior, ray_scratch)) return Validity::front_space_inside;
   }
@@ -44,8 +43,12 @@ Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& h
     const Eigen::Vector3d& p0 = mesh.positions[t[use.corner]];
     const Eigen::Vector3d& p1 = mesh.positions[t[(use.corner + 1) % 3]];
     const Eigen::Vector3d& inner = mesh.positions[t[(use.corner + 2) % 3]];
-    for (const FreeSpaceSweep& opening : opening_sweeps(p0, p1, inner, index.face_normals[use.face], reach, tol))
-      if (sweep_enters_hull(index, opening, interior, ray_scratch)) return Validity::opening_inside;
+    for (int fan = 0; fan < kOpeningFans; ++fan) {
+      const double reach = index.opening_reach[e][fan];
+      if (sweep_enters_hull(index, opening_fan(p0, p1, inner, index.face_normals[use.face], fan, reach, tol),
+                            interior, ray_scratch))
+        return Validity::opening_inside;
+    }
   }
   return Validity::valid;
 }

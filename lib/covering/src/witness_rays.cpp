@@ -338,7 +338,68 @@ private:
   int budget_ = kMaxJudgedPieces;
 };
 
+// The bound of first_hit_bound, piece by piece.
+class FirstHitBound {
+public:
+  FirstHitBound(const SceneIndex& index, const FreeSpaceSweep& sweep, std::vector<int>& scratch)
+      : index_(index), sweep_(sweep), scratch_(scratch) {}
+
+  double over(const std::vector<Eigen::Vector3d>& region) {
+    constexpr double kNone = std::numeric_limits<double>::infinity();
+    const double tol = index_.tol();
+    if (region.size() < 3 || polygon_area(region) <= tol * tol) return 0.0;
+    if (--budget_ < 0) return kNone;
+    const Eigen::Vector3d middle = centroid(region);
+    const Eigen::Vector3d base = middle + sweep_.start.signed_distance(middle) * sweep_.direction;
+    const double stand_off = kRayStandOffInTolerances * tol;
+    const std::optional<MeshRayHit> hit =
+        first_mesh_hit(index_, base, sweep_.direction, stand_off, index_.prepared->tolerance.diagonal, scratch_);
+    if (!hit) return kNone;
+    const Mesh& mesh = index_.mesh();
+    std::vector<Eigen::Vector3d> triangle(3);
+    for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[hit->face][k]];
+    const ShadowSplit split = split_by_shadow(region, triangle, sweep_.direction, tol);
+    double farthest = 0.0;
+    if (!split.inside.empty()) {
+      const Plane face{index_.face_normals[hit->face], index_.face_normals[hit->face].dot(triangle[0])};
+      const Affine to_face = distance_to_plane(sweep_, face);
+      const Affine past_stand_off = to_face - Affine{Eigen::Vector3d::Zero(), stand_off};
+      // The face bounds the rays that meet its plane past their start; the
+      // others (it leans across the base) are cut off and bounded apart.
+      if (const std::optional<Plane> cut = splitting_cut(split.inside, past_stand_off, tol)) {
+        const std::vector<Eigen::Vector3d> met = clip_polygon(split.inside, *cut, 0.0);
+        farthest = std::max(farthest, range_over(to_face, met).second);
+        farthest = std::max(farthest, over(clip_polygon(split.inside, {-cut->normal, -cut->offset}, 0.0)));
+      } else {
+        farthest = std::max(farthest, range_over(to_face, split.inside).second);
+      }
+    }
+    for (const std::vector<Eigen::Vector3d>& piece : split.beside) farthest = std::max(farthest, over(piece));
+    return farthest;
+  }
+
+private:
+  const SceneIndex& index_;
+  const FreeSpaceSweep& sweep_;
+  std::vector<int>& scratch_;
+  int budget_ = kMaxJudgedPieces;
+};
+
 } // namespace
+
+double first_hit_bound(const SceneIndex& index, const FreeSpaceSweep& sweep, std::vector<int>& scratch) {
+  std::vector<Eigen::Vector3d> region = sweep.base;
+  if (region.size() == 2) {
+    // An opening's base is its edge; its rays leave a strip tol either side
+    // of the fan's plane.
+    const Eigen::Vector3d across = (region[1] - region[0]).cross(sweep.direction).normalized() * index.tol();
+    region = {region[0] - across, region[1] - across, region[1] + across, region[0] + across};
+  }
+  FirstHitBound bound(index, sweep, scratch);
+  const double farthest = bound.over(region);
+  // A ray meeting a face within tol of its plane's crossing still ends there.
+  return farthest + index.tol();
+}
 
 bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
                         const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch) {

@@ -17,7 +17,7 @@ std::vector<Plane> column_planes(const std::vector<Eigen::Vector3d>& outline, co
 
 /// How many pieces one region may be cut into before it counts as losing
 /// space: a bound on the work, where giving up is conservative.
-inline constexpr int kMaxJudgedPieces = 4096;
+inline constexpr int kMaxJudgedPieces = 1024;
 
 /// True when rays of `sweep` through convex `region` (a polygon on a facet
 /// of `interior`, where they enter it) lose free space: a ray loses space
@@ -32,5 +32,16 @@ inline constexpr int kMaxJudgedPieces = 4096;
 /// reused storage.
 bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
                         const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch);
+
+/// An upper bound on how far any ray of `sweep` runs from its base before
+/// its first mesh hit, scene units; infinity when some ray may meet
+/// nothing. Found like region_loses_space: a piece's middle ray names the
+/// face it meets, which bounds every ray through its shadow (the farthest
+/// corner of the piece, distances being affine); the rest is cut into
+/// pieces judged the same way. Pieces of no area (tol^2) are passed over,
+/// as region_loses_space passes them; after kMaxJudgedPieces pieces the
+/// bound is infinity. The free space the exact conditions keep ends there,
+/// so a sweep need reach no farther.
+double first_hit_bound(const SceneIndex& index, const FreeSpaceSweep& sweep, std::vector<int>& scratch);
 
 } // namespace hullcover::detail
