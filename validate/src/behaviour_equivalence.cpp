@@ -81,6 +81,9 @@ Result<BehaviourReport> compare_behaviour(const PreparedMesh& prepared, const bv
         ++report.missed;
       } else if (h_touch) {
         ++report.false_contacts;
+        // A proxy clear of every triangle yet deeper than tol in a hull
+        // stands in free space the hull takes (DESIGN.md, "behaviour").
+        report.deep_false_contacts += on_hulls.contacts[0].depth > prepared.tolerance.length;
         report.max_false_depth = std::max(report.max_false_depth, on_hulls.contacts[0].depth);
       } else {
         ++report.neither_touches;
