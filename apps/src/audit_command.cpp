@@ -62,8 +62,7 @@ void print_audit(const AuditCommandOptions& o, const PreparedMesh& prepared, con
     std::printf("  %d OBJ groups span no area and were skipped\n", a.groups_without_area);
   print_rays("front free space:", r.front);
   print_rays("openings:        ", r.opening);
-  std::printf("  lost cells:       %ld octree cells along the lost stretches (%.6g cubed units)\n", r.lost_cells,
-              r.lost_volume);
+  std::printf("  lost cells:       %ld octree cells hold a lost ray's deepest point\n", r.lost_cells);
   std::printf("  re-check: %ld mesh vertices and %ld edges inside hulls, %ld faces under flat hulls,\n"
               "            %ld hulls not convex; %ld faces (%.3f%% of the area) on no hull's surface;\n"
               "            %ld of the paper's bars in hulls (its stand-in for openings, measured above instead)\n",
@@ -116,7 +115,7 @@ nlohmann::json audit_json(const AuditCommandOptions& o, const PreparedMesh& prep
       {"resolution", r.resolution},
       {"front", rays_json(r.front)},
       {"openings", rays_json(r.opening)},
-      {"lost_cells", {{"cells", r.lost_cells}, {"volume", r.lost_volume}}},
+      {"lost_cells", r.lost_cells},
       {"max_lost_depth", r.max_lost_depth},
       {"recheck",
        {{"vertices_inside", recheck.vertices_inside},
@@ -205,7 +204,7 @@ void register_audit_command(CLI::App& app, int& exit_status) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--seed", o->audit.behaviour.seed, "Seed of the proxy poses")->capture_default_str();
   cmd->add_option("--octree", o->audit.probe.octree_path,
-                  "Write the octree of the lost cells (.bt, for OctoMap's viewer; origin = box centre)");
+                  "Write the octree of the cells of lost rays' deepest points (.bt, for OctoMap's viewer; origin = box centre)");
   cmd->add_option("--json", o->json_path, "Write the figures as JSON");
   cmd->callback([o, &exit_status] { exit_status = run_audit_command(*o); });
 }

@@ -18,8 +18,6 @@ namespace {
 
 // OctoMap keys have 16 bits per axis: 32768 cells either side of its origin.
 constexpr double kMaxCellsPerAxis = 32768.0;
-// Cells along a lost stretch are found by points this many per cell size.
-constexpr double kCellSamplesPerCell = 2.0;
 
 // Distance along unit `dir` from `start` to where the ray leaves `box`;
 // 0 or less when it starts outside and never enters.
@@ -84,13 +82,11 @@ public:
     decide(ray, start, length, tally);
   }
 
-  // The octree cells along every lost stretch, and their count.
+  // The octree cells of the lost rays' deepest points, and their count.
   void fill_octree() {
-    const double cell = report_.resolution;
     for (const octomap::OcTreeKey& key : lost_keys_) tree_.updateNode(key, true, true);
     tree_.updateInnerOccupancy();
     report_.lost_cells = static_cast<long>(lost_keys_.size());
-    report_.lost_volume = static_cast<double>(report_.lost_cells) * cell * cell * cell;
   }
 
   octomap::OcTree& tree() { return tree_; }
@@ -130,29 +126,26 @@ private:
     double reached = stretches_.front().first;
     for (const auto& [from, to] : stretches_) {
       const double begin = std::max(from, reached);
-      if (to > begin) {
-        tally.lost_length += to - begin;
-        mark_cells(start, ray.direction, begin, to);
-      }
+      if (to > begin) tally.lost_length += to - begin;
       reached = std::max(reached, to);
     }
     if (deepest.depth > tally.deepest.depth) tally.deepest = deepest;
+    mark_cell(deepest.point);
     note(deepest);
   }
 
-  void mark_cells(const Eigen::Vector3d& start, const Eigen::Vector3d& dir, double from, double to) {
-    const double step = report_.resolution / kCellSamplesPerCell;
-    for (double t = from;; t = std::min(to, t + step)) {
-      const Eigen::Vector3d local = start + t * dir - centre_;
-      octomap::OcTreeKey key;
-      // Cells beyond the octree's reach (a hull far outside the scene) are
-      // left out of the picture; the rays have counted them.
-      if (tree_.coordToKeyChecked(octomap::point3d(static_cast<float>(local.x()), static_cast<float>(local.y()),
-                                                   static_cast<float>(local.z())),
-                                  key))
-        lost_keys_.insert(key);
-      if (t >= to) break;
-    }
+  // The octree's picture of the lost rays: the cell of each one's deepest
+  // point (every cell along every stretch would cost as much as the volume
+  // lost, which peers' hulls make most of the scene).
+  void mark_cell(const Eigen::Vector3d& p) {
+    const Eigen::Vector3d local = p - centre_;
+    octomap::OcTreeKey key;
+    // A cell beyond the octree's reach (a hull far outside the scene) is
+    // left out of the picture; the rays have counted it.
+    if (tree_.coordToKeyChecked(
+            octomap::point3d(static_cast<float>(local.x()), static_cast<float>(local.y()), static_cast<float>(local.z())),
+            key))
+      lost_keys_.insert(key);
   }
 
   // Keeps the deepest place per hull, the kWorstPlaces deepest hulls.

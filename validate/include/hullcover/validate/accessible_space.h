@@ -20,9 +20,10 @@
 /// tol), and any stretch left is lost space, with its length and its
 /// deepest point. A flat hull has no inside and loses nothing.
 ///
-/// OctoMap: the cells along the lost stretches go into an octree (its
-/// origin the scene's box centre) that can be written for a viewer; its
-/// cell count is a picture of the lost rays, not a separate verdict.
+/// OctoMap: the cell of each lost ray's deepest point goes into an octree
+/// (its origin the scene's box centre) that can be written for a viewer;
+/// its cell count is a picture of where the lost rays are, not a separate
+/// verdict.
 
 #include "hullcover/bvh/hull_world.h"
 #include "hullcover/bvh/triangle_world.h"
@@ -75,8 +76,7 @@ struct ProbeReport {
   double resolution = 0.0;               ///< ray spacing and octree cell size used, scene units
   RayTally front;    ///< rays in front of faces
   RayTally opening;  ///< rays beyond open edges
-  long lost_cells = 0;       ///< octree cells the lost stretches pass through
-  double lost_volume = 0.0;  ///< their volume, scene units cubed (a picture: cells are coarser than stretches)
+  long lost_cells = 0;       ///< octree cells holding a lost ray's deepest point
   double max_lost_depth = 0.0;  ///< the deepest lost point's depth, either kind, scene units
   Eigen::Vector3d octree_origin = Eigen::Vector3d::Zero();  ///< scene point at the octree's origin (the box centre)
   std::vector<LostPlace> worst;  ///< the deepest lost point per hull, deepest first, at most kWorstPlaces
