@@ -33,10 +33,10 @@ struct PeerFigures {
 void PrintTo(const PeerFigures& p, std::ostream* os) { *os << p.scene; }
 
 constexpr PeerFigures kMeasured[] = {
-    {"threejs-collision-world.glb", 0.484}, {"recast-nav_test.obj", 0.269},
-    {"recast-dungeon.obj", 0.816},          {"recast-undulating.obj", 0.717},
-    {"sauerbraten-fdm6.obj", 0.609},        {"sauerbraten-pandora.obj", 0.881},
-    {"stanford-bunny-res2.ply", 0.405},     {"thor-art56-gearplate.stl", 0.261},
+    {"threejs-collision-world.glb", 0.906}, {"recast-nav_test.obj", 0.914},
+    {"recast-dungeon.obj", 0.902},          {"recast-undulating.obj", 0.986},
+    {"sauerbraten-fdm6.obj", 0.865},        {"sauerbraten-pandora.obj", 0.937},
+    {"stanford-bunny-res2.ply", 0.995},     {"thor-art56-gearplate.stl", 0.964},
 };
 constexpr double kRangeHalfWidth = 0.1;
 constexpr double kProbeSpacingPerDefault = 2.0;
