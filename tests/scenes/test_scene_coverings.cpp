@@ -65,6 +65,14 @@ constexpr FreePoint kFreePoints[] = {
     {"sauerbraten-fdm6.obj", -198.068, 106.0, -15.0,
      "1 in front of face (-200,104,-16) (-196,104,-16) (-194,112,-16); its first hit, 32 up, is a ceiling's front "
      "coincident with a floor's back: open space"},
+    {"sauerbraten-fdm6.obj", -191.935, 68.991, -246.048,
+     "112 in front of face (-80,48,-240) (-80,80,-248) (-80,56,-248), beyond the old 0.02 x diagonal reach; the ray "
+     "meets nothing"},
+    {"sauerbraten-fdm6.obj", -21.605, 24.599, -275.401,
+     "beyond the open edge (-32,56,-248)-(-32,48,-240), up to its first hit (not a back)"},
+    {"recast-dungeon.obj", 20.238, 17.065, -80.969,
+     "6.1 in front of face (16.763,21.712,-82.951) (17.302,21.977,-83.236) (17.548,22.286,-82.93); the ray meets "
+     "nothing"},
 };
 
 // The runtime world of a covering's hulls and the triangle world of its
