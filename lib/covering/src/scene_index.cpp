@@ -53,7 +53,7 @@ void index_sweeps(SceneIndex& index, double hull_margin) {
   index.front_reach.assign(mesh.triangles.size(), 0.0);
   for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) {
     if (c.zero_area[f]) continue;
-    for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[f][k]];
+    triangle_corners(mesh, f, triangle);
     const FreeSpaceSweep full = front_space_sweep(triangle, index.face_normals[f], reach, tol);
     index.front_reach[f] = std::min(reach, detail::first_hit_bound(index, full, scratch));
     const FreeSpaceSweep sweep = front_space_sweep(triangle, index.face_normals[f], index.front_reach[f], tol);

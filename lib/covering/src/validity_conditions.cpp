@@ -26,7 +26,7 @@ Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& h
   index.front_sweep_tree.overlapping(box, scratch);
   for (int item : scratch) {
     const int f = index.front_sweep_face[item];
-    for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[f][k]];
+    triangle_corners(mesh, f, triangle);
     const FreeSpaceSweep front = front_space_sweep(triangle, index.face_normals[f], index.front_reach[f], tol);
     if (crossing_face_leaks(index, front, interior, ray_scratch)) return Validity::face_crosses_hull;
     if (sweep_enters_hull(index, front, interior, ray_scratch)) return Validity::front_space_inside;

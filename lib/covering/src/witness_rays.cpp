@@ -190,7 +190,9 @@ Affine distance_to_plane(const FreeSpaceSweep& sweep, const Plane& face) {
 // the piece only, the piece is cut where it changes.
 struct Settling {
   bool settled = false;
-  int obstacle = -1;           ///< unsettled by this face met from the front in part of the piece
+  /// Unsettled by a face met from the front in part of the piece: the piece
+  /// cut along that face's shadow (inside and beside), to judge each part.
+  std::optional<ShadowSplit> obstacle;
   std::optional<Plane> cut;    ///< unsettled: cut the piece here (the face decides the side behind it) and judge both sides
 };
 
@@ -216,9 +218,9 @@ Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, co
     if (highest <= 0.0) return {};
     const std::optional<Plane> cut = splitting_cut(piece, margin, tol);
     if (!cut) continue;  // negative only by rounding
-    return {false, -1, cut};
+    return {false, std::nullopt, cut};
   }
-  if (!enclosed) return {true, -1, std::nullopt};
+  if (!enclosed) return {true, std::nullopt, std::nullopt};
   double farthest = 0.0;
   for (const Eigen::Vector3d& p : piece) farthest = std::max(farthest, to_face(p));
   Aabb column;
@@ -232,7 +234,7 @@ Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, co
   const Affine one_tol{Eigen::Vector3d::Zero(), tol};
   for (int g : near) {
     if (g == f || index.face_normals[g].dot(sweep.direction) >= 0.0) continue;  // met from behind, or zero area
-    for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[g][k]];
+    triangle_corners(mesh, g, triangle);
     const ShadowSplit split = split_by_shadow(piece, triangle, sweep.direction, tol);
     if (split.inside.empty()) continue;
     // One running along the rays is not met (mesh_ray.h).
@@ -251,15 +253,15 @@ Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, co
     };
     if (clear(beyond, beyond_low, beyond_high) || clear(before, before_low, before_high)) continue;
     // g shadows part of the piece: cut along its shadow first.
-    if (!split.beside.empty()) return {false, g, std::nullopt};
+    if (!split.beside.empty()) return {false, split, std::nullopt};
     // g shadows it all, clear of it in part: cut where that changes.
     if (beyond_high > 0.0)
-      if (const std::optional<Plane> cut = splitting_cut(split.inside, beyond, tol)) return {false, -1, cut};
+      if (const std::optional<Plane> cut = splitting_cut(split.inside, beyond, tol)) return {false, std::nullopt, cut};
     if (before_high > 0.0)
-      if (const std::optional<Plane> cut = splitting_cut(split.inside, before, tol)) return {false, -1, cut};
+      if (const std::optional<Plane> cut = splitting_cut(split.inside, before, tol)) return {false, std::nullopt, cut};
     return {};  // between the entry and f everywhere: not enclosed by f
   }
-  return {true, -1, std::nullopt};
+  return {true, std::nullopt, std::nullopt};
 }
 
 // Judges regions exactly, piece by piece: each piece's middle ray names the
@@ -294,7 +296,7 @@ public:
     }
     const Mesh& mesh = index_.mesh();
     std::vector<Eigen::Vector3d> triangle(3);
-    for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[ray.deciding_face][k]];
+    triangle_corners(mesh, ray.deciding_face, triangle);
     ShadowSplit split = split_by_shadow(region, triangle, sweep_.direction, tol);
     if (split.inside.size() >= 3 && !settles(split.inside, ray.deciding_face, ray.enclosed)) return true;
     for (const std::vector<Eigen::Vector3d>& piece : split.beside)
@@ -316,17 +318,10 @@ private:
       if (decided.size() < 3 || rest.size() < 3) return false;
       return !loses_space(decided) && !loses_space(rest);
     }
-    if (settling.obstacle >= 0) {
-      const Mesh& mesh = index_.mesh();
-      std::vector<Eigen::Vector3d> triangle(3);
-      for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[settling.obstacle][k]];
-      ShadowSplit cut = split_by_shadow(piece, triangle, sweep_.direction, index_.tol());
-      if (!cut.inside.empty() && !cut.beside.empty()) {
-        cut.beside.push_back(std::move(cut.inside));
-        for (const std::vector<Eigen::Vector3d>& part : cut.beside)
-          if (loses_space(part)) return false;
-        return true;
-      }
+    if (settling.obstacle) {
+      for (const std::vector<Eigen::Vector3d>& part : settling.obstacle->beside)
+        if (loses_space(part)) return false;
+      return !loses_space(settling.obstacle->inside);
     }
     return false;
   }
@@ -357,7 +352,7 @@ public:
     if (!hit) return kNone;
     const Mesh& mesh = index_.mesh();
     std::vector<Eigen::Vector3d> triangle(3);
-    for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[hit->face][k]];
+    triangle_corners(mesh, hit->face, triangle);
     const ShadowSplit split = split_by_shadow(region, triangle, sweep_.direction, tol);
     double farthest = 0.0;
     if (!split.inside.empty()) {
