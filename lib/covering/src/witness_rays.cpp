@@ -53,10 +53,29 @@ std::optional<double> ray_entry(const std::vector<Plane>& planes, const Eigen::V
   return enter;
 }
 
-double polygon_area(const std::vector<Eigen::Vector3d>& polygon) {
-  Eigen::Vector3d twice = Eigen::Vector3d::Zero();
-  for (size_t i = 0; i < polygon.size(); ++i) twice += polygon[i].cross(polygon[(i + 1) % polygon.size()]);
-  return 0.5 * twice.norm();
+// A piece no wider than kNegligibleWidthInTolerances x tol (its least
+// width, over its edges' directions): a sliver of rounding, which cutting
+// would only shave again. Far below anything a ray could be aimed at: an
+// opening's strip alone is 2 tol wide.
+bool negligible(const std::vector<Eigen::Vector3d>& polygon, double tol) {
+  if (polygon.size() < 3) return true;
+  const Eigen::Vector3d normal = [&] {
+    Eigen::Vector3d twice = Eigen::Vector3d::Zero();
+    for (size_t i = 0; i < polygon.size(); ++i) twice += polygon[i].cross(polygon[(i + 1) % polygon.size()]);
+    return twice;
+  }();
+  if (!(normal.norm() > 0.0)) return true;
+  double least = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const Eigen::Vector3d edge = polygon[(i + 1) % polygon.size()] - polygon[i];
+    const Eigen::Vector3d across = normal.cross(edge);
+    if (!(across.norm() > 0.0)) continue;
+    const Eigen::Vector3d unit = across.normalized();
+    double widest = 0.0;
+    for (const Eigen::Vector3d& p : polygon) widest = std::max(widest, std::abs(unit.dot(p - polygon[i])));
+    least = std::min(least, widest);
+  }
+  return least <= kNegligibleWidthInTolerances * tol;
 }
 
 // `region` cut along the shadow (the column along dir) of a triangle: the
@@ -79,11 +98,10 @@ ShadowSplit split_by_shadow(const std::vector<Eigen::Vector3d>& region, const st
     const double across = plane.normal.dot(normal);
     plane.offset += tol * std::sqrt(std::max(0.0, 1.0 - across * across));
     std::vector<Eigen::Vector3d> beside = clip_polygon(split.inside, {-plane.normal, -plane.offset}, 0.0);
-    // Pieces of no area hold no ray apart from their neighbours'.
-    if (beside.size() >= 3 && polygon_area(beside) > tol * tol) split.beside.push_back(std::move(beside));
+    if (!negligible(beside, tol)) split.beside.push_back(std::move(beside));
     split.inside = clip_polygon(split.inside, plane, 0.0);
   }
-  if (split.inside.size() < 3 || polygon_area(split.inside) <= tol * tol) split.inside.clear();
+  if (negligible(split.inside, tol)) split.inside.clear();
   return split;
 }
 
@@ -163,7 +181,7 @@ std::optional<Plane> splitting_cut(const std::vector<Eigen::Vector3d>& piece, co
   if (!(margin.gradient.norm() > 0.0)) return std::nullopt;
   const Plane cut = margin.zero_plane();
   const std::vector<Eigen::Vector3d> negative = clip_polygon(piece, {-cut.normal, -cut.offset}, 0.0);
-  if (negative.size() < 3 || polygon_area(negative) <= tol * tol) return std::nullopt;
+  if (negligible(negative, tol)) return std::nullopt;
   return cut;
 }
 
@@ -279,7 +297,7 @@ public:
   bool loses_space(const std::vector<Eigen::Vector3d>& region) {
     // A piece of no area holds no ray apart from its neighbours'.
     const double tol = index_.tol();
-    if (region.size() < 3 || polygon_area(region) <= tol * tol) return false;
+    if (negligible(region, tol)) return false;
     if (--budget_ < 0) return true;
     WitnessRay ray = witness_ray(index_, sweep_, interior_, centroid(region), scratch_);
     if (ray.loses) return true;
@@ -342,7 +360,7 @@ public:
   double over(const std::vector<Eigen::Vector3d>& region) {
     constexpr double kNone = std::numeric_limits<double>::infinity();
     const double tol = index_.tol();
-    if (region.size() < 3 || polygon_area(region) <= tol * tol) return 0.0;
+    if (negligible(region, tol)) return 0.0;
     if (--budget_ < 0) return kNone;
     const Eigen::Vector3d middle = centroid(region);
     const Eigen::Vector3d base = middle + sweep_.start.signed_distance(middle) * sweep_.direction;

@@ -19,6 +19,10 @@ std::vector<Plane> column_planes(const std::vector<Eigen::Vector3d>& outline, co
 /// space: a bound on the work, where giving up is conservative.
 inline constexpr int kMaxJudgedPieces = 1024;
 
+/// A piece of a region no wider than this many tolerances is a sliver of
+/// rounding: passed over, as it holds no ray apart from its neighbours'.
+inline constexpr double kNegligibleWidthInTolerances = 1e-6;
+
 /// True when rays of `sweep` through convex `region` (a polygon on a facet
 /// of `interior`, where they enter it) lose free space: a ray loses space
 /// when it lies inside the interior before its first mesh hit and within
@@ -38,8 +42,8 @@ bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, co
 /// nothing. Found like region_loses_space: a piece's middle ray names the
 /// face it meets, which bounds every ray through its shadow (the farthest
 /// corner of the piece, distances being affine); the rest is cut into
-/// pieces judged the same way. Pieces of no area (tol^2) are passed over,
-/// as region_loses_space passes them; after kMaxJudgedPieces pieces the
+/// pieces judged the same way. Slivers are passed over, as region_loses_space
+/// passes them; after kMaxJudgedPieces pieces the
 /// bound is infinity. The free space the exact conditions keep ends there,
 /// so a sweep need reach no farther.
 double first_hit_bound(const SceneIndex& index, const FreeSpaceSweep& sweep, std::vector<int>& scratch);
