@@ -85,18 +85,40 @@ FreeSpaceSweep opening_fan(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
 HullInterior hull_interior(const ConvexPolytope& hull, double tol) {
   HullInterior interior;
   for (const Plane& p : hull.planes) interior.planes.push_back({p.normal, p.offset - tol});
-  // Facet k shrunk: facet k moved in by tol holds it; the other shrunk
-  // planes cut it to size - all but those of facets in its own plane (a
-  // hull grown point by point keeps coplanar triangles), which would cut it
-  // away by rounding.
+  // Facet k of the shrunk hull: its whole shrunk plane, cut by every other
+  // shrunk plane. Not facet k moved in by tol: where two facets meet at a
+  // shallow angle (a grown hull's nearly coplanar triangles) their shrunk
+  // edge moves by tol / sin(angle / 2), far beyond either facet, and one
+  // facet may vanish while its neighbour takes its place; rays leaving
+  // there would go unjudged.
   const Aabb box = bounding_box_of(hull.vertices);
-  const double same_plane_gap = same_plane_cosine_gap(tol, (box.max - box.min).norm());
-  for (size_t k = 0; k < hull.facets.size(); ++k) {
-    std::vector<Eigen::Vector3d> facet;
-    for (int v : hull.facets[k]) facet.push_back(hull.vertices[v] - tol * hull.planes[k].normal);
-    for (size_t j = 0; j < interior.planes.size() && !facet.empty(); ++j)
-      if (j != k && hull.planes[j].normal.dot(hull.planes[k].normal) < 1.0 - same_plane_gap)
-        facet = clip_polygon(facet, interior.planes[j], 0.0);
+  const Eigen::Vector3d centre = 0.5 * (box.min + box.max);
+  const double half = (box.max - box.min).norm() + tol;
+  std::vector<std::vector<Eigen::Vector3d>> squares;
+  for (const Plane& p : interior.planes) {
+    const Eigen::Vector3d on = centre - p.signed_distance(centre) * p.normal;
+    const Eigen::Vector3d u = p.normal.unitOrthogonal() * half;
+    const Eigen::Vector3d v = p.normal.cross(u);
+    squares.push_back({on - u - v, on + u - v, on + u + v, on - u + v});
+  }
+  // Planes within kOnePlaneInTolerances of each other across the hull (a
+  // grown hull's coplanar triangles) are one: cutting each by the other
+  // would leave the facet to rounding. The first holds it.
+  const auto same_plane = [&](size_t j, size_t k) {
+    for (const Eigen::Vector3d& c : squares[k])
+      if (std::abs(interior.planes[j].signed_distance(c)) > kOnePlaneInTolerances * tol) return false;
+    return true;
+  };
+  for (size_t k = 0; k < interior.planes.size(); ++k) {
+    std::vector<Eigen::Vector3d> facet = squares[k];
+    for (size_t j = 0; j < interior.planes.size() && !facet.empty(); ++j) {
+      if (j == k) continue;
+      if (same_plane(j, k)) {
+        if (j < k) facet.clear();
+        continue;
+      }
+      facet = clip_polygon(facet, interior.planes[j], 0.0);
+    }
     if (facet.size() < 3) facet.clear();
     interior.facets.push_back(std::move(facet));
   }

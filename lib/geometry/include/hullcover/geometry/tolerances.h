@@ -62,6 +62,12 @@ inline constexpr double kMinTriangleHeightInTolerances = 1.0;
 /// small fraction of the tolerance every later test allows.
 inline constexpr double kVisibleBeyondTolerances = 1.0 / 16.0;
 
+/// Two planes of one hull that stay this many tolerances apart or less
+/// across the whole hull are one plane when the hull is shrunk by tol (a
+/// grown hull's coplanar triangles): the shrunk facet is kept once, off by
+/// this small fraction of tol at most.
+inline constexpr double kOnePlaneInTolerances = 1.0 / 16.0;
+
 // ---- The free-space definition ----------------------------------------------
 
 /// Openings (../shared/DESIGN.md, "Accuracy") run from every open edge
