@@ -72,6 +72,9 @@ constexpr FreePoint kFreePoints[] = {
      "beyond the open edge (-32,56,-248)-(-32,48,-240), up to its first hit (not a back)"},
     {"sauerbraten-fdm6.obj", -193.989, 127.989, 16.0,
      "on an opening ray of face 4051's edge whose first hit (face 9173) is a front: a sliver the old witness grid missed"},
+    {"recast-dungeon.obj", -9.2179, 2.7811, 1.5312,
+     "on the tilted opening fan of face 3204's edge, before its first hit (face 3272's front): a hull's interior "
+     "lost a facet where nearly coplanar facets met, and rays leaving there went unjudged"},
     {"recast-dungeon.obj", 20.238, 17.065, -80.969,
      "6.1 in front of face (16.763,21.712,-82.951) (17.302,21.977,-83.236) (17.548,22.286,-82.93); the ray meets "
      "nothing"},
