@@ -91,15 +91,17 @@ TEST(HullInterior, IsTheHullShrunkByTolAndVanishesWhenThin) {
 }
 
 // Whether the ray from `p` (inside the interior) along `dir` leaves through
-// one of the interior's facet polygons.
-bool leaves_through_a_facet(const HullInterior& interior, const V& p, const V& dir) {
+// one of the interior's facet polygons (interior of a hull shrunk by tol).
+bool leaves_through_a_facet(const HullInterior& interior, const V& p, const V& dir, double tol) {
   double leave = std::numeric_limits<double>::infinity();
   for (const Plane& plane : interior.planes)
     if (plane.normal.dot(dir) > 0.0) leave = std::min(leave, -plane.signed_distance(p) / plane.normal.dot(dir));
   const V exit = p + leave * dir;
   for (size_t k = 0; k < interior.facets.size(); ++k) {
     const std::vector<V>& f = interior.facets[k];
-    if (f.size() < 3 || std::abs(interior.planes[k].signed_distance(exit)) > 1e-9) continue;
+    // Planes that stay within kOnePlaneInTolerances tol of each other share
+    // one facet.
+    if (f.size() < 3 || std::abs(interior.planes[k].signed_distance(exit)) > kOnePlaneInTolerances * tol) continue;
     bool inside = true;  // on the inner side of each edge of the convex facet
     for (size_t e = 0; e < f.size() && inside; ++e)
       inside = (f[(e + 1) % f.size()] - f[e]).cross(exit - f[e]).dot(interior.planes[k].normal) >= -1e-9;
@@ -135,7 +137,7 @@ TEST(HullInterior, NearlyCoplanarFacetsStillCloseTheInterior) {
       if (deepest_signed_distance(interior.planes, p) > 0.0) continue;
       const V dir = V(0.2 * (u(rng) - 0.5), 0.2 * (u(rng) - 0.5), -1).normalized();
       ++checked;
-      failures += !leaves_through_a_facet(interior, p, dir);
+      failures += !leaves_through_a_facet(interior, p, dir, tol);
     }
   }
   EXPECT_EQ(failures, 0) << "of " << checked << " rays down through the bumpy floor";

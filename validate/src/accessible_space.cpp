@@ -92,13 +92,15 @@ public:
   octomap::OcTree& tree() { return tree_; }
 
 private:
-  // Enclosed only when every face at the first hit (coincident ones
-  // included) is met from behind: one met from the front there (a ceiling
-  // coincident with the floor above) ends the ray on a front, which is
-  // open space (DESIGN.md). The same for front and opening rays.
+  // Enclosed only when every face at the first hit (coincident ones, within
+  // tol of it, included) is met from behind: one met from the front there
+  // (a ceiling coincident with the floor above) ends the ray on a front,
+  // which is open space (DESIGN.md). The same for front and opening rays,
+  // and the same "within tol" as the decomposer's first_mesh_hit: a front
+  // a little further on is not at the first hit.
   bool enclosed(const Eigen::Vector3d& start, const Eigen::Vector3d& dir, double first_hit) const {
     std::vector<bvh::RayHit> at_hit;
-    if (!triangles_.ray_hits({start, dir, first_hit + stand_off_}, at_hit).ok() || at_hit.empty()) return false;
+    if (!triangles_.ray_hits({start, dir, first_hit + tol_}, at_hit).ok() || at_hit.empty()) return false;
     for (const bvh::RayHit& h : at_hit)
       if (triangle_area_vector(prepared_.mesh, h.hull).dot(dir) <= 0.0) return false;
     return true;

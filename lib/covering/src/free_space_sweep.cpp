@@ -109,16 +109,14 @@ HullInterior hull_interior(const ConvexPolytope& hull, double tol) {
       if (std::abs(interior.planes[j].signed_distance(c)) > kOnePlaneInTolerances * tol) return false;
     return true;
   };
+  // Held by: the first plane the same as k that holds its own facet (k if
+  // none); one the same as a holder but not as k holds its own.
+  std::vector<bool> holds(interior.planes.size(), true);
   for (size_t k = 0; k < interior.planes.size(); ++k) {
-    std::vector<Eigen::Vector3d> facet = squares[k];
-    for (size_t j = 0; j < interior.planes.size() && !facet.empty(); ++j) {
-      if (j == k) continue;
-      if (same_plane(j, k)) {
-        if (j < k) facet.clear();
-        continue;
-      }
-      facet = clip_polygon(facet, interior.planes[j], 0.0);
-    }
+    for (size_t j = 0; j < k && holds[k]; ++j) holds[k] = !(holds[j] && same_plane(j, k));
+    std::vector<Eigen::Vector3d> facet = holds[k] ? squares[k] : std::vector<Eigen::Vector3d>{};
+    for (size_t j = 0; j < interior.planes.size() && !facet.empty(); ++j)
+      if (j != k && !same_plane(j, k)) facet = clip_polygon(facet, interior.planes[j], 0.0);
     if (facet.size() < 3) facet.clear();
     interior.facets.push_back(std::move(facet));
   }
