@@ -34,12 +34,16 @@ int bad_input(const Status& status) {
   return kExitBadInput;
 }
 
-void print_deepest_lost(const validate::ProbeReport& r) {
-  if (r.worst.empty()) return;
-  std::printf("  deepest lost points (max depth %.6g):\n", r.max_lost_depth);
-  for (const validate::LostPlace& p : r.worst)
-    std::printf("    depth %.6g in hull %d, from %s of face %d, at (%.6g, %.6g, %.6g)\n", p.depth, p.hull,
-                p.opening ? "the open edge" : "the front", p.face, p.point.x(), p.point.y(), p.point.z());
+void print_place(const char* label, const validate::LostPlace& p) {
+  if (p.hull < 0) return;
+  std::printf("%sdepth %.6g in hull %d, from %s of face %d, at (%.17g, %.17g, %.17g)\n", label, p.depth, p.hull,
+              p.opening ? "the open edge" : "the front", p.face, p.point.x(), p.point.y(), p.point.z());
+}
+
+void print_rays(const char* kind, const validate::RayTally& t) {
+  std::printf("  %s %ld of %ld rays lost (%.3f%%), %.6g long in all; %ld enclosed (allowed)\n", kind, t.lost, t.rays,
+              percent(t.lost, t.rays), t.lost_length, t.enclosed);
+  print_place("      deepest: ", t.deepest);
 }
 
 void print_audit(const AuditCommandOptions& o, const PreparedMesh& prepared, const validate::AuditReport& a) {
@@ -48,30 +52,47 @@ void print_audit(const AuditCommandOptions& o, const PreparedMesh& prepared, con
   const validate::BehaviourReport& b = a.behaviour;
   std::printf("%s: %s\n", o.hulls.c_str(),
               a.clean() ? "CLEAN: no accessible space lost" : "VIOLATIONS: accessible space lost");
-  std::printf("  %zu hulls against %zu faces; tolerance %.6g, probe distance %.6g, resolution %.6g\n", a.hull_count,
-              prepared.mesh.triangles.size(), prepared.tolerance.length, r.probe_distance, r.resolution);
-  if (a.groups_without_volume > 0)
-    std::printf("  %d OBJ groups span no volume and were skipped\n", a.groups_without_volume);
-  std::printf("  front free space: %ld of %ld points lost (%.3f%%)\n", r.front_lost, r.front_points,
-              percent(r.front_lost, r.front_points));
-  std::printf("  openings:         %ld of %ld points lost (%.3f%%)\n", r.opening_lost, r.opening_points,
-              percent(r.opening_lost, r.opening_points));
-  std::printf("  free volume:      %.6g of %.6g lost (%.3f%%), %ld of %ld octree cells (%ld more straddle a hull's "
-              "surface)\n",
-              r.lost_volume, r.free_volume, r.free_volume > 0 ? 100.0 * r.lost_volume / r.free_volume : 0.0,
-              r.lost_cells, r.free_cells, r.straddling_cells);
-  std::printf("  enclosed (allowed): %ld of %ld points inside hulls\n", r.enclosed_in_hulls, r.enclosed_points);
+  std::printf("  %zu hulls against %zu faces; tolerance %.6g, ray spacing %.6g, ", a.hull_count,
+              prepared.mesh.triangles.size(), prepared.tolerance.length, r.resolution);
+  if (r.probe_distance)
+    std::printf("rays capped at %.6g (not the strict definition)\n", *r.probe_distance);
+  else
+    std::printf("rays uncapped\n");
+  if (a.groups_without_area > 0)
+    std::printf("  %d OBJ groups span no area and were skipped\n", a.groups_without_area);
+  print_rays("front free space:", r.front);
+  print_rays("openings:        ", r.opening);
+  std::printf("  lost cells:       %ld octree cells hold a lost ray's deepest point\n", r.lost_cells);
   std::printf("  re-check: %ld mesh vertices and %ld edges inside hulls, %ld faces under flat hulls,\n"
               "            %ld hulls not convex; %ld faces (%.3f%% of the area) on no hull's surface;\n"
               "            %ld of the paper's bars in hulls (its stand-in for openings, measured above instead)\n",
               recheck.vertices_inside, recheck.edges_inside, recheck.faces_below_polygon,
               recheck.hulls_not_convex, recheck.faces_uncovered,
               recheck.total_area > 0 ? 100.0 * recheck.uncovered_area / recheck.total_area : 0.0, recheck.bars_inside);
-  std::printf("  behaviour: %ld proxies (size %.6g): %ld missed contacts, %ld false contacts (deepest %.6g),\n"
-              "             normals %.3g deg apart on average, %.3g at most, over %ld shared contacts\n",
-              b.poses, b.size, b.missed, b.false_contacts, b.max_false_depth, b.mean_normal_angle, b.max_normal_angle,
-              b.both_touch);
-  print_deepest_lost(r);
+  std::printf("  behaviour: %ld proxies (size %.6g): %ld missed contacts, %ld false contacts (%ld deeper than the\n"
+              "             tolerance, deepest %.6g), normals %.3g deg apart on average, %.3g at most, over %ld\n"
+              "             shared contacts\n",
+              b.poses, b.size, b.missed, b.false_contacts, b.deep_false_contacts, b.max_false_depth,
+              b.mean_normal_angle, b.max_normal_angle, b.both_touch);
+  if (!r.worst.empty()) std::printf("  deepest lost point per hull (max depth %.6g):\n", r.max_lost_depth);
+  for (const validate::LostPlace& p : r.worst) print_place("    ", p);
+}
+
+nlohmann::json place_json(const validate::LostPlace& p) {
+  if (p.hull < 0) return nullptr;
+  return {{"point", {p.point.x(), p.point.y(), p.point.z()}},
+          {"face", p.face},
+          {"hull", p.hull},
+          {"depth", p.depth},
+          {"opening", p.opening}};
+}
+
+nlohmann::json rays_json(const validate::RayTally& t) {
+  return {{"rays", t.rays},
+          {"enclosed", t.enclosed},
+          {"lost", t.lost},
+          {"lost_length", t.lost_length},
+          {"deepest", place_json(t.deepest)}};
 }
 
 nlohmann::json audit_json(const AuditCommandOptions& o, const PreparedMesh& prepared, const validate::AuditReport& a) {
@@ -79,29 +100,22 @@ nlohmann::json audit_json(const AuditCommandOptions& o, const PreparedMesh& prep
   const validate::CheckReport& recheck = a.recheck;
   const validate::BehaviourReport& b = a.behaviour;
   nlohmann::json worst = nlohmann::json::array();
-  for (const validate::LostPlace& p : r.worst)
-    worst.push_back({{"point", {p.point.x(), p.point.y(), p.point.z()}},
-                     {"face", p.face},
-                     {"hull", p.hull},
-                     {"depth", p.depth},
-                     {"opening", p.opening}});
+  for (const validate::LostPlace& p : r.worst) worst.push_back(place_json(p));
+  nlohmann::json findings = nlohmann::json::array();
+  for (validate::AuditFinding f : a.findings) findings.push_back(validate::audit_finding_name(f));
   return {
       {"mesh", o.mesh},
       {"hulls", o.hulls},
       {"clean", a.clean()},
+      {"findings", findings},
       {"hull_count", a.hull_count},
+      {"groups_without_area", a.groups_without_area},
       {"tolerance", prepared.tolerance.length},
-      {"probe_distance", r.probe_distance},
+      {"probe_distance", r.probe_distance ? nlohmann::json(*r.probe_distance) : nlohmann::json(nullptr)},
       {"resolution", r.resolution},
-      {"front", {{"points", r.front_points}, {"lost", r.front_lost}}},
-      {"openings", {{"points", r.opening_points}, {"lost", r.opening_lost}}},
-      {"enclosed", {{"points", r.enclosed_points}, {"in_hulls", r.enclosed_in_hulls}}},
-      {"free_space",
-       {{"cells", r.free_cells},
-        {"lost_cells", r.lost_cells},
-        {"straddling_cells", r.straddling_cells},
-        {"volume", r.free_volume},
-        {"lost_volume", r.lost_volume}}},
+      {"front", rays_json(r.front)},
+      {"openings", rays_json(r.opening)},
+      {"lost_cells", r.lost_cells},
       {"max_lost_depth", r.max_lost_depth},
       {"recheck",
        {{"vertices_inside", recheck.vertices_inside},
@@ -118,6 +132,7 @@ nlohmann::json audit_json(const AuditCommandOptions& o, const PreparedMesh& prep
         {"size", b.size},
         {"missed", b.missed},
         {"false_contacts", b.false_contacts},
+        {"deep_false_contacts", b.deep_false_contacts},
         {"max_false_depth", b.max_false_depth},
         {"both_touch", b.both_touch},
         {"mean_normal_angle_deg", b.mean_normal_angle},
@@ -155,23 +170,28 @@ void register_audit_command(CLI::App& app, int& exit_status) {
   auto o = std::make_shared<AuditCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
       "audit",
-      "Check that hulls take no accessible space from the scene: free space is probed by rays from every\n"
-      "face along its normal and from every open edge outward, up to the probe distance or the first mesh hit,\n"
-      "and every probed point and OctoMap free cell is tested against the hulls (deeper than the tolerance\n"
-      "= lost). Space behind a face (ray ending on a back face) is enclosed: reported, allowed. The paper's\n"
-      "conditions 1-4 and coverage are re-checked independently of the decomposer, and character proxies\n"
-      "near the surfaces are collided with the triangles and the hulls (missed and false contacts).\n"
+      "Check that hulls take no accessible space from the scene (DESIGN.md's strict definition): rays from\n"
+      "points of every face along its normal, and from every open edge outward in the face's plane and tilted\n"
+      "to either side, run with no distance cap to the first mesh hit (or out of the box of scene and hulls);\n"
+      "each is decided exactly against every hull it meets (the segment against the hull shrunk by the\n"
+      "tolerance): a stretch inside is lost. A ray whose first hit is the back of a face is enclosed:\n"
+      "reported, allowed. The paper's conditions 1-4 and coverage are re-checked independently of the\n"
+      "decomposer, and character proxies near the surfaces are collided with the triangles and the hulls\n"
+      "(missed contacts, and false contacts deeper than the tolerance, count as violations).\n"
       "Exit status 0 clean, 1 space lost, 2 unreadable input.");
   cmd->add_option("MESH", o->mesh, "The scene the hulls stand for")->required();
   cmd->add_option("HULLS", o->hulls,
                   "Hulls: a runtime file (.hcw) or an OBJ with one o/g group per hull (each hull the convex\n"
-                  "hull of its group's vertices)")
+                  "hull of its group's vertices; a group in one plane is a flat polygon)")
       ->required();
   cmd->add_option("--tol", o->tolerance, "Tolerance in scene units (default 1e-5 x bounding-box diagonal)");
   cmd->add_option("--probe", o->audit.probe.probe_distance,
-                  "Probe distance R in scene units (default 0.02 x diagonal)")
+                  "Optional cap on every ray's length in scene units (default none: the strict definition;\n"
+                  "a cap audits less than it)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--resolution", o->audit.probe.resolution, "Octree cell and sample spacing (default R / 8)")
+  cmd->add_option("--resolution", o->audit.probe.resolution,
+                  "Ray spacing on faces and open edges, and octree cell size (default 0.0025 x diagonal; every\n"
+                  "face gets rays however small)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--bar-length", o->audit.bar_half_length,
                   "Half-length of the boundary bars of the re-check (default 0.1 x diagonal, the paper-mode default)")
@@ -184,7 +204,7 @@ void register_audit_command(CLI::App& app, int& exit_status) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--seed", o->audit.behaviour.seed, "Seed of the proxy poses")->capture_default_str();
   cmd->add_option("--octree", o->audit.probe.octree_path,
-                  "Write the probed octree (.bt, for OctoMap's viewer; origin = box centre)");
+                  "Write the octree of the cells of lost rays' deepest points (.bt, for OctoMap's viewer; origin = box centre)");
   cmd->add_option("--json", o->json_path, "Write the figures as JSON");
   cmd->callback([o, &exit_status] { exit_status = run_audit_command(*o); });
 }

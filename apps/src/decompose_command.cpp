@@ -110,8 +110,8 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
       ->check(CLI::IsMember({"exact", "paper"}))
       ->capture_default_str();
   cmd->add_option("--reach", o->decompose.free_space_reach,
-                  "Exact mode: how far free space is kept in front of faces and beyond open edges, scene units "
-                  "(default 0.02 x diagonal, the audit's probe distance)");
+                  "Exact mode: cap on how far free space is kept in front of faces and beyond open edges, scene "
+                  "units (default: no cap, every ray of free space up to its first mesh hit)");
   cmd->add_option("--near-merge", o->decompose.near_merge_distance,
                   "After the paper's merging, also try patches that share no edge but come within this distance, "
                   "scene units, under the same conditions; 0 = off, the paper's algorithm alone (default: exact "

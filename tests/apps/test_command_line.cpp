@@ -190,14 +190,21 @@ TEST(CommandLine, AuditExitsZeroWhenCleanOneWhenSpaceIsLostTwoWhenUnreadable) {
   EXPECT_NE(r.out.find("CLEAN"), std::string::npos) << r.out;
   const nlohmann::json j = nlohmann::json::parse(slurp(dir.path("a.json")));
   EXPECT_TRUE(j["clean"].get<bool>());
-  EXPECT_GT(j["front"]["points"].get<long>(), 0);
+  EXPECT_GT(j["front"]["rays"].get<long>(), 0);
+  EXPECT_EQ(j["front"]["lost"].get<long>(), 0);
+  EXPECT_TRUE(j["front"]["deepest"].is_null());
+  EXPECT_TRUE(j["probe_distance"].is_null());  // no cap unless asked
   // One hull over the whole building, as an OBJ group: the rooms are lost.
   const std::string blob = dir.write("blob.obj", "o all\nv -5 0 -4\nv 5 0 -4\nv 5 3.2 -4\nv -5 3.2 -4\n"
                                                  "v -5 0 4\nv 5 0 4\nv 5 3.2 4\nv -5 3.2 4\n"
                                                  "f 1 2 3 4\nf 5 6 7 8\n");
-  r = run(dir, "audit " + scene + " " + blob + " --resolution 0.15");
+  r = run(dir, "audit " + scene + " " + blob + " --resolution 0.15 --json " + dir.path("b.json"));
   EXPECT_EQ(r.status, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("VIOLATIONS"), std::string::npos) << r.out;
+  const nlohmann::json lost = nlohmann::json::parse(slurp(dir.path("b.json")));
+  EXPECT_GT(lost["front"]["lost"].get<long>(), 0);
+  EXPECT_EQ(lost["front"]["deepest"]["hull"].get<int>(), 0);
+  EXPECT_GT(lost["front"]["lost_length"].get<double>(), 0.0);
   EXPECT_EQ(run(dir, "audit " + scene + " " + dir.path("missing.obj")).status, 2);
   EXPECT_EQ(run(dir, "audit " + dir.path("missing.obj") + " " + blob).status, 2);
 }

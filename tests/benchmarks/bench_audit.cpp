@@ -34,9 +34,9 @@ void audit(benchmark::State& state, std::shared_ptr<PreparedMesh> prepared, std:
     behaviour = validate::compare_behaviour(*prepared, *triangles, *hulls, {}).value();
     benchmark::DoNotOptimize(recheck);
   }
-  state.counters["front_lost_pct"] = 100.0 * probe.front_lost / std::max(1L, probe.front_points);
-  state.counters["opening_lost_pct"] = 100.0 * probe.opening_lost / std::max(1L, probe.opening_points);
-  state.counters["volume_lost_pct"] = probe.free_volume > 0 ? 100.0 * probe.lost_volume / probe.free_volume : 0.0;
+  state.counters["front_lost_pct"] = 100.0 * probe.front.lost / std::max(1L, probe.front.rays);
+  state.counters["opening_lost_pct"] = 100.0 * probe.opening.lost / std::max(1L, probe.opening.rays);
+  state.counters["lost_length"] = probe.front.lost_length + probe.opening.lost_length;
   state.counters["missed"] = static_cast<double>(behaviour.missed);
   state.counters["false"] = static_cast<double>(behaviour.false_contacts);
 }

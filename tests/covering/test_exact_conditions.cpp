@@ -6,7 +6,11 @@
 
 #include "covering_fixture.h"
 
+#include "indexed_scene.h"
 #include "scene_index.h"
+#include "validity_conditions.h"
+
+#include "hullcover/covering/convex_hull_3d.h"
 
 #include "hullcover/mesh/scene_builder.h"
 
@@ -103,6 +107,96 @@ TEST(ExactConditions, FoldEdgeIsOpen) {
   for (int e = 0; e < static_cast<int>(prepared.value().connectivity.edges.size()); ++e)
     folds += is_fold_edge(prepared.value(), e);
   EXPECT_EQ(folds, 3);
+}
+
+
+// ---- DESIGN.md's strict free space, decided on hand-made hulls ---------------
+// Each case asks check_solid_hull about one hull over a small scene, at the
+// default (uncapped) reach, as the decomposer asks about a merged patch.
+
+ConvexPolytope box_hull(const V& min, const V& max) {
+  Mesh box;
+  add_box(box, min, max, true);
+  return ConvexHullBuilder().build(box.positions, {}).value();
+}
+
+Validity exact_verdict(const Mesh& m, const ConvexPolytope& hull) {
+  Result<PreparedMesh> prepared = prepare_mesh(m, std::nullopt);
+  EXPECT_TRUE(prepared.ok());
+  const double margin = 0.0;  // the hulls below lie within the scene's box
+  BarOptions bars{kExactBarHalfLengthInTolerances * prepared.value().tolerance.length, false, ValidityMode::exact,
+                  uncapped_free_space_reach(prepared.value(), margin), margin};
+  const auto scene = test::index_scene(m, std::nullopt, bars);
+  std::vector<int> scratch;
+  return check_solid_hull(scene->index, hull, scratch);
+}
+
+// A floor (y = 0, facing up) and, standing on it, a tube x, z in [0, 1] up
+// to y = 2 with walls facing out: the floor inside the tube looks up.
+Mesh floor_and_open_tube() {
+  Mesh m;
+  add_quad_facing(m, V(-3, 0, -3), V(4, 0, -3), V(4, 0, 4), V(-3, 0, 4), V(0, 1, 0));
+  add_quad_facing(m, V(0, 0, 0), V(1, 0, 0), V(1, 2, 0), V(0, 2, 0), V(0, 0, -1));
+  add_quad_facing(m, V(0, 0, 1), V(1, 0, 1), V(1, 2, 1), V(0, 2, 1), V(0, 0, 1));
+  add_quad_facing(m, V(0, 0, 0), V(0, 0, 1), V(0, 2, 1), V(0, 2, 0), V(-1, 0, 0));
+  add_quad_facing(m, V(1, 0, 0), V(1, 0, 1), V(1, 2, 1), V(1, 2, 0), V(1, 0, 0));
+  return m;
+}
+
+TEST(StrictFreeSpace, HullFillingAnOpenTopTubeTakesTheRaysThatEscape) {
+  EXPECT_EQ(exact_verdict(floor_and_open_tube(), box_hull(V(0, 0, 0), V(1, 2, 1))), Validity::front_space_inside);
+}
+
+TEST(StrictFreeSpace, HullFillingACappedTubeIsEnclosed) {
+  Mesh m = floor_and_open_tube();
+  // One-sided cap facing up: the floor's rays end on its back.
+  add_quad_facing(m, V(0, 2, 0), V(1, 2, 0), V(1, 2, 1), V(0, 2, 1), V(0, 1, 0));
+  EXPECT_EQ(exact_verdict(m, box_hull(V(0, 0, 0), V(1, 2, 1))), Validity::valid);
+}
+
+TEST(StrictFreeSpace, HullFloatingFarAboveAFloorTakesItsSpace) {
+  Mesh m;
+  add_quad_facing(m, V(0, 0, 0), V(10, 0, 0), V(10, 0, 10), V(0, 0, 10), V(0, 1, 0));
+  add_quad_facing(m, V(0, 9, 0), V(0.1, 9, 0), V(0.1, 9, 0.1), V(0, 9, 0.1), V(0, 1, 0));  // only to size the scene
+  // 8 units up: far beyond the old 0.02 x diagonal reach.
+  EXPECT_EQ(exact_verdict(m, box_hull(V(4, 8, 4), V(5, 8.5, 5))), Validity::front_space_inside);
+}
+
+TEST(StrictFreeSpace, HullUnderAOneSidedTableTopIsEnclosed) {
+  Mesh m;
+  add_quad_facing(m, V(-2, 0, -2), V(3, 0, -2), V(3, 0, 3), V(-2, 0, 3), V(0, 1, 0));
+  add_quad_facing(m, V(0, 1, 0), V(1, 1, 0), V(1, 1, 1), V(0, 1, 1), V(0, 1, 0));
+  EXPECT_EQ(exact_verdict(m, box_hull(V(0, 0, 0), V(1, 1, 1))), Validity::valid);
+  // The same top facing down is a ceiling: the space under it is open.
+  Mesh ceiling;
+  add_quad_facing(ceiling, V(-2, 0, -2), V(3, 0, -2), V(3, 0, 3), V(-2, 0, 3), V(0, 1, 0));
+  add_quad_facing(ceiling, V(0, 1, 0), V(1, 1, 0), V(1, 1, 1), V(0, 1, 1), V(0, -1, 0));
+  EXPECT_NE(exact_verdict(ceiling, box_hull(V(0, 0, 0), V(1, 1, 1))), Validity::valid);
+}
+
+// Interpenetrating kit pieces: a floor triangle (facing up, its edges all
+// outside) runs through a closed pillar; inside it, its rays end on the
+// pillar's top from behind.
+TEST(StrictFreeSpace, FloorRunningIntoAClosedPillarIsEnclosed) {
+  Mesh m;
+  test::add_triangle(m, V(-5, 0.5, -5), V(-5, 0.5, 10), V(10, 0.5, -5));
+  ASSERT_GT(triangle_area_vector(m, 0).y(), 0.0);
+  add_box(m, V(0, 0, 0), V(1, 2, 1), true);
+  EXPECT_EQ(exact_verdict(m, box_hull(V(0, 0, 0), V(1, 2, 1))), Validity::valid);
+}
+
+// A floor's open edge at x = 1; a hull lies beyond it, below the floor's
+// plane, where only the opening's fan tilted to the back (kOpeningTiltSine)
+// passes: at x = 1.5 that fan is 0.05 below the plane.
+TEST(StrictFreeSpace, TiltedOpeningIsKept) {
+  Mesh m;
+  add_quad_facing(m, V(0, 0, 0), V(1, 0, 0), V(1, 0, 1), V(0, 0, 1), V(0, 1, 0));
+  add_quad_facing(m, V(-1, -1, -1), V(-0.9, -1, -1), V(-0.9, -1, -0.9), V(-1, -1, -0.9), V(0, 1, 0));  // sizes the scene
+  add_quad_facing(m, V(3, 1, 2), V(3.1, 1, 2), V(3.1, 1, 2.1), V(3, 1, 2.1), V(0, 1, 0));
+  const ConvexPolytope below = box_hull(V(1.5, -0.08, 0.2), V(2, -0.03, 0.8));
+  EXPECT_EQ(exact_verdict(m, below), Validity::opening_inside);
+  // Lower, out of the tilted fan's reach there, it takes nothing.
+  EXPECT_EQ(exact_verdict(m, box_hull(V(1.5, -0.6, 0.2), V(2, -0.3, 0.8))), Validity::valid);
 }
 
 } // namespace

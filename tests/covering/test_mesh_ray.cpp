@@ -7,8 +7,15 @@
 #include "exact_conditions.h"
 #include "mesh_ray.h"
 #include "hullcover/mesh/scene_builder.h"
+#include "hullcover/geometry/incremental_hull.h"
+#include "hullcover/geometry/tolerances.h"
 
 #include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <limits>
+#include <random>
 
 namespace hullcover {
 namespace {
@@ -81,6 +88,60 @@ TEST(HullInterior, IsTheHullShrunkByTolAndVanishesWhenThin) {
   add_box(slab, V(0, 0, 0), V(1, 1.5 * tol, 1), true);
   std::vector<V> slab_corners = slab.positions;
   EXPECT_TRUE(hull_interior(builder.build(slab_corners, {}).value(), tol).empty());
+}
+
+// Whether the ray from `p` (inside the interior) along `dir` leaves through
+// one of the interior's facet polygons (interior of a hull shrunk by tol).
+bool leaves_through_a_facet(const HullInterior& interior, const V& p, const V& dir, double tol) {
+  double leave = std::numeric_limits<double>::infinity();
+  for (const Plane& plane : interior.planes)
+    if (plane.normal.dot(dir) > 0.0) leave = std::min(leave, -plane.signed_distance(p) / plane.normal.dot(dir));
+  const V exit = p + leave * dir;
+  for (size_t k = 0; k < interior.facets.size(); ++k) {
+    const std::vector<V>& f = interior.facets[k];
+    // Planes that stay within kOnePlaneInTolerances tol of each other share
+    // one facet.
+    if (f.size() < 3 || std::abs(interior.planes[k].signed_distance(exit)) > kOnePlaneInTolerances * tol) continue;
+    bool inside = true;  // on the inner side of each edge of the convex facet
+    for (size_t e = 0; e < f.size() && inside; ++e)
+      inside = (f[(e + 1) % f.size()] - f[e]).cross(exit - f[e]).dot(interior.planes[k].normal) >= -1e-9;
+    if (inside) return true;
+  }
+  return false;
+}
+
+// A hull grown point by point (as merging grows them) over a bumpy, nearly
+// flat floor: its bottom is many triangles meeting at shallow angles.
+// Shrunk by tol, a sliver among them vanishes and its neighbours' shrunk
+// planes take its place, beyond the facets moved in by tol: every ray
+// leaving the interior must still leave through some interior facet
+// (dungeon, face 3204's tilted opening leaving through such a gap went
+// unjudged).
+TEST(HullInterior, NearlyCoplanarFacetsStillCloseTheInterior) {
+  const double tol = 0.001;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int failures = 0, checked = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<V> points;
+    for (int i = 0; i < 24; ++i) points.push_back(V(u(rng), u(rng), 3 * tol * u(rng)));  // the bumpy floor
+    for (const V& top : {V(0, 0, 0.2), V(1, 0, 0.2), V(1, 1, 0.2), V(0, 1, 0.2)}) points.push_back(top);
+    ConvexHullBuilder builder;
+    std::optional<ConvexPolytope> hull =
+        builder.build({points[24], points[25], points[26], points[27], points[0]}, {24, 25, 26, 27, 0}).value();
+    for (int i = 1; i < 24 && hull; ++i) hull = add_point_to_hull(*hull, points[i], i, kVisibleBeyondTolerances * tol);
+    ASSERT_TRUE(hull);
+    const HullInterior interior = hull_interior(*hull, tol);
+    for (int i = 0; i < 200; ++i) {
+      const V p(u(rng), u(rng), 0.1);
+      if (deepest_signed_distance(interior.planes, p) > 0.0) continue;
+      const V dir = V(0.2 * (u(rng) - 0.5), 0.2 * (u(rng) - 0.5), -1).normalized();
+      ++checked;
+      failures += !leaves_through_a_facet(interior, p, dir, tol);
+    }
+  }
+  EXPECT_EQ(failures, 0) << "of " << checked << " rays down through the bumpy floor";
+  EXPECT_GT(checked, 2000);
 }
 
 // Witness rays (witness_rays.h) through sweep_enters_hull: a wall W at x = 0

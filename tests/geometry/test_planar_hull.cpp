@@ -55,5 +55,16 @@ TEST(FlatPolygon, IsProjectedOntoItsPlaneWithOutwardSides) {
   for (const Plane& side : p.sides) EXPECT_LT(side.signed_distance({1, 1, 0}), -0.5);
 }
 
+// Coverage (issue 13, recast-dungeon): the plane runs through the middle of
+// the points' slab, so a lone raised point is half the slab off it, not
+// three quarters as through their mean.
+TEST(FlatPolygon, PlaneRunsThroughTheMiddleOfTheSlab) {
+  const double h = 1e-6;
+  std::vector<Eigen::Vector3d> positions = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {1, 1, h}};
+  const FlatPolygon p = make_flat_polygon(positions, {0, 1, 2, 3, 4}, Eigen::Vector3d::UnitZ(), 1e-9);
+  ASSERT_EQ(p.corners.size(), 4u);
+  for (const Eigen::Vector3d& q : positions) EXPECT_LE(std::abs(p.plane.signed_distance(q)), 0.5 * h * (1 + 1e-9));
+}
+
 } // namespace
 } // namespace hullcover

@@ -26,7 +26,6 @@ using test::box_hull;
 ProbeReport probe(const test::Decomposed& d, std::vector<bvh::RuntimeHull> hulls, ProbeOptions options = {}) {
   const auto world = bvh::HullWorld::build(std::move(hulls)).value();
   const auto triangles = bvh::TriangleWorld::build(d.prepared.mesh, d.tol()).value();
-  if (!options.resolution) options.resolution = d.prepared.tolerance.diagonal * kDefaultProbeRelative / 4.0;
   Result<ProbeReport> r = probe_accessible_space(d.prepared, *triangles, *world, options);
   EXPECT_TRUE(r.ok()) << r.status().message();
   return r.value();
@@ -36,18 +35,18 @@ TEST(AccessibleSpace, DecomposedBuildingIsCleanAndAClosedDoorwayIsCaught) {
   const auto d = test::decompose_and_check(demo_building());
   ASSERT_TRUE(d);
   const ProbeReport clean = probe(*d, bvh::runtime_hulls(d->covering));
-  EXPECT_GT(clean.front_points, 1000);
-  EXPECT_GT(clean.opening_points, 100);
-  EXPECT_EQ(clean.front_lost, 0);
-  EXPECT_EQ(clean.opening_lost, 0);
+  EXPECT_GT(clean.front.rays, 1000);
+  EXPECT_GT(clean.opening.rays, 100);
+  EXPECT_EQ(clean.front.lost, 0);
+  EXPECT_EQ(clean.opening.lost, 0);
   EXPECT_EQ(clean.lost_cells, 0);
-  EXPECT_GT(clean.enclosed_points, 0);  // inside the wall boxes and stairs
+  EXPECT_GT(clean.front.enclosed, 0);  // inside the wall boxes and stairs
 
   // The same hulls plus one that fills the doorway.
   std::vector<bvh::RuntimeHull> closed = bvh::runtime_hulls(d->covering);
   closed.push_back(box_hull(V(-0.6, 0.0, 3.8), V(0.6, 2.1, 4.0)));
   const ProbeReport caught = probe(*d, closed);
-  EXPECT_GT(caught.front_lost + caught.opening_lost, 0);
+  EXPECT_GT(caught.lost_rays(), 0);
   EXPECT_GT(caught.lost_cells, 0);
   ASSERT_FALSE(caught.worst.empty());
   EXPECT_EQ(caught.worst[0].hull, static_cast<int>(closed.size()) - 1);
@@ -59,14 +58,15 @@ TEST(AccessibleSpace, AHullAboveTheTerrainIsCaught) {
                    [](double x, double z) { return 0.2 * std::sin(x) * std::cos(z); });
   const auto d = test::decompose_and_check(terrain);
   ASSERT_TRUE(d);
-  ProbeOptions metre;  // the default (2% of the diagonal) is 17 cm here
+  ProbeOptions metre;  // capped at a metre: the cap an agent's reach would give
   metre.probe_distance = 1.0;
   metre.resolution = 0.1;
-  EXPECT_EQ(probe(*d, bvh::runtime_hulls(d->covering), metre).front_lost, 0);
+  EXPECT_EQ(probe(*d, bvh::runtime_hulls(d->covering), metre).front.lost, 0);
   std::vector<bvh::RuntimeHull> hulls = bvh::runtime_hulls(d->covering);
   hulls.push_back(box_hull(V(2, 0.25, 2), V(3, 0.6, 3)));  // floating above the ground
   const ProbeReport r = probe(*d, hulls, metre);
-  EXPECT_GT(r.front_lost, 0);
+  EXPECT_GT(r.front.lost, 0);
+  EXPECT_EQ(r.front.deepest.hull, static_cast<int>(hulls.size()) - 1);
 }
 
 TEST(AccessibleSpace, AHullFillingARoomSeenFromInsideIsCaught) {
@@ -74,10 +74,13 @@ TEST(AccessibleSpace, AHullFillingARoomSeenFromInsideIsCaught) {
   add_box(room, V(0, 0, 0), V(4, 3, 5), false);
   const auto d = test::decompose_and_check(room);
   ASSERT_TRUE(d);
-  EXPECT_EQ(probe(*d, bvh::runtime_hulls(d->covering)).front_lost, 0);
+  EXPECT_EQ(probe(*d, bvh::runtime_hulls(d->covering)).front.lost, 0);
+  // Every front ray crosses the room from wall to wall, inside the hull
+  // but for tol at either end; no point is deeper than half the 3 m height.
   const ProbeReport filled = probe(*d, {box_hull(V(0, 0, 0), V(4, 3, 5))});
-  EXPECT_GT(filled.front_lost, filled.front_points / 2);
-  EXPECT_NEAR(filled.lost_volume / filled.free_volume, 1.0, 0.2);
+  EXPECT_EQ(filled.front.lost, filled.front.rays);
+  EXPECT_NEAR(filled.front.deepest.depth, 1.5, 0.05);
+  EXPECT_LE(filled.max_lost_depth, 1.5 + 1e-9);
 }
 
 TEST(AccessibleSpace, RefusesBadOptions) {
@@ -157,12 +160,21 @@ TEST(HullSet, ReadsObjGroupsAndRefusesBadOnes) {
              std::to_string((i >> 2) & 1) + "\n";
     obj += "f -8 -7 -6 -5\nf -4 -3 -2 -1\n";
   }
+  // A flat group is a polygon of thickness 0 facing the way it winds (+z);
+  // one on a line spans no area and is skipped.
   obj += "g flat\nv 0 0 9\nv 1 0 9\nv 0 1 9\nf -3 -2 -1\n";
+  obj += "g line\nv 0 0 12\nv 1 0 12\nv 2 0 12\nf -3 -2 -1\n";
   const Result<HullSet> set = load_hull_set(dir.write("hulls.obj", obj));
   ASSERT_TRUE(set.ok()) << set.status().message();
-  ASSERT_EQ(set.value().hulls.size(), 2u);
-  EXPECT_EQ(set.value().groups_without_volume, 1);
+  ASSERT_EQ(set.value().hulls.size(), 3u);
+  EXPECT_EQ(set.value().groups_without_area, 1);
   EXPECT_NEAR(polytope_volume(set.value().hulls[1].shape), 1.0, 1e-12);
+  const ConvexPolytope& flat = set.value().hulls[2].shape;
+  EXPECT_EQ(flat.vertices.size(), 3u);
+  ASSERT_EQ(flat.facets.size(), 2u);
+  EXPECT_NEAR(flat.planes[0].normal.z(), 1.0, 1e-12);
+  EXPECT_NEAR(flat.planes[0].offset, 9.0, 1e-12);
+  EXPECT_EQ(polytope_volume(flat), 0.0);
   EXPECT_EQ(load_hull_set(dir.write("bad.obj", "v 0 0 0\nf 1 2 3\n")).status().code(), StatusCode::unreadable_file);
   EXPECT_EQ(load_hull_set(dir.path("missing.obj")).status().code(), StatusCode::file_not_found);
   EXPECT_EQ(load_hull_set(dir.write("none.obj", "# nothing\n")).status().code(), StatusCode::empty_scene);

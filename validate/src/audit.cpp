@@ -34,7 +34,7 @@ Result<AuditReport> audit(const PreparedMesh& prepared, const HullSet& set, cons
     return Status{StatusCode::invalid_argument, "the bar half-length must be a positive length"};
   AuditReport report;
   report.hull_count = set.hulls.size();
-  report.groups_without_volume = set.groups_without_volume;
+  report.groups_without_area = set.groups_without_area;
   report.recheck = recheck_hulls(prepared, hulls_under_check(set.hulls), bar_half_length);
   const Result<Worlds> worlds = build_worlds(prepared, set);
   if (!worlds.ok()) return worlds.status();
@@ -56,9 +56,9 @@ const char* audit_finding_name(AuditFinding finding) {
   switch (finding) {
     case AuditFinding::front_space_lost: return "front_space_lost";
     case AuditFinding::openings_lost: return "openings_lost";
-    case AuditFinding::free_cells_lost: return "free_cells_lost";
     case AuditFinding::recheck_violations: return "recheck_violations";
     case AuditFinding::contacts_missed: return "contacts_missed";
+    case AuditFinding::false_contacts: return "false_contacts";
   }
   return "unknown";
 }
@@ -66,11 +66,11 @@ const char* audit_finding_name(AuditFinding finding) {
 std::vector<AuditFinding> audit_findings(const ProbeReport& probe, const CheckReport& recheck,
                                          const BehaviourReport& behaviour) {
   std::vector<AuditFinding> findings;
-  if (probe.front_lost != 0) findings.push_back(AuditFinding::front_space_lost);
-  if (probe.opening_lost != 0) findings.push_back(AuditFinding::openings_lost);
-  if (probe.lost_cells != 0) findings.push_back(AuditFinding::free_cells_lost);
+  if (probe.front.lost != 0) findings.push_back(AuditFinding::front_space_lost);
+  if (probe.opening.lost != 0) findings.push_back(AuditFinding::openings_lost);
   if (recheck.violations() != 0) findings.push_back(AuditFinding::recheck_violations);
   if (behaviour.missed != 0) findings.push_back(AuditFinding::contacts_missed);
+  if (behaviour.deep_false_contacts != 0) findings.push_back(AuditFinding::false_contacts);
   return findings;
 }
 

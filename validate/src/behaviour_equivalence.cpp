@@ -1,9 +1,12 @@
 #include "hullcover/validate/behaviour_equivalence.h"
 
+#include "hullcover/geometry/tolerances.h"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 namespace hullcover::validate {
@@ -15,11 +18,14 @@ constexpr double kDefaultProxyRelative = 0.005;
 constexpr int kContactsCompared = 16;
 
 // Is `p` in accessible space: does the ray from it along `dir` first meet a
-// face from the front (or nothing)?
+// face from the front (or nothing)? `free_to` is how far along the ray
+// (infinite when it meets nothing).
 bool accessible(const bvh::TriangleWorld& triangles, const Mesh& mesh, const Eigen::Vector3d& p,
-                const Eigen::Vector3d& dir, double reach) {
+                const Eigen::Vector3d& dir, double reach, double& free_to) {
   bvh::RayResult hit;
+  free_to = std::numeric_limits<double>::infinity();
   if (!triangles.ray_cast({p, dir, reach}, hit).ok() || !hit.hit) return true;
+  free_to = hit.first.t;
   return triangle_area_vector(mesh, hit.first.hull).dot(dir) < 0.0;
 }
 
@@ -54,10 +60,17 @@ Result<BehaviourReport> compare_behaviour(const PreparedMesh& prepared, const bv
                                       b * (mesh.positions[t[2]] - mesh.positions[t[0]]);
       // From just touching to 0.5 size into the surface, and up to 1.5 size clear of it.
       Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-      pose.translation() = on_face + n * (s * (2.0 * u(rng) - 0.5));
+      const double lift = s * (2.0 * u(rng) - 0.5);
+      pose.translation() = on_face + n * lift;
       pose.linear() = Eigen::Quaterniond(Eigen::Vector4d(g(rng), g(rng), g(rng), g(rng)).normalized()).toRotationMatrix();
-      if (!accessible(triangles, mesh, on_face + n * (2.0 * prepared.tolerance.length), n, prepared.tolerance.diagonal))
-        continue;
+      const double stand_off = kRayStandOffInTolerances * prepared.tolerance.length;
+      double free_to = 0.0;
+      if (!accessible(triangles, mesh, on_face + n * stand_off, n, prepared.tolerance.diagonal, free_to)) continue;
+      // Its centre on the face's open front ray: a point of accessible space.
+      // One behind the face (a box proxy can sit wholly inside a closed
+      // object past the face's edge) touches no triangle yet stands in no
+      // free space.
+      const bool centre_free = lift > stand_off && lift < stand_off + free_to;
       const bvh::QueryShape shape = i % 3 == 0   ? bvh::QueryShape::sphere(s)
                                     : i % 3 == 1 ? bvh::QueryShape::capsule(0.6 * s, s)
                                                  : bvh::QueryShape::box(Eigen::Vector3d(s, 0.7 * s, 0.5 * s));
@@ -81,6 +94,9 @@ Result<BehaviourReport> compare_behaviour(const PreparedMesh& prepared, const bv
         ++report.missed;
       } else if (h_touch) {
         ++report.false_contacts;
+        // A proxy clear of every triangle yet deeper than tol in a hull
+        // stands in free space the hull takes (DESIGN.md, "behaviour").
+        report.deep_false_contacts += centre_free && on_hulls.contacts[0].depth > prepared.tolerance.length;
         report.max_false_depth = std::max(report.max_false_depth, on_hulls.contacts[0].depth);
       } else {
         ++report.neither_touches;

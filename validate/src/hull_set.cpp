@@ -2,24 +2,83 @@
 
 #include "hullcover/bvh/runtime_file.h"
 #include "hullcover/covering/convex_hull_3d.h"
+#include "hullcover/geometry/planar_hull.h"
+#include "hullcover/geometry/tolerances.h"
+
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 namespace hullcover::validate {
 namespace {
 
+// One `o` or `g` group: the vertices its faces use, and the sum of their
+// winding normals (which side a flat group faces).
+struct ObjGroup {
+  std::vector<int> vertices;
+  Eigen::Vector3d winding = Eigen::Vector3d::Zero();
+};
+
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// The plane of a group's points, fitted through three far-apart ones (the
+// first, the farthest from it, the farthest from the line through both),
+// facing the way the group's faces wind. A zero normal when the points are
+// collinear or one.
+Plane group_plane(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& winding) {
+  const Eigen::Vector3d& a = points.front();
+  const auto farthest = [&](const auto& distance) {
+    return *std::max_element(points.begin(), points.end(),
+                             [&](const Eigen::Vector3d& p, const Eigen::Vector3d& q) { return distance(p) < distance(q); });
+  };
+  const Eigen::Vector3d b = farthest([&](const Eigen::Vector3d& p) { return (p - a).squaredNorm(); });
+  const Eigen::Vector3d c = farthest([&](const Eigen::Vector3d& p) { return (p - a).cross(b - a).squaredNorm(); });
+  Eigen::Vector3d n = (b - a).cross(c - a);
+  if (n.squaredNorm() == 0.0) return {Eigen::Vector3d::Zero(), 0.0};
+  n.normalize();
+  if (n.dot(winding) < 0.0) n = -n;
+  return {n, n.dot(a)};
+}
+
+// One OBJ group as a hull: the convex hull of its vertices, or, when they
+// lie in one plane, a convex polygon of thickness 0 (what hullcover's OBJ
+// writes for a flat hull: its front polygon). "In one plane" is within
+// kDefaultRelativeTolerance of the group's own extent, the same fraction
+// that gives a scene its default tol: the set carries no scene tolerance.
+// Nothing for points that span no area (collinear, or one point).
+std::optional<bvh::RuntimeHull> group_hull(ConvexHullBuilder& builder, const std::vector<Eigen::Vector3d>& vertices,
+                                           const ObjGroup& group) {
+  std::vector<int> ids = group.vertices;
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  std::vector<Eigen::Vector3d> points;
+  for (int v : ids) points.push_back(vertices[v]);
+  const double flatness = kDefaultRelativeTolerance * bounding_box_of(points).diagonal();
+  const Plane plane = group_plane(points, group.winding);
+  const bool in_plane = std::all_of(points.begin(), points.end(),
+                                    [&](const Eigen::Vector3d& p) { return std::abs(plane.signed_distance(p)) <= flatness; });
+  if (!in_plane) {
+    Result<ConvexPolytope> solid = builder.build(points);
+    if (!solid.ok()) return std::nullopt;
+    return bvh::make_runtime_hull(std::move(solid).value(), 0);
+  }
+  if (plane.normal.squaredNorm() == 0.0) return std::nullopt;
+  const FlatPolygon polygon = make_flat_polygon(vertices, ids, plane.normal, flatness);
+  if (polygon.corners.size() < 3) return std::nullopt;
+  return bvh::make_runtime_hull(flat_polytope(polygon, true), 0);
 }
 
 Result<HullSet> read_obj_groups(const std::string& path) {
   std::ifstream in(path);
   if (!in) return Status{StatusCode::file_not_found, path + ": no such file"};
   std::vector<Eigen::Vector3d> vertices;
-  std::vector<std::vector<int>> groups(1);  // group 0: faces before any o/g line
+  std::vector<ObjGroup> groups(1);  // group 0: faces before any o/g line
   std::string line;
   int number = 0;
   while (std::getline(in, line)) {
@@ -33,35 +92,34 @@ Result<HullSet> read_obj_groups(const std::string& path) {
         return Status{StatusCode::unreadable_file, path + ":" + std::to_string(number) + ": bad vertex"};
       vertices.push_back(v);
     } else if (tag == "o" || tag == "g") {
-      if (!groups.back().empty()) groups.emplace_back();
+      if (!groups.back().vertices.empty()) groups.emplace_back();
     } else if (tag == "f") {
       std::string corner;
+      std::vector<Eigen::Vector3d> face;
       while (words >> corner) {
         const long index = std::strtol(corner.c_str(), nullptr, 10);  // "7/2/5" reads as 7
         const long resolved = index < 0 ? static_cast<long>(vertices.size()) + index : index - 1;
         if (index == 0 || resolved < 0 || resolved >= static_cast<long>(vertices.size()))
           return Status{StatusCode::unreadable_file,
                         path + ":" + std::to_string(number) + ": face corner " + corner + " names no vertex"};
-        groups.back().push_back(static_cast<int>(resolved));
+        groups.back().vertices.push_back(static_cast<int>(resolved));
+        face.push_back(vertices[resolved]);
       }
+      // Newell's normal: the face's winding, whatever its corner count.
+      for (size_t i = 0; i < face.size(); ++i) groups.back().winding += face[i].cross(face[(i + 1) % face.size()]);
     }
   }
   HullSet set;
   ConvexHullBuilder builder;
-  for (std::vector<int>& group : groups) {
-    if (group.empty()) continue;
-    std::sort(group.begin(), group.end());
-    group.erase(std::unique(group.begin(), group.end()), group.end());
-    std::vector<Eigen::Vector3d> points;
-    for (int v : group) points.push_back(vertices[v]);
-    Result<ConvexPolytope> hull = builder.build(points);
-    if (!hull.ok()) {
-      ++set.groups_without_volume;
-      continue;
-    }
-    set.hulls.push_back(bvh::make_runtime_hull(std::move(hull).value(), 0));
+  for (const ObjGroup& group : groups) {
+    if (group.vertices.empty()) continue;
+    std::optional<bvh::RuntimeHull> hull = group_hull(builder, vertices, group);
+    if (hull)
+      set.hulls.push_back(std::move(*hull));
+    else
+      ++set.groups_without_area;
   }
-  if (set.hulls.empty()) return Status{StatusCode::empty_scene, path + ": no group spans a volume: no hull"};
+  if (set.hulls.empty()) return Status{StatusCode::empty_scene, path + ": no group spans an area: no hull"};
   return set;
 }
 

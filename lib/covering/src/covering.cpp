@@ -41,7 +41,8 @@ CoveringHull planar_hull(const SceneIndex& index, const detail::PatchMerger& mer
   CoveringHull hull;
   hull.planar = true;
   const FlatPolygon polygon =
-      make_flat_polygon(index.mesh().positions, patch.hull_vertices, patch.area_vector.normalized(), index.tol());
+      make_flat_polygon(index.mesh().positions, detail::vertices_of_faces(index.mesh(), patch.faces),
+                        patch.area_vector.normalized(), index.tol());
   const auto in_patch = [&](int f) { return merger.in_patch(f, patch_id); };
   const std::vector<Plane> sides = beveled_side_planes(index, polygon, in_patch, scratch);
   hull.thickness = allowed_prism_thickness(index, polygon, sides, in_patch, cap, scratch);
@@ -77,8 +78,11 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
   const bool exact = options.conditions == ValidityMode::exact;
   covering.bar_half_length = options.bar_half_length.value_or(
       exact ? kExactBarHalfLengthInTolerances * prepared.tolerance.length : kDefaultBarHalfLengthRelative * diagonal);
-  covering.free_space_reach = options.free_space_reach.value_or(kDefaultFreeSpaceReachRelative * diagonal);
   covering.prism_thickness_cap = options.prism_thickness_cap.value_or(kDefaultPrismCapRelative * diagonal);
+  // Free space has no distance cap (DESIGN.md) unless the user gives one.
+  const double hull_margin = covering.prism_thickness_cap;
+  covering.free_space_capped = options.free_space_reach.has_value();
+  covering.free_space_reach = options.free_space_reach.value_or(uncapped_free_space_reach(prepared, hull_margin));
   covering.near_merge_distance =
       options.near_merge_distance.value_or(exact ? kDefaultNearMergeRelative * diagonal : 0.0);
   covering.dissolve = options.dissolve.value_or(exact);
@@ -88,7 +92,7 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
   Clock::time_point start = Clock::now();
   const SceneIndex index =
       build_scene_index(prepared, {covering.bar_half_length, options.keep_materials_apart, options.conditions,
-                                   covering.free_space_reach});
+                                   covering.free_space_reach, hull_margin});
   stats.seconds_index = seconds_since(start);
 
   start = Clock::now();

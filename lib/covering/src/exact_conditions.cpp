@@ -50,10 +50,6 @@ bool sweep_enters_hull(const SceneIndex& index, const FreeSpaceSweep& sweep, con
     for (size_t i = 0; i < sweep.planes.size() && !part.empty(); ++i)
       part = clip_polygon(part, sweep.planes[i], sweep.insets[i]);
     if (part.empty()) continue;
-    if (!sweep.enclosed_allowed) {
-      if (detail::region_loses_space(index, sweep, interior, part, scratch)) return true;
-      continue;
-    }
     // Rays leaving through different facets may end differently: one
     // witness grid per way out.
     for (size_t j = 0; j < interior.facets.size(); ++j) {

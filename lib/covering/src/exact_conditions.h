@@ -7,7 +7,11 @@
 /// the paper's four conditions are not enough", causes 1-3). Each condition
 /// below closes one cause. Free space is what DESIGN.md's probe samples:
 /// the space swept from every face along its normal, and from every open
-/// edge outward in its face's plane, up to the free-space reach.
+/// edge outward in its face's plane, up to each ray's first mesh hit, with
+/// no distance cap (the free-space reach is a cap only when a user sets one).
+/// A ray whose first hit is the back of every face met there runs through
+/// enclosed space, which hulls may fill; a ray that escapes or ends on the
+/// front of a face is open.
 ///
 ///  E1 front space: no face's front space enters the hull's interior,
 ///     except through the hull's own faces met from the front (there the
@@ -18,8 +22,9 @@
 ///     under a prism's beveled side, a hull reaching over free space.
 ///  E2 openings: the same for the opening beyond every open edge, boundary
 ///     or fold (the rim of a double-sided sheet), along the whole edge, with
-///     no allowance for enclosed space; for flat polygons the bar becomes a
-///     sheet along the whole edge.
+///     the same allowance for enclosed space (DESIGN.md: a doorway stays open
+///     because its rays end on the next room's walls from the front); for
+///     flat polygons the bar becomes a sheet along the whole edge.
 ///  E3 crossing faces: where a face's interior crosses the hull's interior
 ///     (self-intersecting input, where vertices and edges stay outside), its
 ///     front space there must leave the hull only through the hull's own
@@ -35,12 +40,12 @@ namespace hullcover {
 
 /// E1/E2: true when free space of `sweep` lies inside `interior` (a solid
 /// hull shrunk by tol). Each region of an interior facet through which the
-/// sweep enters (and, for front space, each facet it leaves through) is
-/// judged by a grid of witness rays, as the audit's probe judges its rays:
-/// a ray from the base loses space when it is inside before its first mesh
-/// hit and within the reach; a ray whose first hit is the back of a face
-/// runs through enclosed space, which front space may. Exact up to that
-/// sampling: rays between the witnesses are not traced.
+/// sweep enters, split by the facet it leaves through, is decided by
+/// region_loses_space (witness_rays.h), as the audit decides its rays: a
+/// ray from the base loses space when it is inside before its first mesh
+/// hit; a ray whose first hit is the back of a face runs through enclosed
+/// space, which hulls may fill. Exact, and conservative where the work
+/// bound runs out.
 bool sweep_enters_hull(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
                        std::vector<int>& scratch);
 

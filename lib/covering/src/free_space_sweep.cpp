@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <cmath>
 
 namespace hullcover {
 namespace {
@@ -23,7 +24,6 @@ FreeSpaceSweep front_space_sweep(const std::vector<Eigen::Vector3d>& corners, co
   // from there.
   reach += kRayStandOffInTolerances * tol;
   sweep.reach = reach;
-  sweep.enclosed_allowed = true;
   const Eigen::Vector3d centre = (corners[0] + corners[1] + corners[2]) / 3.0;
   for (int k = 0; k < 3; ++k) {
     const Eigen::Vector3d& a = corners[k];
@@ -69,21 +69,54 @@ FreeSpaceSweep opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p
   return sweep;
 }
 
+FreeSpaceSweep opening_fan(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
+                           const Eigen::Vector3d& face_normal, int fan, double reach, double tol) {
+  if (fan == 0) return opening_sweep(p0, p1, inner, face_normal, reach, tol);
+  // Turning the plane about the edge turns its normal with it: a fan
+  // tilted by s toward the front runs along c out + s n, in the plane whose
+  // normal is c n - s out.
+  Eigen::Vector3d out = (p1 - p0).cross(face_normal).normalized();
+  if (out.dot(inner - p0) > 0.0) out = -out;
+  const double s = fan == 1 ? kOpeningTiltSine : -kOpeningTiltSine;
+  const double c = std::sqrt(1.0 - s * s);
+  return opening_sweep(p0, p1, inner, c * face_normal - s * out, reach, tol);
+}
+
 HullInterior hull_interior(const ConvexPolytope& hull, double tol) {
   HullInterior interior;
   for (const Plane& p : hull.planes) interior.planes.push_back({p.normal, p.offset - tol});
-  // Facet k shrunk: facet k moved in by tol holds it; the other shrunk
-  // planes cut it to size - all but those of facets in its own plane (a
-  // hull grown point by point keeps coplanar triangles), which would cut it
-  // away by rounding.
+  // Facet k of the shrunk hull: its whole shrunk plane, cut by every other
+  // shrunk plane. Not facet k moved in by tol: where two facets meet at a
+  // shallow angle (a grown hull's nearly coplanar triangles) their shrunk
+  // edge moves by tol / sin(angle / 2), far beyond either facet, and one
+  // facet may vanish while its neighbour takes its place; rays leaving
+  // there would go unjudged.
   const Aabb box = bounding_box_of(hull.vertices);
-  const double same_plane_gap = same_plane_cosine_gap(tol, (box.max - box.min).norm());
-  for (size_t k = 0; k < hull.facets.size(); ++k) {
-    std::vector<Eigen::Vector3d> facet;
-    for (int v : hull.facets[k]) facet.push_back(hull.vertices[v] - tol * hull.planes[k].normal);
+  const Eigen::Vector3d centre = 0.5 * (box.min + box.max);
+  const double half = (box.max - box.min).norm() + tol;
+  std::vector<std::vector<Eigen::Vector3d>> squares;
+  for (const Plane& p : interior.planes) {
+    const Eigen::Vector3d on = centre - p.signed_distance(centre) * p.normal;
+    const Eigen::Vector3d u = p.normal.unitOrthogonal() * half;
+    const Eigen::Vector3d v = p.normal.cross(u);
+    squares.push_back({on - u - v, on + u - v, on + u + v, on - u + v});
+  }
+  // Planes within kOnePlaneInTolerances of each other across the hull (a
+  // grown hull's coplanar triangles) are one: cutting each by the other
+  // would leave the facet to rounding. The first holds it.
+  const auto same_plane = [&](size_t j, size_t k) {
+    for (const Eigen::Vector3d& c : squares[k])
+      if (std::abs(interior.planes[j].signed_distance(c)) > kOnePlaneInTolerances * tol) return false;
+    return true;
+  };
+  // Held by: the first plane the same as k that holds its own facet (k if
+  // none); one the same as a holder but not as k holds its own.
+  std::vector<bool> holds(interior.planes.size(), true);
+  for (size_t k = 0; k < interior.planes.size(); ++k) {
+    for (size_t j = 0; j < k && holds[k]; ++j) holds[k] = !(holds[j] && same_plane(j, k));
+    std::vector<Eigen::Vector3d> facet = holds[k] ? squares[k] : std::vector<Eigen::Vector3d>{};
     for (size_t j = 0; j < interior.planes.size() && !facet.empty(); ++j)
-      if (j != k && hull.planes[j].normal.dot(hull.planes[k].normal) < 1.0 - same_plane_gap)
-        facet = clip_polygon(facet, interior.planes[j], 0.0);
+      if (j != k && !same_plane(j, k)) facet = clip_polygon(facet, interior.planes[j], 0.0);
     if (facet.size() < 3) facet.clear();
     interior.facets.push_back(std::move(facet));
   }

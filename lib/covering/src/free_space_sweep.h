@@ -22,7 +22,6 @@ struct FreeSpaceSweep {
   std::vector<Eigen::Vector3d> base;     ///< the face or edge swept
   std::vector<Eigen::Vector3d> corners;  ///< the base at t = 0 and at the reach
   double reach = 0.0;             ///< scene units, from the base (the free-space reach plus the rays' stand-off)
-  bool enclosed_allowed = false;  ///< front space may be enclosed (first meet a face from behind)
 };
 
 /// The front space of triangle `corners` (unit front `normal`); it starts
@@ -30,9 +29,17 @@ struct FreeSpaceSweep {
 FreeSpaceSweep front_space_sweep(const std::vector<Eigen::Vector3d>& corners, const Eigen::Vector3d& normal,
                                  double reach, double tol);
 /// The opening beyond the edge p0-p1 of a face with unit normal
-/// `face_normal`, whose far corner is `inner` (the sweep runs away from it).
+/// `face_normal`, whose far corner is `inner` (the sweep runs away from it),
+/// in the plane through the edge normal to `face_normal`.
 FreeSpaceSweep opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
                              const Eigen::Vector3d& face_normal, double reach, double tol);
+/// How many fans an opening has (DESIGN.md): in the face's plane, then
+/// tilted by kOpeningTiltSine to its front and to its back.
+inline constexpr int kOpeningFans = 3;
+/// Fan `fan` (0 <= fan < kOpeningFans) of the opening beyond the edge p0-p1
+/// (as opening_sweep).
+FreeSpaceSweep opening_fan(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
+                           const Eigen::Vector3d& face_normal, int fan, double reach, double tol);
 
 /// A solid hull's interior: the hull shrunk by tol (what "strictly inside"
 /// means), as planes and facet polygons. Empty for a hull thinner than 2 tol.

@@ -41,6 +41,16 @@ std::vector<Eigen::Vector3d> positions_of(const Mesh& mesh, const std::vector<in
   return out;
 }
 
+std::vector<int> vertices_of_faces(const Mesh& mesh, const std::vector<int>& faces) {
+  std::vector<int> out;
+  out.reserve(3 * faces.size());
+  for (int f : faces)
+    for (int k = 0; k < 3; ++k) out.push_back(mesh.triangles[f][k]);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 double face_edge_length(const Mesh& mesh, int face, int corner) {
   const Eigen::Vector3i& t = mesh.triangles[face];
   return (mesh.positions[t[(corner + 1) % 3]] - mesh.positions[t[corner]]).norm();
@@ -161,14 +171,20 @@ PatchMerger::Candidate PatchMerger::evaluate(int a, int b) {
   const std::vector<Eigen::Vector3d> points = positions_of(mesh, ids);
 
   if (pa.planar && pb.planar && pa.area_vector.dot(pb.area_vector) > 0.0) {
+    // Every vertex of both patches, not only their polygons' corners: a
+    // face's inner vertex must stay on the polygon too (coverage), though
+    // the plane turns as patches join.
+    std::vector<int> faces = pa.faces;
+    faces.insert(faces.end(), pb.faces.begin(), pb.faces.end());
+    const std::vector<int> all = vertices_of_faces(mesh, faces);
     const Eigen::Vector3d normal = (pa.area_vector + pb.area_vector).normalized();
-    double low = normal.dot(points[0]), high = low;
-    for (const Eigen::Vector3d& p : points) {
-      low = std::min(low, normal.dot(p));
-      high = std::max(high, normal.dot(p));
+    double low = normal.dot(mesh.positions[all[0]]), high = low;
+    for (int v : all) {
+      low = std::min(low, normal.dot(mesh.positions[v]));
+      high = std::max(high, normal.dot(mesh.positions[v]));
     }
-    if (high - low <= 2.0 * tol) {
-      const FlatPolygon polygon = make_flat_polygon(mesh.positions, ids, normal, tol);
+    if (high - low <= kPlanarSlabInTolerances * tol) {
+      const FlatPolygon polygon = make_flat_polygon(mesh.positions, all, normal, tol);
       out.planar = true;
       out.hull_vertices = polygon.corner_vertices;
       std::sort(out.hull_vertices.begin(), out.hull_vertices.end());
@@ -217,7 +233,8 @@ std::optional<ConvexPolytope> PatchMerger::grow_known_hull(const Patch& base, co
     // same corners. Growing it only works off its plane: a point on the
     // plane but outside the polygon is beyond no facet.
     const FlatPolygon polygon =
-        make_flat_polygon(index_.mesh().positions, base.hull_vertices, base.area_vector.normalized(), index_.tol());
+        make_flat_polygon(index_.mesh().positions, vertices_of_faces(index_.mesh(), base.faces),
+                          base.area_vector.normalized(), index_.tol());
     // No point off its plane (back-to-back sheets on the same corners): the
     // union is flat, no solid; Qhull refuses it.
     if (polygon.corners.size() < 3 || added.empty()) return std::nullopt;

@@ -43,6 +43,11 @@ void add_plane(std::vector<Plane>& planes, const Plane& p, double cosine_gap, do
 /// The positions of mesh vertices `ids`, in order.
 std::vector<Eigen::Vector3d> positions_of(const Mesh& mesh, const std::vector<int>& ids);
 
+/// The mesh vertices the faces use, ascending, once each: all of a
+/// planar patch's points, corners or not, which its polygon's plane must
+/// stay near.
+std::vector<int> vertices_of_faces(const Mesh& mesh, const std::vector<int>& faces);
+
 /// Length of the edge from corner `corner` of triangle `face` to the next.
 double face_edge_length(const Mesh& mesh, int face, int corner);
 

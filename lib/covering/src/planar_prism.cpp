@@ -78,7 +78,7 @@ double allowed_prism_thickness(const SceneIndex& index, const FlatPolygon& polyg
   std::vector<Eigen::Vector3d> triangle(3);
   for (int f : scratch) {
     if (in_patch(f)) continue;
-    for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[f][k]];
+    triangle_corners(mesh, f, triangle);
     const std::vector<Eigen::Vector3d> part = clip_polygon_to_planes(triangle, sides, tol);
     if (part.empty()) continue;
     double shallowest = depth_below(polygon, part[0]), deepest = shallowest;

@@ -1,5 +1,10 @@
 #include "scene_index.h"
 
+#include "witness_rays.h"
+#include "hullcover/geometry/tolerances.h"
+
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 
@@ -25,7 +30,72 @@ void add_bar(SceneIndex& index, int edge, int face, double half_length) {
   }
 }
 
+// `box` within `bounds` (empty when they do not meet).
+Aabb clipped(const Aabb& box, const Aabb& bounds) {
+  Aabb out;
+  out.min = box.min.cwiseMax(bounds.min);
+  out.max = box.max.cwiseMin(bounds.max);
+  return out;
+}
+
+// How far every face's front sweep and every open edge's fans run, and
+// their boxes, clipped to where hulls can be: the trees the exact
+// conditions look up.
+void index_sweeps(SceneIndex& index, double hull_margin) {
+  const Mesh& mesh = index.mesh();
+  const MeshConnectivity& c = index.prepared->connectivity;
+  const double reach = index.free_space_reach;
+  const double tol = index.tol();
+  const Aabb bounds = grown(referenced_bounding_box(mesh), hull_margin + tol);
+  std::vector<int> scratch;
+  std::vector<Eigen::Vector3d> triangle(3);
+  std::vector<Aabb> boxes;
+  index.front_reach.assign(mesh.triangles.size(), 0.0);
+  for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) {
+    if (c.zero_area[f]) continue;
+    triangle_corners(mesh, f, triangle);
+    const FreeSpaceSweep full = front_space_sweep(triangle, index.face_normals[f], reach, tol);
+    index.front_reach[f] = std::min(reach, detail::first_hit_bound(index, full, scratch));
+    const FreeSpaceSweep sweep = front_space_sweep(triangle, index.face_normals[f], index.front_reach[f], tol);
+    Aabb box;
+    for (const Eigen::Vector3d& corner : sweep.corners) box.extend(corner);
+    box = clipped(grown(box, tol), bounds);
+    if (box.empty()) continue;
+    boxes.push_back(box);
+    index.front_sweep_face.push_back(f);
+  }
+  index.front_sweep_tree = AabbTree(boxes);
+  boxes.clear();
+  index.opening_reach.assign(c.edges.size(), {});
+  for (int e = 0; e < static_cast<int>(c.edges.size()); ++e) {
+    if (index.open_edge_use[e] < 0) continue;
+    const EdgeUse& use = c.edge_uses[index.open_edge_use[e]];
+    const Eigen::Vector3i& t = mesh.triangles[use.face];
+    const Eigen::Vector3d& p0 = mesh.positions[t[use.corner]];
+    const Eigen::Vector3d& p1 = mesh.positions[t[(use.corner + 1) % 3]];
+    const Eigen::Vector3d& inner = mesh.positions[t[(use.corner + 2) % 3]];
+    Aabb box;
+    for (int fan = 0; fan < kOpeningFans; ++fan) {
+      const Eigen::Vector3d& n = index.face_normals[use.face];
+      const FreeSpaceSweep full = opening_fan(p0, p1, inner, n, fan, reach, tol);
+      index.opening_reach[e][fan] = std::min(reach, detail::first_hit_bound(index, full, scratch));
+      for (const Eigen::Vector3d& corner : opening_fan(p0, p1, inner, n, fan, index.opening_reach[e][fan], tol).corners)
+        box.extend(corner);
+    }
+    box = clipped(grown(box, tol), bounds);
+    if (box.empty()) continue;
+    boxes.push_back(box);
+    index.opening_sweep_edge.push_back(e);
+  }
+  index.opening_sweep_tree = AabbTree(boxes);
+}
+
 } // namespace
+
+double uncapped_free_space_reach(const PreparedMesh& prepared, double hull_margin) {
+  // The box grown by the margin has a diagonal of at most D + 2 sqrt(3) m.
+  return prepared.tolerance.diagonal + 4.0 * (hull_margin + prepared.tolerance.length);
+}
 
 std::vector<Eigen::Vector3d> BoundaryBar::outline() const {
   if (!is_sheet()) return {a, b};
@@ -108,6 +178,7 @@ SceneIndex build_scene_index(const PreparedMesh& prepared, const BarOptions& opt
     }
   }
   index.bar_tree = AabbTree(boxes);
+  if (index.mode == ValidityMode::exact) index_sweeps(index, options.hull_margin);
   return index;
 }
 

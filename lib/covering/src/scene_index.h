@@ -5,10 +5,12 @@
 /// patch's component): vertices, edges, faces and boundary constraint bars,
 /// each in a bounding-volume tree.
 
+#include "free_space_sweep.h"
 #include "hullcover/covering/validity.h"
 #include "hullcover/geometry/aabb_tree.h"
 #include "hullcover/mesh/prepared_mesh.h"
 
+#include <array>
 #include <vector>
 
 namespace hullcover {
@@ -40,8 +42,14 @@ struct BarOptions {
   /// `exact`: sheets along whole edges, on boundary AND fold edges (the rim
   /// of a double-sided sheet), and the checks of exact_conditions.h.
   ValidityMode mode = ValidityMode::paper;
-  /// Exact mode: how far free space is kept, scene units (> 0).
+  /// Exact mode: how far free space is kept, scene units (> 0); the
+  /// decomposer passes a length beyond which no hull can lie when no cap is
+  /// asked for (uncapped_free_space_reach).
   double free_space_reach = 1.0;
+  /// How far outside the scene's bounding box a hull may reach (a prism
+  /// extrudes up to its cap behind a face); sweeps are indexed only within
+  /// the box grown by this, since no hull lies beyond it.
+  double hull_margin = 0.0;
 };
 
 /// The mesh as the validity checks see it. Holds a reference to `prepared`,
@@ -63,6 +71,23 @@ struct SceneIndex {
   AabbTree edge_tree;    ///< over MeshConnectivity::edges
   AabbTree face_tree;    ///< over faces
   AabbTree bar_tree;     ///< over pieces of bars (long bars are split, so boxes stay small)
+  /// Exact mode: over the boxes of the faces' front sweeps (the triangle
+  /// swept along its normal by the reach, within the box hulls can occupy);
+  /// item i is face front_sweep_face[i]. A hull can lose a face's front space
+  /// only where its box meets that face's sweep box.
+  AabbTree front_sweep_tree;
+  std::vector<int> front_sweep_face;
+  /// Exact mode, per face: how far its front sweep runs, scene units: the
+  /// free-space reach, or less where every ray of it meets a face sooner
+  /// (first_hit_bound, witness_rays.h). 0 for a face with no sweep.
+  std::vector<double> front_reach;
+  /// Exact mode: the same for the openings beyond open edges; item i is
+  /// edge opening_sweep_edge[i].
+  AabbTree opening_sweep_tree;
+  std::vector<int> opening_sweep_edge;
+  /// Exact mode, per open edge and fan (free_space_sweep.h): how far that
+  /// fan runs, as front_reach.
+  std::vector<std::array<double, kOpeningFans>> opening_reach;
   std::vector<int> bar_of_piece;  ///< bar index of each piece in bar_tree
 
   /// Appends, once each and ascending, the bars with a piece overlapping `box`.
@@ -76,6 +101,11 @@ struct SceneIndex {
 /// is long (a tenth of the scene by default), and one long box per bar would
 /// make every query visit most of the tree.
 inline constexpr double kBarPiecesPerDiagonal = 64.0;
+
+/// The free-space reach that amounts to no cap: longer than any segment from
+/// a face to a point of a hull (hulls lie within the scene's box grown by
+/// `hull_margin`), so every ray of free space is followed to the last hull.
+double uncapped_free_space_reach(const PreparedMesh& prepared, double hull_margin);
 
 /// True for a fold edge: a manifold edge whose second face folds back onto
 /// the first (its far corner within `tol` of the first face's plane, normals

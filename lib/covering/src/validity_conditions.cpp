@@ -17,27 +17,25 @@ namespace {
 Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, const Aabb& box,
                                 std::vector<int>& scratch) {
   const double tol = index.tol();
-  const double reach = index.free_space_reach;
   const Mesh& mesh = index.mesh();
-  const Aabb reached = grown(box, reach);
   std::vector<Eigen::Vector3d> triangle(3);
   std::vector<int> ray_scratch;
   const HullInterior interior = hull_interior(hull, tol);
   if (interior.empty()) return Validity::valid;  // thinner than 2 tol: nothing is strictly inside
   scratch.clear();
-  index.face_tree.overlapping(reached, scratch);
-  for (int f : scratch) {
-    if (index.prepared->connectivity.zero_area[f]) continue;
-    for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[f][k]];
-    const FreeSpaceSweep front = front_space_sweep(triangle, index.face_normals[f], reach, tol);
+  index.front_sweep_tree.overlapping(box, scratch);
+  for (int item : scratch) {
+    const int f = index.front_sweep_face[item];
+    triangle_corners(mesh, f, triangle);
+    const FreeSpaceSweep front = front_space_sweep(triangle, index.face_normals[f], index.front_reach[f], tol);
     if (crossing_face_leaks(index, front, interior, ray_scratch)) return Validity::face_crosses_hull;
     if (sweep_enters_hull(index, front, interior, ray_scratch)) return Validity::front_space_inside;
   }
   scratch.clear();
-  index.edge_tree.overlapping(reached, scratch);
+  index.opening_sweep_tree.overlapping(box, scratch);
   const MeshConnectivity& c = index.prepared->connectivity;
-  for (int e : scratch) {
-    if (index.open_edge_use[e] < 0) continue;
+  for (int item : scratch) {
+    const int e = index.opening_sweep_edge[item];
     // The use names the face and where the edge sits in it: its far corner
     // is the face's side of the edge.
     const EdgeUse& use = c.edge_uses[index.open_edge_use[e]];
@@ -45,9 +43,12 @@ Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& h
     const Eigen::Vector3d& p0 = mesh.positions[t[use.corner]];
     const Eigen::Vector3d& p1 = mesh.positions[t[(use.corner + 1) % 3]];
     const Eigen::Vector3d& inner = mesh.positions[t[(use.corner + 2) % 3]];
-    if (sweep_enters_hull(index, opening_sweep(p0, p1, inner, index.face_normals[use.face], reach, tol), interior,
-                          ray_scratch))
-      return Validity::opening_inside;
+    for (int fan = 0; fan < kOpeningFans; ++fan) {
+      const double reach = index.opening_reach[e][fan];
+      if (sweep_enters_hull(index, opening_fan(p0, p1, inner, index.face_normals[use.face], fan, reach, tol),
+                            interior, ray_scratch))
+        return Validity::opening_inside;
+    }
   }
   return Validity::valid;
 }

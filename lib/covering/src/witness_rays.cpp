@@ -53,6 +53,31 @@ std::optional<double> ray_entry(const std::vector<Plane>& planes, const Eigen::V
   return enter;
 }
 
+// A piece no wider than kNegligibleWidthInTolerances x tol (its least
+// width, over its edges' directions): a sliver of rounding, which cutting
+// would only shave again. Far below anything a ray could be aimed at: an
+// opening's strip alone is 2 tol wide.
+bool negligible(const std::vector<Eigen::Vector3d>& polygon, double tol) {
+  if (polygon.size() < 3) return true;
+  const Eigen::Vector3d normal = [&] {
+    Eigen::Vector3d twice = Eigen::Vector3d::Zero();
+    for (size_t i = 0; i < polygon.size(); ++i) twice += polygon[i].cross(polygon[(i + 1) % polygon.size()]);
+    return twice;
+  }();
+  if (!(normal.norm() > 0.0)) return true;
+  double least = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const Eigen::Vector3d edge = polygon[(i + 1) % polygon.size()] - polygon[i];
+    const Eigen::Vector3d across = normal.cross(edge);
+    if (!(across.norm() > 0.0)) continue;
+    const Eigen::Vector3d unit = across.normalized();
+    double widest = 0.0;
+    for (const Eigen::Vector3d& p : polygon) widest = std::max(widest, std::abs(unit.dot(p - polygon[i])));
+    least = std::min(least, widest);
+  }
+  return least <= kNegligibleWidthInTolerances * tol;
+}
+
 // `region` cut along the shadow (the column along dir) of a triangle: the
 // part inside it and the parts beside each of its sides (no empty pieces).
 // The triangle is grown by tol in its plane, as rays meet it (mesh_ray.h).
@@ -73,18 +98,13 @@ ShadowSplit split_by_shadow(const std::vector<Eigen::Vector3d>& region, const st
     const double across = plane.normal.dot(normal);
     plane.offset += tol * std::sqrt(std::max(0.0, 1.0 - across * across));
     std::vector<Eigen::Vector3d> beside = clip_polygon(split.inside, {-plane.normal, -plane.offset}, 0.0);
-    if (beside.size() >= 3) split.beside.push_back(std::move(beside));
+    if (!negligible(beside, tol)) split.beside.push_back(std::move(beside));
     split.inside = clip_polygon(split.inside, plane, 0.0);
   }
-  if (split.inside.size() < 3) split.inside.clear();
+  if (negligible(split.inside, tol)) split.inside.clear();
   return split;
 }
 
-double polygon_area(const std::vector<Eigen::Vector3d>& polygon) {
-  Eigen::Vector3d twice = Eigen::Vector3d::Zero();
-  for (size_t i = 0; i < polygon.size(); ++i) twice += polygon[i].cross(polygon[(i + 1) % polygon.size()]);
-  return 0.5 * twice.norm();
-}
 
 Eigen::Vector3d centroid(const std::vector<Eigen::Vector3d>& points) {
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
@@ -92,9 +112,8 @@ Eigen::Vector3d centroid(const std::vector<Eigen::Vector3d>& points) {
   return c / static_cast<double>(points.size());
 }
 
-// Witness rays sit on a grid of this many steps a side per fan triangle of
-// a region, pulled this fraction of the way toward its middle.
-constexpr int kWitnessGridSteps = 2;
+// Witness rays start this fraction of the way in from a region's corners
+// toward its middle, where its middle's ray does not decide it.
 constexpr double kWitnessInset = 0.05;
 
 // What one witness ray found: whether it loses space, and the face that
@@ -103,14 +122,14 @@ constexpr double kWitnessInset = 0.05;
 struct WitnessRay {
   bool loses = false;
   int deciding_face = -1;
-  double enclosed_at = 0.0;  ///< where an enclosed ray met its face, from the base; 0 when not enclosed
+  bool enclosed = false;  ///< kept because its first face, beyond the entry, is met from behind
 };
 
 // The probe's verdict on the sweep's ray through `point`: it starts on the
 // base (standing off it like the probe's rays), runs to its first mesh hit
 // or the reach, and loses space when it lies deeper than tol inside the
 // hull on the way - unless it first meets a face from behind (enclosed
-// space), where the sweep allows that.
+// space).
 WitnessRay witness_ray(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
                        const Eigen::Vector3d& point, std::vector<int>& scratch) {
   const double tol = index.tol();
@@ -121,49 +140,78 @@ WitnessRay witness_ray(const SceneIndex& index, const FreeSpaceSweep& sweep, con
   if (!inside_from) return {};
   const double enter = stand_off + *inside_from;
   if (enter > sweep.reach) return {};
-  // The mesh ends the free space before the hull: most rays, found on a
-  // short stretch.
-  if (const std::optional<MeshRayHit> hit = first_mesh_hit(index, base, dir, stand_off, enter, scratch))
-    return {false, hit->face};
-  if (!sweep.enclosed_allowed) return {true, -1};
-  const std::optional<MeshRayHit> hit = first_mesh_hit(index, base, dir, enter, index.prepared->tolerance.diagonal, scratch);
-  // Enclosed space, when the first face is met from behind.
-  if (hit && hit->from_behind) return {false, hit->face, hit->t};
-  return {true, -1};
+  // The first face at or before the entry ends the free space before the
+  // hull (exactly: one met within tol beyond it would leave the ray up to
+  // 2 tol deep, which is inside).
+  const std::optional<MeshRayHit> hit =
+      first_mesh_hit(index, base, dir, stand_off, index.prepared->tolerance.diagonal, scratch);
+  if (hit && hit->t <= enter) return {false, hit->face, false};
+  if (hit && hit->from_behind) return {false, hit->face, true};
+  return {true, -1, false};
 }
 
-bool pieces_lose_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
-                       ShadowSplit split, std::vector<int>& scratch, int splits_left);
-
-bool sampled_region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
-                                const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch,
-                                int splits_left);
-
-// The face plane's distance t along the sweep's ray through `point` (a
-// point where it enters the interior) from the ray's base, and the
-// entry's own distance.
-struct RayDistances {
-  double to_entry = 0.0;
-  double to_face = 0.0;
+// An affine function of a point: value(p) = gradient.p + constant.
+struct Affine {
+  Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
+  double constant = 0.0;
+  double operator()(const Eigen::Vector3d& p) const { return gradient.dot(p) + constant; }
+  Affine operator-(const Affine& other) const { return {gradient - other.gradient, constant - other.constant}; }
+  /// Where it is zero, facing where it is negative (signed distance > 0
+  /// there); its gradient must not be zero.
+  Plane zero_plane() const {
+    const double norm = gradient.norm();
+    return {-gradient / norm, constant / norm};
+  }
 };
 
-RayDistances distances_at(const FreeSpaceSweep& sweep, const Plane& face, const Eigen::Vector3d& point) {
-  const double to_entry = -sweep.start.signed_distance(point);
-  const Eigen::Vector3d base = point - to_entry * sweep.direction;
-  return {to_entry, -face.signed_distance(base) / face.normal.dot(sweep.direction)};
+// Its lowest and highest value over a polygon (at its corners).
+std::pair<double, double> range_over(const Affine& f, const std::vector<Eigen::Vector3d>& polygon) {
+  double lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
+  for (const Eigen::Vector3d& p : polygon) {
+    lowest = std::min(lowest, f(p));
+    highest = std::max(highest, f(p));
+  }
+  return {lowest, highest};
 }
 
+// Where `margin` is zero across `piece`, when cutting there leaves a piece
+// with area on its negative side (nothing when it is negative only by
+// rounding: a piece of no area holds no ray apart from its neighbours').
+std::optional<Plane> splitting_cut(const std::vector<Eigen::Vector3d>& piece, const Affine& margin, double tol) {
+  if (!(margin.gradient.norm() > 0.0)) return std::nullopt;
+  const Plane cut = margin.zero_plane();
+  const std::vector<Eigen::Vector3d> negative = clip_polygon(piece, {-cut.normal, -cut.offset}, 0.0);
+  if (negligible(negative, tol)) return std::nullopt;
+  return cut;
+}
 
-// Whether face f keeps every ray through `piece` (inside f's shadow, grown
-// as rays meet faces) from losing space, exactly: the distances to the
-// entry and to f's plane are affine over the piece, so its corners decide.
-// Blocked: f lies between the ray's stand-off and the hull for every corner.
-// Enclosed: f lies beyond the entry, met from behind, and no face met from
-// the front stands between the entry and f anywhere in the piece (faces met
-// from behind there enclose the space as well).
+// Along the sweep's ray through a point: the distance from the ray's base
+// to the point (where the ray enters the interior, for points on an entry
+// facet), and to the plane of a face not parallel to the ray.
+Affine distance_to_point(const FreeSpaceSweep& sweep) {
+  return {-sweep.start.normal, sweep.start.offset};
+}
+
+Affine distance_to_plane(const FreeSpaceSweep& sweep, const Plane& face) {
+  // The base is p + (start.p - start.offset) dir; the face's plane lies
+  // -face.sd(base) / slope further along.
+  const double slope = face.normal.dot(sweep.direction);
+  return {-(face.normal + slope * sweep.start.normal) / slope, (face.offset + slope * sweep.start.offset) / slope};
+}
+
+// How a face settles a piece inside its shadow (grown as rays meet faces).
+// Blocked: the face lies between the ray's stand-off and the hull for every
+// ray. Enclosed: the face lies beyond the entry, met from behind, and no
+// face met from the front stands between the entry and it (faces met from
+// behind there enclose the space as well). The distances are affine over
+// the piece, so its corners decide; where a condition holds over part of
+// the piece only, the piece is cut where it changes.
 struct Settling {
   bool settled = false;
-  int obstacle = -1;  ///< unsettled by this face met from the front in part of the piece; -1 for another reason
+  /// Unsettled by a face met from the front in part of the piece: the piece
+  /// cut along that face's shadow (inside and beside), to judge each part.
+  std::optional<ShadowSplit> obstacle;
+  std::optional<Plane> cut;    ///< unsettled: cut the piece here (the face decides the side behind it) and judge both sides
 };
 
 Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, const std::vector<Eigen::Vector3d>& piece,
@@ -172,15 +220,27 @@ Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, co
   const double tol = index.tol();
   const Plane face{index.face_normals[f], index.face_normals[f].dot(mesh.positions[mesh.triangles[f][0]])};
   const double slope = face.normal.dot(sweep.direction);
-  if (std::abs(slope) < kSettlingSlope || (enclosed && slope <= 0.0)) return {};
-  const double stand_off = kRayStandOffInTolerances * tol;
-  double farthest = 0.0;
-  for (const Eigen::Vector3d& p : piece) {
-    const RayDistances d = distances_at(sweep, face, p);
-    if (enclosed ? d.to_face < d.to_entry : (d.to_face < stand_off || d.to_face > d.to_entry)) return {};
-    farthest = std::max(farthest, d.to_face);
+  if (std::abs(slope) <= kParallelSine) return {};
+  if (enclosed && slope <= 0.0) return {};
+  const Affine to_entry = distance_to_point(sweep);
+  const Affine to_face = distance_to_plane(sweep, face);
+  const Affine stand_off{Eigen::Vector3d::Zero(), kRayStandOffInTolerances * tol};
+  // Each condition is an affine margin that must not be negative anywhere
+  // on the piece: its corners decide. Where it holds on part of the piece,
+  // the piece is cut where the margin is zero.
+  const std::vector<Affine> margins =
+      enclosed ? std::vector<Affine>{to_face - to_entry} : std::vector<Affine>{to_face - stand_off, to_entry - to_face};
+  for (const Affine& margin : margins) {
+    const auto [lowest, highest] = range_over(margin, piece);
+    if (lowest >= 0.0) continue;
+    if (highest <= 0.0) return {};
+    const std::optional<Plane> cut = splitting_cut(piece, margin, tol);
+    if (!cut) continue;  // negative only by rounding
+    return {false, std::nullopt, cut};
   }
-  if (!enclosed) return {true, -1};
+  if (!enclosed) return {true, std::nullopt, std::nullopt};
+  double farthest = 0.0;
+  for (const Eigen::Vector3d& p : piece) farthest = std::max(farthest, to_face(p));
   Aabb column;
   for (const Eigen::Vector3d& p : piece) {
     column.extend(p);
@@ -189,133 +249,175 @@ Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, co
   std::vector<int> near;
   index.face_tree.overlapping(grown(column, tol), near);
   std::vector<Eigen::Vector3d> triangle(3);
+  const Affine one_tol{Eigen::Vector3d::Zero(), tol};
   for (int g : near) {
     if (g == f || index.face_normals[g].dot(sweep.direction) >= 0.0) continue;  // met from behind, or zero area
-    for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[g][k]];
+    triangle_corners(mesh, g, triangle);
     const ShadowSplit split = split_by_shadow(piece, triangle, sweep.direction, tol);
     if (split.inside.empty()) continue;
+    // One running along the rays is not met (mesh_ray.h).
     const Plane other{index.face_normals[g], index.face_normals[g].dot(triangle[0])};
-    if (std::abs(other.normal.dot(sweep.direction)) < kSettlingSlope) return {};
-    // g stands clear when it lies beyond f, or before the entry (there it
-    // blocks), over all of its part of the piece.
-    bool beyond = true, before = true;
-    for (const Eigen::Vector3d& p : split.inside) {
-      const double to_other = distances_at(sweep, other, p).to_face;
-      const RayDistances d = distances_at(sweep, face, p);
-      beyond &= to_other > d.to_face + tol;
-      before &= to_other < d.to_entry;
-    }
-    if (!beyond && !before) return {false, g};
+    if (std::abs(other.normal.dot(sweep.direction)) <= kParallelSine) continue;
+    // g stands clear when it lies beyond f (by more than tol: one met
+    // there with f is a front at the first hit), or before the entry
+    // (there it blocks), over all of its part of the piece.
+    const Affine to_other = distance_to_plane(sweep, other);
+    const Affine beyond = to_other - to_face - one_tol, before = to_entry - to_other;
+    const auto [beyond_low, beyond_high] = range_over(beyond, split.inside);
+    const auto [before_low, before_high] = range_over(before, split.inside);
+    // Clear as well where the margin is negative only by rounding.
+    const auto clear = [&](const Affine& margin, double low, double high) {
+      return low > 0.0 || (high > 0.0 && !splitting_cut(split.inside, margin, tol));
+    };
+    if (clear(beyond, beyond_low, beyond_high) || clear(before, before_low, before_high)) continue;
+    // g shadows part of the piece: cut along its shadow first.
+    if (!split.beside.empty()) return {false, split, std::nullopt};
+    // g shadows it all, clear of it in part: cut where that changes.
+    if (beyond_high > 0.0)
+      if (const std::optional<Plane> cut = splitting_cut(split.inside, beyond, tol)) return {false, std::nullopt, cut};
+    if (before_high > 0.0)
+      if (const std::optional<Plane> cut = splitting_cut(split.inside, before, tol)) return {false, std::nullopt, cut};
+    return {};  // between the entry and f everywhere: not enclosed by f
   }
-  return {true, -1};
+  return {true, std::nullopt, std::nullopt};
 }
 
+// Judges regions exactly, piece by piece: each piece's middle ray names the
+// face that keeps it (met before the hull, or met from behind beyond it);
+// inside that face's shadow the face settles every ray at once (the
+// distances are affine), and the rest is cut into pieces judged the same
+// way. A piece not settled within the budget counts as losing space:
+// conservative, never optimistic.
+class RegionJudge {
+public:
+  RegionJudge(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
+              std::vector<int>& scratch)
+      : index_(index), sweep_(sweep), interior_(interior), scratch_(scratch) {}
+
+  bool loses_space(const std::vector<Eigen::Vector3d>& region) {
+    // A piece of no area holds no ray apart from its neighbours'.
+    const double tol = index_.tol();
+    if (negligible(region, tol)) return false;
+    if (--budget_ < 0) return true;
+    WitnessRay ray = witness_ray(index_, sweep_, interior_, centroid(region), scratch_);
+    if (ray.loses) return true;
+    if (ray.deciding_face < 0) {
+      // The middle ray misses the interior (a piece where the sweep only
+      // grazes it): its corners' rays, pulled in a little, tell.
+      const Eigen::Vector3d middle = centroid(region);
+      for (const Eigen::Vector3d& corner : region) {
+        ray = witness_ray(index_, sweep_, interior_, corner + kWitnessInset * (middle - corner), scratch_);
+        if (ray.loses) return true;
+        if (ray.deciding_face >= 0) break;
+      }
+      if (ray.deciding_face < 0) return false;
+    }
+    const Mesh& mesh = index_.mesh();
+    std::vector<Eigen::Vector3d> triangle(3);
+    triangle_corners(mesh, ray.deciding_face, triangle);
+    ShadowSplit split = split_by_shadow(region, triangle, sweep_.direction, tol);
+    if (split.inside.size() >= 3 && !settles(split.inside, ray.deciding_face, ray.enclosed)) return true;
+    for (const std::vector<Eigen::Vector3d>& piece : split.beside)
+      if (loses_space(piece)) return true;
+    return false;
+  }
+
+private:
+  // Whether every ray through `piece` (inside face f's shadow) keeps its
+  // space, cutting where f decides only part of it.
+  bool settles(const std::vector<Eigen::Vector3d>& piece, int f, bool enclosed) {
+    const Settling settling = settle_by_face(index_, sweep_, piece, f, enclosed);
+    if (settling.settled) return true;
+    if (settling.cut) {
+      const Plane& cut = *settling.cut;
+      const std::vector<Eigen::Vector3d> decided = clip_polygon(piece, cut, 0.0);
+      const std::vector<Eigen::Vector3d> rest = clip_polygon(piece, {-cut.normal, -cut.offset}, 0.0);
+      // A cut that leaves the piece whole would come back here.
+      if (decided.size() < 3 || rest.size() < 3) return false;
+      return !loses_space(decided) && !loses_space(rest);
+    }
+    if (settling.obstacle) {
+      for (const std::vector<Eigen::Vector3d>& part : settling.obstacle->beside)
+        if (loses_space(part)) return false;
+      return !loses_space(settling.obstacle->inside);
+    }
+    return false;
+  }
+
+  const SceneIndex& index_;
+  const FreeSpaceSweep& sweep_;
+  const HullInterior& interior_;
+  std::vector<int>& scratch_;
+  int budget_ = kMaxJudgedPieces;
+};
+
+// The bound of first_hit_bound, piece by piece.
+class FirstHitBound {
+public:
+  FirstHitBound(const SceneIndex& index, const FreeSpaceSweep& sweep, std::vector<int>& scratch)
+      : index_(index), sweep_(sweep), scratch_(scratch) {}
+
+  double over(const std::vector<Eigen::Vector3d>& region) {
+    constexpr double kNone = std::numeric_limits<double>::infinity();
+    const double tol = index_.tol();
+    if (negligible(region, tol)) return 0.0;
+    if (--budget_ < 0) return kNone;
+    const Eigen::Vector3d middle = centroid(region);
+    const Eigen::Vector3d base = middle + sweep_.start.signed_distance(middle) * sweep_.direction;
+    const double stand_off = kRayStandOffInTolerances * tol;
+    const std::optional<MeshRayHit> hit =
+        first_mesh_hit(index_, base, sweep_.direction, stand_off, index_.prepared->tolerance.diagonal, scratch_);
+    if (!hit) return kNone;
+    const Mesh& mesh = index_.mesh();
+    std::vector<Eigen::Vector3d> triangle(3);
+    triangle_corners(mesh, hit->face, triangle);
+    const ShadowSplit split = split_by_shadow(region, triangle, sweep_.direction, tol);
+    double farthest = 0.0;
+    if (!split.inside.empty()) {
+      const Plane face{index_.face_normals[hit->face], index_.face_normals[hit->face].dot(triangle[0])};
+      const Affine to_face = distance_to_plane(sweep_, face);
+      const Affine past_stand_off = to_face - Affine{Eigen::Vector3d::Zero(), stand_off};
+      // The face bounds the rays that meet its plane past their start; the
+      // others (it leans across the base) are cut off and bounded apart.
+      if (const std::optional<Plane> cut = splitting_cut(split.inside, past_stand_off, tol)) {
+        const std::vector<Eigen::Vector3d> met = clip_polygon(split.inside, *cut, 0.0);
+        farthest = std::max(farthest, range_over(to_face, met).second);
+        farthest = std::max(farthest, over(clip_polygon(split.inside, {-cut->normal, -cut->offset}, 0.0)));
+      } else {
+        farthest = std::max(farthest, range_over(to_face, split.inside).second);
+      }
+    }
+    for (const std::vector<Eigen::Vector3d>& piece : split.beside) farthest = std::max(farthest, over(piece));
+    return farthest;
+  }
+
+private:
+  const SceneIndex& index_;
+  const FreeSpaceSweep& sweep_;
+  std::vector<int>& scratch_;
+  int budget_ = kMaxJudgedPieces;
+};
+
 } // namespace
+
+double first_hit_bound(const SceneIndex& index, const FreeSpaceSweep& sweep, std::vector<int>& scratch) {
+  std::vector<Eigen::Vector3d> region = sweep.base;
+  if (region.size() == 2) {
+    // An opening's base is its edge; its rays leave a strip tol either side
+    // of the fan's plane.
+    const Eigen::Vector3d across = (region[1] - region[0]).cross(sweep.direction).normalized() * index.tol();
+    region = {region[0] - across, region[1] - across, region[1] + across, region[0] + across};
+  }
+  FirstHitBound bound(index, sweep, scratch);
+  const double farthest = bound.over(region);
+  // A ray meeting a face within tol of its plane's crossing still ends there.
+  return farthest + index.tol();
+}
 
 bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
-                        const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch, int splits_left) {
-  const WitnessRay ray = witness_ray(index, sweep, interior, centroid(region), scratch);
-  if (ray.loses) return true;
-  if (ray.deciding_face < 0 || splits_left == 0)
-    return sampled_region_loses_space(index, sweep, interior, region, scratch, splits_left);
-  // Cut the region along the shadow of the face that decided its middle:
-  // inside it, that face decides every ray, exactly; beside it, each piece
-  // is a region of its own.
-  const Mesh& mesh = index.mesh();
-  const double tol = index.tol();
-  std::vector<Eigen::Vector3d> triangle(3);
-  for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[ray.deciding_face][k]];
-  ShadowSplit split = split_by_shadow(region, triangle, sweep.direction, tol);
-  if (!split.inside.empty()) {
-    const Settling settling = settle_by_face(index, sweep, split.inside, ray.deciding_face, ray.enclosed_at > 0.0);
-    if (!settling.settled) {
-      if (settling.obstacle < 0 || splits_left == 1)
-        return sampled_region_loses_space(index, sweep, interior, split.inside, scratch, splits_left - 1) ||
-               pieces_lose_space(index, sweep, interior, {{}, std::move(split.beside)}, scratch, splits_left - 1);
-      // A face met from the front in part of the piece: cut along its shadow.
-      for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[settling.obstacle][k]];
-      ShadowSplit cut = split_by_shadow(split.inside, triangle, sweep.direction, tol);
-      if (pieces_lose_space(index, sweep, interior, std::move(cut), scratch, splits_left - 1)) return true;
-    }
-  }
-  return pieces_lose_space(index, sweep, interior, {{}, std::move(split.beside)}, scratch, splits_left - 1);
+                        const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch) {
+  RegionJudge judge(index, sweep, interior, scratch);
+  return judge.loses_space(region);
 }
-
-namespace {
-
-// The fallback where a region is not settled exactly: witness rays on a
-// grid over it (each fan triangle from its middle cut kWitnessGridSteps
-// times a side), pulled in off its edges; where a face that kept witnesses
-// from losing space does not shadow it all, or a face met from the front
-// shadows part of an enclosed region, it is cut along that shadow and each
-// piece judged again.
-bool sampled_region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
-                                const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch,
-                                int splits_left) {
-  const double tol = index.tol();
-  std::vector<int> deciding;
-  double enclosed_to = 0.0;
-  const auto judge = [&](const Eigen::Vector3d& point) {
-    const WitnessRay ray = witness_ray(index, sweep, interior, point, scratch);
-    enclosed_to = std::max(enclosed_to, ray.enclosed_at);
-    if (ray.deciding_face >= 0 && std::find(deciding.begin(), deciding.end(), ray.deciding_face) == deciding.end())
-      deciding.push_back(ray.deciding_face);
-    return ray.loses;
-  };
-  const Eigen::Vector3d middle = centroid(region);
-  if (judge(middle)) return true;
-  constexpr int m = kWitnessGridSteps;
-  for (size_t e = 0; e < region.size(); ++e) {
-    const Eigen::Vector3d u = region[e] - middle;
-    const Eigen::Vector3d v = region[(e + 1) % region.size()] - middle;
-    // (i, j) with i + j <= m, i >= 1 (i = 0 is the previous fan triangle's edge).
-    for (int i = 1; i <= m; ++i)
-      for (int j = 0; i + j <= m; ++j) {
-        const Eigen::Vector3d offset = (static_cast<double>(i) * u + static_cast<double>(j) * v) / m;
-        if (judge(middle + (1.0 - kWitnessInset) * offset)) return true;
-      }
-  }
-  if (splits_left == 0) return false;
-  const Mesh& mesh = index.mesh();
-  std::vector<Eigen::Vector3d> triangle(3);
-  for (int f : deciding) {
-    for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[f][k]];
-    ShadowSplit split = split_by_shadow(region, triangle, sweep.direction, tol);
-    // f shadows all of it, or (met within tol of its edges) none of it.
-    if (split.beside.empty() || split.inside.empty()) continue;
-    return pieces_lose_space(index, sweep, interior, std::move(split), scratch, splits_left - 1);
-  }
-  if (enclosed_to == 0.0) return false;
-  // Rays met from behind are enclosed only if no face met from the front
-  // comes first: one that shadows part of the region between the hull and
-  // the faces closing it, missed by every witness, cuts the region too.
-  Aabb column;
-  for (const Eigen::Vector3d& c : region) {
-    column.extend(c);
-    column.extend(c + (sweep.start.signed_distance(c) + enclosed_to) * sweep.direction);
-  }
-  std::vector<int> near;
-  index.face_tree.overlapping(grown(column, tol), near);
-  for (int f : near) {
-    if (index.face_normals[f].dot(sweep.direction) >= 0.0) continue;  // met from behind, or zero area
-    for (int k = 0; k < 3; ++k) triangle[k] = mesh.positions[mesh.triangles[f][k]];
-    ShadowSplit split = split_by_shadow(region, triangle, sweep.direction, tol);
-    if (split.beside.empty() || split.inside.empty()) continue;
-    return pieces_lose_space(index, sweep, interior, std::move(split), scratch, splits_left - 1);
-  }
-  return false;
-}
-
-bool pieces_lose_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
-                       ShadowSplit split, std::vector<int>& scratch, int splits_left) {
-  const double tol = index.tol();
-  split.beside.push_back(std::move(split.inside));
-  for (const std::vector<Eigen::Vector3d>& piece : split.beside)
-    if (polygon_area(piece) > tol * tol && region_loses_space(index, sweep, interior, piece, scratch, splits_left))
-      return true;
-  return false;
-}
-
-} // namespace
 
 } // namespace hullcover::detail

@@ -15,22 +15,37 @@ namespace hullcover::detail {
 /// kParallelSine) bound nothing and give no plane.
 std::vector<Plane> column_planes(const std::vector<Eigen::Vector3d>& outline, const Eigen::Vector3d& dir);
 
-/// How many times a region is cut along the shadow of a face its
-/// witnesses met, at most.
-inline constexpr int kShadowSplits = 5;
+/// How many pieces one region may be cut into before it counts as losing
+/// space: a bound on the work, where giving up is conservative.
+inline constexpr int kMaxJudgedPieces = 1024;
+
+/// A piece of a region no wider than this many tolerances is a sliver of
+/// rounding: passed over, as it holds no ray apart from its neighbours'.
+inline constexpr double kNegligibleWidthInTolerances = 1e-6;
 
 /// True when rays of `sweep` through convex `region` (a polygon on a facet
-/// of `interior`, where they enter it) lose free space. Judged by witness
-/// rays on a grid over the region, pulled in off its edges where the mesh's
-/// own edges lie; a ray loses space when it lies inside the interior before
-/// its first mesh hit and within the reach, unless (front space) that hit
-/// is the back of a face. Where a face that kept witnesses from losing
-/// space does not shadow the whole region, or a face met from the front
-/// shadows part of an enclosed region, the region is cut along that shadow
-/// and each piece judged again, `splits_left` times at most. Exact up to
-/// that sampling. `scratch` is reused storage.
+/// of `interior`, where they enter it) lose free space: a ray loses space
+/// when it lies inside the interior before its first mesh hit and within
+/// the reach, unless its first hit beyond the entry is the back of every
+/// face met there (enclosed space). Decided exactly, piece by piece: a
+/// piece's middle ray names the face that keeps it; within that face's
+/// shadow the face decides every ray at once (distances along the rays are
+/// affine over a piece, so its corners decide), cutting the piece where
+/// that changes; the rest of the region is judged the same way. A region
+/// not settled in kMaxJudgedPieces pieces counts as losing space. `scratch` is
+/// reused storage.
 bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
-                        const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch,
-                        int splits_left = kShadowSplits);
+                        const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch);
+
+/// An upper bound on how far any ray of `sweep` runs from its base before
+/// its first mesh hit, scene units; infinity when some ray may meet
+/// nothing. Found like region_loses_space: a piece's middle ray names the
+/// face it meets, which bounds every ray through its shadow (the farthest
+/// corner of the piece, distances being affine); the rest is cut into
+/// pieces judged the same way. Slivers are passed over, as region_loses_space
+/// passes them; after kMaxJudgedPieces pieces the
+/// bound is infinity. The free space the exact conditions keep ends there,
+/// so a sweep need reach no farther.
+double first_hit_bound(const SceneIndex& index, const FreeSpaceSweep& sweep, std::vector<int>& scratch);
 
 } // namespace hullcover::detail

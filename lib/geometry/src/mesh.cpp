@@ -49,6 +49,11 @@ Eigen::Vector3d triangle_area_vector(const Mesh& mesh, int t) {
   return (mesh.positions[tri[1]] - a).cross(mesh.positions[tri[2]] - a);
 }
 
+void triangle_corners(const Mesh& mesh, int t, std::vector<Eigen::Vector3d>& corners) {
+  corners.resize(3);
+  for (int k = 0; k < 3; ++k) corners[k] = mesh.positions[mesh.triangles[t][k]];
+}
+
 bool triangle_has_repeated_vertex(const Mesh& mesh, int t) {
   const Eigen::Vector3i& tri = mesh.triangles[t];
   return tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0];

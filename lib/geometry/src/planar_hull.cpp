@@ -98,9 +98,14 @@ FlatPolygon make_flat_polygon(const std::vector<Eigen::Vector3d>& positions, con
                               const Eigen::Vector3d& normal, double tol) {
   FlatPolygon polygon;
   if (vertex_ids.empty()) return polygon;
-  double offset = 0.0;
-  for (int v : vertex_ids) offset += normal.dot(positions[v]);
-  offset /= static_cast<double>(vertex_ids.size());
+  // The middle of their slab: no point is farther from the plane than half
+  // its width (a mean would leave a lone point up to the whole width off).
+  double low = normal.dot(positions[vertex_ids.front()]), high = low;
+  for (int v : vertex_ids) {
+    low = std::min(low, normal.dot(positions[v]));
+    high = std::max(high, normal.dot(positions[v]));
+  }
+  const double offset = 0.5 * (low + high);
   const PlaneFrame frame = PlaneFrame::from_normal(positions[vertex_ids.front()], normal);
   std::vector<Eigen::Vector2d> projected;
   projected.reserve(vertex_ids.size());

@@ -1,29 +1,32 @@
 #pragma once
 /// \file accessible_space.h
-/// The accessible-space probe (../shared/DESIGN.md, "what no free space lost
-/// means"): free space is sampled from the scene itself, then every sample
-/// is tested against the hulls.
+/// The accessible-space probe: ../shared/DESIGN.md's strict definition of
+/// free space ("Accuracy: what no free space lost means"), decided exactly
+/// along rays.
 ///
-/// - front free space: rays from sample points on every face along its
-///   normal, up to the probe distance R or the first mesh hit.
-/// - openings: rays from points along every boundary edge, outward in the
-///   face's plane, up to R or the first hit (a doorway stays open).
-/// A front ray whose first hit is the BACK of every face met there is
-/// *enclosed* space (a floor under a table top): counted apart, allowed. One
-/// face met from the front at that hit (a ceiling coincident with the floor
-/// above) makes the ray open, as DESIGN.md's strict definition says.
-/// Not yet the strict definition in full: R caps the rays, points along
-/// them are sampled, and opening rays are never enclosed.
-/// The accessible (not enclosed) points go into an OctoMap octree as free
-/// cells, the surface as occupied; every free cell is tested too, which
-/// gives the lost volume: a cell counts as lost when a free sample in it
-/// is, or when the whole cell lies inside a hull.
+/// - front space: rays from points of every face (however small: its
+///   centroid, a point near each corner, and more in proportion to its
+///   area) along its normal;
+/// - openings: rays from points along every open edge (boundary edge, or
+///   the rim of a double-sided sheet), outward in the face's plane and
+///   tilted by kOpeningTiltSine to either side of it.
+/// Each ray starts kRayStandOffInTolerances x tol off the surface and runs,
+/// with no distance cap, to as far short of its first mesh hit, or, when it
+/// meets nothing, out of the box of the scene and every hull (beyond which
+/// no hull lies). A ray whose first hit is the BACK of every face met there
+/// is *enclosed* (the floor under a one-sided table top): allowed, counted.
+/// Every other ray is open: its segment is clipped exactly against every
+/// hull whose box it meets (Cyrus-Beck on the hull's planes moved inward by
+/// tol), and any stretch left is lost space, with its length and its
+/// deepest point. A flat hull has no inside and loses nothing.
 ///
-/// "Lost" means strictly inside a hull: deeper than the tolerance.
+/// OctoMap: the cell of each lost ray's deepest point goes into an octree
+/// (its origin the scene's box centre) that can be written for a viewer;
+/// its cell count is a picture of where the lost rays are, not a separate
+/// verdict.
 
 #include "hullcover/bvh/hull_world.h"
 #include "hullcover/bvh/triangle_world.h"
-#include "hullcover/covering/covering.h"
 #include "hullcover/mesh/prepared_mesh.h"
 
 #include <optional>
@@ -32,51 +35,63 @@
 
 namespace hullcover::validate {
 
-/// Default probe distance as a fraction of the bounding-box diagonal: the
-/// decomposer's default free-space reach, so it probes what exact mode keeps.
-inline constexpr double kDefaultProbeRelative = kDefaultFreeSpaceReachRelative;
-/// Default octree resolution (and sample spacing) per probe distance.
-inline constexpr double kDefaultCellsPerProbe = 8.0;
+/// Default ray spacing as a fraction of the scene's bounding-box diagonal:
+/// about one front ray per spacing^2 of face area and one opening point per
+/// spacing of open edge (plus a few per face and edge however small).
+inline constexpr double kDefaultProbeSpacingRelative = 0.0025;
 
-/// How far and how finely the probe looks; every default is relative to the scene.
+/// How finely the probe looks; the default is relative to the scene.
 struct ProbeOptions {
-  std::optional<double> probe_distance;  ///< R, scene units (> 0)
-  std::optional<double> resolution;      ///< octree cell size and sample spacing, scene units (> 0)
-  std::string octree_path;  ///< write the octree here (.bt) when not empty; its origin is the scene's box centre
+  /// Optional cap on every ray's length, scene units (> 0). Default none:
+  /// the strict definition has no cap; a user may trade exactness for an
+  /// agent's reach.
+  std::optional<double> probe_distance;
+  /// Ray spacing on faces and open edges, and the octree's cell size,
+  /// scene units (> 0); default kDefaultProbeSpacingRelative x diagonal.
+  std::optional<double> resolution;
+  std::string octree_path;  ///< write the lost cells' octree here (.bt) when not empty
 };
 
-/// One place where free space is lost.
+/// One place where free space is lost: a ray's deepest point inside a hull.
 struct LostPlace {
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< the lost sample, scene coordinates
-  int face = -1;  ///< the face (or open edge's face) the probing ray came from
-  int hull = -1;  ///< the hull it is inside
-  double depth = 0.0;    ///< how deep inside the hull
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< the deepest point, scene coordinates
+  int face = -1;  ///< the face the ray left (an open edge's face)
+  int hull = -1;  ///< the hull it is inside; -1 for no place
+  double depth = 0.0;    ///< depth inside the hull, scene units (> tol)
   bool opening = false;  ///< found by an opening ray
 };
 
-/// What the probe found. Points are free samples; "lost" ones lie deeper
-/// than the tolerance inside a hull.
-struct ProbeReport {
-  double probe_distance = 0.0;  ///< R used, scene units
-  double resolution = 0.0;      ///< octree cell and sample spacing used, scene units
-  long front_points = 0, front_lost = 0;  ///< samples in front of faces (accessible), and the lost ones
-  long enclosed_points = 0, enclosed_in_hulls = 0;  ///< allowed, reported
-  long opening_points = 0, opening_lost = 0;  ///< samples beyond open edges, and the lost ones
-  long free_cells = 0, lost_cells = 0;  ///< lost: holds a lost free sample, or lies wholly inside a hull
-  long straddling_cells = 0;  ///< free cells whose centre alone is inside a hull (a hull's surface crosses them)
-  double free_volume = 0.0, lost_volume = 0.0;  ///< scene units cubed
-  double max_lost_depth = 0.0;  ///< the deepest lost sample's depth
-  Eigen::Vector3d octree_origin = Eigen::Vector3d::Zero();  ///< scene point at the octree's origin (the box centre)
-  std::vector<LostPlace> worst;  ///< deepest first, at most kWorstPlaces
+/// What one kind of ray (front or opening) found.
+struct RayTally {
+  long rays = 0;      ///< rays traced
+  long enclosed = 0;  ///< rays whose first hit is the back of a face: allowed
+  long lost = 0;      ///< open rays with a stretch deeper than tol inside some hull
+  double lost_length = 0.0;  ///< total length of those stretches (overlapping hulls counted once), scene units
+  LostPlace deepest;         ///< the deepest lost point of this kind (hull -1 when none)
 };
-/// How many of the deepest lost places a report keeps.
+
+/// What the probe found.
+struct ProbeReport {
+  std::optional<double> probe_distance;  ///< the cap used, scene units; none by default
+  double resolution = 0.0;               ///< ray spacing and octree cell size used, scene units
+  RayTally front;    ///< rays in front of faces
+  RayTally opening;  ///< rays beyond open edges
+  long lost_cells = 0;       ///< octree cells holding a lost ray's deepest point
+  double max_lost_depth = 0.0;  ///< the deepest lost point's depth, either kind, scene units
+  Eigen::Vector3d octree_origin = Eigen::Vector3d::Zero();  ///< scene point at the octree's origin (the box centre)
+  std::vector<LostPlace> worst;  ///< the deepest lost point per hull, deepest first, at most kWorstPlaces
+
+  long lost_rays() const { return front.lost + opening.lost; }
+};
+/// How many hulls' deepest lost places a report keeps.
 inline constexpr size_t kWorstPlaces = 10;
 
-/// Probes `prepared`'s free space (ray casts on `triangles`) and tests it
-/// against `hulls`. Fails with `invalid_argument` for a non-positive probe
-/// distance or resolution, or a resolution so fine the octree would need
-/// more than its 16 levels over the scene; `unwritable_file` when the
-/// octree cannot be written.
+/// Probes `prepared`'s free space (ray casts on `triangles`) and decides it
+/// against the hulls of `hulls`. Fails with `invalid_argument` for a
+/// non-positive or infinite probe distance or resolution, or a resolution
+/// so fine the octree would need more than its 16 levels over the scene;
+/// `unwritable_file` when the octree cannot be written; `internal_error`
+/// when anything else goes wrong.
 Result<ProbeReport> probe_accessible_space(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles,
                                            const bvh::HullWorld& hulls, const ProbeOptions& options);
 

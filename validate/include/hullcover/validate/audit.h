@@ -19,8 +19,9 @@ namespace hullcover::validate {
 
 /// Everything the audit can be told; every default is the command's.
 struct AuditOptions {
-  /// The accessible-space probe: distance R, octree resolution, and where
-  /// to write the octree (nowhere when empty).
+  /// The accessible-space probe: ray spacing (and octree cell), an optional
+  /// cap on the rays (none by default), and where to write the octree of
+  /// lost cells (nowhere when empty).
   ProbeOptions probe;
   /// Half-length of the re-check's boundary bars, scene units (> 0);
   /// default `kDefaultBarHalfLengthRelative` x the diagonal (the paper-mode default;
@@ -33,11 +34,11 @@ struct AuditOptions {
 
 /// One reason the audit is not clean.
 enum class AuditFinding {
-  front_space_lost,    ///< probe points in front of faces lie inside hulls
-  openings_lost,       ///< probe points beyond open edges lie inside hulls
-  free_cells_lost,     ///< free octree cells lost to hulls
+  front_space_lost,    ///< open rays in front of faces pass deeper than tol inside hulls
+  openings_lost,       ///< open rays beyond open edges pass deeper than tol inside hulls
   recheck_violations,  ///< the re-check's violations() (all but the paper's bars)
   contacts_missed,     ///< proxies touch the triangles but no hull
+  false_contacts,      ///< proxies clear of the triangles lie deeper than tol inside a hull
 };
 
 /// Short stable name of a finding ("front_space_lost", ...), for logs and JSON.
@@ -49,7 +50,7 @@ struct AuditReport {
   CheckReport recheck;        ///< the paper's conditions 1-4 and coverage, re-checked
   BehaviourReport behaviour;  ///< missed and false contacts of the proxies
   size_t hull_count = 0;      ///< hulls audited
-  int groups_without_volume = 0;      ///< OBJ groups skipped for spanning no volume (from the HullSet)
+  int groups_without_area = 0;        ///< OBJ groups skipped for spanning no area (from the HullSet)
   std::vector<AuditFinding> findings;  ///< why it is not clean, in enum order; empty when clean
 
   /// No accessible space lost: no finding.
@@ -59,8 +60,9 @@ struct AuditReport {
 /// The verdict on the three reports: one finding per kind of loss. The
 /// paper's bars are not counted: they stand in for openings at one point
 /// per edge, and the probe measures the openings themselves. False contacts
-/// and normal angles are reported, not judged (hullcover's own clean
-/// coverings have a few false contacts); enclosed space is allowed.
+/// count when deeper than tol (lost space, found by the proxies); shallower
+/// ones and normal angles are reported, not judged. Enclosed space is
+/// allowed.
 std::vector<AuditFinding> audit_findings(const ProbeReport& probe, const CheckReport& recheck,
                                          const BehaviourReport& behaviour);
 

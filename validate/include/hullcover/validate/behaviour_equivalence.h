@@ -28,7 +28,10 @@ struct BehaviourReport {
   long both_touch = 0, neither_touches = 0;  ///< poses on which the two worlds agree
   long missed = 0;               ///< triangles touched, hulls not
   long false_contacts = 0;       ///< hulls touched, triangles not
-  double max_false_depth = 0.0;  ///< deepest such false contact
+  /// False contacts deeper than tol into a hull by a proxy whose centre lies
+  /// on its face's open front ray: lost space, a violation.
+  long deep_false_contacts = 0;
+  double max_false_depth = 0.0;  ///< deepest such false contact, scene units
   double max_normal_angle = 0.0; ///< degrees, from the hulls' deepest normal to the nearest triangle normal, when both touch
   double mean_normal_angle = 0.0;  ///< degrees, the same angle on average
 };

@@ -3,6 +3,11 @@
 /// Hulls to audit, from any source: hullcover's runtime file, or an OBJ
 /// with one `o` or `g` group per hull (V-HACD output, hand-made UCX meshes),
 /// each hull being the convex hull of the vertices its group's faces use.
+/// A group whose vertices lie in one plane (within kDefaultRelativeTolerance
+/// x the group's own extent: a set carries no scene tolerance) is a flat
+/// hull, a convex polygon of thickness 0 facing the way its faces wind, as
+/// hullcover writes its flat hulls: an OBJ and the `.hcw` of one covering
+/// are the same hulls.
 
 #include "hullcover/bvh/runtime_hull.h"
 #include "hullcover/geometry/status.h"
@@ -15,7 +20,7 @@ namespace hullcover::validate {
 /// Hulls read from a file, and what could not be made a hull.
 struct HullSet {
   std::vector<bvh::RuntimeHull> hulls;
-  int groups_without_volume = 0;  ///< OBJ groups whose points span no volume (skipped)
+  int groups_without_area = 0;  ///< OBJ groups whose points span no area (collinear or one point: skipped)
 };
 
 /// Reads `path`: a `.hcw` runtime file, or else an OBJ with groups.

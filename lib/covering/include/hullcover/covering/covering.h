@@ -35,7 +35,10 @@ struct Covering {
   std::vector<CoveringHull> hulls;  ///< ordered by their first face
   Tolerance tolerance;
   double bar_half_length = 0.0;
-  double free_space_reach = 0.0;  ///< exact mode
+  /// Exact mode: how far free space is kept, scene units. Without a cap
+  /// (the default) a length beyond which no hull lies.
+  double free_space_reach = 0.0;
+  bool free_space_capped = false;  ///< the user asked for a reach
   double prism_thickness_cap = 0.0;
   double near_merge_distance = 0.0;  ///< scene units; 0 = no near merges
   bool dissolve = false;             ///< whether dissolving ran (resolved DecomposeOptions::dissolve)

@@ -17,13 +17,11 @@ namespace hullcover {
 /// Default bar half-length as a fraction of the bounding-box diagonal (the
 /// value the prototype in ../shared/DESIGN.md measured the paper with).
 inline constexpr double kDefaultBarHalfLengthRelative = 0.1;
-/// Default free-space reach (exact mode) as a fraction of the diagonal: the
-/// audit's default probe distance, so the decomposer keeps all the free
-/// space the audit looks at.
+/// The audit's default probe distance as a fraction of the diagonal (the
+/// decomposer itself keeps free space with no cap unless asked for one).
 inline constexpr double kDefaultFreeSpaceReachRelative = 0.02;
-/// Default distance of the near merges as a fraction of the
-/// diagonal: the free-space reach, so patches are joined across gaps no
-/// wider than the space the exact conditions look at in front of them.
+/// Default distance of the near merges as a fraction of the diagonal: gaps
+/// as wide as the audit's probe distance.
 inline constexpr double kDefaultNearMergeRelative = kDefaultFreeSpaceReachRelative;
 /// Default cap on prism thickness as a fraction of the diagonal.
 inline constexpr double kDefaultPrismCapRelative = 0.01;
@@ -48,8 +46,9 @@ struct DecomposeOptions {
   /// kExactBarHalfLengthInTolerances x tol, paper kDefaultBarHalfLengthRelative
   /// x diagonal.
   std::optional<double> bar_half_length;
-  /// Exact mode: how far free space is kept in front of faces and beyond
-  /// open edges (> 0); default kDefaultFreeSpaceReachRelative x diagonal.
+  /// Exact mode: how far in front of faces and beyond open edges free space
+  /// is kept, scene units (> 0). Unset (the default): no cap, as DESIGN.md
+  /// defines free space; a cap trades exactness for speed.
   std::optional<double> free_space_reach;
   /// Cap on a planar patch's prism thickness (>= 0); default
   /// kDefaultPrismCapRelative x diagonal.

@@ -54,6 +54,10 @@ Status validate_mesh(const Mesh& mesh);
 /// is the front normal, its length twice the area.
 Eigen::Vector3d triangle_area_vector(const Mesh& mesh, int t);
 
+/// Writes triangle `t`'s three corner positions into `corners` (resized to
+/// 3), for the polygon routines that take a corner list; reuses its storage.
+void triangle_corners(const Mesh& mesh, int t, std::vector<Eigen::Vector3d>& corners);
+
 /// True when two corners of triangle `t` are the same vertex index (the
 /// triangle collapsed to a segment or point, e.g. after welding).
 bool triangle_has_repeated_vertex(const Mesh& mesh, int t);

@@ -58,8 +58,8 @@ struct FlatPolygon {
 };
 
 /// The convex polygon of mesh vertices `vertex_ids` (positions from
-/// `positions`) in the plane with unit normal `normal` through their mean
-/// distance; corners are projected onto that plane. Points within `tol` of
+/// `positions`) in the plane with unit normal `normal` through the middle
+/// of their slab along it; corners are projected onto that plane. Points within `tol` of
 /// a hull edge are not corners. Returns an empty polygon when the points
 /// are collinear within `tol`.
 FlatPolygon make_flat_polygon(const std::vector<Eigen::Vector3d>& positions, const std::vector<int>& vertex_ids,

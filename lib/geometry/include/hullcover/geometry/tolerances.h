@@ -10,7 +10,7 @@
 /// means deeper than tol, "coincident" closer than tol. Every other length
 /// threshold of the decomposer and the audit is a named multiple of tol
 /// below. Directions have their own, dimensionless tolerances
-/// (`kParallelSine`, `kSettlingSlope`); a length is never compared with a
+/// (`kParallelSine`); a length is never compared with a
 /// sine. The runtime (bvh) answers queries on hulls that carry no scene
 /// tolerance: its thresholds are relative to each query's own size (section
 /// "Runtime").
@@ -37,6 +37,13 @@ inline constexpr double kRoundingErrorsPerPlaneTest = 8.0;
 /// are not free.
 inline constexpr double kRayStandOffInTolerances = 2.0;
 
+/// Patches join as one planar patch only when every vertex of theirs lies in
+/// a slab this many tolerances wide along their normal; the polygon's plane
+/// runs through its middle, so every face lies within half a tol of its
+/// hull's surface: coverage (within tol, DESIGN.md) holds with room to
+/// spare for a reader of rounded output.
+inline constexpr double kPlanarSlabInTolerances = 1.0;
+
 /// A prism thinner than this many tolerances is no thicker than the noise
 /// of the data: it is made flat instead.
 inline constexpr double kMinPrismThicknessInTolerances = 2.0;
@@ -55,6 +62,22 @@ inline constexpr double kMinTriangleHeightInTolerances = 1.0;
 /// small fraction of the tolerance every later test allows.
 inline constexpr double kVisibleBeyondTolerances = 1.0 / 16.0;
 
+/// Two planes of one hull that stay this many tolerances apart or less
+/// across the whole hull are one plane when the hull is shrunk by tol (a
+/// grown hull's coplanar triangles): the shrunk facet is kept once, off by
+/// this small fraction of tol at most.
+inline constexpr double kOnePlaneInTolerances = 1.0 / 16.0;
+
+// ---- The free-space definition ----------------------------------------------
+
+/// Openings (../shared/DESIGN.md, "Accuracy") run from every open edge
+/// outward in its face's plane, and tilted "a little" to either side of
+/// it: by the angle whose sine this is (about 5.7 degrees). The decomposer
+/// keeps the three fans of rays (in the plane, and tilted either way) free,
+/// and the audit traces the same three; a definition, not a tolerance, so
+/// both read it here.
+inline constexpr double kOpeningTiltSine = 0.1;
+
 // ---- Directions -------------------------------------------------------------
 
 /// An edge whose sine with a direction is below this runs along it (a face
@@ -62,11 +85,6 @@ inline constexpr double kVisibleBeyondTolerances = 1.0 / 16.0;
 /// relative rounding of a cross product (about 1e-16), so the plane of any
 /// edge it keeps has a well-defined normal.
 inline constexpr double kParallelSine = 1e-9;
-
-/// Witness rays meeting a face at more than this slope (|cos| between the
-/// face's normal and the ray) are settled from their distances; grazing
-/// ones are sampled, as a hit's distance along them is ill-conditioned.
-inline constexpr double kSettlingSlope = 1e-3;
 
 /// Two planes whose normals differ by less than this in 1 - cos are one
 /// plane across `extent`: over that length their offsets drift apart by at

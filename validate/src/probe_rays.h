@@ -1,0 +1,35 @@
+#pragma once
+// Where the accessible-space probe's rays start and which way they go
+// (../shared/DESIGN.md, "Accuracy"): along the normal from points of every
+// face, however small, and beyond every open edge, in the face's plane and
+// tilted to either side of it.
+
+#include "hullcover/mesh/prepared_mesh.h"
+
+#include <Eigen/Core>
+
+#include <functional>
+
+namespace hullcover::validate::probe {
+
+/// One probe ray, before its stand-off from the surface.
+struct ProbeRay {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();     ///< on the face or the open edge, scene units
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();  ///< unit
+  int face = -1;         ///< the face it leaves (an open edge's face)
+  bool opening = false;  ///< beyond an open edge rather than in front of a face
+};
+
+/// Every front ray: from each face with a surface, its centroid and a point
+/// near each corner, plus a triangular grid of about area / spacing^2 points
+/// (spacing in scene units, > 0), all along the face's unit normal.
+void for_each_front_ray(const PreparedMesh& prepared, double spacing, const std::function<void(const ProbeRay&)>& trace);
+
+/// Every opening ray: from points along each open edge (a boundary edge, or
+/// the rim of a double-sided sheet: two faces back to back), one near each
+/// end and one per `spacing` between, outward in the face's plane and
+/// tilted by kOpeningTiltSine to either side.
+void for_each_opening_ray(const PreparedMesh& prepared, double spacing,
+                          const std::function<void(const ProbeRay&)>& trace);
+
+} // namespace hullcover::validate::probe
