@@ -89,8 +89,9 @@ inline constexpr double kParallelSine = 1e-9;
 /// Two planes whose normals differ by less than this in 1 - cos are one
 /// plane across `extent`: over that length their offsets drift apart by at
 /// most tol, since 1 - cos(a) ~ a^2 / 2 and the drift is extent x a.
-/// Used for the planes of a patch's faces (extent: the scene's diagonal) and
-/// for a hull's facets (extent: the hull's).
+/// Used for the planes of a patch's faces (extent: the scene's diagonal). A
+/// hull's shrunk facets use kOnePlaneInTolerances instead: their planes are
+/// compared by distance across the hull, not by angle.
 inline double same_plane_cosine_gap(double tol, double extent) {
   const double ratio = tol / std::max(extent, tol);
   return 0.5 * ratio * ratio;
