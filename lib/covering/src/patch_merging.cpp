@@ -214,10 +214,33 @@ PatchMerger::Candidate PatchMerger::evaluate(int a, int b) {
     return out;
   }
   out.validity = check_solid_hull(index_, *hull, scratch_);
+  if (out.validity == Validity::valid) out.validity = check_thin_hull(a, b, ids, points);
   out.hull_vertices = hull->vertex_ids;
   std::sort(out.hull_vertices.begin(), out.hull_vertices.end());
   out.solid = std::move(hull);
   return out;
+}
+
+Validity PatchMerger::check_thin_hull(int a, int b, const std::vector<int>& ids,
+                                      const std::vector<Eigen::Vector3d>& points) {
+  // A solid this thin has no inside deeper than tol for rays to meet, yet
+  // spans what its faces do not, as a flat polygon does: a floor's hull
+  // over a hole in it (nav_test's stairwell) is a floor where there is
+  // none. Condition 4 of a flat polygon keeps it off such holes.
+  const Eigen::Vector3d sum = patches_[a].area_vector + patches_[b].area_vector;
+  if (!(sum.norm() > 0.0)) return Validity::valid;
+  const Eigen::Vector3d normal = sum.normalized();
+  double low = normal.dot(points.front()), high = low;
+  for (const Eigen::Vector3d& p : points) {
+    low = std::min(low, normal.dot(p));
+    high = std::max(high, normal.dot(p));
+  }
+  const double tol = index_.tol();
+  if (high - low > kThinHullSlabInTolerances * tol) return Validity::valid;
+  const FlatPolygon polygon = make_flat_polygon(index_.mesh().positions, ids, normal, tol);
+  return check_faces_below_polygon(
+      index_, polygon, 0.5 * (high - low) + tol, [&](int f) { return face_patch_[f] == a || face_patch_[f] == b; },
+      scratch_);
 }
 
 std::optional<ConvexPolytope> PatchMerger::grow_known_hull(const Patch& base, const Patch& other) {
