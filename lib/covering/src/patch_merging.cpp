@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace hullcover::detail {
 namespace {
@@ -214,32 +215,37 @@ PatchMerger::Candidate PatchMerger::evaluate(int a, int b) {
     return out;
   }
   out.validity = check_solid_hull(index_, *hull, scratch_);
-  if (out.validity == Validity::valid) out.validity = check_thin_hull(a, b, ids, points);
+  if (out.validity == Validity::valid) out.validity = check_thin_hull(a, b, *hull, ids);
   out.hull_vertices = hull->vertex_ids;
   std::sort(out.hull_vertices.begin(), out.hull_vertices.end());
   out.solid = std::move(hull);
   return out;
 }
 
-Validity PatchMerger::check_thin_hull(int a, int b, const std::vector<int>& ids,
-                                      const std::vector<Eigen::Vector3d>& points) {
-  // A solid this thin has no inside deeper than tol for rays to meet, yet
-  // spans what its faces do not, as a flat polygon does: a floor's hull
-  // over a hole in it (nav_test's stairwell) is a floor where there is
-  // none. Condition 4 of a flat polygon keeps it off such holes.
-  const Eigen::Vector3d sum = patches_[a].area_vector + patches_[b].area_vector;
-  if (!(sum.norm() > 0.0)) return Validity::valid;
-  const Eigen::Vector3d normal = sum.normalized();
-  double low = normal.dot(points.front()), high = low;
-  for (const Eigen::Vector3d& p : points) {
-    low = std::min(low, normal.dot(p));
-    high = std::max(high, normal.dot(p));
-  }
+Validity PatchMerger::check_thin_hull(int a, int b, const ConvexPolytope& hull, const std::vector<int>& ids) {
+  // Where a solid is thinner than 2 tol it has no inside deeper than tol for
+  // rays to meet, yet it spans what its faces do not, as a flat polygon
+  // does, and a proxy standing there touches it: a floor's hull over a hole
+  // in it (nav_test's stairwell), a sheet from one floor level to the next
+  // (dungeon). Its thinnest direction is across one of its facets; across
+  // that facet it is held to a flat polygon's condition 4.
   const double tol = index_.tol();
-  if (high - low > kThinHullSlabInTolerances * tol) return Validity::valid;
-  const FlatPolygon polygon = make_flat_polygon(index_.mesh().positions, ids, normal, tol);
+  double thinnest = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d across = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < hull.facets.size(); ++i) {
+    double width = 0.0;
+    for (const Eigen::Vector3d& v : hull.vertices) width = std::max(width, -hull.planes[i].signed_distance(v));
+    if (width < thinnest) thinnest = width, across = hull.planes[i].normal;
+  }
+  if (!(thinnest <= kThinHullSlabInTolerances * tol)) return Validity::valid;
+  // Both sides of a thin hull bound it about equally; "below" is behind the
+  // patches' faces, as for a flat polygon (faces standing on its front, a
+  // pillar on a floor, are allowed).
+  if (across.dot(patches_[a].area_vector + patches_[b].area_vector) < 0.0) across = -across;
+  const FlatPolygon polygon = make_flat_polygon(index_.mesh().positions, ids, across, tol);
+  if (polygon.corners.empty()) return Validity::valid;
   return check_faces_below_polygon(
-      index_, polygon, 0.5 * (high - low) + tol, [&](int f) { return face_patch_[f] == a || face_patch_[f] == b; },
+      index_, polygon, 0.5 * thinnest + tol, [&](int f) { return face_patch_[f] == a || face_patch_[f] == b; },
       scratch_);
 }
 

@@ -113,10 +113,10 @@ private:
   std::vector<int> receivers_of(int f, int h, const AabbTree& near_tree) const;
   /// hull(base + other) grown from base's known hull, when other adds few
   /// points; nothing when that does not apply or fails (then Qhull runs).
-  // Condition 4 of a flat polygon for a solid hull of patches a and b
-  // (hull vertex ids and their positions) whose vertices lie within
-  // kThinHullSlabInTolerances tol along the patches' normal.
-  Validity check_thin_hull(int a, int b, const std::vector<int>& ids, const std::vector<Eigen::Vector3d>& points);
+  /// Condition 4 of a flat polygon for a solid hull of patches a and b
+  /// (`ids` their mesh vertices) no wider than kThinHullSlabInTolerances
+  /// tol across one of its facets.
+  Validity check_thin_hull(int a, int b, const ConvexPolytope& hull, const std::vector<int>& ids);
   std::optional<ConvexPolytope> grow_known_hull(const Patch& base, const Patch& other);
   /// Beyond this many new points a rebuild is as cheap as growing.
   static constexpr int kMostPointsToAddIncrementally = 6;

@@ -44,10 +44,11 @@ inline constexpr double kRayStandOffInTolerances = 2.0;
 /// spare for a reader of rounded output.
 inline constexpr double kPlanarSlabInTolerances = 1.0;
 
-/// A solid hull whose vertices lie within this many tolerances along its
-/// patch's normal is thin: rays find at most a band 2 tol deep inside it, so
-/// it is also held to a flat polygon's condition 4 (no face outside the
-/// patch reaching below it through its interior).
+/// A solid hull no wider than this many tolerances across one of its facets
+/// is thin: rays find at most a band 2 tol deep inside it (none where it is
+/// under 2 tol), so it is also held to a flat polygon's condition 4 across
+/// that facet (no face outside the patch reaching below it through its
+/// interior).
 inline constexpr double kThinHullSlabInTolerances = 4.0;
 
 /// A prism thinner than this many tolerances is no thicker than the noise
