@@ -53,8 +53,7 @@ constexpr SceneCase kCases[] = {
 
 // Points of free space an independent strict checker found inside the
 // default covering (checked by hand in double precision), with the face
-// whose rays reach them: none may be inside a hull. (The checker's points
-// beyond the free-space reach are not kept yet: exact mode still caps it.)
+// whose rays reach them: none may be inside a hull.
 struct FreePoint {
   const char* scene;
   double x, y, z;
