@@ -74,6 +74,12 @@ void print_audit(const AuditCommandOptions& o, const PreparedMesh& prepared, con
               "             shared contacts\n",
               b.poses, b.size, b.missed, b.false_contacts, b.deep_false_contacts, b.max_false_depth,
               b.mean_normal_angle, b.max_normal_angle, b.both_touch);
+  if (b.deepest_false.hull >= 0)
+    std::printf("      deepest false contact: %.6g into hull %d, proxy centred at (%.17g, %.17g, %.17g) in front of face %d,\n"
+                "      touching at (%.17g, %.17g, %.17g)\n",
+                b.deepest_false.depth, b.deepest_false.hull, b.deepest_false.centre.x(), b.deepest_false.centre.y(),
+                b.deepest_false.centre.z(), b.deepest_false.face, b.deepest_false.point.x(), b.deepest_false.point.y(),
+                b.deepest_false.point.z());
   if (!r.worst.empty()) std::printf("  deepest lost point per hull (max depth %.6g):\n", r.max_lost_depth);
   for (const validate::LostPlace& p : r.worst) print_place("    ", p);
 }
@@ -85,6 +91,15 @@ nlohmann::json place_json(const validate::LostPlace& p) {
           {"hull", p.hull},
           {"depth", p.depth},
           {"opening", p.opening}};
+}
+
+nlohmann::json false_contact_json(const validate::FalseContactPlace& p) {
+  if (p.hull < 0) return nullptr;
+  return {{"hull", p.hull},
+          {"face", p.face},
+          {"centre", {p.centre.x(), p.centre.y(), p.centre.z()}},
+          {"point", {p.point.x(), p.point.y(), p.point.z()}},
+          {"depth", p.depth}};
 }
 
 nlohmann::json rays_json(const validate::RayTally& t) {
@@ -134,6 +149,7 @@ nlohmann::json audit_json(const AuditCommandOptions& o, const PreparedMesh& prep
         {"false_contacts", b.false_contacts},
         {"deep_false_contacts", b.deep_false_contacts},
         {"max_false_depth", b.max_false_depth},
+        {"deepest_false_contact", false_contact_json(b.deepest_false)},
         {"both_touch", b.both_touch},
         {"mean_normal_angle_deg", b.mean_normal_angle},
         {"max_normal_angle_deg", b.max_normal_angle}}},

@@ -53,8 +53,7 @@ constexpr SceneCase kCases[] = {
 
 // Points of free space an independent strict checker found inside the
 // default covering (checked by hand in double precision), with the face
-// whose rays reach them: none may be inside a hull. (The checker's points
-// beyond the free-space reach are not kept yet: exact mode still caps it.)
+// whose rays reach them: none may be inside a hull.
 struct FreePoint {
   const char* scene;
   double x, y, z;
@@ -78,6 +77,26 @@ constexpr FreePoint kFreePoints[] = {
     {"recast-dungeon.obj", 20.238, 17.065, -80.969,
      "6.1 in front of face (16.763,21.712,-82.951) (17.302,21.977,-83.236) (17.548,22.286,-82.93); the ray meets "
      "nothing"},
+};
+
+// Balls clear of every triangle, centred in free space, that the audit's
+// proxies found deeper than tol in a hull of the default covering: a hull
+// there takes space no ray sees (it is under 2 tol thick), but a character
+// standing there collides with it.
+struct FreeBall {
+  const char* scene;
+  double x, y, z, radius;
+  const char* why;
+};
+
+constexpr FreeBall kFreeBalls[] = {
+    {"recast-nav_test.obj", -5.9426, -2.5799, -2.1660, 0.6,
+     "in the stairwell through the floor slab; a floor hull 2 tol thick spanned its mouth"},
+    {"recast-nav_test.obj", 11.5441, -3.4414, 15.8061, 0.6,
+     "in the second shaft; the slab's underside hull, 2 tol thick, spanned its bottom"},
+    {"recast-dungeon.obj", -11.0600, 0.8531, -1.8873, 0.6,
+     "over a step 0.015 high; a sheet 2 tol thick ran from the lower floor to the upper one above the free space "
+     "between them"},
 };
 
 // The runtime world of a covering's hulls and the triangle world of its
@@ -130,6 +149,18 @@ TEST_P(SharedSceneCovering, EveryHullIsValidAndNoSpaceOrContactIsLost) {
   long front_rays = 0;
   EXPECT_EQ(lost_space(*d, w, c.spacing_per_default, front_rays), 0);
   EXPECT_GT(front_rays, 10000);
+
+  for (const FreeBall& free : kFreeBalls) {
+    if (std::string(free.scene) != c.scene) continue;
+    bvh::ContactRequest ball;
+    ball.shape = bvh::QueryShape::sphere(free.radius);
+    ball.pose.translation() = Eigen::Vector3d(free.x, free.y, free.z);
+    bvh::ContactResult on_triangles, on_hulls;
+    ASSERT_TRUE(w.triangles->contacts(ball, on_triangles).ok() && w.hulls->contacts(ball, on_hulls).ok());
+    ASSERT_TRUE(on_triangles.contacts.empty()) << "the ball is not clear of the scene: " << free.why;
+    for (const bvh::Contact& contact : on_hulls.contacts)
+      EXPECT_LE(contact.depth, d->tol()) << "hull " << contact.hull << " takes free space: " << free.why;
+  }
 
   BehaviourOptions proxies;
   proxies.proxies = 600;

@@ -96,8 +96,13 @@ Result<BehaviourReport> compare_behaviour(const PreparedMesh& prepared, const bv
         ++report.false_contacts;
         // A proxy clear of every triangle yet deeper than tol in a hull
         // stands in free space the hull takes (DESIGN.md, "behaviour").
-        report.deep_false_contacts += centre_free && on_hulls.contacts[0].depth > prepared.tolerance.length;
-        report.max_false_depth = std::max(report.max_false_depth, on_hulls.contacts[0].depth);
+        const bvh::Contact& deepest = on_hulls.contacts[0];
+        if (centre_free && deepest.depth > prepared.tolerance.length) {
+          ++report.deep_false_contacts;
+          if (deepest.depth > report.deepest_false.depth)
+            report.deepest_false = {deepest.hull, f, pose.translation(), deepest.point, deepest.depth};
+        }
+        report.max_false_depth = std::max(report.max_false_depth, deepest.depth);
       } else {
         ++report.neither_touches;
       }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace hullcover::detail {
 namespace {
@@ -214,10 +215,53 @@ PatchMerger::Candidate PatchMerger::evaluate(int a, int b) {
     return out;
   }
   out.validity = check_solid_hull(index_, *hull, scratch_);
+  if (out.validity == Validity::valid) out.validity = check_thin_hull(a, b, *hull, ids);
   out.hull_vertices = hull->vertex_ids;
   std::sort(out.hull_vertices.begin(), out.hull_vertices.end());
   out.solid = std::move(hull);
   return out;
+}
+
+Validity PatchMerger::check_thin_hull(int a, int b, const ConvexPolytope& hull, const std::vector<int>& ids) {
+  // A solid whose interior shrunk by tol is empty (its inradius is at most
+  // tol) has no inside for rays to meet, yet it spans what its faces do not,
+  // as a flat polygon does, and a character standing there touches it: a
+  // floor's hull over a hole in it (nav_test's stairwells), a sheet from one
+  // floor level to the next (dungeon). The ball inscribed in such a hull
+  // touches at most four of its facet planes, whose tetrahedron holds the
+  // hull and is at most 4 inradii high over one of them: across that facet
+  // the hull is within kThinHullSlabInTolerances tol, and there it is held
+  // to a flat polygon's condition 4.
+  if (index_.mode != ValidityMode::exact) return Validity::valid;
+  const double tol = index_.tol();
+  double thinnest = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d across = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < hull.facets.size(); ++i) {
+    if (!hull.planes[i].normal.allFinite()) continue;
+    double width = 0.0;
+    for (const Eigen::Vector3d& v : hull.vertices) width = std::max(width, -hull.planes[i].signed_distance(v));
+    if (width < thinnest) thinnest = width, across = hull.planes[i].normal;
+  }
+  if (!(thinnest <= kThinHullSlabInTolerances * tol)) return Validity::valid;
+  // Collinear corners: a needle under tol across, spanning nothing.
+  const FlatPolygon polygon = make_flat_polygon(index_.mesh().positions, ids, across, tol);
+  if (polygon.corners.empty()) return Validity::valid;
+  const double half_width = 0.5 * thinnest + tol;
+  auto in_patch = [&](int f) { return face_patch_[f] == a || face_patch_[f] == b; };
+  // "Below" is behind the patches' faces, as for a flat polygon (a pillar
+  // standing on a floor is allowed). Where the faces point both ways (a
+  // slab's top and bottom together) neither side is the back: both are held.
+  const Eigen::Vector3d sum = patches_[a].area_vector + patches_[b].area_vector;
+  const double agreement = across.dot(sum);
+  const bool one_sided =
+      std::abs(agreement) >= 0.5 * (patches_[a].area_vector.norm() + patches_[b].area_vector.norm());
+  if (!one_sided || agreement >= 0.0) {
+    const Validity front = check_faces_below_polygon(index_, polygon, half_width, in_patch, scratch_);
+    if (front != Validity::valid || one_sided) return front;
+  }
+  FlatPolygon flipped = polygon;
+  flipped.plane = {-polygon.plane.normal, -polygon.plane.offset};
+  return check_faces_below_polygon(index_, flipped, half_width, in_patch, scratch_);
 }
 
 std::optional<ConvexPolytope> PatchMerger::grow_known_hull(const Patch& base, const Patch& other) {

@@ -111,6 +111,10 @@ private:
   /// The patches face `f` of patch `h` may move to: across its edges, the
   /// longest shared first, then those of `near_tree` overlapping it.
   std::vector<int> receivers_of(int f, int h, const AabbTree& near_tree) const;
+  /// Exact mode: condition 4 of a flat polygon for a solid hull of patches
+  /// a and b (`ids` their hull corners' mesh vertex ids) no wider than
+  /// kThinHullSlabInTolerances tol across one of its facets.
+  Validity check_thin_hull(int a, int b, const ConvexPolytope& hull, const std::vector<int>& ids);
   /// hull(base + other) grown from base's known hull, when other adds few
   /// points; nothing when that does not apply or fails (then Qhull runs).
   std::optional<ConvexPolytope> grow_known_hull(const Patch& base, const Patch& other);

@@ -86,30 +86,32 @@ Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, s
   return check_exact_solid_hull(index, hull, box, scratch);
 }
 
-Validity check_flat_polygon(const SceneIndex& index, const FlatPolygon& polygon,
-                            const std::function<bool(int)>& in_patch, std::vector<int>& scratch) {
-  const double tol = index.tol();
-  const Aabb box = grown(bounding_box_of(polygon.corners), tol);
+Validity check_faces_below_polygon(const SceneIndex& index, const FlatPolygon& polygon, double half_width,
+                                   const std::function<bool(int)>& in_patch, std::vector<int>& scratch) {
+  const Aabb box = grown(bounding_box_of(polygon.corners), half_width);
   const Mesh& mesh = index.mesh();
-
-  scratch.clear();
-  index.bars_overlapping(box, scratch);
-  for (int b : scratch)
-    if (bar_crosses_polygon(polygon, index.bars[b], tol)) return Validity::bar_crosses_polygon;
-
   scratch.clear();
   index.face_tree.overlapping(box, scratch);
   std::vector<Eigen::Vector3d> triangle(3);
   for (int f : scratch) {
     if (in_patch(f)) continue;
+    triangle_corners(mesh, f, triangle);
     bool below = false;
-    for (int k = 0; k < 3; ++k) {
-      triangle[k] = mesh.positions[mesh.triangles[f][k]];
-      below |= polygon.plane.signed_distance(triangle[k]) < -tol;
-    }
-    if (below && meets_polygon_interior(polygon, triangle, tol)) return Validity::face_below_polygon;
+    for (const Eigen::Vector3d& corner : triangle) below |= polygon.plane.signed_distance(corner) < -half_width;
+    if (below && meets_polygon_interior(polygon, triangle, half_width)) return Validity::face_below_polygon;
   }
   return Validity::valid;
+}
+
+Validity check_flat_polygon(const SceneIndex& index, const FlatPolygon& polygon,
+                            const std::function<bool(int)>& in_patch, std::vector<int>& scratch) {
+  const double tol = index.tol();
+  const Aabb box = grown(bounding_box_of(polygon.corners), tol);
+  scratch.clear();
+  index.bars_overlapping(box, scratch);
+  for (int b : scratch)
+    if (bar_crosses_polygon(polygon, index.bars[b], tol)) return Validity::bar_crosses_polygon;
+  return check_faces_below_polygon(index, polygon, tol, in_patch, scratch);
 }
 
 } // namespace hullcover

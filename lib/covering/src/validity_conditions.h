@@ -35,6 +35,15 @@ bool planes_support_points(const std::vector<Plane>& planes, const std::vector<E
 /// is reused storage.
 Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, std::vector<int>& scratch);
 
+/// Condition 4 alone, for a flat polygon or a solid thin enough to act as
+/// one (within `half_width` of the polygon's plane, scene units): a face
+/// outside the patch that reaches more than `half_width` below the plane
+/// and meets the polygon's interior (its sides moved in by `half_width` too)
+/// is `face_below_polygon` (a floor's hull spanning a hole in it: a pit, a
+/// stairwell). Else `valid`.
+Validity check_faces_below_polygon(const SceneIndex& index, const FlatPolygon& polygon, double half_width,
+                                   const std::function<bool(int)>& in_patch, std::vector<int>& scratch);
+
 /// Conditions 3 (exact mode: E2) and 4 for a flat polygon; `in_patch(face)` tells whether a
 /// face belongs to the patch (condition 4 looks only at faces outside it).
 Validity check_flat_polygon(const SceneIndex& index, const FlatPolygon& polygon,

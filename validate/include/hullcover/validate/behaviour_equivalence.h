@@ -21,6 +21,15 @@ struct BehaviourOptions {
   std::optional<double> size;    ///< proxy radius / half extent, scene units (default 0.005 x diagonal)
 };
 
+/// Where a proxy clear of the triangles stood deepest in a hull.
+struct FalseContactPlace {
+  int hull = -1;   ///< the hull touched; -1 for none
+  int face = -1;   ///< the face whose front the proxy's centre stood on
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< the proxy's centre, scene coordinates
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();   ///< the contact point on the hull's surface
+  double depth = 0.0;  ///< penetration into the hull, scene units
+};
+
 /// How the proxies collided with both worlds.
 struct BehaviourReport {
   double size = 0.0;             ///< proxy radius / half extent used, scene units
@@ -31,7 +40,8 @@ struct BehaviourReport {
   /// False contacts deeper than tol into a hull by a proxy whose centre lies
   /// on its face's open front ray: lost space, a violation.
   long deep_false_contacts = 0;
-  double max_false_depth = 0.0;  ///< deepest such false contact, scene units
+  double max_false_depth = 0.0;  ///< deepest false contact of either kind, scene units
+  FalseContactPlace deepest_false;  ///< the deepest of the deep false contacts (hull -1 when none)
   double max_normal_angle = 0.0; ///< degrees, from the hulls' deepest normal to the nearest triangle normal, when both touch
   double mean_normal_angle = 0.0;  ///< degrees, the same angle on average
 };

@@ -44,6 +44,15 @@ inline constexpr double kRayStandOffInTolerances = 2.0;
 /// spare for a reader of rounded output.
 inline constexpr double kPlanarSlabInTolerances = 1.0;
 
+/// A solid hull whose interior shrunk by tol is empty (inradius <= tol) has
+/// no inside for rays to meet; it is then at most 4 inradii wide across one
+/// of its facets (the tetrahedron of the facet planes its inscribed ball
+/// touches holds it). A solid no wider than this many tolerances across a
+/// facet is thin and is also held to a flat polygon's condition 4 across
+/// that facet (no face outside the patch reaching below it through its
+/// interior).
+inline constexpr double kThinHullSlabInTolerances = 4.0;
+
 /// A prism thinner than this many tolerances is no thicker than the noise
 /// of the data: it is made flat instead.
 inline constexpr double kMinPrismThicknessInTolerances = 2.0;
