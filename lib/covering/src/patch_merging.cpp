@@ -179,11 +179,7 @@ PatchMerger::Candidate PatchMerger::evaluate(int a, int b) {
     faces.insert(faces.end(), pb.faces.begin(), pb.faces.end());
     const std::vector<int> all = vertices_of_faces(mesh, faces);
     const Eigen::Vector3d normal = (pa.area_vector + pb.area_vector).normalized();
-    double low = normal.dot(mesh.positions[all[0]]), high = low;
-    for (int v : all) {
-      low = std::min(low, normal.dot(mesh.positions[v]));
-      high = std::max(high, normal.dot(mesh.positions[v]));
-    }
+    const auto [low, high] = extent_along(mesh.positions, all, normal);
     if (high - low <= kPlanarSlabInTolerances * tol) {
       const FlatPolygon polygon = make_flat_polygon(mesh.positions, all, normal, tol);
       out.planar = true;
@@ -260,7 +256,7 @@ Validity PatchMerger::check_thin_hull(int a, int b, const ConvexPolytope& hull, 
     if (front != Validity::valid || one_sided) return front;
   }
   FlatPolygon flipped = polygon;
-  flipped.plane = {-polygon.plane.normal, -polygon.plane.offset};
+  flipped.plane = polygon.plane.flipped();
   return check_faces_below_polygon(index_, flipped, half_width, in_patch, scratch_);
 }
 

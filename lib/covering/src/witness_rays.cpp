@@ -22,7 +22,7 @@ std::vector<Plane> column_planes(const std::vector<Eigen::Vector3d>& outline, co
     const Eigen::Vector3d side = (v - u).cross(dir);
     if (side.norm() <= kParallelSine * (v - u).norm()) continue;
     Plane plane{side.normalized(), side.normalized().dot(u)};
-    if (plane.signed_distance(centre) > 0.0) plane = {-plane.normal, -plane.offset};
+    if (plane.signed_distance(centre) > 0.0) plane = plane.flipped();
     planes.push_back(plane);
   }
   return planes;
@@ -97,7 +97,7 @@ ShadowSplit split_by_shadow(const std::vector<Eigen::Vector3d>& region, const st
     // normals (the edge's, in the plane, is the side's projected into it).
     const double across = plane.normal.dot(normal);
     plane.offset += tol * std::sqrt(std::max(0.0, 1.0 - across * across));
-    std::vector<Eigen::Vector3d> beside = clip_polygon(split.inside, {-plane.normal, -plane.offset}, 0.0);
+    std::vector<Eigen::Vector3d> beside = clip_polygon(split.inside, plane.flipped(), 0.0);
     if (!negligible(beside, tol)) split.beside.push_back(std::move(beside));
     split.inside = clip_polygon(split.inside, plane, 0.0);
   }
@@ -116,6 +116,20 @@ Eigen::Vector3d centroid(const std::vector<Eigen::Vector3d>& points) {
 // toward its middle, where its middle's ray does not decide it.
 constexpr double kWitnessInset = 0.05;
 
+// The base of the sweep's ray through `point`: where it crosses the sweep's
+// start.
+Eigen::Vector3d ray_base(const FreeSpaceSweep& sweep, const Eigen::Vector3d& point) {
+  return point + sweep.start.signed_distance(point) * sweep.direction;
+}
+
+// The first face the sweep's ray from `base` meets past its stand-off (the
+// probe's rays stand off the surface they leave), within the scene.
+std::optional<MeshRayHit> first_hit_past_stand_off(const SceneIndex& index, const FreeSpaceSweep& sweep,
+                                                   const Eigen::Vector3d& base, std::vector<int>& scratch) {
+  return first_mesh_hit(index, base, sweep.direction, kRayStandOffInTolerances * index.tol(),
+                        index.prepared->tolerance.diagonal, scratch);
+}
+
 // What one witness ray found: whether it loses space, and the face that
 // kept it from doing so (met before the hull, or met from behind inside
 // it), -1 for none.
@@ -132,10 +146,9 @@ struct WitnessRay {
 // space).
 WitnessRay witness_ray(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
                        const Eigen::Vector3d& point, std::vector<int>& scratch) {
-  const double tol = index.tol();
   const Eigen::Vector3d& dir = sweep.direction;
-  const Eigen::Vector3d base = point + sweep.start.signed_distance(point) * dir;
-  const double stand_off = kRayStandOffInTolerances * tol;
+  const Eigen::Vector3d base = ray_base(sweep, point);
+  const double stand_off = kRayStandOffInTolerances * index.tol();
   const std::optional<double> inside_from = ray_entry(interior.planes, base + stand_off * dir, dir);
   if (!inside_from) return {};
   const double enter = stand_off + *inside_from;
@@ -143,8 +156,7 @@ WitnessRay witness_ray(const SceneIndex& index, const FreeSpaceSweep& sweep, con
   // The first face at or before the entry ends the free space before the
   // hull (exactly: one met within tol beyond it would leave the ray up to
   // 2 tol deep, which is inside).
-  const std::optional<MeshRayHit> hit =
-      first_mesh_hit(index, base, dir, stand_off, index.prepared->tolerance.diagonal, scratch);
+  const std::optional<MeshRayHit> hit = first_hit_past_stand_off(index, sweep, base, scratch);
   if (hit && hit->t <= enter) return {false, hit->face, false};
   if (hit && hit->from_behind) return {false, hit->face, true};
   return {true, -1, false};
@@ -180,7 +192,7 @@ std::pair<double, double> range_over(const Affine& f, const std::vector<Eigen::V
 std::optional<Plane> splitting_cut(const std::vector<Eigen::Vector3d>& piece, const Affine& margin, double tol) {
   if (!(margin.gradient.norm() > 0.0)) return std::nullopt;
   const Plane cut = margin.zero_plane();
-  const std::vector<Eigen::Vector3d> negative = clip_polygon(piece, {-cut.normal, -cut.offset}, 0.0);
+  const std::vector<Eigen::Vector3d> negative = clip_polygon(piece, cut.flipped(), 0.0);
   if (negligible(negative, tol)) return std::nullopt;
   return cut;
 }
@@ -331,7 +343,7 @@ private:
     if (settling.cut) {
       const Plane& cut = *settling.cut;
       const std::vector<Eigen::Vector3d> decided = clip_polygon(piece, cut, 0.0);
-      const std::vector<Eigen::Vector3d> rest = clip_polygon(piece, {-cut.normal, -cut.offset}, 0.0);
+      const std::vector<Eigen::Vector3d> rest = clip_polygon(piece, cut.flipped(), 0.0);
       // A cut that leaves the piece whole would come back here.
       if (decided.size() < 3 || rest.size() < 3) return false;
       return !loses_space(decided) && !loses_space(rest);
@@ -362,12 +374,10 @@ public:
     const double tol = index_.tol();
     if (negligible(region, tol)) return 0.0;
     if (--budget_ < 0) return kNone;
-    const Eigen::Vector3d middle = centroid(region);
-    const Eigen::Vector3d base = middle + sweep_.start.signed_distance(middle) * sweep_.direction;
-    const double stand_off = kRayStandOffInTolerances * tol;
     const std::optional<MeshRayHit> hit =
-        first_mesh_hit(index_, base, sweep_.direction, stand_off, index_.prepared->tolerance.diagonal, scratch_);
+        first_hit_past_stand_off(index_, sweep_, ray_base(sweep_, centroid(region)), scratch_);
     if (!hit) return kNone;
+    const double stand_off = kRayStandOffInTolerances * tol;
     const Mesh& mesh = index_.mesh();
     std::vector<Eigen::Vector3d> triangle(3);
     triangle_corners(mesh, hit->face, triangle);
@@ -382,7 +392,7 @@ public:
       if (const std::optional<Plane> cut = splitting_cut(split.inside, past_stand_off, tol)) {
         const std::vector<Eigen::Vector3d> met = clip_polygon(split.inside, *cut, 0.0);
         farthest = std::max(farthest, range_over(to_face, met).second);
-        farthest = std::max(farthest, over(clip_polygon(split.inside, {-cut->normal, -cut->offset}, 0.0)));
+        farthest = std::max(farthest, over(clip_polygon(split.inside, cut->flipped(), 0.0)));
       } else {
         farthest = std::max(farthest, range_over(to_face, split.inside).second);
       }

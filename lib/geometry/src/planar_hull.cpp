@@ -94,17 +94,23 @@ std::vector<Plane> polygon_side_planes(const std::vector<Eigen::Vector3d>& corne
 
 namespace hullcover {
 
+std::pair<double, double> extent_along(const std::vector<Eigen::Vector3d>& positions, const std::vector<int>& vertex_ids,
+                                       const Eigen::Vector3d& normal) {
+  double low = normal.dot(positions[vertex_ids.front()]), high = low;
+  for (int v : vertex_ids) {
+    low = std::min(low, normal.dot(positions[v]));
+    high = std::max(high, normal.dot(positions[v]));
+  }
+  return {low, high};
+}
+
 FlatPolygon make_flat_polygon(const std::vector<Eigen::Vector3d>& positions, const std::vector<int>& vertex_ids,
                               const Eigen::Vector3d& normal, double tol) {
   FlatPolygon polygon;
   if (vertex_ids.empty()) return polygon;
   // The middle of their slab: no point is farther from the plane than half
   // its width (a mean would leave a lone point up to the whole width off).
-  double low = normal.dot(positions[vertex_ids.front()]), high = low;
-  for (int v : vertex_ids) {
-    low = std::min(low, normal.dot(positions[v]));
-    high = std::max(high, normal.dot(positions[v]));
-  }
+  const auto [low, high] = extent_along(positions, vertex_ids, normal);
   const double offset = 0.5 * (low + high);
   const PlaneFrame frame = PlaneFrame::from_normal(positions[vertex_ids.front()], normal);
   std::vector<Eigen::Vector2d> projected;
@@ -124,7 +130,7 @@ FlatPolygon make_flat_polygon(const std::vector<Eigen::Vector3d>& positions, con
 
 bool meets_polygon_interior(const FlatPolygon& polygon, const std::vector<Eigen::Vector3d>& part, double tol) {
   std::vector<Eigen::Vector3d> on_plane = clip_polygon(part, polygon.plane, -tol);
-  on_plane = clip_polygon(on_plane, {-polygon.plane.normal, -polygon.plane.offset}, -tol);
+  on_plane = clip_polygon(on_plane, polygon.plane.flipped(), -tol);
   return !clip_polygon_to_planes(std::move(on_plane), polygon.sides, tol).empty();
 }
 
@@ -135,7 +141,7 @@ ConvexPolytope flat_polytope(const FlatPolygon& polygon, bool side_planes) {
   std::vector<int> front(polygon.corners.size());
   for (size_t i = 0; i < front.size(); ++i) front[i] = static_cast<int>(i);
   flat.facets = {front, std::vector<int>(front.rbegin(), front.rend())};
-  flat.planes = {polygon.plane, {-polygon.plane.normal, -polygon.plane.offset}};
+  flat.planes = {polygon.plane, polygon.plane.flipped()};
   if (side_planes) flat.planes.insert(flat.planes.end(), polygon.sides.begin(), polygon.sides.end());
   return flat;
 }

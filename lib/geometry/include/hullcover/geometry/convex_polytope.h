@@ -20,6 +20,8 @@ struct Plane {
   double offset = 0.0;
 
   double signed_distance(const Eigen::Vector3d& p) const { return normal.dot(p) - offset; }
+  /// The same plane facing the other way (its inner side is this one's outer).
+  Plane flipped() const { return {-normal, -offset}; }
 };
 
 /// A convex polytope with its boundary polygons. A flat polytope (a convex

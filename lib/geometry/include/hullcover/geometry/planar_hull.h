@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include <utility>
 #include <vector>
 
 namespace hullcover {
@@ -56,6 +57,11 @@ struct FlatPolygon {
   /// Outward side planes, one per edge (corner i to i+1).
   std::vector<Plane> sides;
 };
+
+/// How far the points `vertex_ids` (of `positions`) reach along unit
+/// `normal`: {lowest, highest} of normal.p. `vertex_ids` must not be empty.
+std::pair<double, double> extent_along(const std::vector<Eigen::Vector3d>& positions, const std::vector<int>& vertex_ids,
+                                       const Eigen::Vector3d& normal);
 
 /// The convex polygon of mesh vertices `vertex_ids` (positions from
 /// `positions`) in the plane with unit normal `normal` through the middle
