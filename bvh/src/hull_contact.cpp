@@ -1,6 +1,7 @@
 #include "hullcover/bvh/hull_contact.h"
 
 #include "separating_axes.h"
+#include "surface_normals.h"
 
 #include "hullcover/geometry/tolerances.h"
 
@@ -199,40 +200,76 @@ ClosestPoints closest_to_segment(const RuntimeHull& hull, const Eigen::Vector3d&
   return detail::closest_to_segment_apart(hull, a, b, -1.0);
 }
 
+namespace {
+// `found`, turned to a surface facet where the hull point it was found at
+// lies on a plane the surface runs on past (surface_normals.h). `lowest(w)`
+// is the signed distance, below a plane of normal w, of the shape's core
+// (a sphere's centre, a capsule's axis) at its lowest; the depth along the
+// facet follows from it.
+template <typename Lowest>
+Contact on_surface(const RuntimeHull& hull, const Contact& found, double radius, Lowest&& lowest) {
+  const int s = detail::surface_facet_for(hull, found.point, found.normal, touching_distance(hull));
+  if (s < 0) return found;
+  const Plane& facet = hull.shape.planes[s];
+  return Contact{-1, found.point, facet.normal, std::max(0.0, radius - lowest(facet))};
+}
+} // namespace
+
 std::optional<Contact> sphere_contact(const RuntimeHull& hull, const Eigen::Vector3d& centre, double radius) {
   const detail::FrontFacet front = detail::front_facet(hull, centre);
   if (front.outside > radius) return std::nullopt;  // a plane separates them: the usual case, and cheap
   if (front.outside <= 0.0) {
-    const Plane& plane = hull.shape.planes[front.facet];
-    return Contact{-1, centre - front.distance * plane.normal, plane.normal, radius - front.distance};
+    // Inside: out through the nearest facet the surface has.
+    int f = front.facet;
+    if (!hull.plane_on_surface(f))
+      if (const int s = detail::least_deep_surface_facet(hull, centre); s >= 0) f = s;
+    const Plane& plane = hull.shape.planes[f];
+    const double below = plane.signed_distance(centre);
+    return Contact{-1, centre - below * plane.normal, plane.normal, radius - below};
   }
   const ClosestPoints c = detail::closest_to_point_outside(hull, centre, front, -1.0);
   if (c.distance > radius) return std::nullopt;
-  if (c.distance > touching_distance(hull))
-    return Contact{-1, c.on_hull, (centre - c.on_hull) / c.distance, radius - c.distance};
-  return Contact{-1, c.on_hull, hull.shape.planes[front.facet].normal, radius};
+  const Eigen::Vector3d normal = c.distance > touching_distance(hull) ? Eigen::Vector3d((centre - c.on_hull) / c.distance)
+                                                                      : hull.shape.planes[front.facet].normal;
+  return on_surface(hull, Contact{-1, c.on_hull, normal, radius - c.distance}, radius,
+                    [&](const Plane& facet) { return facet.signed_distance(centre); });
 }
 
 std::optional<Contact> capsule_contact(const RuntimeHull& hull, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                        double radius) {
   if (detail::segment_clear_of_grown_planes(hull, a, b, radius)) return std::nullopt;  // the usual case, and cheap
   // The axis meets the hull: the separating axes give depth and normal.
+  // (When one separates them, the clip met only by rounding: the axis is
+  // then as good as touching, and the closest points below tell.)
   Eigen::Vector3d meet;
-  if (detail::segment_meets_hull(hull, a, b, meet)) {
-    const auto push = detail::capsule_axis_push(hull, a, b);
-    if (!push) return std::nullopt;  // rounding: the clip said they meet, an axis says not
+  std::optional<std::pair<double, Eigen::Vector3d>> push;
+  if (detail::segment_meets_hull(hull, a, b, meet) && (push = detail::capsule_axis_push(hull, a, b))) {
+    if (detail::has_plane_off_surface(hull)) {
+      // Out through the surface's own facets only.
+      const auto out = detail::smallest_push(
+          hull,
+          [&](auto&& f) {
+            for (int k = 0; k < static_cast<int>(hull.shape.facets.size()); ++k)
+              if (hull.plane_on_surface(k) && !f(hull.shape.planes[k].normal)) return false;
+            return true;
+          },
+          [&](const Eigen::Vector3d& w) { return std::make_pair(std::min(a.dot(w), b.dot(w)), std::max(a.dot(w), b.dot(w))); });
+      if (out && std::isfinite(out->first)) push = out;
+    }
     const auto& [depth, normal] = *push;
     const Eigen::Vector3d deepest = a.dot(normal) < b.dot(normal) ? a : b;
     return Contact{-1, deepest + depth * normal, normal, depth + radius};
   }
   const ClosestPoints c = detail::closest_to_segment_apart(hull, a, b, -1.0);
   if (c.distance > radius) return std::nullopt;
-  if (c.distance > touching_distance(hull))
-    return Contact{-1, c.on_hull, (c.on_other - c.on_hull) / c.distance, radius - c.distance};
   // Apart by no more than rounding: closest points that near are noise in
   // direction, so the facet the axis is most in front of gives the normal.
-  const Eigen::Vector3d& n = hull.shape.planes[nearest_facet(hull, c.on_other)].normal;
-  return Contact{-1, c.on_hull, n, radius - c.distance};
+  const Eigen::Vector3d normal = c.distance > touching_distance(hull)
+                                     ? Eigen::Vector3d((c.on_other - c.on_hull) / c.distance)
+                                     : hull.shape.planes[nearest_facet(hull, c.on_other)].normal;
+  return on_surface(hull, Contact{-1, c.on_hull, normal, radius - c.distance}, radius, [&](const Plane& facet) {
+    return std::min(facet.signed_distance(a), facet.signed_distance(b));
+  });
 }
 
 std::optional<Contact> box_contact(const RuntimeHull& hull, const Eigen::Isometry3d& pose,

@@ -18,7 +18,8 @@ bool sphere_touches(const RuntimeHull& hull, const Eigen::Vector3d& centre, doub
 bool capsule_touches(const RuntimeHull& hull, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius) {
   if (detail::segment_clear_of_grown_planes(hull, a, b, radius)) return false;
   Eigen::Vector3d meet;
-  if (detail::segment_meets_hull(hull, a, b, meet)) return detail::capsule_axis_push(hull, a, b).has_value();
+  // As capsule_contact: a clip that meets only by rounding falls through.
+  if (detail::segment_meets_hull(hull, a, b, meet) && detail::capsule_axis_push(hull, a, b)) return true;
   return detail::closest_to_segment_apart(hull, a, b, radius).distance <= radius;
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // The broad phase of HullWorld (private to bvh/): FCL's dynamic AABB tree
-// over each hull's exact box, built and balanced by FCL, then packed into
+// over each hull's exact box, built by FCL (Morton order), then packed into
 // one array in depth-first order for the queries to walk directly: no
 // callback, no virtual or library call, no allocation per query, 32 bytes a
 // node. Boxes are kept as floats rounded outward, so a packed box holds
@@ -34,23 +34,24 @@ public:
 
   /// The same for the boxes within `radius` of `centre` (a sphere's
   /// candidates: tighter than its box at the corners). The leaf test allows
-  /// kTouchingFraction of slack, so rounding never drops a box that the
-  /// sphere just touches.
+  /// kTouchingFraction of slack relative to the coordinates' size, far above
+  /// the narrow phase's rounding, so it never drops a hull the sphere's
+  /// contact would find.
   template <typename Visit>
   bool find_near_point(const Eigen::Vector3d& centre, double radius, Visit&& visit) const {
+    const double reach = radius + kTouchingFraction * (1.0 + radius + centre.cwiseAbs().maxCoeff());
     Aabb box;
-    box.min = centre.array() - radius;
-    box.max = centre.array() + radius;
-    const double r2 = radius * radius * (1.0 + kTouchingFraction);
+    box.min = centre.array() - reach;
+    box.max = centre.array() + reach;
     return find_where(
         box,
-        [&](const PackedNode& leaf) {
+        [&, reach2 = reach * reach](const PackedNode& leaf) {
           double d2 = 0.0;
           for (int k = 0; k < 3; ++k) {
             const double out = std::max({leaf.min[k] - centre[k], centre[k] - leaf.max[k], 0.0});
             d2 += out * out;
           }
-          return d2 <= r2;
+          return d2 <= reach2;
         },
         visit);
   }
@@ -75,15 +76,16 @@ private:
     std::int32_t hull;   // a leaf's hull index; -1 for an inner node
   };
   // Pending nodes a ray walk keeps without the heap: a depth-first walk holds
-  // at most one pending sibling per level, and FCL's balancing keeps the
-  // height near log2(hulls), about 40 at a billion.
+  // at most one pending sibling per level, and FCL's Morton build is at most
+  // about 30 + log2(hulls) high (its codes have 30 bits).
   static constexpr size_t kStackOnCaller = 96;
 
   std::vector<PackedNode> nodes_;
 
 public:
   /// The float nearest `x` at or below it (at or above it): a box rounded
-  /// outward to floats holds the box. Infinities stay.
+  /// outward to floats holds the box. Beyond float's range: its largest
+  /// value or infinity, still outward.
   static float float_at_or_below(double x) {
     constexpr float kLargest = std::numeric_limits<float>::max();
     if (x > kLargest) return kLargest;  // beyond float's range: the cast would not be defined
@@ -124,7 +126,10 @@ private:
     bool empty() const { return size_ == 0; }
 
   private:
-    using Entry = std::pair<std::int32_t, double>;
+    struct Entry {  // no initialisers: the array is not cleared on every walk
+      std::int32_t first;
+      double second;
+    };
     Entry* data() { return heap_.empty() ? local_.data() : heap_.data(); }
     std::array<Entry, kStackOnCaller> local_;
     std::vector<Entry> heap_;
