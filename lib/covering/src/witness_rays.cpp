@@ -299,7 +299,9 @@ Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, co
 // inside that face's shadow the face settles every ray at once (the
 // distances are affine), and the rest is cut into pieces judged the same
 // way. A piece not settled within the budget counts as losing space:
-// conservative, never optimistic.
+// conservative, never optimistic. Pieces wait on an explicit stack, taken in
+// the order a recursive judge would take them: a region cut a thousand times
+// must not cost a thousand stack frames.
 class RegionJudge {
 public:
   RegionJudge(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
@@ -307,6 +309,30 @@ public:
       : index_(index), sweep_(sweep), interior_(interior), scratch_(scratch) {}
 
   bool loses_space(const std::vector<Eigen::Vector3d>& region) {
+    pending_.clear();
+    pending_.push_back({region, -1, false});
+    while (!pending_.empty()) {
+      Work work = std::move(pending_.back());
+      pending_.pop_back();
+      const bool loses = work.settling_face >= 0 ? !settles(work.piece, work.settling_face, work.enclosed)
+                                                 : piece_loses_space(work.piece);
+      if (loses) return true;
+    }
+    return false;
+  }
+
+private:
+  // A piece to judge (settling_face -1), or one inside a face's shadow for
+  // that face to settle.
+  struct Work {
+    std::vector<Eigen::Vector3d> piece;
+    int settling_face = -1;
+    bool enclosed = false;
+  };
+
+  // Whether `region` loses space by its own rays; the pieces it is cut into
+  // wait on the stack, the part the deciding face settles first.
+  bool piece_loses_space(const std::vector<Eigen::Vector3d>& region) {
     // A piece of no area holds no ray apart from its neighbours'.
     const double tol = index_.tol();
     if (negligible(region, tol)) return false;
@@ -328,30 +354,33 @@ public:
     std::vector<Eigen::Vector3d> triangle(3);
     triangle_corners(mesh, ray.deciding_face, triangle);
     ShadowSplit split = split_by_shadow(region, triangle, sweep_.direction, tol);
-    if (split.inside.size() >= 3 && !settles(split.inside, ray.deciding_face, ray.enclosed)) return true;
-    for (const std::vector<Eigen::Vector3d>& piece : split.beside)
-      if (loses_space(piece)) return true;
+    for (auto piece = split.beside.rbegin(); piece != split.beside.rend(); ++piece)
+      pending_.push_back({std::move(*piece), -1, false});
+    if (split.inside.size() >= 3) pending_.push_back({std::move(split.inside), ray.deciding_face, ray.enclosed});
     return false;
   }
 
-private:
-  // Whether every ray through `piece` (inside face f's shadow) keeps its
-  // space, cutting where f decides only part of it.
+  // Whether face f settles every ray through `piece` (inside its shadow),
+  // or cuts it into pieces (left on the stack) that will be judged; false
+  // when it can do neither.
   bool settles(const std::vector<Eigen::Vector3d>& piece, int f, bool enclosed) {
     const Settling settling = settle_by_face(index_, sweep_, piece, f, enclosed);
     if (settling.settled) return true;
     if (settling.cut) {
       const Plane& cut = *settling.cut;
-      const std::vector<Eigen::Vector3d> decided = clip_polygon(piece, cut, 0.0);
-      const std::vector<Eigen::Vector3d> rest = clip_polygon(piece, cut.flipped(), 0.0);
+      std::vector<Eigen::Vector3d> decided = clip_polygon(piece, cut, 0.0);
+      std::vector<Eigen::Vector3d> rest = clip_polygon(piece, cut.flipped(), 0.0);
       // A cut that leaves the piece whole would come back here.
       if (decided.size() < 3 || rest.size() < 3) return false;
-      return !loses_space(decided) && !loses_space(rest);
+      pending_.push_back({std::move(rest), -1, false});
+      pending_.push_back({std::move(decided), -1, false});
+      return true;
     }
     if (settling.obstacle) {
-      for (const std::vector<Eigen::Vector3d>& part : settling.obstacle->beside)
-        if (loses_space(part)) return false;
-      return !loses_space(settling.obstacle->inside);
+      pending_.push_back({settling.obstacle->inside, -1, false});
+      const auto& beside = settling.obstacle->beside;
+      for (auto part = beside.rbegin(); part != beside.rend(); ++part) pending_.push_back({*part, -1, false});
+      return true;
     }
     return false;
   }
@@ -360,16 +389,32 @@ private:
   const FreeSpaceSweep& sweep_;
   const HullInterior& interior_;
   std::vector<int>& scratch_;
+  std::vector<Work> pending_;
   int budget_ = kMaxJudgedPieces;
 };
 
-// The bound of first_hit_bound, piece by piece.
+// The bound of first_hit_bound, piece by piece, on an explicit stack (as
+// RegionJudge) so that a thousand cuts cost no stack depth.
 class FirstHitBound {
 public:
   FirstHitBound(const SceneIndex& index, const FreeSpaceSweep& sweep, std::vector<int>& scratch)
       : index_(index), sweep_(sweep), scratch_(scratch) {}
 
   double over(const std::vector<Eigen::Vector3d>& region) {
+    std::vector<std::vector<Eigen::Vector3d>> pending = {region};
+    double farthest = 0.0;
+    while (!pending.empty()) {
+      std::vector<Eigen::Vector3d> piece = std::move(pending.back());
+      pending.pop_back();
+      farthest = std::max(farthest, bound_of_piece(piece, pending));
+    }
+    return farthest;
+  }
+
+private:
+  // The farthest first hit over `region`'s own rays; the pieces still to
+  // bound go on `pending`.
+  double bound_of_piece(const std::vector<Eigen::Vector3d>& region, std::vector<std::vector<Eigen::Vector3d>>& pending) {
     constexpr double kNone = std::numeric_limits<double>::infinity();
     const double tol = index_.tol();
     if (negligible(region, tol)) return 0.0;
@@ -381,7 +426,7 @@ public:
     const Mesh& mesh = index_.mesh();
     std::vector<Eigen::Vector3d> triangle(3);
     triangle_corners(mesh, hit->face, triangle);
-    const ShadowSplit split = split_by_shadow(region, triangle, sweep_.direction, tol);
+    ShadowSplit split = split_by_shadow(region, triangle, sweep_.direction, tol);
     double farthest = 0.0;
     if (!split.inside.empty()) {
       const Plane face{index_.face_normals[hit->face], index_.face_normals[hit->face].dot(triangle[0])};
@@ -392,16 +437,15 @@ public:
       if (const std::optional<Plane> cut = splitting_cut(split.inside, past_stand_off, tol)) {
         const std::vector<Eigen::Vector3d> met = clip_polygon(split.inside, *cut, 0.0);
         farthest = std::max(farthest, range_over(to_face, met).second);
-        farthest = std::max(farthest, over(clip_polygon(split.inside, cut->flipped(), 0.0)));
+        pending.push_back(clip_polygon(split.inside, cut->flipped(), 0.0));
       } else {
         farthest = std::max(farthest, range_over(to_face, split.inside).second);
       }
     }
-    for (const std::vector<Eigen::Vector3d>& piece : split.beside) farthest = std::max(farthest, over(piece));
+    for (std::vector<Eigen::Vector3d>& piece : split.beside) pending.push_back(std::move(piece));
     return farthest;
   }
 
-private:
   const SceneIndex& index_;
   const FreeSpaceSweep& sweep_;
   std::vector<int>& scratch_;
