@@ -15,6 +15,14 @@ namespace {
 // edge reaches it, while a face that only touches the edge does not.
 constexpr double kRimStripInTolerances = 4.0;
 
+// A face counts as lying in a plane when its part within tol of the plane
+// reaches in and it runs within this angle of the plane (as a cosine): a
+// large face tilted a little from a hull facet (merged within tol of
+// neighbours) has corners far off the plane yet lies along it, while a wall
+// standing on a floor crosses the floor's plane at a steep angle and does
+// not.
+const double kAlongPlaneCosine = std::cos(5.0 * M_PI / 180.0);
+
 // Whether a mesh face lying in `polygon`'s plane reaches its interior
 // shrunk by tol.
 bool face_in_polygon(const SceneIndex& index, const FlatPolygon& polygon, std::vector<int>& scratch) {
@@ -24,10 +32,9 @@ bool face_in_polygon(const SceneIndex& index, const FlatPolygon& polygon, std::v
   index.face_tree.overlapping(grown(bounding_box_of(polygon.corners), tol), scratch);
   for (int g : scratch) {
     if (!(index.face_areas[g] > 0.0)) continue;
+    if (std::abs(index.face_normals[g].dot(polygon.plane.normal)) < kAlongPlaneCosine) continue;
     triangle_corners(index.mesh(), g, triangle);
-    bool in_plane = true;
-    for (const Eigen::Vector3d& corner : triangle) in_plane = in_plane && std::abs(polygon.plane.signed_distance(corner)) <= tol;
-    if (in_plane && meets_polygon_interior(polygon, triangle, tol)) return true;
+    if (meets_polygon_interior(polygon, triangle, tol)) return true;
   }
   return false;
 }
