@@ -20,6 +20,8 @@
 
 namespace hullcover::bvh::detail {
 
+/// The hulls' boxes in FCL's dynamic AABB tree, packed for direct walks.
+/// Immutable once built: any number of threads may walk it at once.
 class HullTree {
 public:
   /// Builds the tree over `hulls`' boxes (at least one hull).
@@ -94,6 +96,7 @@ public:
     if (static_cast<double>(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
     return f;
   }
+  /// See float_at_or_below.
   static float float_at_or_above(double x) {
     constexpr float kLargest = std::numeric_limits<float>::max();
     if (x < -kLargest) return -kLargest;

@@ -288,29 +288,71 @@ Status HullWorld::distance(const DistanceRequest& request, DistanceResult& resul
   });
 }
 
+namespace {
+// How far any point of the shape lies from its local origin (scene units):
+// what a turn of angle a moves it by, at most a times this.
+double reach_from_origin(const QueryShape& s) {
+  switch (s.kind) {
+    case ShapeKind::sphere: return 0.0;  // turning a sphere moves none of it
+    case ShapeKind::capsule: return s.half_height;  // its axis; the radius turns with it
+    case ShapeKind::box: return s.half_extents.norm();
+    case ShapeKind::convex: {
+      double farthest = 0.0;
+      for (const Eigen::Vector3d& p : s.points) farthest = std::max(farthest, p.norm());
+      return farthest;
+    }
+  }
+  return 0.0;
+}
+
+// How far the shape extends beyond its axis or core points: the radius of a
+// sphere or capsule, 0 for the others.
+double rounding_of(const QueryShape& s) {
+  return s.kind == ShapeKind::sphere || s.kind == ShapeKind::capsule ? s.radius : 0.0;
+}
+} // namespace
+
 Status HullWorld::sweep(const SweepRequest& request, SweepResult& result, double touch) const {
   return detail::guarded("sweep", [&]() -> Status {
     result = {};
     if (Status s = check_query_shape(request.shape, request.start); !s.ok()) return s;
     if (Status s = check_query_shape(request.shape, request.end); !s.ok()) return s;
     const QueryShape& s = request.shape;
-    if (!request.start.linear().isApprox(request.end.linear(), kSweepSameRotation))
-      return {StatusCode::invalid_argument, "a sweep moves without turning: start and end need the same rotation"};
     if (!(touch > 0.0) || !std::isfinite(touch))
       return {StatusCode::invalid_argument, "touch must be a positive length"};
     if (request.max_steps < 1) return {StatusCode::invalid_argument, "max_steps must be at least 1"};
     const Eigen::Vector3d travel = request.end.translation() - request.start.translation();
-    const double length = travel.norm();
+    // The turn, along the shorter way; none when the rotations agree to
+    // rounding (then the swept box is exact).
+    const Eigen::Quaterniond from(request.start.linear()), to(request.end.linear());
+    const bool turns = !request.start.linear().isApprox(request.end.linear(), kSweepSameRotation);
+    const double angle = turns ? from.angularDistance(to) : 0.0;
+    // No point of the shape moves farther than `speed` per unit of the way:
+    // advancing by the distance over it never passes through a hull.
+    const double speed = travel.norm() + angle * reach_from_origin(s);
+    const auto pose_at = [&](double t) {
+      Eigen::Isometry3d pose = request.start;
+      pose.translation() += t * travel;
+      if (turns) pose.linear() = from.slerp(t, to).toRotationMatrix();
+      return pose;
+    };
     Aabb swept = world_box(s, request.start);
     const Aabb at_end = world_box(s, request.end);
     swept.extend(at_end.min);
     swept.extend(at_end.max);
+    if (turns) {
+      // Every point stays within reach + rounding of the origin's path.
+      const double around = reach_from_origin(s) + rounding_of(s);
+      for (const Eigen::Isometry3d* end : {&request.start, &request.end}) {
+        swept.extend(end->translation().array() - around);
+        swept.extend(end->translation().array() + around);
+      }
+    }
     std::vector<int> near;
     candidates(swept, near);
     double t = 0.0;
     for (int step = 0; step < request.max_steps; ++step) {
-      Eigen::Isometry3d pose = request.start;
-      pose.translation() += t * travel;
+      const Eigen::Isometry3d pose = pose_at(t);
       const auto separation = separation_from(s, pose);
       if (!separation) return {StatusCode::invalid_argument, "the convex query shape has no 3D hull"};
       double nearest = std::numeric_limits<double>::infinity();
@@ -332,16 +374,15 @@ Status HullWorld::sweep(const SweepRequest& request, SweepResult& result, double
         result.hull = nearest_hull;
         // The normal of the exact contact a touch further on (closest points
         // this near are noise in direction).
-        Eigen::Isometry3d pressed = pose;
-        if (length > 0.0) pressed.translation() += travel * (2.0 * touch / length);
+        const Eigen::Isometry3d pressed = speed > 0.0 ? pose_at(std::min(1.0, t + 2.0 * touch / speed)) : pose;
         std::optional<RuntimeHull> convex;
         if (s.kind == ShapeKind::convex) convex = placed_convex(s, pressed);
         const std::optional<Contact> c = contact_with(hulls_[nearest_hull], s, pressed, convex ? &*convex : nullptr);
         result.normal = c ? c->normal : Eigen::Vector3d(-travel.normalized());
         return Status::success();
       }
-      if (length == 0.0) return Status::success();
-      t += nearest / length;
+      if (speed == 0.0) return Status::success();
+      t += nearest / speed;
       if (t > 1.0) return Status::success();
     }
     return Status::success();

@@ -115,17 +115,18 @@ struct DistanceResult {
   Eigen::Vector3d on_shape = Eigen::Vector3d::Zero();
 };
 
-/// A shape moving in a straight line, without turning, from `start` to
-/// `end` (the two poses must share their rotation).
+/// A shape moving from `start` to `end`: its origin in a straight line, its
+/// rotation turning the shorter way at a steady rate (slerp), both over the
+/// same fraction of the way.
 struct SweepRequest {
   /// Any kind; limits in check_query_shape.
   QueryShape shape;
   /// The shape's pose at fraction 0 (scene units), finite. Default:
   /// identity.
   Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
-  /// The pose at fraction 1, finite, with start's rotation (relative
-  /// difference up to kSweepSameRotation, else `invalid_argument`): the
-  /// shape moves at start's rotation throughout. Default: identity.
+  /// The pose at fraction 1, finite; its rotation may differ from start's
+  /// (rotations agreeing to kSweepSameRotation count as the same: a pure
+  /// translation). Default: identity.
   Eigen::Isometry3d end = Eigen::Isometry3d::Identity();
   /// Most advancement steps, >= 1 (else `invalid_argument`); each costs one
   /// exact distance to every hull whose box meets the swept box. A head-on
@@ -221,12 +222,14 @@ public:
   /// a hull that need not be the nearest.
   [[nodiscard]] Status distance(const DistanceRequest& request, DistanceResult& result) const;
 
-  /// Time of impact by conservative advancement on the exact distance:
-  /// every step is at most the current distance, so a thin wall is never
+  /// Time of impact by conservative advancement on the exact distance: no
+  /// point of the shape moves farther in a step than the current distance
+  /// (the origin's travel plus the turn's angle times the shape's reach
+  /// from its origin bound every point's), so a thin wall is never
   /// tunnelled through; the touch is found within `touch` (scene units,
   /// finite, > 0; a smaller one costs more steps near a hull). Any shape.
-  /// Fails with `invalid_argument` for a bad shape, poses that turn, a bad
-  /// `touch` or max_steps < 1.
+  /// Fails with `invalid_argument` for a bad shape or pose, a bad `touch`
+  /// or max_steps < 1.
   [[nodiscard]] Status sweep(const SweepRequest& request, SweepResult& result, double touch) const;
 
   /// The hulls, in the order given to build (hull i of every result).
