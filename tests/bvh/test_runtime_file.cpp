@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <fstream>
 #include <iterator>
 #include <random>
@@ -74,6 +75,64 @@ TEST(RuntimeFile, ReloadedWorldAnswersExactlyLikeTheBuiltOne) {
 }
 
 // Every kind of damage is refused with a message naming the file.
+// Little-endian fields of the layout in runtime_file.h, for building a
+// version 1 file by hand.
+std::uint64_t field(const std::string& bytes, size_t at, int size) {
+  std::uint64_t v = 0;
+  for (int k = 0; k < size; ++k) v |= static_cast<std::uint64_t>(static_cast<unsigned char>(bytes[at + k])) << (8 * k);
+  return v;
+}
+void put(std::string& bytes, size_t at, std::uint64_t v, int size) {
+  for (int k = 0; k < size; ++k) bytes[at + k] = static_cast<char>((v >> (8 * k)) & 0xff);
+}
+
+// A version 1 file (no surface flags) still loads: the same hulls, every
+// plane counted as the surface's.
+TEST(RuntimeFile, VersionOneFilesStillLoad) {
+  TempDir dir;
+  const std::vector<RuntimeHull> hulls = demo_hulls();
+  ASSERT_TRUE(write_runtime_file(hulls, dir.path("v2.hcw")).ok());
+  const std::string v2 = bytes_of(dir.path("v2.hcw"));
+  constexpr size_t kHeader = 40;
+  std::string payload;
+  size_t at = kHeader;
+  for (size_t h = 0; h < hulls.size(); ++h) {
+    const std::uint64_t V = field(v2, at + 4, 4), F = field(v2, at + 8, 4), P = field(v2, at + 12, 4),
+                        I = field(v2, at + 16, 4);
+    const size_t hull_bytes = 20 + 48 + V * 24 + P * 32 + F * 4 + I * 4;
+    payload += v2.substr(at, hull_bytes);
+    at += hull_bytes;
+    at += 4 + field(v2, at, 4);  // version 2's surface flags, dropped
+  }
+  ASSERT_EQ(at, v2.size());
+  std::string v1 = v2.substr(0, kHeader) + payload;
+  put(v1, 8, 1, 4);                // version
+  put(v1, 24, payload.size(), 8);  // payload bytes
+  std::uint64_t fnv = 0xcbf29ce484222325ull;
+  for (char c : payload) fnv = (fnv ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
+  put(v1, 32, fnv, 8);
+  {
+    std::ofstream out(dir.path("v1.hcw"), std::ios::binary);
+    out.write(v1.data(), static_cast<std::streamsize>(v1.size()));
+  }
+  const Result<std::vector<RuntimeHull>> loaded = read_runtime_file(dir.path("v1.hcw"));
+  ASSERT_TRUE(loaded.ok()) << loaded.status().message();
+  ASSERT_EQ(loaded.value().size(), hulls.size());
+  for (size_t h = 0; h < hulls.size(); ++h) {
+    EXPECT_EQ(loaded.value()[h].shape.vertices, hulls[h].shape.vertices);
+    EXPECT_TRUE(loaded.value()[h].surface_planes.empty());
+  }
+  // A version beyond this build's is refused by name.
+  put(v1, 8, kRuntimeFileVersion + 1, 4);
+  {
+    std::ofstream out(dir.path("v9.hcw"), std::ios::binary);
+    out.write(v1.data(), static_cast<std::streamsize>(v1.size()));
+  }
+  const Result<std::vector<RuntimeHull>> newer = read_runtime_file(dir.path("v9.hcw"));
+  EXPECT_EQ(newer.status().code(), StatusCode::unknown_format);
+  EXPECT_NE(newer.status().message().find("version"), std::string::npos) << newer.status().message();
+}
+
 TEST(RuntimeFile, DamagedFilesAreRefusedWithAReason) {
   TempDir dir;
   const std::vector<RuntimeHull> hulls = demo_hulls();
