@@ -202,13 +202,26 @@ ClosestPoints closest_to_segment(const RuntimeHull& hull, const Eigen::Vector3d&
 
 namespace {
 // `found`, turned to a surface facet where the hull point it was found at
-// lies on a plane the surface runs on past (surface_normals.h). `lowest(w)`
-// is the signed distance, below a plane of normal w, of the shape's core
-// (a sphere's centre, a capsule's axis) at its lowest; the depth along the
-// facet follows from it.
+// lies on a plane the surface runs on past (surface_normals.h): the facet
+// through the point facing the normal most, or, inside a seam side's face,
+// the surface facet the shape's core is least deep behind. `lowest(plane)`
+// is the signed distance from the plane of the shape's core (a sphere's
+// centre, a capsule's axis) at its lowest; the depth along the facet follows.
 template <typename Lowest>
 Contact on_surface(const RuntimeHull& hull, const Contact& found, double radius, Lowest&& lowest) {
-  const int s = detail::surface_facet_for(hull, found.point, found.normal, touching_distance(hull));
+  // Rounding in the signed distances grows with the coordinates' size too.
+  const double near = kTouchingFraction * (1.0 + hull.box.diagonal() + found.point.cwiseAbs().maxCoeff());
+  const detail::SeamTurn turn = detail::surface_facet_for(hull, found.point, found.normal, near);
+  if (!turn.at_seam) return found;
+  int s = turn.facet;
+  if (s < 0) {
+    double best = -std::numeric_limits<double>::infinity();
+    for (int f = 0; f < static_cast<int>(hull.shape.facets.size()); ++f)
+      if (hull.plane_on_surface(f) && lowest(hull.shape.planes[f]) > best) {
+        best = lowest(hull.shape.planes[f]);
+        s = f;
+      }
+  }
   if (s < 0) return found;
   const Plane& facet = hull.shape.planes[s];
   return Contact{-1, found.point, facet.normal, std::max(0.0, radius - lowest(facet))};
@@ -253,7 +266,9 @@ std::optional<Contact> capsule_contact(const RuntimeHull& hull, const Eigen::Vec
               if (hull.plane_on_surface(k) && !f(hull.shape.planes[k].normal)) return false;
             return true;
           },
-          [&](const Eigen::Vector3d& w) { return std::make_pair(std::min(a.dot(w), b.dot(w)), std::max(a.dot(w), b.dot(w))); });
+          [&](const Eigen::Vector3d& w) {
+            return std::make_pair(std::min(a.dot(w), b.dot(w)), std::max(a.dot(w), b.dot(w)));
+          });
       if (out && std::isfinite(out->first)) push = out;
     }
     const auto& [depth, normal] = *push;

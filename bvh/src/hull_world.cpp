@@ -26,6 +26,9 @@ Result<std::shared_ptr<const HullWorld>> HullWorld::build(std::vector<RuntimeHul
       for (const Plane& p : s.planes) finite = finite && p.normal.allFinite() && std::isfinite(p.offset);
       if (!finite)
         return Status{StatusCode::invalid_argument, "hull " + std::to_string(i) + " has no facets or non-finite data"};
+      if (!hulls[i].surface_planes.empty() && hulls[i].surface_planes.size() != s.planes.size())
+        return Status{StatusCode::invalid_argument,
+                      "hull " + std::to_string(i) + " has surface flags neither absent nor one per plane"};
     }
     std::shared_ptr<HullWorld> world(new HullWorld());
     world->hulls_ = std::move(hulls);
@@ -357,12 +360,13 @@ Status HullWorld::sweep(const SweepRequest& request, SweepResult& result, double
       if (!separation) return {StatusCode::invalid_argument, "the convex query shape has no 3D hull"};
       double nearest = std::numeric_limits<double>::infinity();
       int nearest_hull = -1;
-      Eigen::Vector3d on_world, on_shape;
+      Eigen::Vector3d on_world, on_shape, away = Eigen::Vector3d::Zero();
       for (int h : near) {
         const double d = separation(h, on_world, on_shape);
         if (d < nearest) {
           nearest = d;
           nearest_hull = h;
+          away = on_shape - on_world;
         }
       }
       if (nearest_hull < 0) return Status::success();  // nothing on the way
@@ -378,7 +382,12 @@ Status HullWorld::sweep(const SweepRequest& request, SweepResult& result, double
         std::optional<RuntimeHull> convex;
         if (s.kind == ShapeKind::convex) convex = placed_convex(s, pressed);
         const std::optional<Contact> c = contact_with(hulls_[nearest_hull], s, pressed, convex ? &*convex : nullptr);
-        result.normal = c ? c->normal : Eigen::Vector3d(-travel.normalized());
+        // Without a contact (out of steps, a graze): from the hull towards the
+        // shape, else against the travel, else up (a turn in place touching).
+        const Eigen::Vector3d fallback = away.norm() > 0.0      ? Eigen::Vector3d(away.normalized())
+                                         : travel.norm() > 0.0 ? Eigen::Vector3d(-travel.normalized())
+                                                               : Eigen::Vector3d::UnitZ();
+        result.normal = c ? c->normal : fallback;
         return Status::success();
       }
       if (speed == 0.0) return Status::success();

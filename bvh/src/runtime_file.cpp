@@ -136,10 +136,10 @@ Result<std::vector<RuntimeHull>> read_hulls(const std::string& path) {
     return Status{StatusCode::unknown_format, path + ": not a hullcover runtime file (no HCWORLD header)"};
   r.at = 8;
   const std::uint32_t version = r.u32();
-  if (version != kRuntimeFileVersion && version != kRuntimeFileFirstVersion)
-    return Status{StatusCode::unknown_format, path + ": runtime file version " + std::to_string(version) +
-                                                  ", this build reads versions " + std::to_string(kRuntimeFileFirstVersion) + " to " +
-                                                  std::to_string(kRuntimeFileVersion)};
+  if (version < kRuntimeFileFirstVersion || version > kRuntimeFileVersion)
+    return Status{StatusCode::unknown_format,
+                  path + ": runtime file version " + std::to_string(version) + ", this build reads versions " +
+                      std::to_string(kRuntimeFileFirstVersion) + " to " + std::to_string(kRuntimeFileVersion)};
   r.u32();
   const std::uint64_t hull_count = r.u64(), payload_bytes = r.u64(), checksum = r.u64();
   if (payload_bytes != bytes.size() - kHeaderBytes)

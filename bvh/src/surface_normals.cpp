@@ -11,9 +11,9 @@ bool has_plane_off_surface(const RuntimeHull& hull) {
   return false;
 }
 
-int surface_facet_for(const RuntimeHull& hull, const Eigen::Vector3d& on_hull, const Eigen::Vector3d& normal,
-                      double near) {
-  if (!has_plane_off_surface(hull)) return -1;
+SeamTurn surface_facet_for(const RuntimeHull& hull, const Eigen::Vector3d& on_hull, const Eigen::Vector3d& normal,
+                           double near) {
+  if (!has_plane_off_surface(hull)) return {};
   const int facets = static_cast<int>(hull.shape.facets.size());
   bool all_on_surface = true;
   int through = -1;
@@ -29,7 +29,8 @@ int surface_facet_for(const RuntimeHull& hull, const Eigen::Vector3d& on_hull, c
       through = p;
     }
   }
-  return all_on_surface ? -1 : through;
+  if (all_on_surface) return {};
+  return {true, through};
 }
 
 int least_deep_surface_facet(const RuntimeHull& hull, const Eigen::Vector3d& p) {

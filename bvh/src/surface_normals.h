@@ -11,14 +11,20 @@
 
 namespace hullcover::bvh::detail {
 
-/// For a contact at hull point `on_hull` with unit normal `normal`: the
-/// surface facet through on_hull that faces `normal` most, when some other
-/// plane through on_hull is not the surface's own (a seam's edge); -1 to
-/// keep the contact as found (every plane there is the surface's, or no
-/// surface facet passes there). Planes within `near` (scene units) of
-/// on_hull pass through it.
-int surface_facet_for(const RuntimeHull& hull, const Eigen::Vector3d& on_hull, const Eigen::Vector3d& normal,
-                      double near);
+/// Where a contact at a hull point stands against the seams.
+struct SeamTurn {
+  /// Some plane through the point is not the surface's own: the contact's
+  /// normal is a seam's, not the surface's.
+  bool at_seam = false;
+  /// The surface facet through the point that faces the contact's normal
+  /// most, or -1 (the point lies inside a seam side's face).
+  int facet = -1;
+};
+
+/// For a contact at hull point `on_hull` with unit normal `normal`. Planes
+/// within `near` (scene units) of on_hull pass through it.
+SeamTurn surface_facet_for(const RuntimeHull& hull, const Eigen::Vector3d& on_hull, const Eigen::Vector3d& normal,
+                           double near);
 
 /// For a point inside the hull: the surface facet it is least deep behind,
 /// or -1 when the hull has none.

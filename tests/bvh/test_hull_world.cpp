@@ -305,6 +305,9 @@ TEST(HullWorld, ATurningSweepStopsWhereThePlankMeetsTheWall) {
   DistanceResult gap;
   ASSERT_TRUE(world->distance({plank, stopped}, gap).ok());
   EXPECT_LE(gap.distance, 1e-8);
+  TouchResult overlapping;
+  ASSERT_TRUE(world->touches({QueryShape::box(V(1, 0.05, 0.05) - V::Constant(1e-7)), stopped}, overlapping).ok());
+  EXPECT_FALSE(overlapping.touching) << "stopped inside the wall";
   // Turning 20 degrees (either way: the plank is symmetric) it stops short.
   end.linear() = Eigen::AngleAxisd(-20.0 * M_PI / 180.0, V::UnitZ()).toRotationMatrix();
   ASSERT_TRUE(world->sweep({plank, start, end}, r, 1e-9).ok());

@@ -74,9 +74,8 @@ TEST(RuntimeFile, ReloadedWorldAnswersExactlyLikeTheBuiltOne) {
   EXPECT_GT(touching, 30);
 }
 
-// Every kind of damage is refused with a message naming the file.
-// Little-endian fields of the layout in runtime_file.h, for building a
-// version 1 file by hand.
+// Little-endian fields of the layout in runtime_file.h, for building files
+// by hand.
 std::uint64_t field(const std::string& bytes, size_t at, int size) {
   std::uint64_t v = 0;
   for (int k = 0; k < size; ++k) v |= static_cast<std::uint64_t>(static_cast<unsigned char>(bytes[at + k])) << (8 * k);
@@ -122,6 +121,22 @@ TEST(RuntimeFile, VersionOneFilesStillLoad) {
     EXPECT_EQ(loaded.value()[h].shape.vertices, hulls[h].shape.vertices);
     EXPECT_TRUE(loaded.value()[h].surface_planes.empty());
   }
+  // A damaged version 2 flag (neither 0 nor 1), checksum fixed up, is refused.
+  std::string bad = v2;
+  const size_t first_flags = kHeader + 20 + 48 + field(v2, kHeader + 4, 4) * 24 + field(v2, kHeader + 12, 4) * 32 +
+                             field(v2, kHeader + 8, 4) * 4 + field(v2, kHeader + 16, 4) * 4;
+  ASSERT_EQ(field(v2, first_flags, 4), field(v2, kHeader + 12, 4)) << "the first hull carries a flag per plane";
+  bad[first_flags + 4] = 2;
+  std::uint64_t bad_sum = 0xcbf29ce484222325ull;
+  for (size_t i = kHeader; i < bad.size(); ++i) bad_sum = (bad_sum ^ static_cast<unsigned char>(bad[i])) * 0x100000001b3ull;
+  put(bad, 32, bad_sum, 8);
+  {
+    std::ofstream out(dir.path("bad.hcw"), std::ios::binary);
+    out.write(bad.data(), static_cast<std::streamsize>(bad.size()));
+  }
+  const Result<std::vector<RuntimeHull>> damaged = read_runtime_file(dir.path("bad.hcw"));
+  EXPECT_EQ(damaged.status().code(), StatusCode::unreadable_file);
+  EXPECT_NE(damaged.status().message().find("surface flag"), std::string::npos) << damaged.status().message();
   // A version beyond this build's is refused by name.
   put(v1, 8, kRuntimeFileVersion + 1, 4);
   {
@@ -133,6 +148,7 @@ TEST(RuntimeFile, VersionOneFilesStillLoad) {
   EXPECT_NE(newer.status().message().find("version"), std::string::npos) << newer.status().message();
 }
 
+// Every kind of damage is refused with a message naming the file.
 TEST(RuntimeFile, DamagedFilesAreRefusedWithAReason) {
   TempDir dir;
   const std::vector<RuntimeHull> hulls = demo_hulls();

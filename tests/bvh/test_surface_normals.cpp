@@ -4,6 +4,7 @@
 // hull side's (a ghost collision), while a ledge where the floor ends keeps
 // its rounded normal.
 
+#include "box_hulls.h"
 #include "covering_fixture.h"
 
 #include "hullcover/bvh/covering_hulls.h"
@@ -34,7 +35,7 @@ Mesh l_shaped_floor() {
   return floor;
 }
 
-class FloorSeams : public ::testing::TestWithParam<double> {};  // prism thickness cap; 0: flat polygons
+class FloorSeams : public ::testing::TestWithParam<double> {};  // prism thickness cap: 0 flat polygons only; 0.25 prisms where the decomposer can extrude
 
 TEST_P(FloorSeams, RestingSpheresAndCapsulesGetTheFloorNormalEverywhere) {
   DecomposeOptions options;
@@ -65,6 +66,39 @@ TEST_P(FloorSeams, RestingSpheresAndCapsulesGetTheFloorNormalEverywhere) {
     }
   }
   EXPECT_GT(contacts, 1000);
+}
+
+// Two floor prisms meeting at x = 0, flagged as the decomposer flags a seam
+// (the sides at x = 0 are not the surface's): a sphere sunk below the top
+// at the seam goes out through the top of both, never through a seam side.
+TEST(SeamFlags, SunkSpheresGoOutThroughTheTop) {
+  std::vector<RuntimeHull> floor = {test::box_hull(V(-2, -0.5, -2), V(0, 0, 2)), test::box_hull(V(0, -0.5, -2), V(2, 0, 2))};
+  for (int side = 0; side < 2; ++side) {
+    RuntimeHull& h = floor[side];
+    h.surface_planes.assign(h.shape.planes.size(), true);
+    for (size_t p = 0; p < h.shape.planes.size(); ++p)
+      if (std::abs(std::abs(h.shape.planes[p].normal.x()) - 1.0) < 1e-12 &&
+          std::abs(h.shape.planes[p].signed_distance(V::Zero())) < 1e-12)
+        h.surface_planes[p] = false;  // the side at x = 0
+  }
+  const auto world = HullWorld::build(floor).value();
+  for (const double x : {-0.2, -0.05, 0.0, 0.05, 0.2}) {
+    ContactResult result;
+    ASSERT_TRUE(world->contacts({QueryShape::sphere(0.3), at(V(x, -0.05, 0.3)), 8}, result).ok());
+    ASSERT_EQ(result.contacts.size(), 2u) << x;
+    for (const Contact& c : result.contacts) {
+      EXPECT_GT(c.normal.y(), std::cos(M_PI / 180.0)) << "hull " << c.hull << " at x " << x;
+      EXPECT_NEAR(c.depth, 0.35, 1e-9) << "hull " << c.hull << " at x " << x;
+    }
+  }
+  // Without the flags the hull on the far side pushes sideways: the ghost.
+  const auto plain = HullWorld::build({test::box_hull(V(-2, -0.5, -2), V(0, 0, 2)),
+                                       test::box_hull(V(0, -0.5, -2), V(2, 0, 2))}).value();
+  ContactResult result;
+  ASSERT_TRUE(plain->contacts({QueryShape::sphere(0.3), at(V(0.2, -0.05, 0.3)), 8}, result).ok());
+  bool sideways = false;
+  for (const Contact& c : result.contacts) sideways = sideways || std::abs(c.normal.x()) > 0.99;
+  EXPECT_TRUE(sideways);
 }
 
 TEST_P(FloorSeams, ALedgeWhereTheFloorEndsKeepsItsRoundedNormal) {

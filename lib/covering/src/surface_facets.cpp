@@ -60,7 +60,7 @@ std::vector<bool> surface_planes(const SceneIndex& index, const ConvexPolytope& 
     on_face[f] = face_in_polygon(index, polygon_of(corners[f], polytope.planes[f]), scratch);
   }
   // Whether the surface runs on, in `plane`, past the edge a-b of a polygon
-  // lying on the side -out_hint of it.
+  // lying on the side of it where `inside` is.
   const auto runs_on_past = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Plane& plane,
                                 const Eigen::Vector3d& inside) {
     Eigen::Vector3d out = (b - a).cross(plane.normal);

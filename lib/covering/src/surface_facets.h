@@ -17,7 +17,7 @@ namespace hullcover::detail {
 /// Per plane of `polytope`, whether a contact there is the surface's own
 /// (false: the surface runs on past it, into another hull). The surface
 /// runs on past an edge when a mesh face in the plane of the facet on that
-/// side (its part within tol of the plane, the face within 30 degrees of
+/// side (its part within tol of the plane, the face within 5 degrees of
 /// it, facing either way) reaches the strip 4 tol wide just beyond the
 /// edge.
 /// - A facet that some mesh face lies in (reaching its polygon's interior

@@ -13,7 +13,11 @@
 /// Penetration is found by the separating-axis test over every axis the
 /// Minkowski difference can have (hull face normals, the shape's face
 /// normals, and cross products of their edge directions), so depth and
-/// normal are exact, not iterated.
+/// normal are exact, not iterated. One exception, for spheres and capsules
+/// on hulls with seam flags (RuntimeHull::surface_planes): where the
+/// contact lies on a plane the surface runs on past, the normal is the
+/// surface facet's there and the depth is measured along it, so the
+/// contact still separates but is not the smallest push.
 
 #include "hullcover/bvh/runtime_hull.h"
 
