@@ -7,7 +7,10 @@ namespace hullcover::bvh {
 std::vector<RuntimeHull> runtime_hulls(const Covering& covering) {
   std::vector<RuntimeHull> hulls;
   hulls.reserve(covering.hulls.size());
-  for (const CoveringHull& h : covering.hulls) hulls.push_back(make_runtime_hull(h.polytope, h.material));
+  for (const CoveringHull& h : covering.hulls) {
+    hulls.push_back(make_runtime_hull(h.polytope, h.material));
+    if (h.surface_planes.size() == h.polytope.planes.size()) hulls.back().surface_planes = h.surface_planes;
+  }
   return hulls;
 }
 

@@ -1,5 +1,8 @@
 #include "hullcover/bvh/hull_contact.h"
 
+#include "separating_axes.h"
+#include "surface_normals.h"
+
 #include "hullcover/geometry/tolerances.h"
 
 #include <algorithm>
@@ -9,9 +12,9 @@
 namespace hullcover::bvh {
 namespace {
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
+using detail::touching_distance;
 
-double touching_distance(const RuntimeHull& hull) { return kTouchingFraction * (1.0 + hull.box.diagonal()); }
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 Eigen::Vector3d closest_on_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   const Eigen::Vector3d ab = b - a;
@@ -91,84 +94,48 @@ int nearest_facet(const RuntimeHull& hull, const Eigen::Vector3d& p) {
   return best;
 }
 
-// Separating-axis penetration: the smallest push of the shape along an axis
-// (both senses) that separates it from the hull. `project` gives the
-// shape's [min, max] along a unit axis. Returns depth and the push
-// direction, or nothing when some axis separates them.
-template <typename Project>
-std::optional<std::pair<double, Eigen::Vector3d>> smallest_push(const RuntimeHull& hull,
-                                                                const std::vector<Eigen::Vector3d>& axes,
-                                                                Project project) {
-  double best = kInfinity;
-  Eigen::Vector3d best_axis = Eigen::Vector3d::UnitZ();
-  for (const Eigen::Vector3d& w : axes) {
-    double hmin = kInfinity, hmax = -kInfinity;
-    for (const Eigen::Vector3d& v : hull.shape.vertices) {
-      hmin = std::min(hmin, v.dot(w));
-      hmax = std::max(hmax, v.dot(w));
-    }
-    const auto [smin, smax] = project(w);
-    const double push_plus = hmax - smin, push_minus = smax - hmin;
-    if (push_plus < 0.0 || push_minus < 0.0) return std::nullopt;
-    if (push_plus < best) {
-      best = push_plus;
-      best_axis = w;
-    }
-    if (push_minus < best) {
-      best = push_minus;
-      best_axis = -w;
-    }
-  }
-  return std::make_pair(best, best_axis);
-}
-
-// Hull plane normals, then `directions` crossed with every hull edge.
-std::vector<Eigen::Vector3d> candidate_axes(const RuntimeHull& hull, const std::vector<Eigen::Vector3d>& directions) {
-  std::vector<Eigen::Vector3d> axes;
-  for (const Plane& p : hull.shape.planes) axes.push_back(p.normal);
-  for (const Eigen::Vector3d& d : directions) {
-    axes.push_back(d.normalized());
-    for (const auto& [u, v] : hull.edges) {
-      const Eigen::Vector3d c = d.cross(hull.shape.vertices[v] - hull.shape.vertices[u]);
-      const double n = c.norm();
-      if (n > kTouchingFraction * d.norm() * (hull.shape.vertices[v] - hull.shape.vertices[u]).norm())
-        axes.push_back(c / n);
-    }
-  }
-  return axes;
-}
-
 } // namespace
 
-ClosestPoints closest_to_point(const RuntimeHull& hull, const Eigen::Vector3d& p) {
-  if (deepest_signed_distance(hull.shape.planes, p) <= 0.0) return {0.0, p, p};
+namespace detail {
+FrontFacet front_facet(const RuntimeHull& hull, const Eigen::Vector3d& p) {
+  FrontFacet front;
+  const int facets = static_cast<int>(hull.shape.facets.size());
+  for (int i = 0; i < static_cast<int>(hull.shape.planes.size()); ++i) {
+    const double d = hull.shape.planes[i].signed_distance(p);
+    front.outside = std::max(front.outside, d);
+    if (i < facets && d > front.distance) {
+      front.distance = d;
+      front.facet = i;
+    }
+  }
+  return front;
+}
+
+ClosestPoints closest_to_point_outside(const RuntimeHull& hull, const Eigen::Vector3d& p, const FrontFacet& front,
+                                       double good_enough) {
   // Every plane supports the hull, so the distance is at least the largest
   // facet distance; when p projects inside that facet, it is attained there.
-  const int front = nearest_facet(hull, p);
-  const double front_distance = hull.shape.planes[front].signed_distance(p);
-  const Eigen::Vector3d on_front = closest_on_facet(hull, front, p);
-  if (front_distance > 0.0 && (on_front - p).norm() <= front_distance * (1.0 + kTouchingFraction))
-    return {(on_front - p).norm(), on_front, p};
+  const Eigen::Vector3d on_front = closest_on_facet(hull, front.facet, p);
+  const double front_gap = (on_front - p).norm();
+  if (front.distance > 0.0 && front_gap <= front.distance * (1.0 + kTouchingFraction)) return {front_gap, on_front, p};
   ClosestPoints best{kInfinity, p, p};
   for (int f = 0; f < static_cast<int>(hull.shape.facets.size()); ++f) {
     if (hull.shape.planes[f].signed_distance(p) < 0.0) continue;
-    const Eigen::Vector3d c = closest_on_facet(hull, f, p);
-    const double d = (c - p).norm();
+    const Eigen::Vector3d c = f == front.facet ? on_front : closest_on_facet(hull, f, p);
+    const double d = f == front.facet ? front_gap : (c - p).norm();
     if (d < best.distance) best = {d, c, p};
+    if (best.distance <= good_enough) break;
   }
   return best;
 }
 
-ClosestPoints closest_to_segment(const RuntimeHull& hull, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  // Do they meet? Clip the segment by every plane.
+bool segment_meets_hull(const RuntimeHull& hull, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                        Eigen::Vector3d& meet) {
+  // Clip the segment by every plane.
   double enter = 0.0, leave = 1.0;
   for (const Plane& plane : hull.shape.planes) {
     const double da = plane.signed_distance(a), db = plane.signed_distance(b);
-    if (da > 0.0 && db > 0.0) {
-      enter = 1.0;
-      leave = 0.0;
-      break;
-    }
+    if (da > 0.0 && db > 0.0) return false;
     if (da <= 0.0 && db <= 0.0) continue;
     const double t = da / (da - db);
     if (da > 0.0)
@@ -176,15 +143,18 @@ ClosestPoints closest_to_segment(const RuntimeHull& hull, const Eigen::Vector3d&
     else
       leave = std::min(leave, t);
   }
-  if (enter <= leave) {
-    const Eigen::Vector3d meet = a + (b - a) * (0.5 * (enter + leave));
-    return {0.0, meet, meet};
-  }
+  if (enter > leave) return false;
+  meet = a + (b - a) * (0.5 * (enter + leave));
+  return true;
+}
+
+ClosestPoints closest_to_segment_apart(const RuntimeHull& hull, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                       double good_enough) {
   // Apart: the closest hull point lies on a facet some point of the segment
   // is in front of (sd is linear along the segment, so an end point is).
   // There it is either the projection of an end point or on an edge.
   ClosestPoints best{kInfinity, a, a};
-  for (int f = 0; f < static_cast<int>(hull.shape.facets.size()); ++f) {
+  for (int f = 0; f < static_cast<int>(hull.shape.facets.size()) && best.distance > good_enough; ++f) {
     const Plane& plane = hull.shape.planes[f];
     const bool a_in_front = plane.signed_distance(a) > 0.0, b_in_front = plane.signed_distance(b) > 0.0;
     if (!a_in_front && !b_in_front) continue;
@@ -199,7 +169,7 @@ ClosestPoints closest_to_segment(const RuntimeHull& hull, const Eigen::Vector3d&
       if (inside_facet(hull, f, q)) best = {d, q, end};
     }
     const std::vector<int>& poly = hull.shape.facets[f];
-    for (size_t i = 0; i < poly.size(); ++i) {
+    for (size_t i = 0; i < poly.size() && best.distance > good_enough; ++i) {
       const auto [on_segment, on_edge] = closest_between_segments(
           a, b, hull.shape.vertices[poly[i]], hull.shape.vertices[poly[(i + 1) % poly.size()]]);
       const double d = (on_segment - on_edge).norm();
@@ -208,52 +178,123 @@ ClosestPoints closest_to_segment(const RuntimeHull& hull, const Eigen::Vector3d&
   }
   return best;
 }
+std::optional<std::pair<double, Eigen::Vector3d>> capsule_axis_push(const RuntimeHull& hull, const Eigen::Vector3d& a,
+                                                                    const Eigen::Vector3d& b) {
+  const Eigen::Vector3d axis = b - a;
+  const int directions = axis.norm() > touching_distance(hull) ? 1 : 0;
+  return smallest_push(
+      hull, [&](auto&& f) { return for_each_axis(hull, &axis, directions, f); },
+      [&](const Eigen::Vector3d& w) { return std::make_pair(std::min(a.dot(w), b.dot(w)), std::max(a.dot(w), b.dot(w))); });
+}
+} // namespace detail
+
+ClosestPoints closest_to_point(const RuntimeHull& hull, const Eigen::Vector3d& p) {
+  const detail::FrontFacet front = detail::front_facet(hull, p);
+  if (front.outside <= 0.0) return {0.0, p, p};
+  return detail::closest_to_point_outside(hull, p, front, -1.0);
+}
+
+ClosestPoints closest_to_segment(const RuntimeHull& hull, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  Eigen::Vector3d meet;
+  if (detail::segment_meets_hull(hull, a, b, meet)) return {0.0, meet, meet};
+  return detail::closest_to_segment_apart(hull, a, b, -1.0);
+}
+
+namespace {
+// `found`, turned to a surface facet where the hull point it was found at
+// lies on a plane the surface runs on past (surface_normals.h): the facet
+// through the point facing the normal most, or, inside a seam side's face,
+// the surface facet the shape's core is least deep behind. `lowest(plane)`
+// is the signed distance from the plane of the shape's core (a sphere's
+// centre, a capsule's axis) at its lowest; the depth along the facet follows.
+template <typename Lowest>
+Contact on_surface(const RuntimeHull& hull, const Contact& found, double radius, Lowest&& lowest) {
+  // Rounding in the signed distances grows with the coordinates' size too.
+  const double near = kTouchingFraction * (1.0 + hull.box.diagonal() + found.point.cwiseAbs().maxCoeff());
+  const detail::SeamTurn turn = detail::surface_facet_for(hull, found.point, found.normal, near);
+  if (!turn.at_seam) return found;
+  int s = turn.facet;
+  if (s < 0) {
+    double best = -std::numeric_limits<double>::infinity();
+    for (int f = 0; f < static_cast<int>(hull.shape.facets.size()); ++f)
+      if (hull.plane_on_surface(f) && lowest(hull.shape.planes[f]) > best) {
+        best = lowest(hull.shape.planes[f]);
+        s = f;
+      }
+  }
+  if (s < 0) return found;
+  const Plane& facet = hull.shape.planes[s];
+  return Contact{-1, found.point, facet.normal, std::max(0.0, radius - lowest(facet))};
+}
+} // namespace
 
 std::optional<Contact> sphere_contact(const RuntimeHull& hull, const Eigen::Vector3d& centre, double radius) {
-  const double outside = deepest_signed_distance(hull.shape.planes, centre);
-  if (outside > radius) return std::nullopt;  // a plane separates them: the usual case, and cheap
-  if (outside <= 0.0) {
-    const int f = nearest_facet(hull, centre);
+  const detail::FrontFacet front = detail::front_facet(hull, centre);
+  if (front.outside > radius) return std::nullopt;  // a plane separates them: the usual case, and cheap
+  if (front.outside <= 0.0) {
+    // Inside: out through the nearest facet the surface has.
+    int f = front.facet;
+    if (!hull.plane_on_surface(f))
+      if (const int s = detail::least_deep_surface_facet(hull, centre); s >= 0) f = s;
     const Plane& plane = hull.shape.planes[f];
-    const double s = plane.signed_distance(centre);
-    return Contact{-1, centre - s * plane.normal, plane.normal, radius - s};
+    const double below = plane.signed_distance(centre);
+    return Contact{-1, centre - below * plane.normal, plane.normal, radius - below};
   }
-  const ClosestPoints c = closest_to_point(hull, centre);
+  const ClosestPoints c = detail::closest_to_point_outside(hull, centre, front, -1.0);
   if (c.distance > radius) return std::nullopt;
-  if (c.distance > touching_distance(hull))
-    return Contact{-1, c.on_hull, (centre - c.on_hull) / c.distance, radius - c.distance};
-  const int f = nearest_facet(hull, centre);
-  return Contact{-1, c.on_hull, hull.shape.planes[f].normal, radius};
+  const Eigen::Vector3d normal = c.distance > touching_distance(hull) ? Eigen::Vector3d((centre - c.on_hull) / c.distance)
+                                                                      : hull.shape.planes[front.facet].normal;
+  return on_surface(hull, Contact{-1, c.on_hull, normal, radius - c.distance}, radius,
+                    [&](const Plane& facet) { return facet.signed_distance(centre); });
 }
 
 std::optional<Contact> capsule_contact(const RuntimeHull& hull, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                        double radius) {
-  for (const Plane& plane : hull.shape.planes)
-    if (plane.signed_distance(a) > radius && plane.signed_distance(b) > radius) return std::nullopt;  // separated
-  const ClosestPoints c = closest_to_segment(hull, a, b);
+  if (detail::segment_clear_of_grown_planes(hull, a, b, radius)) return std::nullopt;  // the usual case, and cheap
+  // The axis meets the hull: the separating axes give depth and normal.
+  // (When one separates them, the clip met only by rounding: the axis is
+  // then as good as touching, and the closest points below tell.)
+  Eigen::Vector3d meet;
+  std::optional<std::pair<double, Eigen::Vector3d>> push;
+  if (detail::segment_meets_hull(hull, a, b, meet) && (push = detail::capsule_axis_push(hull, a, b))) {
+    if (detail::has_plane_off_surface(hull)) {
+      // Out through the surface's own facets only.
+      const auto out = detail::smallest_push(
+          hull,
+          [&](auto&& f) {
+            for (int k = 0; k < static_cast<int>(hull.shape.facets.size()); ++k)
+              if (hull.plane_on_surface(k) && !f(hull.shape.planes[k].normal)) return false;
+            return true;
+          },
+          [&](const Eigen::Vector3d& w) {
+            return std::make_pair(std::min(a.dot(w), b.dot(w)), std::max(a.dot(w), b.dot(w)));
+          });
+      if (out && std::isfinite(out->first)) push = out;
+    }
+    const auto& [depth, normal] = *push;
+    const Eigen::Vector3d deepest = a.dot(normal) < b.dot(normal) ? a : b;
+    return Contact{-1, deepest + depth * normal, normal, depth + radius};
+  }
+  const ClosestPoints c = detail::closest_to_segment_apart(hull, a, b, -1.0);
   if (c.distance > radius) return std::nullopt;
-  if (c.distance > touching_distance(hull))
-    return Contact{-1, c.on_hull, (c.on_other - c.on_hull) / c.distance, radius - c.distance};
-  std::vector<Eigen::Vector3d> directions;
-  if ((b - a).norm() > touching_distance(hull)) directions.push_back(b - a);
-  const auto push = smallest_push(hull, candidate_axes(hull, directions), [&](const Eigen::Vector3d& w) {
-    return std::make_pair(std::min(a.dot(w), b.dot(w)), std::max(a.dot(w), b.dot(w)));
+  // Apart by no more than rounding: closest points that near are noise in
+  // direction, so the facet the axis is most in front of gives the normal.
+  const Eigen::Vector3d normal = c.distance > touching_distance(hull)
+                                     ? Eigen::Vector3d((c.on_other - c.on_hull) / c.distance)
+                                     : hull.shape.planes[nearest_facet(hull, c.on_other)].normal;
+  return on_surface(hull, Contact{-1, c.on_hull, normal, radius - c.distance}, radius, [&](const Plane& facet) {
+    return std::min(facet.signed_distance(a), facet.signed_distance(b));
   });
-  if (!push) return std::nullopt;  // rounding: the clip said they meet, an axis says not
-  const auto& [depth, normal] = *push;
-  const Eigen::Vector3d deepest = a.dot(normal) < b.dot(normal) ? a : b;
-  return Contact{-1, deepest + depth * normal, normal, depth + radius};
 }
 
 std::optional<Contact> box_contact(const RuntimeHull& hull, const Eigen::Isometry3d& pose,
                                    const Eigen::Vector3d& half_extents) {
   const Eigen::Matrix3d& r = pose.linear();
   const Eigen::Vector3d centre = pose.translation();
-  const std::vector<Eigen::Vector3d> directions = {r.col(0), r.col(1), r.col(2)};
-  const auto push = smallest_push(hull, candidate_axes(hull, directions), [&](const Eigen::Vector3d& w) {
-    const double reach = (r.transpose() * w).cwiseAbs().dot(half_extents);
-    return std::make_pair(centre.dot(w) - reach, centre.dot(w) + reach);
-  });
+  const Eigen::Vector3d directions[3] = {r.col(0), r.col(1), r.col(2)};
+  const auto push = detail::smallest_push(
+      hull, [&](auto&& f) { return detail::for_each_axis(hull, directions, 3, f); },
+      [&](const Eigen::Vector3d& w) { return detail::box_extent(pose, half_extents, w); });
   if (!push) return std::nullopt;
   const auto& [depth, normal] = *push;
   // The box corner deepest along -normal, moved back onto the hull's surface.
@@ -263,26 +304,9 @@ std::optional<Contact> box_contact(const RuntimeHull& hull, const Eigen::Isometr
 }
 
 std::optional<Contact> convex_contact(const RuntimeHull& hull, const RuntimeHull& shape) {
-  std::vector<Eigen::Vector3d> axes;
-  for (const Plane& p : hull.shape.planes) axes.push_back(p.normal);
-  for (const Plane& p : shape.shape.planes) axes.push_back(p.normal);
-  for (const auto& [u, v] : shape.edges) {
-    const Eigen::Vector3d d = shape.shape.vertices[v] - shape.shape.vertices[u];
-    for (const auto& [x, y] : hull.edges) {
-      const Eigen::Vector3d e = hull.shape.vertices[y] - hull.shape.vertices[x];
-      const Eigen::Vector3d c = d.cross(e);
-      const double n = c.norm();
-      if (n > kTouchingFraction * d.norm() * e.norm()) axes.push_back(c / n);
-    }
-  }
-  const auto push = smallest_push(hull, axes, [&](const Eigen::Vector3d& w) {
-    double lo = kInfinity, hi = -kInfinity;
-    for (const Eigen::Vector3d& v : shape.shape.vertices) {
-      lo = std::min(lo, v.dot(w));
-      hi = std::max(hi, v.dot(w));
-    }
-    return std::make_pair(lo, hi);
-  });
+  const auto push = detail::smallest_push(
+      hull, [&](auto&& f) { return detail::for_each_axis_between(hull, shape, f); },
+      [&](const Eigen::Vector3d& w) { return detail::hull_extent(shape, w); });
   if (!push) return std::nullopt;
   const auto& [depth, normal] = *push;
   Eigen::Vector3d deepest = shape.shape.vertices.front();

@@ -1,6 +1,6 @@
 #include "hullcover/bvh/hull_world.h"
 
-#include "fcl_objects.h"
+#include "hull_tree.h"
 #include "query_guard.h"
 
 #include "hullcover/geometry/point_hull.h"
@@ -12,26 +12,6 @@
 #include <mutex>
 
 namespace hullcover::bvh {
-
-struct HullWorld::Fcl {
-  // Broad phase: one object per hull in FCL's dynamic AABB tree. They carry
-  // the hull's exact box over a shared placeholder geometry, so building a
-  // world does not pay for every fcl::Convex up front.
-  std::shared_ptr<fcl::Boxd> placeholder = std::make_shared<fcl::Boxd>(1.0, 1.0, 1.0);
-  std::vector<std::unique_ptr<detail::HullEntry>> broad;
-  fcl::DynamicAABBTreeCollisionManagerd manager;
-  // Narrow phase: each hull's fcl::Convex, built once, on the first query
-  // that needs it, and shared by every later one (once per hull, so
-  // concurrent queries are safe).
-  std::unique_ptr<std::once_flag[]> built;
-  std::vector<std::unique_ptr<fcl::CollisionObjectd>> narrow;
-
-  const fcl::CollisionObjectd& convex(const RuntimeHull& hull, int h) {
-    std::call_once(built[h],
-                   [&] { narrow[h] = std::make_unique<fcl::CollisionObjectd>(detail::fcl_convex(hull.shape)); });
-    return *narrow[h];
-  }
-};
 
 HullWorld::~HullWorld() = default;
 
@@ -46,62 +26,23 @@ Result<std::shared_ptr<const HullWorld>> HullWorld::build(std::vector<RuntimeHul
       for (const Plane& p : s.planes) finite = finite && p.normal.allFinite() && std::isfinite(p.offset);
       if (!finite)
         return Status{StatusCode::invalid_argument, "hull " + std::to_string(i) + " has no facets or non-finite data"};
+      if (!hulls[i].surface_planes.empty() && hulls[i].surface_planes.size() != s.planes.size())
+        return Status{StatusCode::invalid_argument,
+                      "hull " + std::to_string(i) + " has surface flags neither absent nor one per plane"};
     }
     std::shared_ptr<HullWorld> world(new HullWorld());
     world->hulls_ = std::move(hulls);
-    world->fcl_ = std::make_unique<Fcl>();
-    Fcl& f = *world->fcl_;
-    const size_t n = world->hulls_.size();
-    f.built = std::make_unique<std::once_flag[]>(n);
-    f.narrow.resize(n);
-    std::vector<fcl::CollisionObjectd*> registered;
-    registered.reserve(n);
-    for (size_t i = 0; i < n; ++i) {
-      f.broad.push_back(std::make_unique<detail::HullEntry>(f.placeholder, world->hulls_[i].box, static_cast<int>(i)));
-      registered.push_back(f.broad.back().get());
-    }
-    f.manager.registerObjects(registered);
-    f.manager.setup();
+    world->tree_ = std::make_unique<detail::HullTree>(world->hulls_);
     return std::shared_ptr<const HullWorld>(std::move(world));
   });
 }
 
 void HullWorld::candidates(const Aabb& box, std::vector<int>& out) const {
-  using Node = fcl::DynamicAABBTreeCollisionManagerd::DynamicAABBNode;
-  const Node* root = fcl_->manager.getTree().getRoot();
-  if (root == nullptr) return;
-  const fcl::AABBd query(box.min, box.max);
-  std::vector<const Node*> stack = {root};
-  while (!stack.empty()) {
-    const Node* node = stack.back();
-    stack.pop_back();
-    if (!node->bv.overlap(query)) continue;
-    if (node->isLeaf()) {
-      out.push_back(static_cast<const detail::HullEntry*>(node->data)->index);
-    } else {
-      stack.push_back(node->children[0]);
-      stack.push_back(node->children[1]);
-    }
-  }
-  std::sort(out.begin(), out.end());
-}
-
-Status HullWorld::overlap(const OverlapRequest& request, OverlapResult& result) const {
-  return detail::guarded("overlap query", [&]() -> Status {
-    result.hulls.clear();
-    if (Status s = check_query_shape(request.shape, request.pose); !s.ok()) return s;
-    const std::shared_ptr<fcl::CollisionGeometryd> geometry = detail::fcl_geometry(request.shape);
-    if (!geometry) return {StatusCode::invalid_argument, "the convex query shape has no 3D hull"};
-    const detail::QueryObject query(geometry, request.pose, world_box(request.shape, request.pose));
-    std::vector<int> near;
-    candidates(world_box(request.shape, request.pose), near);
-    const fcl::CollisionRequestd yes_no;
-    for (int h : near) {
-      fcl::CollisionResultd answer;
-      if (fcl::collide(&query, &fcl_->convex(hulls_[h], h), yes_no, answer) > 0) result.hulls.push_back(h);
-    }
-    return Status::success();
+  tree_->find_in_box(box, [&](int h) {
+    out.push_back(h);
+    return false;
   });
+  std::sort(out.begin(), out.end());
 }
 
 namespace {
@@ -111,6 +52,90 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> capsule_ends(const QueryShape& s, co
   return {pose.translation() - axis, pose.translation() + axis};
 }
 
+// A query shape placed at its pose, ready for the yes/no test against any
+// number of hulls (a convex one hulled once).
+struct PlacedShape {
+  const QueryShape& shape;
+  const Eigen::Isometry3d& pose;
+  Eigen::Vector3d a, b;                // capsule axis ends; a sphere's centre twice
+  std::optional<RuntimeHull> convex;  // a convex shape's hull in the world
+
+  bool touches(const RuntimeHull& hull) const {
+    switch (shape.kind) {
+      case ShapeKind::sphere: return sphere_touches(hull, a, shape.radius);
+      case ShapeKind::capsule: return capsule_touches(hull, a, b, shape.radius);
+      case ShapeKind::box: return box_touches(hull, pose, shape.half_extents);
+      case ShapeKind::convex: return convex_touches(hull, *convex);
+    }
+    return false;
+  }
+};
+} // namespace
+
+std::optional<RuntimeHull> placed_convex(const QueryShape& shape, const Eigen::Isometry3d& pose) {
+  std::vector<Eigen::Vector3d> points;
+  for (const Eigen::Vector3d& p : shape.points) points.push_back(pose * p);
+  std::optional<ConvexPolytope> hull = convex_hull_of_points(points);
+  if (!hull) return std::nullopt;
+  return make_runtime_hull(std::move(*hull), 0);
+}
+
+// Checks a shape and pose and places the shape (which keeps references to
+// both); fails as overlap() documents.
+static Status place(const QueryShape& shape, const Eigen::Isometry3d& pose, std::optional<PlacedShape>& placed) {
+  if (Status s = check_query_shape(shape, pose); !s.ok()) return s;
+  PlacedShape p{shape, pose, pose.translation(), pose.translation(), std::nullopt};
+  if (shape.kind == ShapeKind::capsule) std::tie(p.a, p.b) = capsule_ends(shape, pose);
+  if (shape.kind == ShapeKind::convex) {
+    p.convex = placed_convex(shape, pose);
+    if (!p.convex) return {StatusCode::invalid_argument, "the convex query shape has no 3D hull"};
+  }
+  placed.emplace(std::move(p));
+  return Status::success();
+}
+
+// Calls visit(h) for the hulls the placed shape may touch, until it returns
+// true: the hulls whose boxes meet its box, or for a sphere those within its
+// radius.
+template <typename Visit>
+void find_candidates(const detail::HullTree& tree, const PlacedShape& placed, Visit&& visit) {
+  if (placed.shape.kind == ShapeKind::sphere)
+    tree.find_near_point(placed.a, placed.shape.radius, visit);
+  else
+    tree.find_in_box(world_box(placed.shape, placed.pose), visit);
+}
+
+Status HullWorld::touches(const OverlapRequest& request, TouchResult& result) const {
+  return detail::guarded("touch query", [&]() -> Status {
+    result = {};
+    std::optional<PlacedShape> placed;
+    if (Status s = place(request.shape, request.pose, placed); !s.ok()) return s;
+    const auto first_touching = [&](int h) {
+      if (!placed->touches(hulls_[h])) return false;
+      result.touching = true;
+      result.hull = h;
+      return true;
+    };
+    find_candidates(*tree_, *placed, first_touching);
+    return Status::success();
+  });
+}
+
+Status HullWorld::overlap(const OverlapRequest& request, OverlapResult& result) const {
+  return detail::guarded("overlap query", [&]() -> Status {
+    result.hulls.clear();
+    std::optional<PlacedShape> placed;
+    if (Status s = place(request.shape, request.pose, placed); !s.ok()) return s;
+    find_candidates(*tree_, *placed, [&](int h) {
+      if (placed->touches(hulls_[h])) result.hulls.push_back(h);
+      return false;
+    });
+    std::sort(result.hulls.begin(), result.hulls.end());
+    return Status::success();
+  });
+}
+
+namespace {
 std::optional<Contact> contact_with(const RuntimeHull& hull, const QueryShape& s, const Eigen::Isometry3d& pose,
                                     const RuntimeHull* convex_in_world) {
   switch (s.kind) {
@@ -126,34 +151,25 @@ std::optional<Contact> contact_with(const RuntimeHull& hull, const QueryShape& s
 }
 } // namespace
 
-std::optional<RuntimeHull> placed_convex(const QueryShape& shape, const Eigen::Isometry3d& pose) {
-  std::vector<Eigen::Vector3d> points;
-  for (const Eigen::Vector3d& p : shape.points) points.push_back(pose * p);
-  std::optional<ConvexPolytope> hull = convex_hull_of_points(points);
-  if (!hull) return std::nullopt;
-  return make_runtime_hull(std::move(*hull), 0);
-}
-
 Status HullWorld::contacts(const ContactRequest& request, ContactResult& result) const {
   return detail::guarded("contact query", [&]() -> Status {
     result.contacts.clear();
-    if (Status s = check_query_shape(request.shape, request.pose); !s.ok()) return s;
     if (request.max_contacts < 1) return {StatusCode::invalid_argument, "max_contacts must be at least 1"};
-    std::optional<RuntimeHull> convex;
-    if (request.shape.kind == ShapeKind::convex) {
-      convex = placed_convex(request.shape, request.pose);
-      if (!convex) return {StatusCode::invalid_argument, "the convex query shape has no 3D hull"};
-    }
-    std::vector<int> near;
-    candidates(world_box(request.shape, request.pose), near);
-    const RuntimeHull* placed = convex ? &*convex : nullptr;
-    for (int h : near)
-      if (std::optional<Contact> c = contact_with(hulls_[h], request.shape, request.pose, placed)) {
+    std::optional<PlacedShape> placed;
+    if (Status s = place(request.shape, request.pose, placed); !s.ok()) return s;
+    const RuntimeHull* convex = placed->convex ? &*placed->convex : nullptr;
+    find_candidates(*tree_, *placed, [&](int h) {
+      if (std::optional<Contact> c = contact_with(hulls_[h], request.shape, request.pose, convex)) {
         c->hull = h;
         result.contacts.push_back(*c);
       }
-    std::stable_sort(result.contacts.begin(), result.contacts.end(),
-                     [](const Contact& x, const Contact& y) { return x.depth > y.depth; });
+      return false;
+    });
+    // Deepest first, equal depths by hull index: a total order, so the
+    // answer does not depend on the tree's walk.
+    std::sort(result.contacts.begin(), result.contacts.end(), [](const Contact& x, const Contact& y) {
+      return x.depth > y.depth || (x.depth == y.depth && x.hull < y.hull);
+    });
     if (static_cast<int>(result.contacts.size()) > request.max_contacts) result.contacts.resize(request.max_contacts);
     return Status::success();
   });
@@ -171,47 +187,43 @@ Status check_ray_request(const RayRequest& request, Eigen::Vector3d& unit_direct
   });
 }
 
+void HullWorld::cast_checked_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double max_distance,
+                                 RayResult& result) const {
+  result = {};
+  double reach = max_distance;
+  tree_->walk_ray(origin, dir.cwiseInverse(), reach, [&](int h, double& best) {
+    std::optional<RayHit> hit = ray_hit(hulls_[h], origin, dir, best);
+    if (hit && (!result.hit || hit->t < result.first.t || (hit->t == result.first.t && h < result.first.hull))) {
+      hit->hull = h;
+      result.hit = true;
+      result.first = *hit;
+      best = hit->t;
+    }
+  });
+}
+
 Status HullWorld::ray_cast(const RayRequest& request, RayResult& result) const {
   return detail::guarded("ray query", [&]() -> Status {
     result = {};
     Eigen::Vector3d dir;
     if (Status s = check_ray_request(request, dir); !s.ok()) return s;
-    const Eigen::Vector3d inverse = dir.cwiseInverse();
-    using Node = fcl::DynamicAABBTreeCollisionManagerd::DynamicAABBNode;
-    double best = request.max_distance;
-    std::vector<const Node*> stack = {fcl_->manager.getTree().getRoot()};
-    while (!stack.empty()) {
-      const Node* node = stack.back();
-      stack.pop_back();
-      if (node == nullptr) continue;
-      // Slab test of the node's box against the ray, up to the best hit so far.
-      double t0 = 0.0, t1 = best;
-      for (int k = 0; k < 3 && t0 <= t1; ++k) {
-        double near = (node->bv.min_[k] - request.origin[k]) * inverse[k];
-        double far = (node->bv.max_[k] - request.origin[k]) * inverse[k];
-        if (std::isnan(near) || std::isnan(far)) {  // parallel and on the slab's face
-          near = -std::numeric_limits<double>::infinity();
-          far = std::numeric_limits<double>::infinity();
-        }
-        if (near > far) std::swap(near, far);
-        t0 = std::max(t0, near);
-        t1 = std::min(t1, far);
+    cast_checked_ray(request.origin, dir, request.max_distance, result);
+    return Status::success();
+  });
+}
+
+Status HullWorld::ray_cast_batch(const std::vector<RayRequest>& requests, std::vector<RayResult>& results) const {
+  return detail::guarded("ray batch", [&]() -> Status {
+    results.clear();
+    results.resize(requests.size());
+    std::vector<Eigen::Vector3d> directions(requests.size());
+    for (size_t i = 0; i < requests.size(); ++i)
+      if (Status s = check_ray_request(requests[i], directions[i]); !s.ok()) {
+        results.clear();
+        return {s.code(), "ray " + std::to_string(i) + " of the batch: " + s.message()};
       }
-      if (t0 > t1) continue;
-      if (!node->isLeaf()) {
-        stack.push_back(node->children[0]);
-        stack.push_back(node->children[1]);
-        continue;
-      }
-      const int h = static_cast<const detail::HullEntry*>(node->data)->index;
-      std::optional<RayHit> hit = ray_hit(hulls_[h], request.origin, dir, best);
-      if (hit && (!result.hit || hit->t < result.first.t || (hit->t == result.first.t && h < result.first.hull))) {
-        hit->hull = h;
-        result.hit = true;
-        result.first = *hit;
-        best = hit->t;
-      }
-    }
+    for (size_t i = 0; i < requests.size(); ++i)
+      cast_checked_ray(requests[i].origin, directions[i], requests[i].max_distance, results[i]);
     return Status::success();
   });
 }
@@ -253,8 +265,8 @@ Status HullWorld::distance(const DistanceRequest& request, DistanceResult& resul
     if (!separation) return {StatusCode::invalid_argument, "the convex query shape has no 3D hull"};
     // Grow the search box until it holds a hull, then until it holds every
     // hull nearer than the best found.
-    const fcl::AABBd& world = fcl_->manager.getTree().getRoot()->bv;
-    const double scene = (world.max_ - world.min_).norm();
+    const Aabb world = tree_->bounds();
+    const double scene = (world.max - world.min).norm();
     result.distance = std::numeric_limits<double>::infinity();
     double reach = 0.0;
     for (int round = 0; round < 64; ++round) {
@@ -279,39 +291,82 @@ Status HullWorld::distance(const DistanceRequest& request, DistanceResult& resul
   });
 }
 
+namespace {
+// How far any point of the shape lies from its local origin (scene units):
+// what a turn of angle a moves it by, at most a times this.
+double reach_from_origin(const QueryShape& s) {
+  switch (s.kind) {
+    case ShapeKind::sphere: return 0.0;  // turning a sphere moves none of it
+    case ShapeKind::capsule: return s.half_height;  // its axis; the radius turns with it
+    case ShapeKind::box: return s.half_extents.norm();
+    case ShapeKind::convex: {
+      double farthest = 0.0;
+      for (const Eigen::Vector3d& p : s.points) farthest = std::max(farthest, p.norm());
+      return farthest;
+    }
+  }
+  return 0.0;
+}
+
+// How far the shape extends beyond its axis or core points: the radius of a
+// sphere or capsule, 0 for the others.
+double rounding_of(const QueryShape& s) {
+  return s.kind == ShapeKind::sphere || s.kind == ShapeKind::capsule ? s.radius : 0.0;
+}
+} // namespace
+
 Status HullWorld::sweep(const SweepRequest& request, SweepResult& result, double touch) const {
   return detail::guarded("sweep", [&]() -> Status {
     result = {};
     if (Status s = check_query_shape(request.shape, request.start); !s.ok()) return s;
     if (Status s = check_query_shape(request.shape, request.end); !s.ok()) return s;
     const QueryShape& s = request.shape;
-    if (!request.start.linear().isApprox(request.end.linear(), kSweepSameRotation))
-      return {StatusCode::invalid_argument, "a sweep moves without turning: start and end need the same rotation"};
     if (!(touch > 0.0) || !std::isfinite(touch))
       return {StatusCode::invalid_argument, "touch must be a positive length"};
     if (request.max_steps < 1) return {StatusCode::invalid_argument, "max_steps must be at least 1"};
     const Eigen::Vector3d travel = request.end.translation() - request.start.translation();
-    const double length = travel.norm();
+    // The turn, along the shorter way; none when the rotations agree to
+    // rounding (then the swept box is exact).
+    const Eigen::Quaterniond from(request.start.linear()), to(request.end.linear());
+    const bool turns = !request.start.linear().isApprox(request.end.linear(), kSweepSameRotation);
+    const double angle = turns ? from.angularDistance(to) : 0.0;
+    // No point of the shape moves farther than `speed` per unit of the way:
+    // advancing by the distance over it never passes through a hull.
+    const double speed = travel.norm() + angle * reach_from_origin(s);
+    const auto pose_at = [&](double t) {
+      Eigen::Isometry3d pose = request.start;
+      pose.translation() += t * travel;
+      if (turns) pose.linear() = from.slerp(t, to).toRotationMatrix();
+      return pose;
+    };
     Aabb swept = world_box(s, request.start);
     const Aabb at_end = world_box(s, request.end);
     swept.extend(at_end.min);
     swept.extend(at_end.max);
+    if (turns) {
+      // Every point stays within reach + rounding of the origin's path.
+      const double around = reach_from_origin(s) + rounding_of(s);
+      for (const Eigen::Isometry3d* end : {&request.start, &request.end}) {
+        swept.extend(end->translation().array() - around);
+        swept.extend(end->translation().array() + around);
+      }
+    }
     std::vector<int> near;
     candidates(swept, near);
     double t = 0.0;
     for (int step = 0; step < request.max_steps; ++step) {
-      Eigen::Isometry3d pose = request.start;
-      pose.translation() += t * travel;
+      const Eigen::Isometry3d pose = pose_at(t);
       const auto separation = separation_from(s, pose);
       if (!separation) return {StatusCode::invalid_argument, "the convex query shape has no 3D hull"};
       double nearest = std::numeric_limits<double>::infinity();
       int nearest_hull = -1;
-      Eigen::Vector3d on_world, on_shape;
+      Eigen::Vector3d on_world, on_shape, away = Eigen::Vector3d::Zero();
       for (int h : near) {
         const double d = separation(h, on_world, on_shape);
         if (d < nearest) {
           nearest = d;
           nearest_hull = h;
+          away = on_shape - on_world;
         }
       }
       if (nearest_hull < 0) return Status::success();  // nothing on the way
@@ -323,16 +378,20 @@ Status HullWorld::sweep(const SweepRequest& request, SweepResult& result, double
         result.hull = nearest_hull;
         // The normal of the exact contact a touch further on (closest points
         // this near are noise in direction).
-        Eigen::Isometry3d pressed = pose;
-        if (length > 0.0) pressed.translation() += travel * (2.0 * touch / length);
+        const Eigen::Isometry3d pressed = speed > 0.0 ? pose_at(std::min(1.0, t + 2.0 * touch / speed)) : pose;
         std::optional<RuntimeHull> convex;
         if (s.kind == ShapeKind::convex) convex = placed_convex(s, pressed);
         const std::optional<Contact> c = contact_with(hulls_[nearest_hull], s, pressed, convex ? &*convex : nullptr);
-        result.normal = c ? c->normal : Eigen::Vector3d(-travel.normalized());
+        // Without a contact (out of steps, a graze): from the hull towards the
+        // shape, else against the travel, else up (a turn in place touching).
+        const Eigen::Vector3d fallback = away.norm() > 0.0      ? Eigen::Vector3d(away.normalized())
+                                         : travel.norm() > 0.0 ? Eigen::Vector3d(-travel.normalized())
+                                                               : Eigen::Vector3d::UnitZ();
+        result.normal = c ? c->normal : fallback;
         return Status::success();
       }
-      if (length == 0.0) return Status::success();
-      t += nearest / length;
+      if (speed == 0.0) return Status::success();
+      t += nearest / speed;
       if (t > 1.0) return Status::success();
     }
     return Status::success();

@@ -102,6 +102,10 @@ Status write_hulls(const std::vector<RuntimeHull>& hulls, const std::string& pat
     for (const std::vector<int>& f : s.facets) payload.u32(static_cast<std::uint32_t>(f.size()));
     for (const std::vector<int>& f : s.facets)
       for (int v : f) payload.u32(static_cast<std::uint32_t>(v));
+    const bool flags = h.surface_planes.size() == s.planes.size();
+    payload.u32(flags ? static_cast<std::uint32_t>(s.planes.size()) : 0u);
+    if (flags)
+      for (bool on_surface : h.surface_planes) payload.bytes.push_back(on_surface ? 1 : 0);
   }
   Writer file;
   file.bytes.insert(file.bytes.end(), kMagic, kMagic + 8);
@@ -132,9 +136,10 @@ Result<std::vector<RuntimeHull>> read_hulls(const std::string& path) {
     return Status{StatusCode::unknown_format, path + ": not a hullcover runtime file (no HCWORLD header)"};
   r.at = 8;
   const std::uint32_t version = r.u32();
-  if (version != kRuntimeFileVersion)
-    return Status{StatusCode::unknown_format, path + ": runtime file version " + std::to_string(version) +
-                                                  ", this build reads version " + std::to_string(kRuntimeFileVersion)};
+  if (version < kRuntimeFileFirstVersion || version > kRuntimeFileVersion)
+    return Status{StatusCode::unknown_format,
+                  path + ": runtime file version " + std::to_string(version) + ", this build reads versions " +
+                      std::to_string(kRuntimeFileFirstVersion) + " to " + std::to_string(kRuntimeFileVersion)};
   r.u32();
   const std::uint64_t hull_count = r.u64(), payload_bytes = r.u64(), checksum = r.u64();
   if (payload_bytes != bytes.size() - kHeaderBytes)
@@ -186,7 +191,20 @@ Result<std::vector<RuntimeHull>> read_hulls(const std::string& path) {
         if (index >= V) return broken(path, where + "facet index " + std::to_string(index) + " out of range");
         v = static_cast<int>(index);
       }
+    std::vector<bool> surface_planes;
+    if (version >= 2) {
+      if (!r.has(4)) return broken(path, where + "truncated");
+      const std::uint64_t flags = r.u32();
+      if (flags != 0 && flags != P) return broken(path, where + "surface flags neither absent nor one per plane");
+      if (!r.has(flags)) return broken(path, where + "sizes run past the end");
+      for (std::uint64_t i = 0; i < flags; ++i) {
+        const unsigned char flag = r.data[r.at++];
+        if (flag > 1) return broken(path, where + "a surface flag is neither 0 nor 1");
+        surface_planes.push_back(flag == 1);
+      }
+    }
     RuntimeHull full = make_runtime_hull(std::move(s), hull.material);
+    full.surface_planes = std::move(surface_planes);
     if (full.box.min != hull.box.min || full.box.max != hull.box.max)
       return broken(path, where + "bounding box does not match its vertices");
     hulls.push_back(std::move(full));

@@ -113,6 +113,25 @@ Status TriangleWorld::overlap(const OverlapRequest& request, OverlapResult& resu
   });
 }
 
+Status TriangleWorld::touches(const OverlapRequest& request, TouchResult& result) const {
+  return detail::guarded("touch query", [&]() -> Status {
+    result = {};
+    if (Status s = check_query_shape(request.shape, request.pose); !s.ok()) return s;
+    const std::shared_ptr<fcl::CollisionGeometryd> geometry = detail::fcl_geometry(request.shape);
+    if (!geometry) return {StatusCode::invalid_argument, "the convex query shape has no 3D hull"};
+    const detail::QueryObject query(geometry, request.pose, world_box(request.shape, request.pose));
+    const fcl::CollisionRequestd first_only(1, false);
+    fcl::CollisionResultd found;
+    if (fcl::collide(&query, fcl_->object.get(), first_only, found) > 0) {
+      const fcl::Contactd& c = found.getContact(0);
+      const int primitive = c.o1 == fcl_->model.get() ? c.b1 : c.b2;
+      result.touching = true;
+      result.hull = primitive >= 0 && primitive < static_cast<int>(face_of_.size()) ? face_of_[primitive] : -1;
+    }
+    return Status::success();
+  });
+}
+
 Status TriangleWorld::contacts(const ContactRequest& request, ContactResult& result) const {
   return detail::guarded("contact query", [&]() -> Status {
     result.contacts.clear();

@@ -283,10 +283,56 @@ TEST(HullWorld, SweepNeverTunnelsThroughAThinWall) {
   ASSERT_TRUE(world->sweep({QueryShape::box(V(0.1, 0.1, 0.1)), at(V(-5, 1.5, 1.5)), at(V(5, 1.5, 1.5))}, r, 1e-7).ok());
   ASSERT_TRUE(r.hit);
   EXPECT_NEAR(r.fraction, (5.0 - 0.1) / 10.0, 1e-6);
-  Eigen::Isometry3d turned = at(V(1, 1, 1));
-  turned.linear() = Eigen::AngleAxisd(0.3, V::UnitY()).toRotationMatrix();
-  EXPECT_EQ(world->sweep({QueryShape::sphere(0.1), at(V(-1, 1, 1)), turned}, r, 1e-9).code(),
-            StatusCode::invalid_argument);
+}
+
+// A plank turning in place about z: at angle a its half extent along y is
+// sin(a) + 0.05 cos(a) = R sin(a + b), R = sqrt(1 + 0.05^2), b = atan(0.05),
+// so it reaches the wall's face y = 0.5 at a = asin(0.5 / R) - b.
+TEST(HullWorld, ATurningSweepStopsWhereThePlankMeetsTheWall) {
+  auto world = HullWorld::build({box_hull(V(-2, 0.5, -1), V(2, 0.6, 1))}).value();
+  const QueryShape plank = QueryShape::box(V(1, 0.05, 0.05));
+  Eigen::Isometry3d start = at(V(0, 0, 0)), end = start;
+  end.linear() = Eigen::AngleAxisd(M_PI / 2, V::UnitZ()).toRotationMatrix();
+  SweepResult r;
+  ASSERT_TRUE(world->sweep({plank, start, end}, r, 1e-9).ok());
+  ASSERT_TRUE(r.hit);
+  const double meet = std::asin(0.5 / std::sqrt(1.0 + 0.05 * 0.05)) - std::atan(0.05);
+  EXPECT_NEAR(r.fraction, meet / (M_PI / 2), 1e-7);
+  EXPECT_NEAR(r.normal.y(), -1.0, 1e-6);  // pushed back out of the wall's face
+  // Apart where it stopped, by at most the touch (and rounding).
+  Eigen::Isometry3d stopped = start;
+  stopped.linear() = Eigen::AngleAxisd(r.fraction * M_PI / 2, V::UnitZ()).toRotationMatrix();
+  DistanceResult gap;
+  ASSERT_TRUE(world->distance({plank, stopped}, gap).ok());
+  EXPECT_LE(gap.distance, 1e-8);
+  TouchResult overlapping;
+  ASSERT_TRUE(world->touches({QueryShape::box(V(1, 0.05, 0.05) - V::Constant(1e-7)), stopped}, overlapping).ok());
+  EXPECT_FALSE(overlapping.touching) << "stopped inside the wall";
+  // Turning 20 degrees (either way: the plank is symmetric) it stops short.
+  end.linear() = Eigen::AngleAxisd(-20.0 * M_PI / 180.0, V::UnitZ()).toRotationMatrix();
+  ASSERT_TRUE(world->sweep({plank, start, end}, r, 1e-9).ok());
+  EXPECT_FALSE(r.hit);
+}
+
+// A long plank swinging a half turn while it moves, across a 1 cm wall: a
+// sweep that only checked its ends, or stepped by the origin's travel
+// alone, would pass straight through.
+TEST(HullWorld, ATurningSweepDoesNotTunnelThroughAThinWall) {
+  auto world = HullWorld::build({box_hull(V(1.5, -3, -3), V(1.51, 3, 3))}).value();
+  const QueryShape plank = QueryShape::box(V(2, 0.05, 0.05));
+  Eigen::Isometry3d start = at(V(0, 0, 0)), end = at(V(0.2, 0, 0));
+  start.linear() = Eigen::AngleAxisd(M_PI / 2, V::UnitZ()).toRotationMatrix();  // along y: clear of the wall
+  end.linear() = Eigen::AngleAxisd(-M_PI / 2 + 1e-3, V::UnitZ()).toRotationMatrix();  // along y again, the other way
+  for (const Eigen::Isometry3d* pose : {&start, &end}) {
+    TouchResult t;
+    ASSERT_TRUE(world->touches({plank, *pose}, t).ok());
+    ASSERT_FALSE(t.touching) << "the ends are clear; only the swing meets the wall";
+  }
+  SweepResult r;
+  ASSERT_TRUE(world->sweep({plank, start, end}, r, 1e-9).ok());
+  EXPECT_TRUE(r.hit);
+  EXPECT_GT(r.fraction, 0.0);
+  EXPECT_LT(r.fraction, 0.5);  // halfway it lies along x, through the wall
 }
 
 // Out of steps, a sweep reports a hit where the shape stands (still apart):

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <fstream>
 #include <iterator>
 #include <random>
@@ -35,6 +36,13 @@ TEST(RuntimeFile, ReloadedWorldAnswersExactlyLikeTheBuiltOne) {
   ASSERT_TRUE(write_runtime_file(hulls, dir.path("w.hcw")).ok());
   const Result<std::vector<RuntimeHull>> loaded = read_runtime_file(dir.path("w.hcw"));
   ASSERT_TRUE(loaded.ok()) << loaded.status().message();
+  // The surface flags come back as written (seams turn contact normals).
+  int planes_off_surface = 0;
+  for (size_t h = 0; h < hulls.size(); ++h) {
+    ASSERT_EQ(loaded.value()[h].surface_planes, hulls[h].surface_planes) << h;
+    for (bool on_surface : hulls[h].surface_planes) planes_off_surface += !on_surface;
+  }
+  EXPECT_GT(planes_off_surface, 0) << "the demo building has seams";
   const auto built = HullWorld::build(hulls).value();
   const auto reloaded = HullWorld::build(loaded.value()).value();
   std::mt19937 rng(3);
@@ -64,6 +72,80 @@ TEST(RuntimeFile, ReloadedWorldAnswersExactlyLikeTheBuiltOne) {
     }
   }
   EXPECT_GT(touching, 30);
+}
+
+// Little-endian fields of the layout in runtime_file.h, for building files
+// by hand.
+std::uint64_t field(const std::string& bytes, size_t at, int size) {
+  std::uint64_t v = 0;
+  for (int k = 0; k < size; ++k) v |= static_cast<std::uint64_t>(static_cast<unsigned char>(bytes[at + k])) << (8 * k);
+  return v;
+}
+void put(std::string& bytes, size_t at, std::uint64_t v, int size) {
+  for (int k = 0; k < size; ++k) bytes[at + k] = static_cast<char>((v >> (8 * k)) & 0xff);
+}
+
+// A version 1 file (no surface flags) still loads: the same hulls, every
+// plane counted as the surface's.
+TEST(RuntimeFile, VersionOneFilesStillLoad) {
+  TempDir dir;
+  const std::vector<RuntimeHull> hulls = demo_hulls();
+  ASSERT_TRUE(write_runtime_file(hulls, dir.path("v2.hcw")).ok());
+  const std::string v2 = bytes_of(dir.path("v2.hcw"));
+  constexpr size_t kHeader = 40;
+  std::string payload;
+  size_t at = kHeader;
+  for (size_t h = 0; h < hulls.size(); ++h) {
+    const std::uint64_t V = field(v2, at + 4, 4), F = field(v2, at + 8, 4), P = field(v2, at + 12, 4),
+                        I = field(v2, at + 16, 4);
+    const size_t hull_bytes = 20 + 48 + V * 24 + P * 32 + F * 4 + I * 4;
+    payload += v2.substr(at, hull_bytes);
+    at += hull_bytes;
+    at += 4 + field(v2, at, 4);  // version 2's surface flags, dropped
+  }
+  ASSERT_EQ(at, v2.size());
+  std::string v1 = v2.substr(0, kHeader) + payload;
+  put(v1, 8, 1, 4);                // version
+  put(v1, 24, payload.size(), 8);  // payload bytes
+  std::uint64_t fnv = 0xcbf29ce484222325ull;
+  for (char c : payload) fnv = (fnv ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
+  put(v1, 32, fnv, 8);
+  {
+    std::ofstream out(dir.path("v1.hcw"), std::ios::binary);
+    out.write(v1.data(), static_cast<std::streamsize>(v1.size()));
+  }
+  const Result<std::vector<RuntimeHull>> loaded = read_runtime_file(dir.path("v1.hcw"));
+  ASSERT_TRUE(loaded.ok()) << loaded.status().message();
+  ASSERT_EQ(loaded.value().size(), hulls.size());
+  for (size_t h = 0; h < hulls.size(); ++h) {
+    EXPECT_EQ(loaded.value()[h].shape.vertices, hulls[h].shape.vertices);
+    EXPECT_TRUE(loaded.value()[h].surface_planes.empty());
+  }
+  // A damaged version 2 flag (neither 0 nor 1), checksum fixed up, is refused.
+  std::string bad = v2;
+  const size_t first_flags = kHeader + 20 + 48 + field(v2, kHeader + 4, 4) * 24 + field(v2, kHeader + 12, 4) * 32 +
+                             field(v2, kHeader + 8, 4) * 4 + field(v2, kHeader + 16, 4) * 4;
+  ASSERT_EQ(field(v2, first_flags, 4), field(v2, kHeader + 12, 4)) << "the first hull carries a flag per plane";
+  bad[first_flags + 4] = 2;
+  std::uint64_t bad_sum = 0xcbf29ce484222325ull;
+  for (size_t i = kHeader; i < bad.size(); ++i) bad_sum = (bad_sum ^ static_cast<unsigned char>(bad[i])) * 0x100000001b3ull;
+  put(bad, 32, bad_sum, 8);
+  {
+    std::ofstream out(dir.path("bad.hcw"), std::ios::binary);
+    out.write(bad.data(), static_cast<std::streamsize>(bad.size()));
+  }
+  const Result<std::vector<RuntimeHull>> damaged = read_runtime_file(dir.path("bad.hcw"));
+  EXPECT_EQ(damaged.status().code(), StatusCode::unreadable_file);
+  EXPECT_NE(damaged.status().message().find("surface flag"), std::string::npos) << damaged.status().message();
+  // A version beyond this build's is refused by name.
+  put(v1, 8, kRuntimeFileVersion + 1, 4);
+  {
+    std::ofstream out(dir.path("v9.hcw"), std::ios::binary);
+    out.write(v1.data(), static_cast<std::streamsize>(v1.size()));
+  }
+  const Result<std::vector<RuntimeHull>> newer = read_runtime_file(dir.path("v9.hcw"));
+  EXPECT_EQ(newer.status().code(), StatusCode::unknown_format);
+  EXPECT_NE(newer.status().message().find("version"), std::string::npos) << newer.status().message();
 }
 
 // Every kind of damage is refused with a message naming the file.

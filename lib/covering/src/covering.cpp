@@ -4,6 +4,7 @@
 
 #include "planar_prism.h"
 #include "patch_merging.h"
+#include "surface_facets.h"
 
 #include <algorithm>
 #include <chrono>
@@ -160,6 +161,7 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
     std::sort(hull.faces.begin(), hull.faces.end());
     hull.material = patch.material;
     hull.volume = polytope_volume(hull.polytope);
+    hull.surface_planes = detail::surface_planes(index, hull.polytope, scratch);
     covering.hulls.push_back(std::move(hull));
   }
   std::sort(covering.hulls.begin(), covering.hulls.end(),

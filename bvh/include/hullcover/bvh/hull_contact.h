@@ -13,7 +13,11 @@
 /// Penetration is found by the separating-axis test over every axis the
 /// Minkowski difference can have (hull face normals, the shape's face
 /// normals, and cross products of their edge directions), so depth and
-/// normal are exact, not iterated.
+/// normal are exact, not iterated. One exception, for spheres and capsules
+/// on hulls with seam flags (RuntimeHull::surface_planes): where the
+/// contact lies on a plane the surface runs on past, the normal is the
+/// surface facet's there and the depth is measured along it, so the
+/// contact still separates but is not the smallest push.
 
 #include "hullcover/bvh/runtime_hull.h"
 
@@ -65,6 +69,18 @@ std::optional<Contact> box_contact(const RuntimeHull& hull, const Eigen::Isometr
 /// against the hull: separating axes over both shapes' face normals and
 /// every pair of edge directions. Cost grows with edges x edges.
 std::optional<Contact> convex_contact(const RuntimeHull& hull, const RuntimeHull& shape);
+
+/// The yes/no forms of the four contacts above: true exactly when the
+/// matching *_contact gives a contact (overlapping or touching), as they
+/// make every decision alike, but without computing depth or normal, and
+/// without allocating. Most pairs a query meets are settled by one plane.
+bool sphere_touches(const RuntimeHull& hull, const Eigen::Vector3d& centre, double radius);
+/// Capsule (segment a-b, radius > 0); see sphere_touches.
+bool capsule_touches(const RuntimeHull& hull, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius);
+/// Box (`pose` of its centre, half extents > 0); see sphere_touches.
+bool box_touches(const RuntimeHull& hull, const Eigen::Isometry3d& pose, const Eigen::Vector3d& half_extents);
+/// Convex shape placed in the world; see sphere_touches.
+bool convex_touches(const RuntimeHull& hull, const RuntimeHull& shape);
 
 /// Distance between the hull and a closed convex shape placed in the world
 /// (0 when they meet), exactly: the smallest over vertex-to-hull,

@@ -1,9 +1,9 @@
 #pragma once
 /// \file hull_world.h
 /// The runtime a game server links: a covering's hulls in FCL's dynamic
-/// AABB tree (broad phase; FCL's fcl::Convex for yes/no overlap) with
-/// hullcover's exact narrow phase for contacts, rays, distances and sweeps
-/// (hull_contact.h).
+/// AABB tree (broad phase, walked directly: no callback or allocation per
+/// query) with hullcover's exact narrow phase for every query: yes/no,
+/// contacts, rays, distances and sweeps (hull_contact.h).
 ///
 /// Every query takes a Request and fills a Result (as FCL does), returns a
 /// [[nodiscard]] Status and never throws. Queries are const and safe to run
@@ -20,6 +20,10 @@
 
 namespace hullcover::bvh {
 
+namespace detail {
+class HullTree;
+}
+
 /// Which hulls a shape at a pose touches.
 struct OverlapRequest {
   /// Any kind; limits in check_query_shape.
@@ -29,11 +33,20 @@ struct OverlapRequest {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
 };
 struct OverlapResult {
-  /// Ascending indices of the hulls that meet the shape, by FCL's yes/no
-  /// test on each hull's fcl::Convex (not the exact narrow phase: a shape
-  /// grazing a hull within rounding may be listed here and not by
-  /// contacts(), or the other way round).
+  /// Ascending indices of every hull that overlaps or touches the shape:
+  /// exactly the hulls contacts() gives a contact for (hull_contact.h's
+  /// yes/no tests decide as its contacts do).
   std::vector<int> hulls;
+};
+
+/// Does a shape at a pose touch any hull: the yes/no query a server asks
+/// most. It stops at the first hull found.
+struct TouchResult {
+  /// Some hull overlaps or touches the shape (as contacts() decides).
+  bool touching = false;
+  /// The first such hull found, or -1. Which one depends on the tree (the
+  /// same world and request always give the same one), not on its index.
+  int hull = -1;
 };
 
 /// Up to `max_contacts` contacts of a shape at a pose, deepest first.
@@ -102,17 +115,18 @@ struct DistanceResult {
   Eigen::Vector3d on_shape = Eigen::Vector3d::Zero();
 };
 
-/// A shape moving in a straight line, without turning, from `start` to
-/// `end` (the two poses must share their rotation).
+/// A shape moving from `start` to `end`: its origin in a straight line, its
+/// rotation turning the shorter way at a steady rate (slerp), both over the
+/// same fraction of the way.
 struct SweepRequest {
   /// Any kind; limits in check_query_shape.
   QueryShape shape;
   /// The shape's pose at fraction 0 (scene units), finite. Default:
   /// identity.
   Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
-  /// The pose at fraction 1, finite, with start's rotation (relative
-  /// difference up to kSweepSameRotation, else `invalid_argument`): the
-  /// shape moves at start's rotation throughout. Default: identity.
+  /// The pose at fraction 1, finite; its rotation may differ from start's
+  /// (rotations agreeing to kSweepSameRotation count as the same: a pure
+  /// translation). Default: identity.
   Eigen::Isometry3d end = Eigen::Isometry3d::Identity();
   /// Most advancement steps, >= 1 (else `invalid_argument`); each costs one
   /// exact distance to every hull whose box meets the swept box. A head-on
@@ -184,13 +198,21 @@ public:
 
   /// Fails with `invalid_argument` for a bad shape or pose
   /// (check_query_shape) or a convex shape whose points have no 3D hull.
+  /// Walks the tree and tests hulls only until one touches.
+  [[nodiscard]] Status touches(const OverlapRequest& request, TouchResult& result) const;
+  /// Every touching hull; fails as touches() does.
   [[nodiscard]] Status overlap(const OverlapRequest& request, OverlapResult& result) const;
   /// Fails as overlap does, and for max_contacts < 1. Exact contacts for
   /// every shape (a convex one is hulled once per call, then tested by
   /// separating axes).
   [[nodiscard]] Status contacts(const ContactRequest& request, ContactResult& result) const;
-  /// Fails with `invalid_argument` as check_ray_request does.
+  /// Fails with `invalid_argument` as check_ray_request does. The tree is
+  /// walked nearer boxes first and pruned at the best hit so far.
   [[nodiscard]] Status ray_cast(const RayRequest& request, RayResult& result) const;
+  /// Many rays in one call: `results[i]` answers `requests[i]` as ray_cast
+  /// would. Every ray is checked first; the first bad one fails the batch
+  /// with `invalid_argument` naming its index, and `results` is left empty.
+  [[nodiscard]] Status ray_cast_batch(const std::vector<RayRequest>& requests, std::vector<RayResult>& results) const;
   /// Fails as overlap does. The distance is exact for every shape: spheres
   /// and capsules from their axis, boxes and convex shapes from closest
   /// features (closest_between; FCL's GJK distance was found to
@@ -200,12 +222,14 @@ public:
   /// a hull that need not be the nearest.
   [[nodiscard]] Status distance(const DistanceRequest& request, DistanceResult& result) const;
 
-  /// Time of impact by conservative advancement on the exact distance:
-  /// every step is at most the current distance, so a thin wall is never
+  /// Time of impact by conservative advancement on the exact distance: no
+  /// point of the shape moves farther in a step than the current distance
+  /// (the origin's travel plus the turn's angle times the shape's reach
+  /// from its origin bound every point's), so a thin wall is never
   /// tunnelled through; the touch is found within `touch` (scene units,
   /// finite, > 0; a smaller one costs more steps near a hull). Any shape.
-  /// Fails with `invalid_argument` for a bad shape, poses that turn, a bad
-  /// `touch` or max_steps < 1.
+  /// Fails with `invalid_argument` for a bad shape or pose, a bad `touch`
+  /// or max_steps < 1.
   [[nodiscard]] Status sweep(const SweepRequest& request, SweepResult& result, double touch) const;
 
   /// The hulls, in the order given to build (hull i of every result).
@@ -213,10 +237,13 @@ public:
 
 private:
   HullWorld() = default;
-  struct Fcl;  // FCL objects, kept out of this header: fcl headers are slow to compile
   std::vector<RuntimeHull> hulls_;
-  std::unique_ptr<Fcl> fcl_;
+  // The broad phase, kept out of this header: fcl headers are slow to compile.
+  std::unique_ptr<detail::HullTree> tree_;
 
+  /// ray_cast on a checked ray (unit direction).
+  void cast_checked_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double max_distance,
+                        RayResult& result) const;
   /// The distance from hull h to `shape` at `pose` (0 when they meet) with
   /// the closest points, as a function of h; empty for a convex shape
   /// without a 3D hull.

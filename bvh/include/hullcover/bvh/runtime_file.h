@@ -12,7 +12,10 @@
 ///             u32 plane count P (>= F), u32 facet index count I,
 ///             6 x f64 bounding box (min xyz, max xyz),
 ///             V x 3 f64 vertices, P x 4 f64 planes (normal xyz, offset),
-///             F x u32 facet sizes, I x u32 facet vertex indices
+///             F x u32 facet sizes, I x u32 facet vertex indices,
+///             (version 2) u32 S (0 or P), S x u8 surface flags (1: plane p
+///             is the surface's own, RuntimeHull::surface_planes; S = 0:
+///             unknown)
 ///
 /// Planes after the first F bound flat hulls sideways (see ConvexPolytope).
 
@@ -24,7 +27,11 @@
 
 namespace hullcover::bvh {
 
-inline constexpr std::uint32_t kRuntimeFileVersion = 1;
+/// The version written. Version 1 (no surface flags) is still read: its
+/// hulls count every plane as the surface's.
+inline constexpr std::uint32_t kRuntimeFileVersion = 2;
+/// The oldest version read.
+inline constexpr std::uint32_t kRuntimeFileFirstVersion = 1;
 
 /// Writes `hulls` to `path`. Fails with `unwritable_file`.
 Status write_runtime_file(const std::vector<RuntimeHull>& hulls, const std::string& path);

@@ -21,6 +21,13 @@ struct RuntimeHull {
   std::vector<std::pair<int, int>> edges;
   int material = 0;
   Aabb box;
+  /// Per plane of `shape`: whether a contact there is the scene surface's
+  /// own (CoveringHull::surface_planes). Empty: unknown, every plane counts
+  /// as the surface's (hulls from other tools, version 1 runtime files).
+  std::vector<bool> surface_planes;
+
+  /// Whether plane `p` bounds the scene's surface (see surface_planes).
+  bool plane_on_surface(int p) const { return surface_planes.empty() || surface_planes[p]; }
 };
 
 /// The runtime form of a hull (pass the shape by move to avoid a copy).

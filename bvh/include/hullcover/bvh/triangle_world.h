@@ -31,6 +31,10 @@ public:
 
   /// Triangles a shape overlaps, by FCL (broad and narrow phase).
   [[nodiscard]] Status overlap(const OverlapRequest& request, OverlapResult& result) const;
+  /// Does the shape overlap any triangle: FCL's collide asked for one
+  /// contact, so it stops at the first (the baseline of HullWorld::touches).
+  /// `result.hull` is that triangle's mesh face id.
+  [[nodiscard]] Status touches(const OverlapRequest& request, TouchResult& result) const;
   /// Exact contacts (hull_contact.h) with every triangle FCL finds within a
   /// small margin of the shape.
   [[nodiscard]] Status contacts(const ContactRequest& request, ContactResult& result) const;

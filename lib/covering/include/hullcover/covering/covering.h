@@ -28,6 +28,12 @@ struct CoveringHull {
   double thickness = 0.0;  ///< prism thickness (planar only; 0 = flat polygon)
   int material = 0;        ///< material id of its faces (the smallest, if they differ)
   double volume = 0.0;
+  /// Per plane of `polytope`: whether a contact there is the surface's own
+  /// (a facet on a mesh face; a flat polygon's rim edge where the surface
+  /// ends or bends), false where the surface runs on into other hulls. The
+  /// runtime turns contact normals away from the others (no ghost
+  /// collisions at seams).
+  std::vector<bool> surface_planes;
 };
 
 /// The result: hulls and everything needed to reproduce them.

@@ -148,11 +148,11 @@ inline constexpr double kUnitNormalSlack = 1e-9;
 /// keeps a world of zero extent growing.
 inline constexpr double kDistanceReachGrowth = 1e-3;
 
-/// A sweep translates without turning: its start and end rotations must
-/// agree to this relative precision (Eigen's isApprox, Frobenius norm).
-/// Two poses built from one rotation differ by rounding only (~1e-16); a
-/// turn small enough to pass moves a point 1e6 units away by about 1e-6,
-/// so sweeping at the start's rotation throughout stays exact enough.
+/// A sweep whose start and end rotations agree to this relative precision
+/// (Eigen's isApprox, Frobenius norm) counts as a pure translation, with an
+/// exact swept box. Two poses built from one rotation differ by rounding
+/// only (~1e-16); a turn small enough to pass moves a point 1e6 units away
+/// by about 1e-6.
 inline constexpr double kSweepSameRotation = 1e-12;
 
 // ---- Audit ------------------------------------------------------------------
