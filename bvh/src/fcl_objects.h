@@ -1,12 +1,11 @@
 #pragma once
-// FCL pieces shared by the hull and triangle worlds (private to bvh/).
+// FCL pieces of the triangle world (private to bvh/).
 // Only the FCL headers used are included: fcl/fcl.h costs seconds and
 // hundreds of MB per translation unit.
 
 #include "hullcover/bvh/query_shape.h"
 #include "hullcover/geometry/convex_polytope.h"
 
-#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/convex.h>
@@ -26,14 +25,6 @@ public:
       : fcl::CollisionObjectd(geometry, pose) {
     aabb = fcl::AABBd(box.min, box.max);
   }
-};
-
-/// A hull's entry in the broad-phase tree: its exact box and its index.
-class HullEntry : public QueryObject {
-public:
-  HullEntry(const std::shared_ptr<fcl::CollisionGeometryd>& placeholder, const Aabb& box, int hull_index)
-      : QueryObject(placeholder, Eigen::Isometry3d::Identity(), box), index(hull_index) {}
-  const int index;
 };
 
 /// FCL geometry for a query shape (a convex shape gets its hull's facets).
