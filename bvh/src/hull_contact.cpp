@@ -226,6 +226,26 @@ Contact on_surface(const RuntimeHull& hull, const Contact& found, double radius,
   const Plane& facet = hull.shape.planes[s];
   return Contact{-1, found.point, facet.normal, std::max(0.0, radius - lowest(facet))};
 }
+
+// `push` (a separating-axis push of a shape that meets the hull) or, where
+// the hull has seams, the smallest push out through one of the surface's
+// own facets (along its outward normal only) instead: a shape across a seam
+// is never pushed out of a seam side. `project(w)` gives the shape's extent
+// along w.
+template <typename Project>
+std::pair<double, Eigen::Vector3d> push_through_surface(const RuntimeHull& hull,
+                                                        const std::pair<double, Eigen::Vector3d>& push,
+                                                        Project&& project) {
+  if (!detail::has_plane_off_surface(hull)) return push;
+  std::pair<double, Eigen::Vector3d> best = {kInfinity, push.second};
+  for (int k = 0; k < static_cast<int>(hull.shape.facets.size()); ++k) {
+    if (!hull.plane_on_surface(k)) continue;
+    const Eigen::Vector3d& n = hull.shape.planes[k].normal;
+    const double out = detail::hull_extent(hull, n).second - project(n).first;
+    if (out < best.first) best = {std::max(0.0, out), n};
+  }
+  return std::isfinite(best.first) ? best : push;
+}
 } // namespace
 
 std::optional<Contact> sphere_contact(const RuntimeHull& hull, const Eigen::Vector3d& centre, double radius) {
@@ -257,21 +277,9 @@ std::optional<Contact> capsule_contact(const RuntimeHull& hull, const Eigen::Vec
   Eigen::Vector3d meet;
   std::optional<std::pair<double, Eigen::Vector3d>> push;
   if (detail::segment_meets_hull(hull, a, b, meet) && (push = detail::capsule_axis_push(hull, a, b))) {
-    if (detail::has_plane_off_surface(hull)) {
-      // Out through the surface's own facets only.
-      const auto out = detail::smallest_push(
-          hull,
-          [&](auto&& f) {
-            for (int k = 0; k < static_cast<int>(hull.shape.facets.size()); ++k)
-              if (hull.plane_on_surface(k) && !f(hull.shape.planes[k].normal)) return false;
-            return true;
-          },
-          [&](const Eigen::Vector3d& w) {
-            return std::make_pair(std::min(a.dot(w), b.dot(w)), std::max(a.dot(w), b.dot(w)));
-          });
-      if (out && std::isfinite(out->first)) push = out;
-    }
-    const auto& [depth, normal] = *push;
+    const auto [depth, normal] = push_through_surface(hull, *push, [&](const Eigen::Vector3d& w) {
+      return std::make_pair(std::min(a.dot(w), b.dot(w)), std::max(a.dot(w), b.dot(w)));
+    });
     const Eigen::Vector3d deepest = a.dot(normal) < b.dot(normal) ? a : b;
     return Contact{-1, deepest + depth * normal, normal, depth + radius};
   }
@@ -296,7 +304,8 @@ std::optional<Contact> box_contact(const RuntimeHull& hull, const Eigen::Isometr
       hull, [&](auto&& f) { return detail::for_each_axis(hull, directions, 3, f); },
       [&](const Eigen::Vector3d& w) { return detail::box_extent(pose, half_extents, w); });
   if (!push) return std::nullopt;
-  const auto& [depth, normal] = *push;
+  const auto [depth, normal] = push_through_surface(
+      hull, *push, [&](const Eigen::Vector3d& w) { return detail::box_extent(pose, half_extents, w); });
   // The box corner deepest along -normal, moved back onto the hull's surface.
   Eigen::Vector3d corner = centre;
   for (int k = 0; k < 3; ++k) corner -= (r.col(k).dot(normal) >= 0.0 ? 1.0 : -1.0) * half_extents[k] * r.col(k);
@@ -308,7 +317,8 @@ std::optional<Contact> convex_contact(const RuntimeHull& hull, const RuntimeHull
       hull, [&](auto&& f) { return detail::for_each_axis_between(hull, shape, f); },
       [&](const Eigen::Vector3d& w) { return detail::hull_extent(shape, w); });
   if (!push) return std::nullopt;
-  const auto& [depth, normal] = *push;
+  const auto [depth, normal] =
+      push_through_surface(hull, *push, [&](const Eigen::Vector3d& w) { return detail::hull_extent(shape, w); });
   Eigen::Vector3d deepest = shape.shape.vertices.front();
   for (const Eigen::Vector3d& v : shape.shape.vertices)
     if (v.dot(normal) < deepest.dot(normal)) deepest = v;

@@ -70,7 +70,8 @@ TEST_P(FloorSeams, RestingSpheresAndCapsulesGetTheFloorNormalEverywhere) {
 
 // Two floor prisms meeting at x = 0, flagged as the decomposer flags a seam
 // (the sides at x = 0 are not the surface's): a sphere sunk below the top
-// at the seam goes out through the top of both, never through a seam side.
+// at the seam, and a box across it, go out through the top of both, never
+// through a seam side.
 TEST(SeamFlags, SunkSpheresGoOutThroughTheTop) {
   std::vector<RuntimeHull> floor = {test::box_hull(V(-2, -0.5, -2), V(0, 0, 2)), test::box_hull(V(0, -0.5, -2), V(2, 0, 2))};
   for (int side = 0; side < 2; ++side) {
@@ -91,6 +92,15 @@ TEST(SeamFlags, SunkSpheresGoOutThroughTheTop) {
       EXPECT_NEAR(c.depth, 0.35, 1e-9) << "hull " << c.hull << " at x " << x;
     }
   }
+  // A box resting across the seam, 0.1 deep, overlapping the far hull by
+  // only 0.05: out through the top of both.
+  ContactResult boxed;
+  ASSERT_TRUE(world->contacts({QueryShape::box(V(0.3, 0.3, 0.3)), at(V(-0.25, 0.2, 0.3)), 8}, boxed).ok());
+  ASSERT_EQ(boxed.contacts.size(), 2u);
+  for (const Contact& c : boxed.contacts) {
+    EXPECT_GT(c.normal.y(), std::cos(M_PI / 180.0)) << "box, hull " << c.hull;
+    EXPECT_NEAR(c.depth, 0.1, 1e-9) << "box, hull " << c.hull;
+  }
   // Without the flags the hull on the far side pushes sideways: the ghost.
   const auto plain = HullWorld::build({test::box_hull(V(-2, -0.5, -2), V(0, 0, 2)),
                                        test::box_hull(V(0, -0.5, -2), V(2, 0, 2))}).value();
@@ -98,6 +108,10 @@ TEST(SeamFlags, SunkSpheresGoOutThroughTheTop) {
   ASSERT_TRUE(plain->contacts({QueryShape::sphere(0.3), at(V(0.2, -0.05, 0.3)), 8}, result).ok());
   bool sideways = false;
   for (const Contact& c : result.contacts) sideways = sideways || std::abs(c.normal.x()) > 0.99;
+  EXPECT_TRUE(sideways);
+  ASSERT_TRUE(plain->contacts({QueryShape::box(V(0.3, 0.3, 0.3)), at(V(-0.25, 0.2, 0.3)), 8}, boxed).ok());
+  sideways = false;
+  for (const Contact& c : boxed.contacts) sideways = sideways || std::abs(c.normal.x()) > 0.99;
   EXPECT_TRUE(sideways);
 }
 
