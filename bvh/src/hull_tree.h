@@ -4,8 +4,9 @@
 // one array in depth-first order for the queries to walk directly: no
 // callback, no virtual or library call, no allocation per query, 32 bytes a
 // node. Boxes are kept as floats rounded outward, so a packed box holds
-// FCL's box and a walk never misses a hull its exact box would find; every
-// test on them is done in double.
+// FCL's box and a walk never misses a hull its exact box would find: box
+// walks compare them with the query box rounded outward too, ray walks in
+// double.
 
 #include "hullcover/bvh/runtime_hull.h"
 #include "hullcover/geometry/tolerances.h"
