@@ -131,19 +131,8 @@ ClosestPoints closest_to_point_outside(const RuntimeHull& hull, const Eigen::Vec
 
 bool segment_meets_hull(const RuntimeHull& hull, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                         Eigen::Vector3d& meet) {
-  // Clip the segment by every plane.
-  double enter = 0.0, leave = 1.0;
-  for (const Plane& plane : hull.shape.planes) {
-    const double da = plane.signed_distance(a), db = plane.signed_distance(b);
-    if (da > 0.0 && db > 0.0) return false;
-    if (da <= 0.0 && db <= 0.0) continue;
-    const double t = da / (da - db);
-    if (da > 0.0)
-      enter = std::max(enter, t);
-    else
-      leave = std::min(leave, t);
-  }
-  if (enter > leave) return false;
+  double enter, leave;
+  if (!clip_segment_to_hull(hull, a, b, 0.0, enter, leave)) return false;
   meet = a + (b - a) * (0.5 * (enter + leave));
   return true;
 }

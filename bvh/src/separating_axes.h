@@ -69,6 +69,19 @@ inline std::pair<double, double> box_extent(const Eigen::Isometry3d& pose, const
   return {centre - reach, centre + reach};
 }
 
+/// Calls `axis(w)` for `d` crossed with each hull edge (unit; a pair near
+/// parallel gives no axis), until a call returns false, and says so.
+template <typename Axis>
+bool for_each_edge_axis(const RuntimeHull& hull, const Eigen::Vector3d& d, Axis&& axis) {
+  for (const auto& [u, v] : hull.edges) {
+    const Eigen::Vector3d e = hull.shape.vertices[v] - hull.shape.vertices[u];
+    const Eigen::Vector3d c = d.cross(e);
+    const double n = c.norm();
+    if (n > kTouchingFraction * d.norm() * e.norm() && !axis(Eigen::Vector3d(c / n))) return false;
+  }
+  return true;
+}
+
 /// Calls `axis(w)` for the candidate axes of a hull against a shape whose
 /// edges run along `directions` (none for a sphere, the axis for a
 /// capsule, three for a box): the hull's plane normals, each direction, and
@@ -80,13 +93,7 @@ bool for_each_axis(const RuntimeHull& hull, const Eigen::Vector3d* directions, i
     if (!axis(p.normal)) return false;
   for (int i = 0; i < direction_count; ++i) {
     const Eigen::Vector3d& d = directions[i];
-    if (!axis(Eigen::Vector3d(d.normalized()))) return false;
-    for (const auto& [u, v] : hull.edges) {
-      const Eigen::Vector3d e = hull.shape.vertices[v] - hull.shape.vertices[u];
-      const Eigen::Vector3d c = d.cross(e);
-      const double n = c.norm();
-      if (n > kTouchingFraction * d.norm() * e.norm() && !axis(Eigen::Vector3d(c / n))) return false;
-    }
+    if (!axis(Eigen::Vector3d(d.normalized())) || !for_each_edge_axis(hull, d, axis)) return false;
   }
   return true;
 }
@@ -99,15 +106,9 @@ bool for_each_axis_between(const RuntimeHull& hull, const RuntimeHull& shape, Ax
     if (!axis(p.normal)) return false;
   for (const Plane& p : shape.shape.planes)
     if (!axis(p.normal)) return false;
-  for (const auto& [s, t] : shape.edges) {
-    const Eigen::Vector3d d = shape.shape.vertices[t] - shape.shape.vertices[s];
-    for (const auto& [u, v] : hull.edges) {
-      const Eigen::Vector3d e = hull.shape.vertices[v] - hull.shape.vertices[u];
-      const Eigen::Vector3d c = d.cross(e);
-      const double n = c.norm();
-      if (n > kTouchingFraction * d.norm() * e.norm() && !axis(Eigen::Vector3d(c / n))) return false;
-    }
-  }
+  for (const auto& [s, t] : shape.edges)
+    if (!for_each_edge_axis(hull, Eigen::Vector3d(shape.shape.vertices[t] - shape.shape.vertices[s]), axis))
+      return false;
   return true;
 }
 
@@ -152,6 +153,27 @@ bool no_separating_axis(const RuntimeHull& hull, Enumerate&& enumerate, Project&
   });
 }
 
+/// Clips segment a-b (parameter 0 at a, 1 at b) by every hull plane moved
+/// out by `grow` (scene units; 0 for the hull itself): true when a part is
+/// left, [enter, leave] then being it. Stops as soon as nothing is left.
+inline bool clip_segment_to_hull(const RuntimeHull& hull, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                 double grow, double& enter, double& leave) {
+  enter = 0.0;
+  leave = 1.0;
+  for (const Plane& plane : hull.shape.planes) {
+    const double da = plane.signed_distance(a) - grow, db = plane.signed_distance(b) - grow;
+    if (da > 0.0 && db > 0.0) return false;
+    if (da <= 0.0 && db <= 0.0) continue;
+    const double t = da / (da - db);
+    if (da > 0.0)
+      enter = std::max(enter, t);
+    else
+      leave = std::min(leave, t);
+    if (enter > leave) return false;
+  }
+  return true;
+}
+
 /// True when no point of segment a-b lies within `radius` behind every hull
 /// plane moved out by `radius`: then the capsule (a-b, radius) and the hull
 /// are apart, as the planes moved out bound the hull grown by `radius`. The
@@ -160,19 +182,8 @@ bool no_separating_axis(const RuntimeHull& hull, Enumerate&& enumerate, Project&
 /// no single plane separates.
 inline bool segment_clear_of_grown_planes(const RuntimeHull& hull, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                           double radius) {
-  double enter = 0.0, leave = 1.0;
-  for (const Plane& plane : hull.shape.planes) {
-    const double da = plane.signed_distance(a) - radius, db = plane.signed_distance(b) - radius;
-    if (da > 0.0 && db > 0.0) return true;
-    if (da <= 0.0 && db <= 0.0) continue;
-    const double t = da / (da - db);
-    if (da > 0.0)
-      enter = std::max(enter, t);
-    else
-      leave = std::min(leave, t);
-    if (enter > leave) return true;
-  }
-  return false;
+  double enter, leave;
+  return !clip_segment_to_hull(hull, a, b, radius, enter, leave);
 }
 
 } // namespace hullcover::bvh::detail
