@@ -52,8 +52,9 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> capsule_ends(const QueryShape& s, co
   return {pose.translation() - axis, pose.translation() + axis};
 }
 
-// A query shape placed at its pose, ready for the yes/no test against any
-// number of hulls (a convex one hulled once).
+// A query shape placed at its pose, ready for the yes/no test and the
+// contact against any number of hulls (a capsule's ends found and a convex
+// shape hulled once).
 struct PlacedShape {
   const QueryShape& shape;
   const Eigen::Isometry3d& pose;
@@ -68,6 +69,16 @@ struct PlacedShape {
       case ShapeKind::convex: return convex_touches(hull, *convex);
     }
     return false;
+  }
+
+  std::optional<Contact> contact(const RuntimeHull& hull) const {
+    switch (shape.kind) {
+      case ShapeKind::sphere: return sphere_contact(hull, a, shape.radius);
+      case ShapeKind::capsule: return capsule_contact(hull, a, b, shape.radius);
+      case ShapeKind::box: return box_contact(hull, pose, shape.half_extents);
+      case ShapeKind::convex: return convex_contact(hull, *convex);
+    }
+    return std::nullopt;
   }
 };
 } // namespace
@@ -135,31 +146,14 @@ Status HullWorld::overlap(const OverlapRequest& request, OverlapResult& result) 
   });
 }
 
-namespace {
-std::optional<Contact> contact_with(const RuntimeHull& hull, const QueryShape& s, const Eigen::Isometry3d& pose,
-                                    const RuntimeHull* convex_in_world) {
-  switch (s.kind) {
-    case ShapeKind::sphere: return sphere_contact(hull, pose.translation(), s.radius);
-    case ShapeKind::capsule: {
-      const auto [a, b] = capsule_ends(s, pose);
-      return capsule_contact(hull, a, b, s.radius);
-    }
-    case ShapeKind::box: return box_contact(hull, pose, s.half_extents);
-    case ShapeKind::convex: return convex_contact(hull, *convex_in_world);
-  }
-  return std::nullopt;
-}
-} // namespace
-
 Status HullWorld::contacts(const ContactRequest& request, ContactResult& result) const {
   return detail::guarded("contact query", [&]() -> Status {
     result.contacts.clear();
     if (request.max_contacts < 1) return {StatusCode::invalid_argument, "max_contacts must be at least 1"};
     std::optional<PlacedShape> placed;
     if (Status s = place(request.shape, request.pose, placed); !s.ok()) return s;
-    const RuntimeHull* convex = placed->convex ? &*placed->convex : nullptr;
     find_candidates(*tree_, *placed, [&](int h) {
-      if (std::optional<Contact> c = contact_with(hulls_[h], request.shape, request.pose, convex)) {
+      if (std::optional<Contact> c = placed->contact(hulls_[h])) {
         c->hull = h;
         result.contacts.push_back(*c);
       }
@@ -379,9 +373,9 @@ Status HullWorld::sweep(const SweepRequest& request, SweepResult& result, double
         // The normal of the exact contact a touch further on (closest points
         // this near are noise in direction).
         const Eigen::Isometry3d pressed = speed > 0.0 ? pose_at(std::min(1.0, t + 2.0 * touch / speed)) : pose;
-        std::optional<RuntimeHull> convex;
-        if (s.kind == ShapeKind::convex) convex = placed_convex(s, pressed);
-        const std::optional<Contact> c = contact_with(hulls_[nearest_hull], s, pressed, convex ? &*convex : nullptr);
+        std::optional<PlacedShape> placed;
+        if (Status status = place(s, pressed, placed); !status.ok()) return status;
+        const std::optional<Contact> c = placed->contact(hulls_[nearest_hull]);
         // Without a contact (out of steps, a graze): from the hull towards the
         // shape, else against the travel, else up (a turn in place touching).
         const Eigen::Vector3d fallback = away.norm() > 0.0      ? Eigen::Vector3d(away.normalized())
