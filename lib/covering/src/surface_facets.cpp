@@ -72,11 +72,6 @@ std::vector<bool> surface_planes(const SceneIndex& index, const ConvexPolytope& 
     if ((b - a).cross(out).dot(plane.normal) < 0.0) strip = {b, a, a + out, b + out};
     return face_in_polygon(index, polygon_of(strip, plane), scratch);
   };
-  const auto centroid = [](const std::vector<Eigen::Vector3d>& points) {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for (const Eigen::Vector3d& p : points) sum += p;
-    return Eigen::Vector3d(sum / static_cast<double>(points.size()));
-  };
   // A facet on no face is the surface's own (a contact keeps its normal)
   // unless, past an edge it shares with a facet on a face, the surface runs
   // on: then it is the side of a seam between hulls.
@@ -90,7 +85,8 @@ std::vector<bool> surface_planes(const SceneIndex& index, const ConvexPolytope& 
         const std::vector<int>& other = polytope.facets[g];
         const bool shares = std::find(other.begin(), other.end(), u) != other.end() &&
                             std::find(other.begin(), other.end(), v) != other.end();
-        if (shares && runs_on_past(polytope.vertices[u], polytope.vertices[v], polytope.planes[g], centroid(corners[g])))
+        if (shares &&
+            runs_on_past(polytope.vertices[u], polytope.vertices[v], polytope.planes[g], centroid_of(corners[g])))
           on_surface[f] = false;
       }
     }
@@ -99,7 +95,7 @@ std::vector<bool> surface_planes(const SceneIndex& index, const ConvexPolytope& 
   // facet's corners.
   if (facets == 0) return on_surface;
   const std::vector<Eigen::Vector3d>& rim = corners[0];
-  const Eigen::Vector3d middle = centroid(rim);
+  const Eigen::Vector3d middle = centroid_of(rim);
   for (size_t p = facets; p < polytope.planes.size(); ++p) {
     const Plane& side = polytope.planes[p];
     for (size_t i = 0; i < rim.size(); ++i) {

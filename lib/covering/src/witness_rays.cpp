@@ -2,6 +2,8 @@
 
 #include "mesh_ray.h"
 
+#include "hullcover/geometry/planar_hull.h"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -105,12 +107,6 @@ ShadowSplit split_by_shadow(const std::vector<Eigen::Vector3d>& region, const st
   return split;
 }
 
-
-Eigen::Vector3d centroid(const std::vector<Eigen::Vector3d>& points) {
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& p : points) c += p;
-  return c / static_cast<double>(points.size());
-}
 
 // Witness rays start this fraction of the way in from a region's corners
 // toward its middle, where its middle's ray does not decide it.
@@ -337,12 +333,12 @@ private:
     const double tol = index_.tol();
     if (negligible(region, tol)) return false;
     if (--budget_ < 0) return true;
-    WitnessRay ray = witness_ray(index_, sweep_, interior_, centroid(region), scratch_);
+    WitnessRay ray = witness_ray(index_, sweep_, interior_, centroid_of(region), scratch_);
     if (ray.loses) return true;
     if (ray.deciding_face < 0) {
       // The middle ray misses the interior (a piece where the sweep only
       // grazes it): its corners' rays, pulled in a little, tell.
-      const Eigen::Vector3d middle = centroid(region);
+      const Eigen::Vector3d middle = centroid_of(region);
       for (const Eigen::Vector3d& corner : region) {
         ray = witness_ray(index_, sweep_, interior_, corner + kWitnessInset * (middle - corner), scratch_);
         if (ray.loses) return true;
@@ -420,7 +416,7 @@ private:
     if (negligible(region, tol)) return 0.0;
     if (--budget_ < 0) return kNone;
     const std::optional<MeshRayHit> hit =
-        first_hit_past_stand_off(index_, sweep_, ray_base(sweep_, centroid(region)), scratch_);
+        first_hit_past_stand_off(index_, sweep_, ray_base(sweep_, centroid_of(region)), scratch_);
     if (!hit) return kNone;
     const double stand_off = kRayStandOffInTolerances * tol;
     const Mesh& mesh = index_.mesh();

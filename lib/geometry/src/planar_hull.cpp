@@ -76,6 +76,12 @@ std::vector<int> convex_hull_2d(const std::vector<Eigen::Vector2d>& points, doub
   return hull;
 }
 
+Eigen::Vector3d centroid_of(const std::vector<Eigen::Vector3d>& points) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : points) c += p;
+  return c / static_cast<double>(points.size());
+}
+
 std::vector<Plane> polygon_side_planes(const std::vector<Eigen::Vector3d>& corners, const Eigen::Vector3d& normal) {
   std::vector<Plane> planes;
   planes.reserve(corners.size());

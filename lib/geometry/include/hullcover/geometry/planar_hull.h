@@ -36,6 +36,10 @@ struct PlaneFrame {
 /// points are collinear within `tol`.
 std::vector<int> convex_hull_2d(const std::vector<Eigen::Vector2d>& points, double tol);
 
+/// The mean of `points` (a polygon's vertex centroid; in its interior when
+/// the polygon is convex). Requires at least one point.
+Eigen::Vector3d centroid_of(const std::vector<Eigen::Vector3d>& points);
+
 /// Outward side planes of the convex polygon `corners` (counter-clockwise
 /// seen from `normal`): one plane per edge, containing the edge and
 /// `normal`, its own normal pointing away from the polygon.
