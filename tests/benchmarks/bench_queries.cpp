@@ -75,29 +75,43 @@ struct Scene {
   std::vector<Resting> resting_spheres, resting_capsules;  // character size
 };
 
+// A point drawn uniformly on a random face with a surface, and that face's
+// unit normal.
+struct FacePoint {
+  int face = -1;
+  Eigen::Vector3d point, normal;
+};
+FacePoint random_face_point(const Mesh& mesh, std::mt19937& rng) {
+  std::uniform_int_distribution<int> face(0, static_cast<int>(mesh.triangles.size()) - 1);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (;;) {
+    const int f = face(rng);
+    const Eigen::Vector3d n = triangle_area_vector(mesh, f);
+    if (!(n.norm() > 0.0)) continue;
+    double a = u(rng), b = u(rng);
+    if (a + b > 1.0) a = 1.0 - a, b = 1.0 - b;
+    const Eigen::Vector3i& t = mesh.triangles[f];
+    const std::vector<Eigen::Vector3d>& x = mesh.positions;
+    return {f, x[t[0]] + a * (x[t[1]] - x[t[0]]) + b * (x[t[2]] - x[t[0]]), n.normalized()};
+  }
+}
+
 Probe make_probe(const PreparedMesh& prepared, double radius, double half_height, unsigned seed) {
   Probe probe;
   probe.radius = radius;
   probe.half_height = half_height;
   probe.ray_length = 4.0 * radius;
   std::mt19937 rng(seed);
-  std::uniform_int_distribution<int> face(0, static_cast<int>(prepared.mesh.triangles.size()) - 1);
   std::uniform_real_distribution<double> u(0.0, 1.0), offset(-0.5, 1.5);
   while (static_cast<int>(probe.poses.size()) < kPoses) {
-    const int f = face(rng);
-    const Eigen::Vector3d n = triangle_area_vector(prepared.mesh, f);
-    if (n.norm() == 0.0) continue;
-    double a = u(rng), b = u(rng);
-    if (a + b > 1.0) a = 1.0 - a, b = 1.0 - b;
-    const Eigen::Vector3i& t = prepared.mesh.triangles[f];
-    const std::vector<Eigen::Vector3d>& x = prepared.mesh.positions;
-    const Eigen::Vector3d p = x[t[0]] + a * (x[t[1]] - x[t[0]]) + b * (x[t[2]] - x[t[0]]);
+    const FacePoint on = random_face_point(prepared.mesh, rng);
+    const Eigen::Vector3d& n = on.normal;
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-    pose.translation() = p + n.normalized() * (offset(rng) * radius);
+    pose.translation() = on.point + n * (offset(rng) * radius);
     pose.linear() = Eigen::Quaterniond(Eigen::Vector4d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5).normalized())
                         .toRotationMatrix();
     probe.poses.push_back(pose);
-    const Eigen::Vector3d towards = -n.normalized() + 0.3 * Eigen::Vector3d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
+    const Eigen::Vector3d towards = -n + 0.3 * Eigen::Vector3d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
     probe.rays.push_back({pose.translation(), towards, probe.ray_length});
   }
   return probe;
@@ -113,19 +127,12 @@ std::vector<Resting> resting_poses(const PreparedMesh& prepared, const TriangleW
   const Mesh& mesh = prepared.mesh;
   const double tol = prepared.tolerance.length;
   std::mt19937 rng(seed);
-  std::uniform_int_distribution<int> face(0, static_cast<int>(mesh.triangles.size()) - 1);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
   std::vector<Resting> poses;
   for (int tries = 0; static_cast<int>(poses.size()) < kRestingPoses && tries < 100 * kRestingPoses; ++tries) {
-    const int f = face(rng);
-    Eigen::Vector3d n = triangle_area_vector(mesh, f);
-    if (!(n.norm() > 0.0)) continue;
-    n.normalize();
-    double a = u(rng), b = u(rng);
-    if (a + b > 1.0) a = 1.0 - a, b = 1.0 - b;
-    const Eigen::Vector3i& t = mesh.triangles[f];
+    const FacePoint on = random_face_point(mesh, rng);
+    const Eigen::Vector3d &n = on.normal, &p = on.point;
+    const Eigen::Vector3i& t = mesh.triangles[on.face];
     const std::vector<Eigen::Vector3d>& x = mesh.positions;
-    const Eigen::Vector3d p = x[t[0]] + a * (x[t[1]] - x[t[0]]) + b * (x[t[2]] - x[t[0]]);
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.translation() = p + n * (0.95 * shape.radius);
     const Eigen::Vector3d along = (x[t[1]] - x[t[0]]).normalized();

@@ -4,7 +4,9 @@
 // every hull one by one, and rays cast at every hull without the tree.
 
 #include "box_hulls.h"
+#include "concurrent_queries.h"
 #include "covering_fixture.h"
+#include "poses.h"
 
 #include "hullcover/bvh/covering_hulls.h"
 #include "hullcover/bvh/hull_world.h"
@@ -13,18 +15,13 @@
 #include <gtest/gtest.h>
 
 #include <random>
-#include <thread>
 
 namespace hullcover::bvh {
 namespace {
 
 using V = Eigen::Vector3d;
 
-Eigen::Isometry3d at(const V& p) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translation() = p;
-  return pose;
-}
+using test::at;
 
 // The demo building's covering as a world (about a hundred hulls).
 std::shared_ptr<const HullWorld> demo_world() {
@@ -206,16 +203,8 @@ TEST(HullTouch, EightThreadsGetExactlyWhatOneThreadGets) {
   const std::vector<OverlapRequest> requests = random_requests(400, 7);
   std::vector<TouchResult> expected(requests.size());
   for (size_t i = 0; i < requests.size(); ++i) ASSERT_TRUE(world->touches(requests[i], expected[i]).ok());
-  std::vector<std::vector<TouchResult>> got(8, std::vector<TouchResult>(requests.size()));
-  std::vector<std::thread> threads;
-  for (int t = 0; t < 8; ++t)
-    threads.emplace_back([&, t] {
-      for (size_t i = 0; i < requests.size(); ++i) {
-        const size_t k = (i + 50 * t) % requests.size();
-        (void)world->touches(requests[k], got[t][k]);
-      }
-    });
-  for (std::thread& th : threads) th.join();
+  const auto got = test::answers_from_threads<TouchResult>(
+      8, requests.size(), [&](size_t k, TouchResult& answer) { (void)world->touches(requests[k], answer); });
   for (size_t i = 0; i < requests.size(); ++i)
     for (int t = 0; t < 8; ++t) {
       EXPECT_EQ(got[t][i].touching, expected[i].touching) << "thread " << t << " request " << i;

@@ -6,7 +6,9 @@
 #include "hullcover/bvh/covering_hulls.h"
 #include "hullcover/bvh/hull_world.h"
 
+#include "concurrent_queries.h"
 #include "covering_fixture.h"
+#include "poses.h"
 #include "query_guard.h"  // private to bvh: no public input makes a query throw
 
 #include "hullcover/mesh/scene_builder.h"
@@ -17,7 +19,6 @@
 #include <new>
 #include <random>
 #include <stdexcept>
-#include <thread>
 
 namespace hullcover::bvh {
 namespace {
@@ -32,11 +33,7 @@ std::shared_ptr<const HullWorld> floor_and_block() {
   return world.value();
 }
 
-Eigen::Isometry3d at(const V& p) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translation() = p;
-  return pose;
-}
+using test::at;
 
 TEST(HullWorld, SphereRestingOnTheFloor) {
   const auto world = floor_and_block();
@@ -229,16 +226,8 @@ TEST(HullWorld, EightThreadsGetExactlyWhatOneThreadGets) {
   }
   std::vector<ContactResult> expected(requests.size());
   for (size_t i = 0; i < requests.size(); ++i) ASSERT_TRUE(world->contacts(requests[i], expected[i]).ok());
-  std::vector<std::vector<ContactResult>> got(8, std::vector<ContactResult>(requests.size()));
-  std::vector<std::thread> threads;
-  for (int t = 0; t < 8; ++t)
-    threads.emplace_back([&, t] {
-      for (size_t i = 0; i < requests.size(); ++i) {
-        const size_t k = (i + 50 * t) % requests.size();
-        (void)world->contacts(requests[k], got[t][k]);
-      }
-    });
-  for (std::thread& th : threads) th.join();
+  const auto got = test::answers_from_threads<ContactResult>(
+      8, requests.size(), [&](size_t k, ContactResult& answer) { (void)world->contacts(requests[k], answer); });
   int touching = 0;
   for (size_t i = 0; i < requests.size(); ++i) {
     touching += !expected[i].contacts.empty();

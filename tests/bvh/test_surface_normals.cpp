@@ -6,6 +6,7 @@
 
 #include "box_hulls.h"
 #include "covering_fixture.h"
+#include "poses.h"
 
 #include "hullcover/bvh/covering_hulls.h"
 #include "hullcover/bvh/hull_world.h"
@@ -20,11 +21,7 @@ namespace {
 
 using V = Eigen::Vector3d;
 
-Eigen::Isometry3d at(const V& p) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translation() = p;
-  return pose;
-}
+using test::at;
 
 // An L-shaped floor at y = 0, facing up: no convex hull covers it whole, so
 // its covering has a seam.

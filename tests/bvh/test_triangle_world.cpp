@@ -5,6 +5,7 @@
 #include "hullcover/bvh/triangle_world.h"
 
 #include "covering_fixture.h"
+#include "poses.h"
 
 #include "hullcover/mesh/scene_builder.h"
 
@@ -17,11 +18,7 @@ namespace {
 
 using V = Eigen::Vector3d;
 
-Eigen::Isometry3d at(const V& p) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translation() = p;
-  return pose;
-}
+using test::at;
 
 struct Worlds {
   std::shared_ptr<const HullWorld> hulls;
