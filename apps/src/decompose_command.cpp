@@ -78,6 +78,9 @@ int run_decompose(DecomposeCommandOptions& o) {
                                  : "random seed " + std::to_string(o.decompose.seed + c.statistics.kept_try - 1);
     std::printf("  %d merge orders tried, kept %s\n", c.statistics.order_tries, kept.c_str());
   }
+  if (o.decompose.agent_radius.value_or(0.0) > 0.0 || o.decompose.max_deviation.value_or(0.0) > 0.0)
+    std::printf("  allowance: agent radius %.6g, max deviation %.6g\n", o.decompose.agent_radius.value_or(0.0),
+                o.decompose.max_deviation.value_or(0.0));
   if (c.near_merge_distance > 0.0)
     std::printf("  near merges (patches sharing no edge, within %.6g): %d of %d merges\n", c.near_merge_distance,
                 c.statistics.near_merges, c.statistics.merges);
@@ -112,6 +115,15 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
   cmd->add_option("--reach", o->decompose.free_space_reach,
                   "Exact mode: cap on how far free space is kept in front of faces and beyond open edges, scene "
                   "units (default: no cap, every ray of free space up to its first mesh hit)");
+  cmd->add_option("--agent-radius", o->decompose.agent_radius,
+                  "Exact mode for agents: hulls may also fill free space no ball of this radius (touching no "
+                  "triangle) reaches, scene units; spheres and capsules at least this wide collide as with the "
+                  "triangles (default 0: exact)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--max-deviation", o->decompose.max_deviation,
+                  "Exact mode for props: hulls may also fill free space within this distance of the mesh, scene "
+                  "units; combines with --agent-radius (default 0: exact)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--near-merge", o->decompose.near_merge_distance,
                   "After the paper's merging, also try patches that share no edge but come within this distance, "
                   "scene units, under the same conditions; 0 = off, the paper's algorithm alone (default: exact "

@@ -29,6 +29,13 @@ Status check_options(const DecomposeOptions& o) {
     return {StatusCode::invalid_argument, "prism thickness cap must be a length >= 0"};
   if (o.near_merge_distance && !(std::isfinite(*o.near_merge_distance) && *o.near_merge_distance >= 0.0))
     return {StatusCode::invalid_argument, "near-merge distance must be a length >= 0"};
+  if (o.agent_radius && !(std::isfinite(*o.agent_radius) && *o.agent_radius >= 0.0))
+    return {StatusCode::invalid_argument, "agent radius must be a length >= 0"};
+  if (o.max_deviation && !(std::isfinite(*o.max_deviation) && *o.max_deviation >= 0.0))
+    return {StatusCode::invalid_argument, "max deviation must be a length >= 0"};
+  if ((o.agent_radius.value_or(0.0) > 0.0 || o.max_deviation.value_or(0.0) > 0.0) &&
+      o.conditions != ValidityMode::exact)
+    return {StatusCode::invalid_argument, "agent radius and max deviation relax exact mode: use them with exact conditions"};
   if (o.order_tries < 1) return {StatusCode::invalid_argument, "order tries must be at least 1"};
   if (o.max_hull_vertices < 8)
     return {StatusCode::invalid_argument, "max hull vertices must be at least 8 (a prism over a quad)"};
@@ -93,7 +100,8 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
   Clock::time_point start = Clock::now();
   const SceneIndex index =
       build_scene_index(prepared, {covering.bar_half_length, options.keep_materials_apart, options.conditions,
-                                   covering.free_space_reach, hull_margin});
+                                   covering.free_space_reach, hull_margin, options.agent_radius.value_or(0.0),
+                                   options.max_deviation.value_or(0.0)});
   stats.seconds_index = seconds_since(start);
 
   start = Clock::now();

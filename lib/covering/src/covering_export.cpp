@@ -68,6 +68,8 @@ nlohmann::json covering_json(const Covering& covering) {
         {"bar_half_length", covering.bar_half_length},
         {"prism_thickness_cap", covering.prism_thickness_cap},
         {"near_merge_distance", covering.near_merge_distance},
+        {"agent_radius", covering.options.agent_radius.value_or(0.0)},
+        {"max_deviation", covering.options.max_deviation.value_or(0.0)},
         {"dissolve", covering.dissolve},
         {"order", o.order == MergeOrder::compact ? "compact" : "random"},
         {"conditions", o.conditions == ValidityMode::exact ? "exact" : "paper"},

@@ -11,8 +11,6 @@
 namespace hullcover::detail {
 
 int PatchMerger::push_near_pairs() {
-  const Mesh& mesh = index_.mesh();
-  const double tol = index_.tol();
   const int patch_count = static_cast<int>(patches_.size());
   const std::vector<Aabb> boxes = near_boxes();
   const AabbTree tree(boxes);
@@ -27,7 +25,7 @@ int PatchMerger::push_near_pairs() {
       const Patch& pb = patches_[b];
       if (b <= a || pa.shared_length.count(b)) continue;
       if (!near_pairs_tried_.insert({a, pa.version, b, pb.version}).second) continue;
-      if (!patches_support_each_other(mesh, pa, pb, tol)) continue;
+      if (!patches_support_each_other(index_, pa, pb)) continue;
       push_pair(a, b);
       ++pushed;
     }

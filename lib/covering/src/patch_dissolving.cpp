@@ -96,7 +96,7 @@ bool PatchMerger::dissolve(int h, const AabbTree& near_tree, int lone) {
     places.push_back(r.size());
     r.erase(std::remove_if(r.begin(), r.end(),
                            [&](int q) {
-                             return !patches_support_each_other(index_.mesh(), patches_[q], alone, index_.tol());
+                             return !patches_support_each_other(index_, patches_[q], alone);
                            }),
             r.end());
     if (r.empty()) return false;

@@ -52,8 +52,10 @@ std::vector<int> vertices_of_faces(const Mesh& mesh, const std::vector<int>& fac
 double face_edge_length(const Mesh& mesh, int face, int corner);
 
 /// Condition 2 both ways: each patch's face planes have the other's hull
-/// vertices behind them (within tol). Cheap, and needs no hull.
-bool patches_support_each_other(const Mesh& mesh, const Patch& a, const Patch& b, double tol);
+/// vertices behind them (within tol). Cheap, and needs no hull. Always true
+/// with an allowance (SceneIndex::has_allowance): a face may then lie inside
+/// its hull where the exact conditions prove its front space harmless.
+bool patches_support_each_other(const SceneIndex& index, const Patch& a, const Patch& b);
 
 /// Inverse compactness of the union of two patches sharing `shared` length
 /// of boundary: B / sqrt(A) (0 for a closed union).

@@ -123,6 +123,8 @@ SceneIndex build_scene_index(const PreparedMesh& prepared, const BarOptions& opt
   index.prepared = &prepared;
   index.mode = options.mode;
   index.free_space_reach = options.free_space_reach;
+  index.agent_radius = options.agent_radius;
+  index.max_deviation = options.max_deviation;
   index.open_edge_use.assign(prepared.connectivity.edges.size(), -1);
   const Mesh& mesh = prepared.mesh;
   const MeshConnectivity& c = prepared.connectivity;

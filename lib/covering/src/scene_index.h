@@ -50,6 +50,11 @@ struct BarOptions {
   /// extrudes up to its cap behind a face); sweeps are indexed only within
   /// the box grown by this, since no hull lies beyond it.
   double hull_margin = 0.0;
+  /// Free space hulls may take beyond exact mode (loss_allowance.h), scene
+  /// units, 0 for none: out of reach of balls of this radius...
+  double agent_radius = 0.0;
+  /// ... or within this distance of the mesh.
+  double max_deviation = 0.0;
 };
 
 /// The mesh as the validity checks see it. Holds a reference to `prepared`,
@@ -58,6 +63,8 @@ struct SceneIndex {
   const PreparedMesh* prepared = nullptr;
   ValidityMode mode = ValidityMode::paper;
   double free_space_reach = 0.0;  ///< exact mode, scene units
+  double agent_radius = 0.0;      ///< BarOptions::agent_radius
+  double max_deviation = 0.0;     ///< BarOptions::max_deviation
   /// Per edge: the use (index into MeshConnectivity::edge_uses) of the face
   /// whose plane holds the opening beyond it (boundary and, in exact mode,
   /// fold edges), or -1 for an edge that is not open.
@@ -94,6 +101,10 @@ struct SceneIndex {
   void bars_overlapping(const Aabb& box, std::vector<int>& out) const;
 
   const Mesh& mesh() const { return prepared->mesh; }
+  /// Whether hulls may take free space exact mode keeps (agent radius or
+  /// max deviation set): the paper's conditions 1 and 2 then give way to
+  /// the exact conditions' proofs (loss_allowance.h).
+  bool has_allowance() const { return agent_radius > 0.0 || max_deviation > 0.0; }
   double tol() const { return prepared->tolerance.length; }
 };
 

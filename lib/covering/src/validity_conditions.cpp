@@ -60,17 +60,22 @@ Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, s
   const Aabb box = grown(bounding_box_of(hull.vertices), tol);
   const Mesh& mesh = index.mesh();
 
-  scratch.clear();
-  index.vertex_tree.overlapping(box, scratch);
-  for (int v : scratch)
-    if (deepest_signed_distance(hull.planes, mesh.positions[v]) < -tol) return Validity::vertex_inside;
+  // Condition 1 keeps mesh elements out of hulls; with an allowance a hull
+  // may swallow them where the exact conditions prove the space around them
+  // harmless.
+  if (!index.has_allowance()) {
+    scratch.clear();
+    index.vertex_tree.overlapping(box, scratch);
+    for (int v : scratch)
+      if (deepest_signed_distance(hull.planes, mesh.positions[v]) < -tol) return Validity::vertex_inside;
 
-  scratch.clear();
-  index.edge_tree.overlapping(box, scratch);
-  for (int e : scratch) {
-    const MeshEdge& edge = index.prepared->connectivity.edges[e];
-    if (segment_enters_interior(hull.planes, mesh.positions[edge.v0], mesh.positions[edge.v1], tol))
-      return Validity::edge_inside;
+    scratch.clear();
+    index.edge_tree.overlapping(box, scratch);
+    for (int e : scratch) {
+      const MeshEdge& edge = index.prepared->connectivity.edges[e];
+      if (segment_enters_interior(hull.planes, mesh.positions[edge.v0], mesh.positions[edge.v1], tol))
+        return Validity::edge_inside;
+    }
   }
 
   scratch.clear();

@@ -1,5 +1,6 @@
 #include "witness_rays.h"
 
+#include "loss_allowance.h"
 #include "mesh_ray.h"
 
 #include "hullcover/geometry/planar_hull.h"
@@ -290,105 +291,6 @@ Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, co
   return {true, std::nullopt, std::nullopt};
 }
 
-// Judges regions exactly, piece by piece: each piece's middle ray names the
-// face that keeps it (met before the hull, or met from behind beyond it);
-// inside that face's shadow the face settles every ray at once (the
-// distances are affine), and the rest is cut into pieces judged the same
-// way. A piece not settled within the budget counts as losing space:
-// conservative, never optimistic. Pieces wait on an explicit stack, taken in
-// the order a recursive judge would take them: a region cut a thousand times
-// must not cost a thousand stack frames.
-class RegionJudge {
-public:
-  RegionJudge(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
-              std::vector<int>& scratch)
-      : index_(index), sweep_(sweep), interior_(interior), scratch_(scratch) {}
-
-  bool loses_space(const std::vector<Eigen::Vector3d>& region) {
-    pending_.clear();
-    pending_.push_back({region, -1, false});
-    while (!pending_.empty()) {
-      Work work = std::move(pending_.back());
-      pending_.pop_back();
-      const bool loses = work.settling_face >= 0 ? !settles(work.piece, work.settling_face, work.enclosed)
-                                                 : piece_loses_space(work.piece);
-      if (loses) return true;
-    }
-    return false;
-  }
-
-private:
-  // A piece to judge (settling_face -1), or one inside a face's shadow for
-  // that face to settle.
-  struct Work {
-    std::vector<Eigen::Vector3d> piece;
-    int settling_face = -1;
-    bool enclosed = false;
-  };
-
-  // Whether `region` loses space by its own rays; the pieces it is cut into
-  // wait on the stack, the part the deciding face settles first.
-  bool piece_loses_space(const std::vector<Eigen::Vector3d>& region) {
-    // A piece of no area holds no ray apart from its neighbours'.
-    const double tol = index_.tol();
-    if (negligible(region, tol)) return false;
-    if (--budget_ < 0) return true;
-    WitnessRay ray = witness_ray(index_, sweep_, interior_, centroid_of(region), scratch_);
-    if (ray.loses) return true;
-    if (ray.deciding_face < 0) {
-      // The middle ray misses the interior (a piece where the sweep only
-      // grazes it): its corners' rays, pulled in a little, tell.
-      const Eigen::Vector3d middle = centroid_of(region);
-      for (const Eigen::Vector3d& corner : region) {
-        ray = witness_ray(index_, sweep_, interior_, corner + kWitnessInset * (middle - corner), scratch_);
-        if (ray.loses) return true;
-        if (ray.deciding_face >= 0) break;
-      }
-      if (ray.deciding_face < 0) return false;
-    }
-    const Mesh& mesh = index_.mesh();
-    std::vector<Eigen::Vector3d> triangle(3);
-    triangle_corners(mesh, ray.deciding_face, triangle);
-    ShadowSplit split = split_by_shadow(region, triangle, sweep_.direction, tol);
-    for (auto piece = split.beside.rbegin(); piece != split.beside.rend(); ++piece)
-      pending_.push_back({std::move(*piece), -1, false});
-    if (split.inside.size() >= 3) pending_.push_back({std::move(split.inside), ray.deciding_face, ray.enclosed});
-    return false;
-  }
-
-  // Whether face f settles every ray through `piece` (inside its shadow),
-  // or cuts it into pieces (left on the stack) that will be judged; false
-  // when it can do neither.
-  bool settles(const std::vector<Eigen::Vector3d>& piece, int f, bool enclosed) {
-    const Settling settling = settle_by_face(index_, sweep_, piece, f, enclosed);
-    if (settling.settled) return true;
-    if (settling.cut) {
-      const Plane& cut = *settling.cut;
-      std::vector<Eigen::Vector3d> decided = clip_polygon(piece, cut, 0.0);
-      std::vector<Eigen::Vector3d> rest = clip_polygon(piece, cut.flipped(), 0.0);
-      // A cut that leaves the piece whole would come back here.
-      if (decided.size() < 3 || rest.size() < 3) return false;
-      pending_.push_back({std::move(rest), -1, false});
-      pending_.push_back({std::move(decided), -1, false});
-      return true;
-    }
-    if (settling.obstacle) {
-      pending_.push_back({settling.obstacle->inside, -1, false});
-      const auto& beside = settling.obstacle->beside;
-      for (auto part = beside.rbegin(); part != beside.rend(); ++part) pending_.push_back({*part, -1, false});
-      return true;
-    }
-    return false;
-  }
-
-  const SceneIndex& index_;
-  const FreeSpaceSweep& sweep_;
-  const HullInterior& interior_;
-  std::vector<int>& scratch_;
-  std::vector<Work> pending_;
-  int budget_ = kMaxJudgedPieces;
-};
-
 // The bound of first_hit_bound, piece by piece, on an explicit stack (as
 // RegionJudge) so that a thousand cuts cost no stack depth.
 class FirstHitBound {
@@ -448,7 +350,114 @@ private:
   int budget_ = kMaxJudgedPieces;
 };
 
+// Judges regions exactly, piece by piece: each piece's middle ray names the
+// face that keeps it (met before the hull, or met from behind beyond it);
+// inside that face's shadow the face settles every ray at once (the
+// distances are affine), and the rest is cut into pieces judged the same
+// way. A piece not settled within the budget counts as losing space:
+// conservative, never optimistic. Pieces wait on an explicit stack, taken in
+// the order a recursive judge would take them: a region cut a thousand times
+// must not cost a thousand stack frames.
+class RegionJudge {
+public:
+  RegionJudge(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
+              std::vector<int>& scratch)
+      : index_(index), sweep_(sweep), interior_(interior), scratch_(scratch) {}
+
+  bool loses_space(const std::vector<Eigen::Vector3d>& region) {
+    pending_.clear();
+    pending_.push_back({region, -1, false});
+    while (!pending_.empty()) {
+      Work work = std::move(pending_.back());
+      pending_.pop_back();
+      const bool loses = work.settling_face >= 0 ? !settles(work.piece, work.settling_face, work.enclosed)
+                                                 : piece_loses_space(work.piece);
+      if (loses) return true;
+    }
+    return false;
+  }
+
+private:
+  // A piece to judge (settling_face -1), or one inside a face's shadow for
+  // that face to settle.
+  struct Work {
+    std::vector<Eigen::Vector3d> piece;
+    int settling_face = -1;
+    bool enclosed = false;
+  };
+
+  // Whether `region` loses space by its own rays; the pieces it is cut into
+  // wait on the stack, the part the deciding face settles first.
+  bool piece_loses_space(const std::vector<Eigen::Vector3d>& region) {
+    // A piece of no area holds no ray apart from its neighbours'.
+    const double tol = index_.tol();
+    if (negligible(region, tol)) return false;
+    if (--budget_ < 0) return true;
+    WitnessRay ray = witness_ray(index_, sweep_, interior_, centroid_of(region), scratch_);
+    if (ray.loses) return !piece_loss_allowed(index_, sweep_, interior_, region, scratch_);
+    if (ray.deciding_face < 0) {
+      // The middle ray misses the interior (a piece where the sweep only
+      // grazes it): its corners' rays, pulled in a little, tell.
+      const Eigen::Vector3d middle = centroid_of(region);
+      for (const Eigen::Vector3d& corner : region) {
+        ray = witness_ray(index_, sweep_, interior_, corner + kWitnessInset * (middle - corner), scratch_);
+        if (ray.loses) return !piece_loss_allowed(index_, sweep_, interior_, region, scratch_);
+        if (ray.deciding_face >= 0) break;
+      }
+      if (ray.deciding_face < 0) return false;
+    }
+    const Mesh& mesh = index_.mesh();
+    std::vector<Eigen::Vector3d> triangle(3);
+    triangle_corners(mesh, ray.deciding_face, triangle);
+    ShadowSplit split = split_by_shadow(region, triangle, sweep_.direction, tol);
+    for (auto piece = split.beside.rbegin(); piece != split.beside.rend(); ++piece)
+      pending_.push_back({std::move(*piece), -1, false});
+    if (split.inside.size() >= 3) pending_.push_back({std::move(split.inside), ray.deciding_face, ray.enclosed});
+    return false;
+  }
+
+  // Whether face f settles every ray through `piece` (inside its shadow),
+  // or cuts it into pieces (left on the stack) that will be judged; false
+  // when it can do neither.
+  bool settles(const std::vector<Eigen::Vector3d>& piece, int f, bool enclosed) {
+    const Settling settling = settle_by_face(index_, sweep_, piece, f, enclosed);
+    if (settling.settled) return true;
+    if (settling.cut) {
+      const Plane& cut = *settling.cut;
+      std::vector<Eigen::Vector3d> decided = clip_polygon(piece, cut, 0.0);
+      std::vector<Eigen::Vector3d> rest = clip_polygon(piece, cut.flipped(), 0.0);
+      // A cut that leaves the piece whole would come back here.
+      if (decided.size() < 3 || rest.size() < 3) return false;
+      pending_.push_back({std::move(rest), -1, false});
+      pending_.push_back({std::move(decided), -1, false});
+      return true;
+    }
+    if (settling.obstacle) {
+      pending_.push_back({settling.obstacle->inside, -1, false});
+      const auto& beside = settling.obstacle->beside;
+      for (auto part = beside.rbegin(); part != beside.rend(); ++part) pending_.push_back({*part, -1, false});
+      return true;
+    }
+    return false;
+  }
+
+  const SceneIndex& index_;
+  const FreeSpaceSweep& sweep_;
+  const HullInterior& interior_;
+  std::vector<int>& scratch_;
+  std::vector<Work> pending_;
+  int budget_ = kMaxJudgedPieces;
+};
+
 } // namespace
+
+double first_hit_bound_over(const SceneIndex& index, const FreeSpaceSweep& sweep,
+                            const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch) {
+  FirstHitBound bound(index, sweep, scratch);
+  const double farthest = bound.over(region);
+  // A ray meeting a face within tol of its plane's crossing still ends there.
+  return farthest + index.tol();
+}
 
 double first_hit_bound(const SceneIndex& index, const FreeSpaceSweep& sweep, std::vector<int>& scratch) {
   std::vector<Eigen::Vector3d> region = sweep.base;
@@ -458,10 +467,7 @@ double first_hit_bound(const SceneIndex& index, const FreeSpaceSweep& sweep, std
     const Eigen::Vector3d across = (region[1] - region[0]).cross(sweep.direction).normalized() * index.tol();
     region = {region[0] - across, region[1] - across, region[1] + across, region[0] + across};
   }
-  FirstHitBound bound(index, sweep, scratch);
-  const double farthest = bound.over(region);
-  // A ray meeting a face within tol of its plane's crossing still ends there.
-  return farthest + index.tol();
+  return first_hit_bound_over(index, sweep, region, scratch);
 }
 
 bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,

@@ -31,7 +31,10 @@ inline constexpr double kNegligibleWidthInTolerances = 1e-6;
 /// piece's middle ray names the face that keeps it; within that face's
 /// shadow the face decides every ray at once (distances along the rays are
 /// affine over a piece, so its corners decide), cutting the piece where
-/// that changes; the rest of the region is judged the same way. A region
+/// that changes; the rest of the region is judged the same way. With an
+/// allowance (agent radius, max deviation), a piece whose rays lose space
+/// loses none when piece_loss_allowed (loss_allowance.h) proves its loss
+/// harmless. A region
 /// not settled in kMaxJudgedPieces pieces counts as losing space. `scratch` is
 /// reused storage.
 bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
@@ -47,5 +50,10 @@ bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, co
 /// bound is infinity. The free space the exact conditions keep ends there,
 /// so a sweep need reach no farther.
 double first_hit_bound(const SceneIndex& index, const FreeSpaceSweep& sweep, std::vector<int>& scratch);
+
+/// first_hit_bound over the rays of `sweep` through convex polygon `region`
+/// (anywhere along them) only.
+double first_hit_bound_over(const SceneIndex& index, const FreeSpaceSweep& sweep,
+                            const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch);
 
 } // namespace hullcover::detail

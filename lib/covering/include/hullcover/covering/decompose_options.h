@@ -50,6 +50,16 @@ struct DecomposeOptions {
   /// is kept, scene units (> 0). Unset (the default): no cap, as DESIGN.md
   /// defines free space; a cap trades exactness for speed.
   std::optional<double> free_space_reach;
+  /// Exact mode, relaxed for agents: hulls may also take free space that no
+  /// ball of this radius touching no triangle reaches (README "Agent-exact
+  /// coverings"), scene units, >= 0; unset or 0: exact. Spheres and
+  /// capsules at least this wide then collide with the hulls exactly as with
+  /// the triangles.
+  std::optional<double> agent_radius;
+  /// Exact mode, relaxed for props: hulls may also take free space within
+  /// this distance of the mesh, scene units, >= 0; unset or 0: exact.
+  /// Combines with agent_radius: a point either allows may be taken.
+  std::optional<double> max_deviation;
   /// Cap on a planar patch's prism thickness (>= 0); default
   /// kDefaultPrismCapRelative x diagonal.
   std::optional<double> prism_thickness_cap;
