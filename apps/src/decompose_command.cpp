@@ -78,7 +78,7 @@ int run_decompose(DecomposeCommandOptions& o) {
                                  : "random seed " + std::to_string(o.decompose.seed + c.statistics.kept_try - 1);
     std::printf("  %d merge orders tried, kept %s\n", c.statistics.order_tries, kept.c_str());
   }
-  if (o.decompose.agent_radius.value_or(0.0) > 0.0 || o.decompose.max_deviation.value_or(0.0) > 0.0)
+  if (has_allowance(o.decompose))
     std::printf("  allowance: agent radius %.6g, max deviation %.6g\n", o.decompose.agent_radius.value_or(0.0),
                 o.decompose.max_deviation.value_or(0.0));
   if (c.near_merge_distance > 0.0)

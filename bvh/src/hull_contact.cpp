@@ -4,6 +4,7 @@
 #include "surface_normals.h"
 
 #include "hullcover/geometry/tolerances.h"
+#include "hullcover/geometry/triangle_distance.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,13 +16,6 @@ namespace {
 using detail::touching_distance;
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-Eigen::Vector3d closest_on_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const Eigen::Vector3d ab = b - a;
-  const double len2 = ab.squaredNorm();
-  if (len2 == 0.0) return a;
-  return a + std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) * ab;
-}
 
 // Closest points of segments p1-q1 and p2-q2 (Ericson, Real-Time Collision
 // Detection, 5.1.9).
@@ -77,7 +71,7 @@ Eigen::Vector3d closest_on_facet(const RuntimeHull& hull, int f, const Eigen::Ve
   double best_d2 = kInfinity;
   for (size_t i = 0; i < poly.size(); ++i) {
     const Eigen::Vector3d c =
-        closest_on_segment(p, hull.shape.vertices[poly[i]], hull.shape.vertices[poly[(i + 1) % poly.size()]]);
+        closest_point_on_segment(p, hull.shape.vertices[poly[i]], hull.shape.vertices[poly[(i + 1) % poly.size()]]);
     if ((c - p).squaredNorm() < best_d2) {
       best_d2 = (c - p).squaredNorm();
       best = c;

@@ -113,7 +113,7 @@ TEST(AgentRadius, NoBallClearOfTheTrianglesReachesIntoAHull) {
     ++balls;
     constexpr int kAround = 24;
     for (int k = 0; k < kAround; ++k) {
-      const double a = 2.0 * 3.14159265358979 * k / kAround;
+      const double a = 2.0 * EIGEN_PI * k / kAround;
       const V p = centre + (r - tol) * V(std::cos(a), std::sin(a), 0.0);
       EXPECT_FALSE(test::point_inside_covering(relaxed.covering, p, tol)) << centre.transpose();
     }

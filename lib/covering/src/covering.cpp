@@ -33,8 +33,7 @@ Status check_options(const DecomposeOptions& o) {
     return {StatusCode::invalid_argument, "agent radius must be a length >= 0"};
   if (o.max_deviation && !(std::isfinite(*o.max_deviation) && *o.max_deviation >= 0.0))
     return {StatusCode::invalid_argument, "max deviation must be a length >= 0"};
-  if ((o.agent_radius.value_or(0.0) > 0.0 || o.max_deviation.value_or(0.0) > 0.0) &&
-      o.conditions != ValidityMode::exact)
+  if (has_allowance(o) && o.conditions != ValidityMode::exact)
     return {StatusCode::invalid_argument, "agent radius and max deviation relax exact mode: use them with exact conditions"};
   if (o.order_tries < 1) return {StatusCode::invalid_argument, "order tries must be at least 1"};
   if (o.max_hull_vertices < 8)

@@ -3,7 +3,6 @@
 #include "witness_rays.h"
 
 #include "hullcover/geometry/planar_hull.h"
-
 #include "hullcover/geometry/triangle_distance.h"
 
 #include <algorithm>
@@ -23,11 +22,10 @@ struct Cell {
 // The distance from `p` to the nearest triangle, or `limit` when none is
 // nearer (limit > 0).
 double clearance_below(const SceneIndex& index, const Eigen::Vector3d& p, double limit, std::vector<int>& near) {
-  Aabb box;
-  box.min = p.array() - limit;
-  box.max = p.array() + limit;
+  Aabb around;
+  around.extend(p);
   near.clear();
-  index.face_tree.overlapping(box, near);
+  index.face_tree.overlapping(grown(around, limit), near);
   const Mesh& mesh = index.mesh();
   double best2 = limit * limit;
   for (int f : near) {
@@ -42,9 +40,7 @@ double clearance_below(const SceneIndex& index, const Eigen::Vector3d& p, double
 // A lower bound on the distance from `p` to the polytope (0 inside it):
 // its largest signed distance to a plane of it.
 double distance_below(const std::vector<Plane>& planes, const Eigen::Vector3d& p) {
-  double outside = 0.0;
-  for (const Plane& plane : planes) outside = std::max(outside, plane.signed_distance(p));
-  return outside;
+  return std::max(0.0, deepest_signed_distance(planes, p));
 }
 
 // What a cell of a proof comes to.
@@ -157,6 +153,12 @@ double farthest_inside(const FreeSpaceSweep& sweep, const HullInterior& interior
 bool piece_loss_allowed(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
                         const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch) {
   if (!index.has_allowance()) return false;
+  // Every ray starts on its base, a face or an open edge of the mesh (grown
+  // by tol, as rays meet faces): a point t along it lies within t + tol of
+  // the mesh. So a loss no farther along its rays than max_deviation - tol
+  // is allowed without a proof.
+  const double tol = index.tol();
+  if (index.max_deviation > 0.0 && farthest_inside(sweep, interior, region) + tol <= index.max_deviation) return true;
   const Eigen::Vector3d& dir = sweep.direction;
   // Rays start on the base (a face crossing the hull starts its rays
   // inside it): nothing behind the base is theirs.
@@ -166,12 +168,6 @@ bool piece_loss_allowed(const SceneIndex& index, const FreeSpaceSweep& sweep, co
   Aabb box;
   for (const std::vector<Eigen::Vector3d>& facet : interior.facets)
     for (const Eigen::Vector3d& v : facet) box.extend(v);
-  // Every ray starts on its base, a face or an open edge of the mesh (grown
-  // by tol, as rays meet faces): a point t along it lies within t + tol of
-  // the mesh. So a loss no farther along its rays than max_deviation - tol
-  // is allowed without a proof.
-  const double tol = index.tol();
-  if (index.max_deviation > 0.0 && farthest_inside(sweep, interior, region) + tol <= index.max_deviation) return true;
   const double reach = std::min(sweep.reach, first_hit_bound_over(index, sweep, region, scratch));
   if (std::isfinite(reach)) {
     // Along a ray, the distance from its base is -start.signed_distance:

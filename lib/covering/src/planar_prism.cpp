@@ -2,6 +2,8 @@
 
 #include "validity_conditions.h"
 
+#include "hullcover/geometry/triangle_distance.h"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -18,9 +20,7 @@ constexpr int kBottomRetries = 8;
 double depth_below(const FlatPolygon& polygon, const Eigen::Vector3d& p) { return -polygon.plane.signed_distance(p); }
 
 double distance_to_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const Eigen::Vector3d ab = b - a;
-  const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-  return (a + t * ab - p).norm();
+  return (closest_point_on_segment(p, a, b) - p).norm();
 }
 
 } // namespace

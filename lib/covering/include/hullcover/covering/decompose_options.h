@@ -87,6 +87,12 @@ struct DecomposeOptions {
   std::function<void(double)> progress;
 };
 
+/// Whether `options` let hulls take free space exact mode keeps (an agent
+/// radius or a max deviation above 0).
+inline bool has_allowance(const DecomposeOptions& options) {
+  return options.agent_radius.value_or(0.0) > 0.0 || options.max_deviation.value_or(0.0) > 0.0;
+}
+
 /// Counts and timings of a decomposition.
 struct CoveringStatistics {
   int faces = 0;

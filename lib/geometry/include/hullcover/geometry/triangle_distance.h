@@ -9,7 +9,7 @@
 namespace hullcover {
 
 /// The point of triangle a, b, c nearest to `p` (a degenerate triangle
-/// gives the nearest point of its longest side). Scene units; cannot fail.
+/// gives the nearest point of its three sides). Scene units; cannot fail.
 Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                           const Eigen::Vector3d& c);
 
