@@ -46,12 +46,43 @@ void print_rays(const char* kind, const validate::RayTally& t) {
   print_place("      deepest: ", t.deepest);
 }
 
+void print_allowance(const validate::AllowanceReport& a) {
+  if (!a.options.any()) return;
+  std::printf("  allowance:");
+  if (a.options.agent_radius) std::printf(" agent radius %.6g", *a.options.agent_radius);
+  if (a.options.max_deviation) std::printf(" max deviation %.6g", *a.options.max_deviation);
+  std::printf(" (the strict lost rays above are reported, not judged)\n");
+  std::printf("    deviation: %ld lost stretches; the farthest lost point lies %.6g from the mesh", a.lost_stretches,
+              a.max_lost_deviation);
+  if (a.farthest_hull >= 0)
+    std::printf(", in hull %d, on a ray of face %d, at (%.17g, %.17g, %.17g)", a.farthest_hull, a.farthest_face,
+                a.farthest_point.x(), a.farthest_point.y(), a.farthest_point.z());
+  std::printf("\n");
+  if (a.options.max_deviation && !a.options.agent_radius)
+    std::printf("               %ld rays lose a point farther than the max deviation\n", a.beyond_deviation);
+  if (a.options.agent_radius) {
+    std::printf("    reachable space: %ld rays of ball centres decided; %ld hold a ball of radius %.6g clear of the\n"
+                "                     mesh yet deeper than the stand-off and tolerance in a hull\n",
+                a.centre_rays, a.reach_lost, *a.options.agent_radius);
+    std::printf("                     %ld balls reach into hulls only in enclosed space (allowed)\n", a.enclosed_balls);
+    const validate::ReachPlace& p = a.deepest_reach;
+    if (p.hull >= 0)
+      std::printf("      deepest: %.6g into hull %d, ball centred at (%.17g, %.17g, %.17g) (clearance %.6g) on a ray of\n"
+                  "      %s of face %d\n",
+                  p.depth, p.hull, p.centre.x(), p.centre.y(), p.centre.z(), p.clearance,
+                  p.opening ? "the open edge" : "the front", p.face);
+  }
+  if (a.undecided > 0) std::printf("    %ld rays ran out of evaluations (undecided: a violation)\n", a.undecided);
+}
+
 void print_audit(const AuditCommandOptions& o, const PreparedMesh& prepared, const validate::AuditReport& a) {
   const validate::ProbeReport& r = a.probe;
   const validate::CheckReport& recheck = a.recheck;
   const validate::BehaviourReport& b = a.behaviour;
+  const bool allowance = r.allowance.options.any();
   std::printf("%s: %s\n", o.hulls.c_str(),
-              a.clean() ? "CLEAN: no accessible space lost" : "VIOLATIONS: accessible space lost");
+              a.clean() ? (allowance ? "CLEAN: nothing taken beyond the allowance" : "CLEAN: no accessible space lost")
+                        : (allowance ? "VIOLATIONS: more taken than the allowance" : "VIOLATIONS: accessible space lost"));
   std::printf("  %zu hulls against %zu faces; tolerance %.6g, ray spacing %.6g, ", a.hull_count,
               prepared.mesh.triangles.size(), prepared.tolerance.length, r.resolution);
   if (r.probe_distance)
@@ -63,12 +94,14 @@ void print_audit(const AuditCommandOptions& o, const PreparedMesh& prepared, con
   print_rays("front free space:", r.front);
   print_rays("openings:        ", r.opening);
   std::printf("  lost cells:       %ld octree cells hold a lost ray's deepest point\n", r.lost_cells);
-  std::printf("  re-check: %ld mesh vertices and %ld edges inside hulls, %ld faces under flat hulls,\n"
-              "            %ld hulls not convex; %ld faces (%.3f%% of the area) on no hull's surface;\n"
+  std::printf("  re-check: %ld mesh vertices and %ld edges inside hulls%s, %ld faces under flat hulls,\n"
+              "            %ld hulls not convex; %ld faces (%.3f%% of the area) %s;\n"
               "            %ld of the paper's bars in hulls (its stand-in for openings, measured above instead)\n",
-              recheck.vertices_inside, recheck.edges_inside, recheck.faces_below_polygon,
-              recheck.hulls_not_convex, recheck.faces_uncovered,
-              recheck.total_area > 0 ? 100.0 * recheck.uncovered_area / recheck.total_area : 0.0, recheck.bars_inside);
+              recheck.vertices_inside, recheck.edges_inside, recheck.inside_allowed ? " (allowed)" : "",
+              recheck.faces_below_polygon, recheck.hulls_not_convex, recheck.faces_uncovered,
+              recheck.total_area > 0 ? 100.0 * recheck.uncovered_area / recheck.total_area : 0.0,
+              recheck.inside_allowed ? "neither on nor inside a hull" : "on no hull's surface", recheck.bars_inside);
+  if (recheck.inside_allowed) std::printf("            %ld faces covered by lying inside a hull\n", recheck.faces_inside);
   std::printf("  behaviour: %ld proxies (size %.6g): %ld missed contacts, %ld false contacts (%ld deeper than the\n"
               "             tolerance, deepest %.6g), normals %.3g deg apart on average, %.3g at most, over %ld\n"
               "             shared contacts\n",
@@ -80,6 +113,10 @@ void print_audit(const AuditCommandOptions& o, const PreparedMesh& prepared, con
                 b.deepest_false.depth, b.deepest_false.hull, b.deepest_false.centre.x(), b.deepest_false.centre.y(),
                 b.deepest_false.centre.z(), b.deepest_false.face, b.deepest_false.point.x(), b.deepest_false.point.y(),
                 b.deepest_false.point.z());
+  if (b.deep_false_boxes > 0)
+    std::printf("      of them by boxes: %ld%s\n", b.deep_false_boxes,
+                r.allowance.options.agent_radius ? " (a box is no union of balls: measured, not judged)" : "");
+  print_allowance(r.allowance);
   if (!r.worst.empty()) std::printf("  deepest lost point per hull (max depth %.6g):\n", r.max_lost_depth);
   for (const validate::LostPlace& p : r.worst) print_place("    ", p);
 }
@@ -110,6 +147,34 @@ nlohmann::json rays_json(const validate::RayTally& t) {
           {"deepest", place_json(t.deepest)}};
 }
 
+nlohmann::json optional_json(const std::optional<double>& x) { return x ? nlohmann::json(*x) : nlohmann::json(nullptr); }
+
+nlohmann::json allowance_json(const validate::AllowanceReport& a) {
+  if (!a.options.any()) return nullptr;
+  const validate::ReachPlace& p = a.deepest_reach;
+  return {{"agent_radius", optional_json(a.options.agent_radius)},
+          {"max_deviation", optional_json(a.options.max_deviation)},
+          {"lost_stretches", a.lost_stretches},
+          {"max_lost_deviation", a.max_lost_deviation},
+          {"farthest",
+           a.farthest_hull < 0 ? nlohmann::json(nullptr)
+                               : nlohmann::json{{"point", {a.farthest_point.x(), a.farthest_point.y(), a.farthest_point.z()}},
+                                                {"face", a.farthest_face},
+                                                {"hull", a.farthest_hull}}},
+          {"beyond_deviation", a.beyond_deviation},
+          {"centre_rays", a.centre_rays},
+          {"reach_lost", a.reach_lost},
+          {"enclosed_balls", a.enclosed_balls},
+          {"deepest_reach", p.hull < 0 ? nlohmann::json(nullptr)
+                                       : nlohmann::json{{"centre", {p.centre.x(), p.centre.y(), p.centre.z()}},
+                                                        {"face", p.face},
+                                                        {"hull", p.hull},
+                                                        {"depth", p.depth},
+                                                        {"clearance", p.clearance},
+                                                        {"opening", p.opening}}},
+          {"undecided", a.undecided}};
+}
+
 nlohmann::json audit_json(const AuditCommandOptions& o, const PreparedMesh& prepared, const validate::AuditReport& a) {
   const validate::ProbeReport& r = a.probe;
   const validate::CheckReport& recheck = a.recheck;
@@ -126,7 +191,7 @@ nlohmann::json audit_json(const AuditCommandOptions& o, const PreparedMesh& prep
       {"hull_count", a.hull_count},
       {"groups_without_area", a.groups_without_area},
       {"tolerance", prepared.tolerance.length},
-      {"probe_distance", r.probe_distance ? nlohmann::json(*r.probe_distance) : nlohmann::json(nullptr)},
+      {"probe_distance", optional_json(r.probe_distance)},
       {"resolution", r.resolution},
       {"front", rays_json(r.front)},
       {"openings", rays_json(r.opening)},
@@ -139,15 +204,19 @@ nlohmann::json audit_json(const AuditCommandOptions& o, const PreparedMesh& prep
         {"faces_below_polygon", recheck.faces_below_polygon},
         {"hulls_not_convex", recheck.hulls_not_convex},
         {"faces_uncovered", recheck.faces_uncovered},
+        {"faces_inside", recheck.faces_inside},
+        {"inside_allowed", recheck.inside_allowed},
         {"uncovered_area", recheck.uncovered_area},
         {"total_area", recheck.total_area}}},
       {"worst", worst},
+      {"allowance", allowance_json(r.allowance)},
       {"behaviour",
        {{"proxies", b.poses},
         {"size", b.size},
         {"missed", b.missed},
         {"false_contacts", b.false_contacts},
         {"deep_false_contacts", b.deep_false_contacts},
+        {"deep_false_boxes", b.deep_false_boxes},
         {"max_false_depth", b.max_false_depth},
         {"deepest_false_contact", false_contact_json(b.deepest_false)},
         {"both_touch", b.both_touch},
@@ -221,6 +290,17 @@ void register_audit_command(CLI::App& app, int& exit_status) {
   cmd->add_option("--seed", o->audit.behaviour.seed, "Seed of the proxy poses")->capture_default_str();
   cmd->add_option("--octree", o->audit.probe.octree_path,
                   "Write the octree of the cells of lost rays' deepest points (.bt, for OctoMap's viewer; origin = box centre)");
+  cmd->add_option("--agent-radius", o->audit.probe.allowance.agent_radius,
+                  "Audit a covering made for agents of this radius (scene units): every ball of this radius clear\n"
+                  "of the mesh, centred on the probe's rays, must stay out of the hulls (within the tolerance);\n"
+                  "the proxies take this size (or --proxy-size, not smaller) and spheres and capsules must\n"
+                  "neither miss a contact nor make a false one. Faces may lie inside hulls.")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--max-deviation", o->audit.probe.allowance.max_deviation,
+                  "Audit a covering allowed to take free space within this distance of the mesh (scene units):\n"
+                  "the farthest point any hull takes from a probe ray is found (within the tolerance) and must\n"
+                  "lie no farther. With --agent-radius, a reachable ball lying wholly that close is allowed.")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--json", o->json_path, "Write the figures as JSON");
   cmd->callback([o, &exit_status] { exit_status = run_audit_command(*o); });
 }

@@ -1,5 +1,9 @@
 #include "hullcover/bvh/runtime_hull.h"
 
+#include "hullcover/geometry/planar_hull.h"
+
+#include <Eigen/Geometry>
+
 #include <algorithm>
 
 namespace hullcover::bvh {
@@ -20,6 +24,16 @@ RuntimeHull make_runtime_hull(ConvexPolytope shape, int material) {
   std::sort(hull.edges.begin(), hull.edges.end());
   hull.edges.erase(std::unique(hull.edges.begin(), hull.edges.end()), hull.edges.end());
   return hull;
+}
+
+RuntimeHull flat_triangle_hull(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  FlatPolygon triangle;
+  triangle.corners = {a, b, c};
+  triangle.corner_vertices = {-1, -1, -1};
+  const Eigen::Vector3d n = (b - a).cross(c - a).normalized();
+  triangle.plane = {n, n.dot(a)};
+  triangle.sides = polygon_side_planes(triangle.corners, n);
+  return make_runtime_hull(flat_polytope(triangle, true), 0);
 }
 
 } // namespace hullcover::bvh

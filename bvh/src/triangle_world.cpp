@@ -25,15 +25,6 @@ struct TriangleWorld::Fcl {
 TriangleWorld::~TriangleWorld() = default;
 
 namespace {
-RuntimeHull flat_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  FlatPolygon triangle;
-  triangle.corners = {a, b, c};
-  triangle.corner_vertices = {-1, -1, -1};
-  const Eigen::Vector3d n = (b - a).cross(c - a).normalized();
-  triangle.plane = {n, n.dot(a)};
-  triangle.sides = polygon_side_planes(triangle.corners, n);
-  return make_runtime_hull(flat_polytope(triangle, true), 0);
-}
 
 // A ray against one triangle (a flat hull: front plane first, side planes
 // after its two facets), counting a hit within `tol` of its edges, so a ray
@@ -72,7 +63,7 @@ Result<std::shared_ptr<const TriangleWorld>> TriangleWorld::build(const Mesh& me
       const Eigen::Vector3d &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
       const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
       if ((b - a).cross(c - a).norm() <= tol * longest) continue;
-      world->triangles_.push_back(flat_triangle(a, b, c));
+      world->triangles_.push_back(flat_triangle_hull(a, b, c));
       world->face_of_.push_back(f);
       tris.emplace_back(t[0], t[1], t[2]);
     }

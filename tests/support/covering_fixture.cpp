@@ -31,7 +31,9 @@ std::optional<Decomposed> decompose_and_check(const Mesh& mesh, const DecomposeO
     ADD_FAILURE() << covering.status().message();
     return std::nullopt;
   }
-  const validate::CheckReport report = validate::check_covering_independently(prepared.value(), covering.value());
+  // With an allowance, faces may lie inside their hulls (README, "Agent-exact coverings").
+  const validate::CheckReport report =
+      validate::check_covering_independently(prepared.value(), covering.value(), has_allowance(options));
   // Exact mode guards open edges with sheets (whole-edge bars whose touching
   // rule differs at the tolerance) and the openings themselves, not with the
   // paper's midpoint bars: those are re-checked for paper mode only.

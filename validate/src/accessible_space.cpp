@@ -1,5 +1,6 @@
 #include "hullcover/validate/accessible_space.h"
 
+#include "allowance_judge.h"
 #include "probe_rays.h"
 #include "segment_in_hull.h"
 
@@ -11,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <unordered_set>
 
 namespace hullcover::validate {
@@ -39,7 +41,7 @@ double exit_distance(const Aabb& box, const Eigen::Vector3d& start, const Eigen:
 class Prober {
 public:
   Prober(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles, const bvh::HullWorld& hulls,
-         std::optional<double> cap, ProbeReport& report)
+         std::optional<double> cap, const AllowanceOptions& allowance, ProbeReport& report)
       : prepared_(prepared), triangles_(triangles), hulls_(hulls.hulls()), cap_(cap), report_(report),
         tol_(prepared.tolerance.length), stand_off_(kRayStandOffInTolerances * prepared.tolerance.length),
         tree_(report.resolution) {
@@ -56,8 +58,13 @@ public:
       world_.extend(h.box.min);
       world_.extend(h.box.max);
     }
-    world_ = grown(world_, stand_off_);
+    // With an agent radius, a ball centred up to r beyond the box reaches
+    // into it: rays run that much farther (no hull lies out there, so the
+    // strict probe's verdict is the same).
+    world_ = grown(world_, stand_off_ + allowance.agent_radius.value_or(0.0));
     hull_tree_ = AabbTree(boxes);
+    report.allowance.options = allowance;
+    if (allowance.any()) judge_ = std::make_unique<probe::AllowanceJudge>(prepared, triangles, hulls, report.allowance);
   }
 
   void trace(const probe::ProbeRay& ray) {
@@ -80,6 +87,7 @@ public:
     if (cap_) length = std::min(length, *cap_);
     if (length <= 0.0) return;
     decide(ray, start, length, tally);
+    if (judge_) judge_->judge(ray, start, length, stand_off_, stretches_);
   }
 
   // The octree cells of the lost rays' deepest points, and their count.
@@ -92,18 +100,10 @@ public:
   octomap::OcTree& tree() { return tree_; }
 
 private:
-  // Enclosed only when every face at the first hit (coincident ones, within
-  // tol of it, included) is met from behind: one met from the front there
-  // (a ceiling coincident with the floor above) ends the ray on a front,
-  // which is open space (DESIGN.md). The same for front and opening rays,
-  // and the same "within tol" as the decomposer's first_mesh_hit: a front
-  // a little further on is not at the first hit.
+  // The same "within tol" as the decomposer's first_mesh_hit: a front a
+  // little further on is not at the first hit.
   bool enclosed(const Eigen::Vector3d& start, const Eigen::Vector3d& dir, double first_hit) const {
-    std::vector<bvh::RayHit> at_hit;
-    if (!triangles_.ray_hits({start, dir, first_hit + tol_}, at_hit).ok() || at_hit.empty()) return false;
-    for (const bvh::RayHit& h : at_hit)
-      if (triangle_area_vector(prepared_.mesh, h.hull).dot(dir) <= 0.0) return false;
-    return true;
+    return probe::ends_on_backs(triangles_, prepared_.mesh, start, dir, first_hit, tol_);
   }
 
   // Clips the free segment against every hull whose box it meets; the
@@ -116,7 +116,7 @@ private:
       const std::optional<probe::InsideStretch> inside =
           probe::stretch_inside(hulls_[h].shape.planes, start, ray.direction, length, tol_);
       if (inside) {
-        stretches_.push_back({inside->from, inside->to});
+        stretches_.push_back({{inside->from, inside->to}, h});
         if (inside->depth > deepest.depth)
           deepest = {start + inside->deepest_at * ray.direction, ray.face, h, inside->depth, ray.opening};
       }
@@ -125,8 +125,9 @@ private:
     if (stretches_.empty()) return;
     ++tally.lost;
     std::sort(stretches_.begin(), stretches_.end());
-    double reached = stretches_.front().first;
-    for (const auto& [from, to] : stretches_) {
+    double reached = stretches_.front().first.first;
+    for (const auto& [stretch, hull] : stretches_) {
+      const auto& [from, to] = stretch;
       const double begin = std::max(from, reached);
       if (to > begin) tally.lost_length += to - begin;
       reached = std::max(reached, to);
@@ -174,7 +175,8 @@ private:
   Eigen::Vector3d centre_;
   Aabb world_;
   AabbTree hull_tree_;
-  std::vector<std::pair<double, double>> stretches_;  // of the ray being decided
+  std::vector<std::pair<std::pair<double, double>, int>> stretches_;  // of the ray being decided, with their hull
+  std::unique_ptr<probe::AllowanceJudge> judge_;  // with an allowance only
   std::unordered_set<octomap::OcTreeKey, octomap::OcTreeKey::KeyHash> lost_keys_;
 };
 
@@ -189,10 +191,16 @@ Result<ProbeReport> probe_accessible_space(const PreparedMesh& prepared, const b
   const auto positive_length = [](double x) { return x > 0.0 && std::isfinite(x); };
   if ((options.probe_distance && !positive_length(*options.probe_distance)) || !positive_length(report.resolution))
     return Status{StatusCode::invalid_argument, "probe distance and resolution must be positive lengths"};
+  const AllowanceOptions& allowance = options.allowance;
+  if ((allowance.agent_radius && !(*allowance.agent_radius > 2.0 * prepared.tolerance.length &&
+                                   std::isfinite(*allowance.agent_radius))) ||
+      (allowance.max_deviation && !positive_length(*allowance.max_deviation)))
+    return Status{StatusCode::invalid_argument,
+                  "the agent radius must be a finite length above twice the tolerance, the max deviation a positive length"};
   if (0.5 * diagonal / report.resolution > kMaxCellsPerAxis)
     return Status{StatusCode::invalid_argument, "resolution too fine: the octree has 16 levels (32768 cells a side)"};
   try {
-    Prober prober(prepared, triangles, hulls, options.probe_distance, report);
+    Prober prober(prepared, triangles, hulls, options.probe_distance, options.allowance, report);
     const auto trace = [&](const probe::ProbeRay& ray) { prober.trace(ray); };
     probe::for_each_front_ray(prepared, report.resolution, trace);
     probe::for_each_opening_ray(prepared, report.resolution, trace);

@@ -32,10 +32,17 @@ Result<AuditReport> audit(const PreparedMesh& prepared, const HullSet& set, cons
       options.bar_half_length.value_or(kDefaultBarHalfLengthRelative * prepared.tolerance.diagonal);
   if (!(bar_half_length > 0.0) || std::isinf(bar_half_length))
     return Status{StatusCode::invalid_argument, "the bar half-length must be a positive length"};
+  const AllowanceOptions& allowance = options.probe.allowance;
+  BehaviourOptions behaviour = options.behaviour;
+  if (allowance.agent_radius) {
+    if (behaviour.size && *behaviour.size < *allowance.agent_radius)
+      return Status{StatusCode::invalid_argument, "the proxies may not be smaller than the agent radius"};
+    behaviour.size = behaviour.size.value_or(*allowance.agent_radius);
+  }
   AuditReport report;
   report.hull_count = set.hulls.size();
   report.groups_without_area = set.groups_without_area;
-  report.recheck = recheck_hulls(prepared, hulls_under_check(set.hulls), bar_half_length);
+  report.recheck = recheck_hulls(prepared, hulls_under_check(set.hulls), bar_half_length, allowance.any());
   const Result<Worlds> worlds = build_worlds(prepared, set);
   if (!worlds.ok()) return worlds.status();
   const bvh::TriangleWorld& triangles = *worlds.value().triangles;
@@ -43,7 +50,7 @@ Result<AuditReport> audit(const PreparedMesh& prepared, const HullSet& set, cons
   Result<ProbeReport> probed = probe_accessible_space(prepared, triangles, hulls, options.probe);
   if (!probed.ok()) return probed.status();
   report.probe = std::move(probed).value();
-  Result<BehaviourReport> compared = compare_behaviour(prepared, triangles, hulls, options.behaviour);
+  Result<BehaviourReport> compared = compare_behaviour(prepared, triangles, hulls, behaviour);
   if (!compared.ok()) return compared.status();
   report.behaviour = std::move(compared).value();
   report.findings = audit_findings(report.probe, report.recheck, report.behaviour);
@@ -59,6 +66,9 @@ const char* audit_finding_name(AuditFinding finding) {
     case AuditFinding::recheck_violations: return "recheck_violations";
     case AuditFinding::contacts_missed: return "contacts_missed";
     case AuditFinding::false_contacts: return "false_contacts";
+    case AuditFinding::deviation_exceeded: return "deviation_exceeded";
+    case AuditFinding::reachable_space_lost: return "reachable_space_lost";
+    case AuditFinding::allowance_undecided: return "allowance_undecided";
   }
   return "unknown";
 }
@@ -66,11 +76,22 @@ const char* audit_finding_name(AuditFinding finding) {
 std::vector<AuditFinding> audit_findings(const ProbeReport& probe, const CheckReport& recheck,
                                          const BehaviourReport& behaviour) {
   std::vector<AuditFinding> findings;
-  if (probe.front.lost != 0) findings.push_back(AuditFinding::front_space_lost);
-  if (probe.opening.lost != 0) findings.push_back(AuditFinding::openings_lost);
+  const AllowanceReport& allowance = probe.allowance;
+  const bool exact = !allowance.options.any();
+  if (exact && probe.front.lost != 0) findings.push_back(AuditFinding::front_space_lost);
+  if (exact && probe.opening.lost != 0) findings.push_back(AuditFinding::openings_lost);
   if (recheck.violations() != 0) findings.push_back(AuditFinding::recheck_violations);
   if (behaviour.missed != 0) findings.push_back(AuditFinding::contacts_missed);
-  if (behaviour.deep_false_contacts != 0) findings.push_back(AuditFinding::false_contacts);
+  // With E set a proxy's ball may lie within E of the mesh, taken by right:
+  // the rays judge it there.
+  const bool agent_alone = allowance.options.agent_radius && !allowance.options.max_deviation;
+  const long judged_false = exact         ? behaviour.deep_false_contacts
+                            : agent_alone ? behaviour.deep_false_contacts - behaviour.deep_false_boxes
+                                          : 0;
+  if (judged_false != 0) findings.push_back(AuditFinding::false_contacts);
+  if (allowance.beyond_deviation != 0) findings.push_back(AuditFinding::deviation_exceeded);
+  if (allowance.reach_lost != 0) findings.push_back(AuditFinding::reachable_space_lost);
+  if (allowance.undecided != 0) findings.push_back(AuditFinding::allowance_undecided);
   return findings;
 }
 

@@ -99,6 +99,7 @@ Result<BehaviourReport> compare_behaviour(const PreparedMesh& prepared, const bv
         const bvh::Contact& deepest = on_hulls.contacts[0];
         if (centre_free && deepest.depth > prepared.tolerance.length) {
           ++report.deep_false_contacts;
+          if (shape.kind == bvh::ShapeKind::box) ++report.deep_false_boxes;
           if (deepest.depth > report.deepest_false.depth)
             report.deepest_false = {deepest.hull, f, pose.translation(), deepest.point, deepest.depth};
         }

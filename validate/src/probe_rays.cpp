@@ -81,4 +81,13 @@ void for_each_opening_ray(const PreparedMesh& prepared, double spacing,
   }
 }
 
+bool ends_on_backs(const bvh::TriangleWorld& triangles, const Mesh& mesh, const Eigen::Vector3d& start,
+                   const Eigen::Vector3d& dir, double first_hit, double tol) {
+  std::vector<bvh::RayHit> at_hit;
+  if (!triangles.ray_hits({start, dir, first_hit + tol}, at_hit).ok() || at_hit.empty()) return false;
+  for (const bvh::RayHit& h : at_hit)
+    if (triangle_area_vector(mesh, h.hull).dot(dir) <= 0.0) return false;
+  return true;
+}
+
 } // namespace hullcover::validate::probe

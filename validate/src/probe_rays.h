@@ -4,6 +4,7 @@
 // face, however small, and beyond every open edge, in the face's plane and
 // tilted to either side of it.
 
+#include "hullcover/bvh/triangle_world.h"
 #include "hullcover/mesh/prepared_mesh.h"
 
 #include <Eigen/Core>
@@ -31,5 +32,13 @@ void for_each_front_ray(const PreparedMesh& prepared, double spacing, const std:
 /// tilted by kOpeningTiltSine to either side.
 void for_each_opening_ray(const PreparedMesh& prepared, double spacing,
                           const std::function<void(const ProbeRay&)>& trace);
+
+/// Whether a ray from `start` along unit `dir` whose first mesh hit lies
+/// `first_hit` along it is enclosed (DESIGN.md): every face at that hit,
+/// coincident ones within `tol` of it included, is met from behind. One
+/// met from the front there (a ceiling coincident with the floor above)
+/// ends the ray on a front, which is open space.
+bool ends_on_backs(const bvh::TriangleWorld& triangles, const Mesh& mesh, const Eigen::Vector3d& start,
+                   const Eigen::Vector3d& dir, double first_hit, double tol);
 
 } // namespace hullcover::validate::probe

@@ -43,7 +43,10 @@ bool is_single_face(const HullUnderCheck& hull) {
 struct FaceOffHull {
   double in_front = 0.0;    // the farthest hull vertex in front of the face's plane
   double corner_off = 0.0;  // the face's farthest corner off the hull's surface, deep inside or outside
+  double corner_outside = 0.0;  // the face's farthest corner outside the hull (0 when all are in or on it)
   bool on_hull(double limit) const { return in_front <= limit && corner_off <= limit; }
+  // Covered with an allowance: on the hull, or wholly inside a solid one.
+  bool on_or_inside(double limit, bool flat) const { return on_hull(limit) || (!flat && corner_outside <= limit); }
 };
 
 FaceOffHull face_off_hull(const Mesh& mesh, const Eigen::Vector3d& normal, const Eigen::Vector3i& t,
@@ -52,8 +55,11 @@ FaceOffHull face_off_hull(const Mesh& mesh, const Eigen::Vector3d& normal, const
   const Eigen::Vector3d& a = mesh.positions[t[0]];
   for (const auto& p : hull.shape->vertices) off.in_front = std::max(off.in_front, normal.dot(p - a));
   // A flat hull has a facet either way: faces of either side lie on it.
-  for (int k = 0; k < 3; ++k)
-    off.corner_off = std::max(off.corner_off, std::abs(depth_inside(c.facets, mesh.positions[t[k]])));
+  for (int k = 0; k < 3; ++k) {
+    const double depth = depth_inside(c.facets, mesh.positions[t[k]]);
+    off.corner_off = std::max(off.corner_off, std::abs(depth));
+    off.corner_outside = std::max(off.corner_outside, -depth);
+  }
   return off;
 }
 
@@ -93,7 +99,7 @@ bool reaches_below_polygon(const Mesh& mesh, const Eigen::Vector3i& t, const Che
 class Rechecker {
 public:
   Rechecker(const PreparedMesh& prepared, double bar_half_length, CheckReport& report)
-      : mesh_(prepared.mesh), tol_(prepared.tolerance.length), on_hull_(kOnHullInTolerances * tol_),
+      : inside_allowed_(report.inside_allowed), mesh_(prepared.mesh), tol_(prepared.tolerance.length), on_hull_(kOnHullInTolerances * tol_),
         report_(report), facts_(recheck::read_mesh_facts(mesh_, tol_, bar_half_length)),
         scene_(referenced_bounding_box(mesh_)),
         cell_(std::max(facts_.longest_edge, scene_.diagonal() / recheck::kMaxCellsAlongDiagonal)),
@@ -136,7 +142,7 @@ public:
       // A flat hull has a facet either way: a face on it is on its boundary
       // whichever way it faces (a double-sided sheet's two faces).
       for (int h : hull_grid.query(lo, hi))
-        if (face_off_hull(mesh_, facts_.normal[f], t, hulls[h], checked[h]).on_hull(on_hull_)) {
+        if (face_covered(facts_.normal[f], t, hulls[h], checked[h])) {
           covered_[f] = 1;
           break;
         }
@@ -151,6 +157,16 @@ public:
 private:
   void note(const std::string& what) {
     if (report_.examples.size() < kExamplesKept) report_.examples.push_back(what);
+  }
+
+  // On the hull; with an allowance, or inside it (counted apart).
+  bool face_covered(const Eigen::Vector3d& normal, const Eigen::Vector3i& t, const HullUnderCheck& hull,
+                    const CheckedHull& c) {
+    const FaceOffHull off = face_off_hull(mesh_, normal, t, hull, c);
+    if (off.on_hull(on_hull_)) return true;
+    if (!inside_allowed_ || !off.on_or_inside(on_hull_, c.flat)) return false;
+    ++report_.faces_inside;
+    return true;
   }
 
   // A hull vertex in front of one of the hull's own facets; one finding per hull.
@@ -170,8 +186,8 @@ private:
   void check_claimed_faces(const std::string& where, const HullUnderCheck& hull, const CheckedHull& c) {
     for (int f : hull.faces) {
       covered_[f] = 1;
-      const FaceOffHull off = face_off_hull(mesh_, facts_.normal[f], mesh_.triangles[f], hull, c);
-      if (!off.on_hull(on_hull_)) {
+      if (!face_covered(facts_.normal[f], mesh_.triangles[f], hull, c)) {
+        const FaceOffHull off = face_off_hull(mesh_, facts_.normal[f], mesh_.triangles[f], hull, c);
         ++report_.faces_off_hull;
         note(where + "face " + std::to_string(f) + " not on the hull with its normal out (" +
              std::to_string(off.in_front) + " in front, a corner " + std::to_string(off.corner_off) +
@@ -232,6 +248,7 @@ private:
       }
   }
 
+  const bool inside_allowed_;
   const Mesh& mesh_;
   const double tol_;
   const double on_hull_;  // a point this close to a hull's surface is on it
@@ -250,6 +267,7 @@ std::string CheckReport::summary() const {
   s << "vertices_inside " << vertices_inside << ", edges_inside " << edges_inside << ", faces_off_hull "
     << faces_off_hull << ", bars_inside " << bars_inside << ", faces_below_polygon " << faces_below_polygon
     << ", faces_uncovered " << faces_uncovered << ", hulls_not_convex " << hulls_not_convex;
+  if (inside_allowed) s << " (faces may lie inside hulls: " << faces_inside << " do)";
   for (const std::string& e : examples) s << "\n  " << e;
   return s.str();
 }
@@ -267,13 +285,15 @@ std::vector<HullUnderCheck> hulls_under_check(const std::vector<bvh::RuntimeHull
   return out;
 }
 
-CheckReport check_covering_independently(const PreparedMesh& prepared, const Covering& covering) {
-  return recheck_hulls(prepared, hulls_under_check(covering), covering.bar_half_length);
+CheckReport check_covering_independently(const PreparedMesh& prepared, const Covering& covering,
+                                         bool inside_allowed) {
+  return recheck_hulls(prepared, hulls_under_check(covering), covering.bar_half_length, inside_allowed);
 }
 
 CheckReport recheck_hulls(const PreparedMesh& prepared, const std::vector<HullUnderCheck>& hulls,
-                          double bar_half_length) {
+                          double bar_half_length, bool inside_allowed) {
   CheckReport report;
+  report.inside_allowed = inside_allowed;
   Rechecker rechecker(prepared, bar_half_length, report);
   std::vector<CheckedHull> checked;
   CandidateGrid hull_grid = rechecker.empty_grid();

@@ -33,4 +33,9 @@ struct RuntimeHull {
 /// The runtime form of a hull (pass the shape by move to avoid a copy).
 RuntimeHull make_runtime_hull(ConvexPolytope shape, int material);
 
+/// One mesh triangle as a flat hull (front and back facets, side planes),
+/// material 0: how TriangleWorld and the audit's clearance queries see a
+/// face. The corners must span an area (the caller skips zero-area faces).
+RuntimeHull flat_triangle_hull(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
 } // namespace hullcover::bvh

@@ -25,6 +25,8 @@
 /// its cell count is a picture of where the lost rays are, not a separate
 /// verdict.
 
+#include "hullcover/validate/allowance_audit.h"
+
 #include "hullcover/bvh/hull_world.h"
 #include "hullcover/bvh/triangle_world.h"
 #include "hullcover/mesh/prepared_mesh.h"
@@ -50,6 +52,8 @@ struct ProbeOptions {
   /// scene units (> 0); default kDefaultProbeSpacingRelative x diagonal.
   std::optional<double> resolution;
   std::string octree_path;  ///< write the lost cells' octree here (.bt) when not empty
+  /// What the covering was allowed to take (allowance_audit.h); none: exact mode.
+  AllowanceOptions allowance;
 };
 
 /// One place where free space is lost: a ray's deepest point inside a hull.
@@ -80,6 +84,7 @@ struct ProbeReport {
   double max_lost_depth = 0.0;  ///< the deepest lost point's depth, either kind, scene units
   Eigen::Vector3d octree_origin = Eigen::Vector3d::Zero();  ///< scene point at the octree's origin (the box centre)
   std::vector<LostPlace> worst;  ///< the deepest lost point per hull, deepest first, at most kWorstPlaces
+  AllowanceReport allowance;     ///< the allowance's figures (allowance_audit.h), when a knob is set
 
   long lost_rays() const { return front.lost + opening.lost; }
 };
@@ -89,7 +94,8 @@ inline constexpr size_t kWorstPlaces = 10;
 /// Probes `prepared`'s free space (ray casts on `triangles`) and decides it
 /// against the hulls of `hulls`. Fails with `invalid_argument` for a
 /// non-positive or infinite probe distance or resolution, or a resolution
-/// so fine the octree would need more than its 16 levels over the scene;
+/// so fine the octree would need more than its 16 levels over the scene,
+/// or an agent radius not above 2 tol or a max deviation not positive;
 /// `unwritable_file` when the octree cannot be written; `internal_error`
 /// when anything else goes wrong.
 Result<ProbeReport> probe_accessible_space(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles,

@@ -28,7 +28,9 @@ struct AuditOptions {
   /// exact mode decomposes with 4 x tol sheets, and the re-check reports bars
   /// without judging them).
   std::optional<double> bar_half_length;
-  /// The character proxies: how many, their seed and their size.
+  /// The character proxies: how many, their seed and their size. With an
+  /// agent radius (probe.allowance) the size defaults to it and may not be
+  /// smaller.
   BehaviourOptions behaviour;
 };
 
@@ -39,6 +41,9 @@ enum class AuditFinding {
   recheck_violations,  ///< the re-check's violations() (all but the paper's bars)
   contacts_missed,     ///< proxies touch the triangles but no hull
   false_contacts,      ///< proxies clear of the triangles lie deeper than tol inside a hull
+  deviation_exceeded,  ///< with a max deviation E alone: a hull takes a point farther than E + tol from the mesh
+  reachable_space_lost,  ///< with an agent radius r: a ball of radius r clear of every triangle reaches into a hull
+  allowance_undecided,   ///< the allowance audit ran out of evaluations on some ray
 };
 
 /// Short stable name of a finding ("front_space_lost", ...), for logs and JSON.
@@ -62,7 +67,10 @@ struct AuditReport {
 /// per edge, and the probe measures the openings themselves. False contacts
 /// count when deeper than tol (lost space, found by the proxies); shallower
 /// ones and normal angles are reported, not judged. Enclosed space is
-/// allowed.
+/// allowed. With an allowance (probe.allowance), the strict lost rays are
+/// reported, not judged: the allowance audit judges what the hulls take
+/// instead; false contacts count only under an agent radius alone, and only
+/// for spheres and capsules (unions of balls of the proxies' radius >= r).
 std::vector<AuditFinding> audit_findings(const ProbeReport& probe, const CheckReport& recheck,
                                          const BehaviourReport& behaviour);
 

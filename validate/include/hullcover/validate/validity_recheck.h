@@ -36,11 +36,17 @@ struct CheckReport {
   long faces_off_hull = 0;       ///< condition 2: claimed faces not on their hull with their normal out
   long bars_inside = 0;          ///< condition 3: the paper's bars entering a hull
   long faces_below_polygon = 0;  ///< condition 4: faces reaching a flat hull's interior from below
-  long faces_uncovered = 0;      ///< coverage: faces with area on no hull's boundary
+  long faces_uncovered = 0;      ///< coverage: faces with area on no hull's boundary (nor, when inside_allowed, inside one)
+  long faces_inside = 0;         ///< when inside_allowed: faces covered by lying inside a solid hull, not on it
   double uncovered_area = 0.0;   ///< their area, scene units squared
   double total_area = 0.0;       ///< the area of every face with a surface
   long hulls_not_convex = 0;     ///< hulls with a vertex in front of one of their own facets
   std::vector<std::string> examples;  ///< the first few findings, for a failure message
+  /// Checked for a covering made with an allowance (allowance_audit.h):
+  /// faces may lie inside their hull (covered, any shape touching them
+  /// touches it), so mesh vertices and edges inside hulls are reported, not
+  /// violations (what the hulls take is judged by the allowance audit).
+  bool inside_allowed = false;
 
   /// Every finding, the paper's bars included (what paper mode must pass).
   long total() const { return violations() + bars_inside; }
@@ -48,7 +54,8 @@ struct CheckReport {
   /// stand in for openings at one point per edge; the probe measures the
   /// openings themselves (exact-mode hulls keep them without long bars).
   long violations() const {
-    return vertices_inside + edges_inside + faces_off_hull + faces_below_polygon + faces_uncovered + hulls_not_convex;
+    return (inside_allowed ? 0 : vertices_inside + edges_inside) + faces_off_hull + faces_below_polygon +
+           faces_uncovered + hulls_not_convex;
   }
   /// The counts on one line, then the examples one per line.
   std::string summary() const;
@@ -60,11 +67,18 @@ struct CheckReport {
 /// whatever crosses it crosses the mesh. A face no hull claims counts as
 /// covered when it lies on some hull's boundary with its normal out ("on":
 /// within `kOnHullInTolerances` tolerances, hullcover/geometry/tolerances.h).
+/// With `inside_allowed`, a face (claimed or not) is also covered when its
+/// corners all lie inside one solid hull (not farther than that distance
+/// outside it), and condition 1 is reported without counting as a
+/// violation (CheckReport::inside_allowed).
 CheckReport recheck_hulls(const PreparedMesh& prepared, const std::vector<HullUnderCheck>& hulls,
-                          double bar_half_length);
+                          double bar_half_length, bool inside_allowed = false);
 
-/// Re-checks a covering (its faces claimed, its own bar length).
-CheckReport check_covering_independently(const PreparedMesh& prepared, const Covering& covering);
+/// Re-checks a covering (its faces claimed, its own bar length); with
+/// `inside_allowed` as recheck_hulls does, for a covering made with an
+/// allowance.
+CheckReport check_covering_independently(const PreparedMesh& prepared, const Covering& covering,
+                                         bool inside_allowed = false);
 
 /// True when segment p-q passes through some hull: deeper than `tol`
 /// inside a solid hull, or across the relative interior of a flat one.

@@ -1,0 +1,135 @@
+// The allowance audit (allowance_audit.h, `hullcover audit --agent-radius /
+// --max-deviation`) passes the decomposer's allowance coverings and catches
+// hulls that take more than the allowance, at the place they take it.
+
+#include "box_hulls.h"
+#include "covering_fixture.h"
+
+#include "hullcover/bvh/covering_hulls.h"
+#include "hullcover/validate/audit.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace hullcover::validate {
+namespace {
+
+using V = Eigen::Vector3d;
+
+constexpr double kGrooveDepth = 0.05;
+
+// A floor strip (z in [0, 1]) with a V groove across it, every face looking
+// up: flat x in [0, 1], down to (1.1, -depth), up to (1.2, 0), flat to 2.2.
+Mesh grooved_floor() {
+  Mesh m;
+  const double d = kGrooveDepth;
+  test::add_quad_facing(m, V(0, 0, 0), V(1, 0, 0), V(1, 0, 1), V(0, 0, 1), V(0, 1, 0));
+  test::add_quad_facing(m, V(1, 0, 0), V(1.1, -d, 0), V(1.1, -d, 1), V(1, 0, 1), V(d, 0.1, 0));
+  test::add_quad_facing(m, V(1.1, -d, 0), V(1.2, 0, 0), V(1.2, 0, 1), V(1.1, -d, 1), V(-d, 0.1, 0));
+  test::add_quad_facing(m, V(1.2, 0, 0), V(2.2, 0, 0), V(2.2, 0, 1), V(1.2, 0, 1), V(0, 1, 0));
+  return m;
+}
+
+AuditReport audit(const test::Decomposed& d, std::vector<bvh::RuntimeHull> hulls, const AllowanceOptions& allowance) {
+  HullSet set;
+  set.hulls = std::move(hulls);
+  AuditOptions options;
+  options.probe.allowance = allowance;
+  options.behaviour.proxies = 600;
+  Result<AuditReport> r = run_audit(d.prepared, set, options);
+  EXPECT_TRUE(r.ok()) << r.status().message();
+  return r.ok() ? r.value() : AuditReport{};
+}
+
+bool has(const AuditReport& r, AuditFinding f) {
+  return std::find(r.findings.begin(), r.findings.end(), f) != r.findings.end();
+}
+
+TEST(AllowanceAudit, MaxDeviationFindsTheFarthestLostPointAndJudgesIt) {
+  DecomposeOptions options;
+  options.max_deviation = 2.0 * kGrooveDepth;
+  const auto d = test::decompose_and_check(grooved_floor(), options);
+  ASSERT_TRUE(d);
+  const std::vector<bvh::RuntimeHull> hulls = bvh::runtime_hulls(d->covering);
+  const AuditReport allowed = audit(*d, hulls, {std::nullopt, options.max_deviation});
+  // The groove is spanned: exact mode's rays see it lost, the allowance
+  // finds the farthest lost point inside E and passes it.
+  EXPECT_GT(allowed.probe.front.lost, 0);
+  EXPECT_GT(allowed.probe.allowance.max_lost_deviation, 0.5 * kGrooveDepth);
+  EXPECT_LE(allowed.probe.allowance.max_lost_deviation, *options.max_deviation + d->tol());
+  EXPECT_TRUE(allowed.clean()) << allowed.recheck.summary();
+  // Held to a quarter of the groove's depth, the same hulls take too much,
+  // and the farthest point found lies in the groove.
+  const AuditReport tight = audit(*d, hulls, {std::nullopt, 0.25 * kGrooveDepth});
+  EXPECT_TRUE(has(tight, AuditFinding::deviation_exceeded));
+  EXPECT_GT(tight.probe.allowance.beyond_deviation, 0);
+  EXPECT_NEAR(tight.probe.allowance.farthest_point.x(), 1.1, 0.1);
+  EXPECT_LT(tight.probe.allowance.farthest_point.y(), 0.0);
+  // And exact mode calls it lost space.
+  EXPECT_TRUE(has(audit(*d, hulls, {}), AuditFinding::front_space_lost));
+}
+
+TEST(AllowanceAudit, AgentRadiusPassesTheAgentCoveringAndCatchesAFloatingHull) {
+  DecomposeOptions options;
+  options.agent_radius = 0.3;
+  const auto d = test::decompose_and_check(grooved_floor(), options);
+  ASSERT_TRUE(d);
+  std::vector<bvh::RuntimeHull> hulls = bvh::runtime_hulls(d->covering);
+  const AuditReport agent = audit(*d, hulls, {options.agent_radius, std::nullopt});
+  EXPECT_GT(agent.probe.allowance.centre_rays, 100);
+  EXPECT_EQ(agent.probe.allowance.reach_lost, 0);
+  EXPECT_EQ(agent.probe.allowance.undecided, 0);
+  EXPECT_EQ(agent.behaviour.missed, 0);
+  EXPECT_DOUBLE_EQ(agent.behaviour.size, *options.agent_radius);  // proxies of the agent's size
+  EXPECT_TRUE(agent.clean()) << agent.recheck.summary();
+
+  // A block hanging 0.4 above the floor: balls of radius 0.3 fit beside and
+  // above it, so it takes reachable space; the audit says where.
+  hulls.push_back(test::box_hull(V(0.3, 0.4, 0.3), V(0.6, 0.7, 0.6)));
+  const AuditReport caught = audit(*d, hulls, {options.agent_radius, std::nullopt});
+  EXPECT_TRUE(has(caught, AuditFinding::reachable_space_lost));
+  EXPECT_EQ(caught.probe.allowance.deepest_reach.hull, static_cast<int>(hulls.size()) - 1);
+  EXPECT_GT(caught.probe.allowance.deepest_reach.clearance, *options.agent_radius - d->tol());
+}
+
+TEST(AllowanceAudit, ASlotNarrowerThanTheAgentMayBeFilledAWiderOneMayNot) {
+  // A floor with a closed-ended slot 0.4 wide and 1 deep; the slot is
+  // filled by one box up to 0.15 under the floor (a ball of radius 0.3 dips
+  // 0.08 into the slot's mouth), the floors covered by boxes behind them,
+  // the end walls' upper strips by their own triangles (flat hulls).
+  Mesh m;
+  test::add_quad_facing(m, V(0, 0, 0), V(1, 0, 0), V(1, 0, 1), V(0, 0, 1), V(0, 1, 0));
+  test::add_quad_facing(m, V(1.4, 0, 0), V(2.4, 0, 0), V(2.4, 0, 1), V(1.4, 0, 1), V(0, 1, 0));
+  test::add_quad_facing(m, V(1, -1, 0), V(1.4, -1, 0), V(1.4, -1, 1), V(1, -1, 1), V(0, 1, 0));
+  for (const double y0 : {-1.0, -0.15}) {
+    const double y1 = y0 < -0.5 ? -0.15 : 0.0;
+    test::add_quad_facing(m, V(1, y0, 0), V(1, y1, 0), V(1, y1, 1), V(1, y0, 1), V(1, 0, 0));
+    test::add_quad_facing(m, V(1.4, y0, 0), V(1.4, y1, 0), V(1.4, y1, 1), V(1.4, y0, 1), V(-1, 0, 0));
+    test::add_quad_facing(m, V(1, y0, 0), V(1.4, y0, 0), V(1.4, y1, 0), V(1, y1, 0), V(0, 0, 1));
+    test::add_quad_facing(m, V(1, y0, 1), V(1.4, y0, 1), V(1.4, y1, 1), V(1, y1, 1), V(0, 0, -1));
+  }
+  const auto d = test::decompose_and_check(m);
+  ASSERT_TRUE(d);
+  std::vector<bvh::RuntimeHull> hulls = {test::box_hull(V(0, -0.15, 0), V(1, 0, 1)),
+                                         test::box_hull(V(1.4, -0.15, 0), V(2.4, 0, 1)),
+                                         test::box_hull(V(1, -1, 0), V(1.4, -0.15, 1))};
+  for (const Eigen::Vector3i& t : m.triangles) {
+    const V &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
+    const bool end_wall = a.z() == b.z() && b.z() == c.z();
+    if (end_wall && std::min({a.y(), b.y(), c.y()}) >= -0.15) hulls.push_back(bvh::flat_triangle_hull(a, b, c));
+  }
+  ASSERT_EQ(hulls.size(), 7u);
+  const AuditReport exact = audit(*d, hulls, {});
+  EXPECT_TRUE(has(exact, AuditFinding::front_space_lost));
+  const AuditReport wide_agent = audit(*d, hulls, {0.3, std::nullopt});
+  EXPECT_EQ(wide_agent.probe.allowance.reach_lost, 0);
+  EXPECT_FALSE(has(wide_agent, AuditFinding::reachable_space_lost));
+  const AuditReport thin_agent = audit(*d, hulls, {0.15, std::nullopt});
+  EXPECT_TRUE(has(thin_agent, AuditFinding::reachable_space_lost));
+  EXPECT_EQ(thin_agent.probe.allowance.deepest_reach.hull, 2);
+}
+
+} // namespace
+} // namespace hullcover::validate

@@ -1,0 +1,304 @@
+#include "allowance_judge.h"
+
+#include "hullcover/bvh/runtime_hull.h"
+#include "hullcover/geometry/tolerances.h"
+#include "hullcover/geometry/triangle_distance.h"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+namespace hullcover::validate::probe {
+namespace {
+
+
+// The largest value a 1-Lipschitz function can take between two points
+// `length` apart whose values are at most `a` and `b`.
+double lipschitz_max(double a, double b, double length) { return 0.5 * (a + b + length); }
+// The smallest, for values at least `a` and `b`.
+double lipschitz_min(double a, double b, double length) { return 0.5 * (a + b - length); }
+
+// Everything the bisection keeps between intervals: a stack instead of
+// recursion, so a long ray cannot run the call stack out.
+struct Interval {
+  Sample a, b;
+};
+
+std::vector<Aabb> hull_boxes(const bvh::HullWorld& hulls) {
+  std::vector<Aabb> boxes;
+  for (const bvh::RuntimeHull& h : hulls.hulls()) boxes.push_back(h.box);
+  return boxes;
+}
+
+// The part of start + t dir, t in [from, to], behind every plane moved out
+// by `grow`: it holds every point within `grow` of the hull (and more, near
+// its edges and corners). Empty (from > to) when there is none.
+std::pair<double, double> within_grown_planes(const std::vector<Plane>& planes, const Eigen::Vector3d& start,
+                                              const Eigen::Vector3d& dir, double from, double to, double grow) {
+  for (const Plane& p : planes) {
+    const double at_start = p.signed_distance(start) - grow, rate = p.normal.dot(dir);
+    if (rate == 0.0) {
+      if (at_start > 0.0) return {1.0, 0.0};
+      continue;
+    }
+    const double crossing = -at_start / rate;
+    if (rate > 0.0)
+      to = std::min(to, crossing);
+    else
+      from = std::max(from, crossing);
+    if (from > to) break;
+  }
+  return {from, to};
+}
+
+} // namespace
+
+AllowanceJudge::AllowanceJudge(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles,
+                               const bvh::HullWorld& hulls, AllowanceReport& report)
+    : prepared_(prepared), triangles_(triangles), hulls_(hulls), hull_tree_(hull_boxes(hulls)), report_(report),
+      tol_(prepared.tolerance.length) {
+  const Mesh& mesh = prepared.mesh;
+  std::vector<bvh::RuntimeHull> faces;
+  for (size_t f = 0; f < mesh.triangles.size(); ++f) {
+    if (prepared.connectivity.zero_area[f]) continue;
+    const Eigen::Vector3i& t = mesh.triangles[f];
+    faces.push_back(bvh::flat_triangle_hull(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]));
+    face_of_.push_back(static_cast<int>(f));
+    normals_.push_back(triangle_area_vector(mesh, static_cast<int>(f)).normalized());
+  }
+  // One ray family per direction: faces sharing a normal to the last bit share it.
+  const auto lexicographic = [](const Eigen::Vector3d& x, const Eigen::Vector3d& y) {
+    return std::lexicographical_compare(x.data(), x.data() + 3, y.data(), y.data() + 3);
+  };
+  std::sort(normals_.begin(), normals_.end(), lexicographic);
+  normals_.erase(std::unique(normals_.begin(), normals_.end()), normals_.end());
+  Result<std::shared_ptr<const bvh::HullWorld>> world = bvh::HullWorld::build(faces);
+  if (!world.ok()) throw std::runtime_error("the mesh's faces as flat hulls: " + world.status().message());
+  mesh_ = std::move(world).value();
+}
+
+// A sphere of radius tol answers exactly while apart (its gap plus tol) and
+// says "within tol" when it touches.
+DistanceBounds AllowanceJudge::to_mesh(const Eigen::Vector3d& p, int* face) const {
+  bvh::DistanceResult r;
+  bvh::DistanceRequest request{bvh::QueryShape::sphere(tol_), Eigen::Isometry3d(Eigen::Translation3d(p))};
+  if (!mesh_->distance(request, r).ok()) throw std::runtime_error("point-to-mesh distance failed");
+  if (face) *face = r.hull < 0 ? -1 : face_of_[r.hull];
+  if (r.hull < 0) return {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  if (r.touching) return {0.0, tol_};
+  return {r.distance + tol_, r.distance + tol_};
+}
+
+DistanceBounds AllowanceJudge::to_hulls(const Eigen::Vector3d& p, int& hull, Eigen::Vector3d& nearest) const {
+  bvh::DistanceResult r;
+  bvh::DistanceRequest request{bvh::QueryShape::sphere(tol_), Eigen::Isometry3d(Eigen::Translation3d(p))};
+  if (!hulls_.distance(request, r).ok()) throw std::runtime_error("point-to-hull distance failed");
+  hull = r.hull;
+  nearest = r.on_world;
+  if (r.hull < 0) return {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  if (r.touching) return {0.0, tol_};
+  return {r.distance + tol_, r.distance + tol_};
+}
+
+void AllowanceJudge::judge(const ProbeRay& ray, const Eigen::Vector3d& start, double length, double stand_off,
+                           const std::vector<std::pair<std::pair<double, double>, int>>& stretches) {
+  for (const auto& [stretch, hull] : stretches) farthest_lost(ray, start, stretch.first, stretch.second, hull);
+  if (const std::optional<double> r = report_.options.agent_radius) {
+    // Nearer than r - stand-off to its own face, no point of the ray has
+    // clearance r.
+    const double from = std::max(0.0, *r - stand_off);
+    if (from < length) reachable_balls(ray, start, from, length);
+  }
+}
+
+// The farthest point of stretch [from, to] from the mesh, within tol; with
+// E alone, also whether some point lies farther than E + tol.
+void AllowanceJudge::farthest_lost(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to,
+                                   int hull) {
+  ++report_.lost_stretches;
+  // With E alone the stretch is judged against E + tol; otherwise only
+  // measured (an infinite limit is never broken).
+  const double limit = report_.options.max_deviation && !report_.options.agent_radius
+                           ? *report_.options.max_deviation + tol_
+                           : std::numeric_limits<double>::infinity();
+  const auto sample = [&](double t) {
+    Sample s;
+    s.t = t;
+    s.mesh = to_mesh(start + t * ray.direction, &s.face);
+    return s;
+  };
+  double best = -1.0;
+  Sample best_sample;
+  const auto keep = [&](const Sample& s) {
+    if (s.mesh.low > best) best = s.mesh.low, best_sample = s;
+  };
+  std::vector<Interval> open = {{sample(from), sample(to)}};
+  keep(open.back().a);
+  keep(open.back().b);
+  int evaluations = 2;
+  bool undecided = false;
+  while (!open.empty()) {
+    const Interval i = open.back();
+    open.pop_back();
+    const double length = i.b.t - i.a.t;
+    const double highest = most_clear_between(start, ray.direction, i.a, i.b);
+    // Done with this interval once it cannot beat the best by more than
+    // tol, and (with a bound to judge) cannot break it, or it already broke.
+    const bool judged = highest <= limit || best > limit;
+    if ((highest <= best + tol_ && judged) || length <= tol_) continue;
+    if (++evaluations > kMaxEvaluationsPerRay) {
+      undecided = true;
+      break;
+    }
+    const Sample mid = sample(0.5 * (i.a.t + i.b.t));
+    keep(mid);
+    open.push_back({i.a, mid});
+    open.push_back({mid, i.b});
+  }
+  if (undecided) ++report_.undecided;
+  if (best > limit) ++report_.beyond_deviation;
+  if (best > report_.max_lost_deviation) {
+    report_.max_lost_deviation = best;
+    report_.farthest_point = start + best_sample.t * ray.direction;
+    report_.farthest_face = ray.face;
+    report_.farthest_hull = hull;
+  }
+}
+
+// The stretches of [from, to] within r - tol of some hull (a superset:
+// each hull's planes moved out), merged: the only places a ball can break.
+std::vector<std::pair<double, double>> AllowanceJudge::near_hulls(const Eigen::Vector3d& start,
+                                                                  const Eigen::Vector3d& dir, double from,
+                                                                  double to) const {
+  const double grow = *report_.options.agent_radius;
+  std::vector<std::pair<double, double>> near;
+  hull_tree_.nearest_along_segment(start + from * dir, start + to * dir, grow, 0.0, [&](int h) {
+    const auto stretch = within_grown_planes(hulls_.hulls()[h].shape.planes, start, dir, from, to, grow);
+    if (stretch.first <= stretch.second) near.push_back(stretch);
+    return std::numeric_limits<double>::infinity();  // visit every hull along the segment
+  });
+  std::sort(near.begin(), near.end());
+  std::vector<std::pair<double, double>> merged;
+  for (const auto& s : near)
+    if (!merged.empty() && s.first <= merged.back().second)
+      merged.back().second = std::max(merged.back().second, s.second);
+    else
+      merged.push_back(s);
+  return merged;
+}
+
+// Whether the front ray along face normal `m` through `p` is open: the
+// mesh behind p along -m is the front of a face with that normal (so p is
+// on that face's own ray), and ahead the ray escapes or ends on a front.
+// False when p is on no such ray.
+bool AllowanceJudge::on_open_ray(const Eigen::Vector3d& p, const Eigen::Vector3d& m) const {
+  const double far = std::numeric_limits<double>::max();
+  bvh::RayResult behind, ahead;
+  if (!triangles_.ray_cast({p, -m, far}, behind).ok() || !behind.hit) return false;
+  const Eigen::Vector3d floor = triangle_area_vector(prepared_.mesh, behind.first.hull).normalized();
+  if (floor.dot(m) < 1.0 - kUnitNormalSlack) return false;
+  if (!triangles_.ray_cast({p, m, far}, ahead).ok() || !ahead.hit) return true;
+  return !ends_on_backs(triangles_, prepared_.mesh, p, m, ahead.first.t, tol_);
+}
+
+// Free space in the strict definition is the points of open rays; p is
+// enclosed when no face's front ray through it is open. Every distinct
+// face normal is tried (opening rays, from edges, make surfaces, not
+// volumes, and are left to the probe).
+bool AllowanceJudge::in_enclosed_space(const Eigen::Vector3d& p) const {
+  for (const Eigen::Vector3d& m : normals_)
+    if (on_open_ray(p, m)) return false;
+  return true;
+}
+
+// The most clearance any point between samples a and b can have: the
+// Lipschitz bound, or, tighter, the distance to either end's nearest face,
+// which is convex along the ray (so at most its larger end value). A ray
+// running along a wall at a steady distance is settled at once.
+double AllowanceJudge::most_clear_between(const Eigen::Vector3d& start, const Eigen::Vector3d& dir, const Sample& a,
+                                          const Sample& b) const {
+  double most = lipschitz_max(a.mesh.high, b.mesh.high, b.t - a.t);
+  const auto to_face = [&](int f, double t) {
+    const Eigen::Vector3i& tri = prepared_.mesh.triangles[f];
+    const std::vector<Eigen::Vector3d>& x = prepared_.mesh.positions;
+    const Eigen::Vector3d p = start + t * dir;
+    return (closest_point_on_triangle(p, x[tri[0]], x[tri[1]], x[tri[2]]) - p).norm();
+  };
+  if (a.face >= 0) most = std::min(most, std::max(a.mesh.high, to_face(a.face, b.t)));
+  if (b.face >= 0) most = std::min(most, std::max(b.mesh.high, to_face(b.face, a.t)));
+  return most;
+}
+
+// Every centre on [from, to] with clearance >= r must lie at least r - tol
+// from every hull (unless, with E, its whole ball lies within E + tol of the
+// mesh, or the ball reaches in only where the strict definition's space is
+// enclosed). The first centre that breaks it ends the ray.
+void AllowanceJudge::reachable_balls(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to) {
+  ++report_.centre_rays;
+  int evaluations = 0;
+  for (const auto& [a, b] : near_hulls(start, ray.direction, from, to)) {
+    const long lost = report_.reach_lost, undecided = report_.undecided;
+    balls_over(ray, start, a, b, evaluations);
+    if (report_.reach_lost != lost || report_.undecided != undecided) return;
+  }
+}
+
+void AllowanceJudge::balls_over(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to,
+                                int& evaluations) {
+  const double r = *report_.options.agent_radius;
+  // A centre nearer any hull than this puts its ball deeper than tol into it
+  // beyond the probe's stand-off: the strict definition's rays start that
+  // far off a face, so a ball resting on the face may meet a hull that
+  // lies as far above it (and a face may lie that deep inside its hull).
+  const double needed = r - (kRayStandOffInTolerances + 1.0) * tol_;
+  const double exempt = report_.options.max_deviation ? *report_.options.max_deviation + tol_
+                                                      : -std::numeric_limits<double>::infinity();
+  const auto sample = [&](double t) {
+    ++evaluations;
+    Sample s;
+    s.t = t;
+    const Eigen::Vector3d c = start + t * ray.direction;
+    s.mesh = to_mesh(c, &s.face);
+    s.hulls = to_hulls(c, s.hull, s.nearest);
+    return s;
+  };
+  // A centre whose ball reaches deeper than tol into a hull, in space the
+  // strict definition calls free: reported, and the ray is done.
+  const auto breaks = [&](const Sample& s) {
+    if (!(s.mesh.low >= r && s.hulls.high < needed && s.mesh.low + r > exempt)) return false;
+    const Eigen::Vector3d c = start + s.t * ray.direction;
+    const Eigen::Vector3d toward = s.nearest - c;
+    const Eigen::Vector3d deepest = s.hulls.low > 0.0 ? Eigen::Vector3d(c + toward * (r / toward.norm())) : c;
+    if (in_enclosed_space(deepest)) {
+      ++report_.enclosed_balls;
+      return false;
+    }
+    ++report_.reach_lost;
+    const double depth = r - s.hulls.high;
+    if (depth > report_.deepest_reach.depth)
+      report_.deepest_reach = {c, ray.face, s.hull, depth, s.mesh.low, ray.opening};
+    return true;
+  };
+  std::vector<Interval> open = {{sample(from), sample(to)}};
+  for (const Sample& s : {open.back().a, open.back().b})
+    if (breaks(s)) return;
+  while (!open.empty()) {
+    const Interval i = open.back();
+    open.pop_back();
+    const double length = i.b.t - i.a.t;
+    const double most_clear = most_clear_between(start, ray.direction, i.a, i.b);
+    const bool no_clear_centre = most_clear < r || most_clear + r <= exempt;
+    const bool far_from_hulls = lipschitz_min(i.a.hulls.low, i.b.hulls.low, length) >= needed;
+    if (no_clear_centre || far_from_hulls || length <= tol_) continue;
+    if (evaluations >= kMaxEvaluationsPerRay) {
+      ++report_.undecided;
+      return;
+    }
+    const Sample mid = sample(0.5 * (i.a.t + i.b.t));
+    if (breaks(mid)) return;
+    open.push_back({i.a, mid});
+    open.push_back({mid, i.b});
+  }
+}
+
+} // namespace hullcover::validate::probe

@@ -1,0 +1,77 @@
+#pragma once
+// The allowance audit's work on one probe ray (allowance_audit.h): the
+// farthest lost point from the mesh, and the reachable balls reaching into a
+// hull, both decided over every point of the ray by Lipschitz bisection.
+
+#include "hullcover/validate/allowance_audit.h"
+
+#include "probe_rays.h"
+
+#include "hullcover/bvh/hull_world.h"
+#include "hullcover/bvh/triangle_world.h"
+#include "hullcover/geometry/aabb_tree.h"
+#include "hullcover/mesh/prepared_mesh.h"
+
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace hullcover::validate::probe {
+
+/// A distance known to lie between two bounds (scene units): exact when the
+/// point is apart from everything, an interval of width tol when it is
+/// within tol of something (the query touches it).
+struct DistanceBounds {
+  double low = 0.0, high = 0.0;
+};
+
+/// One point of a ray (distance t along it) with what is known of its
+/// distances to the mesh and the hulls.
+struct Sample {
+  double t = 0.0;
+  DistanceBounds mesh, hulls;
+  int face = -1;  ///< the nearest mesh face
+  int hull = -1;  ///< the nearest hull
+  Eigen::Vector3d nearest = Eigen::Vector3d::Zero();  ///< on the nearest hull (locates the meeting when touching)
+};
+
+class AllowanceJudge {
+public:
+  /// `prepared`, `triangles` and `hulls` must outlive the judge. The mesh's
+  /// faces with a surface are held as flat hulls for exact point-to-mesh
+  /// distances. Throws std::runtime_error when they cannot be (no face with
+  /// a surface).
+  AllowanceJudge(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles, const bvh::HullWorld& hulls,
+                 AllowanceReport& report);
+
+  /// Judges one open ray: `start` (off the surface by the stand-off) along
+  /// unit `ray.direction` for `length`, with `stretches` the parts of it
+  /// deeper than tol inside hull `second` (distances along the ray).
+  void judge(const ProbeRay& ray, const Eigen::Vector3d& start, double length, double stand_off,
+             const std::vector<std::pair<std::pair<double, double>, int>>& stretches);
+
+private:
+  DistanceBounds to_mesh(const Eigen::Vector3d& p, int* face = nullptr) const;
+  DistanceBounds to_hulls(const Eigen::Vector3d& p, int& hull, Eigen::Vector3d& nearest) const;
+  void farthest_lost(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to, int hull);
+  void reachable_balls(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to);
+  void balls_over(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to, int& evaluations);
+  std::vector<std::pair<double, double>> near_hulls(const Eigen::Vector3d& start, const Eigen::Vector3d& dir,
+                                                    double from, double to) const;
+  double most_clear_between(const Eigen::Vector3d& start, const Eigen::Vector3d& dir, const Sample& a,
+                            const Sample& b) const;
+  bool in_enclosed_space(const Eigen::Vector3d& p) const;
+  bool on_open_ray(const Eigen::Vector3d& p, const Eigen::Vector3d& m) const;
+
+  const PreparedMesh& prepared_;
+  const bvh::TriangleWorld& triangles_;
+  const bvh::HullWorld& hulls_;
+  AabbTree hull_tree_;
+  std::shared_ptr<const bvh::HullWorld> mesh_;
+  std::vector<int> face_of_;  // mesh face id of mesh_'s hull i
+  std::vector<Eigen::Vector3d> normals_;  // every distinct unit face normal
+  AllowanceReport& report_;
+  double tol_;
+};
+
+} // namespace hullcover::validate::probe
