@@ -5,6 +5,7 @@
 #include "hullcover/geometry/triangle_distance.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 
@@ -155,7 +156,9 @@ void AllowanceJudge::farthest_lost(const ProbeRay& ray, const Eigen::Vector3d& s
     open.push_back({i.a, mid});
     open.push_back({mid, i.b});
   }
-  if (undecided) ++report_.undecided;
+  // Out of evaluations matters only where the stretch is judged; measured
+  // alone, the figure is a lower bound then.
+  if (undecided && std::isfinite(limit)) ++report_.undecided;
   if (best > limit) ++report_.beyond_deviation;
   if (best > report_.max_lost_deviation) {
     report_.max_lost_deviation = best;
@@ -165,8 +168,8 @@ void AllowanceJudge::farthest_lost(const ProbeRay& ray, const Eigen::Vector3d& s
   }
 }
 
-// The stretches of [from, to] within r - tol of some hull (a superset:
-// each hull's planes moved out), merged: the only places a ball can break.
+// The stretches of [from, to] within r of some hull (a superset: each
+// hull's planes moved out by r), merged: the only places a ball can break.
 std::vector<std::pair<double, double>> AllowanceJudge::near_hulls(const Eigen::Vector3d& start,
                                                                   const Eigen::Vector3d& dir, double from,
                                                                   double to) const {
