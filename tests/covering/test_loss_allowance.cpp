@@ -20,20 +20,8 @@ namespace {
 
 using V = Eigen::Vector3d;
 
-constexpr double kGrooveDepth = 0.05;
-
-// A floor strip (z in [0, 1]) with a V groove across it: flat x in [0, 1],
-// slopes down to (1.1, -depth) and up to (1.2, 0), flat x in [1.2, 2.2];
-// every face looks up, out of the groove.
-Mesh grooved_floor() {
-  Mesh m;
-  const double d = kGrooveDepth;
-  test::add_quad_facing(m, V(0, 0, 0), V(1, 0, 0), V(1, 0, 1), V(0, 0, 1), V(0, 1, 0));
-  test::add_quad_facing(m, V(1, 0, 0), V(1.1, -d, 0), V(1.1, -d, 1), V(1, 0, 1), V(d, 0.1, 0));
-  test::add_quad_facing(m, V(1.1, -d, 0), V(1.2, 0, 0), V(1.2, 0, 1), V(1.1, -d, 1), V(-d, 0.1, 0));
-  test::add_quad_facing(m, V(1.2, 0, 0), V(2.2, 0, 0), V(2.2, 0, 1), V(1.2, 0, 1), V(0, 1, 0));
-  return m;
-}
+using test::grooved_floor;
+using test::kGrooveDepth;
 
 double clearance(const Mesh& m, const V& p) {
   double best = std::numeric_limits<double>::infinity();

@@ -60,4 +60,15 @@ std::string covering_obj_bytes(const Covering& covering) {
   return s.str();
 }
 
+Mesh grooved_floor() {
+  using V = Eigen::Vector3d;
+  Mesh m;
+  const double d = kGrooveDepth;
+  add_quad_facing(m, V(0, 0, 0), V(1, 0, 0), V(1, 0, 1), V(0, 0, 1), V(0, 1, 0));
+  add_quad_facing(m, V(1, 0, 0), V(1.1, -d, 0), V(1.1, -d, 1), V(1, 0, 1), V(d, 0.1, 0));
+  add_quad_facing(m, V(1.1, -d, 0), V(1.2, 0, 0), V(1.2, 0, 1), V(1.1, -d, 1), V(-d, 0.1, 0));
+  add_quad_facing(m, V(1.2, 0, 0), V(2.2, 0, 0), V(2.2, 0, 1), V(1.2, 0, 1), V(0, 1, 0));
+  return m;
+}
+
 } // namespace hullcover::test

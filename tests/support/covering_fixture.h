@@ -52,4 +52,13 @@ std::string covering_obj_bytes(const Covering& covering);
 void add_quad_facing(Mesh& mesh, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                      const Eigen::Vector3d& d, const Eigen::Vector3d& front, int material = 0);
 
+/// Depth of grooved_floor()'s groove, scene units.
+inline constexpr double kGrooveDepth = 0.05;
+
+/// A floor strip (z in [0, 1]) with a V groove across it: flat x in [0, 1],
+/// slopes down to (1.1, -kGrooveDepth) and up to (1.2, 0), flat x in
+/// [1.2, 2.2]; every face looks up, out of the groove. The allowance tests'
+/// scene: the groove is free space within a small distance of the mesh.
+Mesh grooved_floor();
+
 } // namespace hullcover::test

@@ -18,19 +18,8 @@ namespace {
 
 using V = Eigen::Vector3d;
 
-constexpr double kGrooveDepth = 0.05;
-
-// A floor strip (z in [0, 1]) with a V groove across it, every face looking
-// up: flat x in [0, 1], down to (1.1, -depth), up to (1.2, 0), flat to 2.2.
-Mesh grooved_floor() {
-  Mesh m;
-  const double d = kGrooveDepth;
-  test::add_quad_facing(m, V(0, 0, 0), V(1, 0, 0), V(1, 0, 1), V(0, 0, 1), V(0, 1, 0));
-  test::add_quad_facing(m, V(1, 0, 0), V(1.1, -d, 0), V(1.1, -d, 1), V(1, 0, 1), V(d, 0.1, 0));
-  test::add_quad_facing(m, V(1.1, -d, 0), V(1.2, 0, 0), V(1.2, 0, 1), V(1.1, -d, 1), V(-d, 0.1, 0));
-  test::add_quad_facing(m, V(1.2, 0, 0), V(2.2, 0, 0), V(2.2, 0, 1), V(1.2, 0, 1), V(0, 1, 0));
-  return m;
-}
+using test::grooved_floor;
+using test::kGrooveDepth;
 
 AuditReport audit(const test::Decomposed& d, std::vector<bvh::RuntimeHull> hulls, const AllowanceOptions& allowance) {
   HullSet set;

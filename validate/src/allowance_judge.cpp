@@ -25,6 +25,24 @@ struct Interval {
   Sample a, b;
 };
 
+// The nearest of `world`'s hulls to point p, as a sphere of radius tol sees
+// it: the query shape must have a size.
+bvh::DistanceResult distance_from(const bvh::HullWorld& world, const Eigen::Vector3d& p, double tol) {
+  bvh::DistanceResult r;
+  const bvh::DistanceRequest request{bvh::QueryShape::sphere(tol), Eigen::Isometry3d(Eigen::Translation3d(p))};
+  if (!world.distance(request, r).ok()) throw std::runtime_error("point distance query failed");
+  return r;
+}
+
+// What a sphere of radius tol at p tells of p's distance: exact while apart
+// (its gap plus tol), "within tol" when it touches, infinite when nothing
+// was found.
+DistanceBounds bounds_of(const bvh::DistanceResult& r, double tol) {
+  if (r.hull < 0) return {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  if (r.touching) return {0.0, tol};
+  return {r.distance + tol, r.distance + tol};
+}
+
 std::vector<Aabb> hull_boxes(const bvh::HullWorld& hulls) {
   std::vector<Aabb> boxes;
   for (const bvh::RuntimeHull& h : hulls.hulls()) boxes.push_back(h.box);
@@ -78,27 +96,17 @@ AllowanceJudge::AllowanceJudge(const PreparedMesh& prepared, const bvh::Triangle
   mesh_ = std::move(world).value();
 }
 
-// A sphere of radius tol answers exactly while apart (its gap plus tol) and
-// says "within tol" when it touches.
 DistanceBounds AllowanceJudge::to_mesh(const Eigen::Vector3d& p, int* face) const {
-  bvh::DistanceResult r;
-  bvh::DistanceRequest request{bvh::QueryShape::sphere(tol_), Eigen::Isometry3d(Eigen::Translation3d(p))};
-  if (!mesh_->distance(request, r).ok()) throw std::runtime_error("point-to-mesh distance failed");
+  const bvh::DistanceResult r = distance_from(*mesh_, p, tol_);
   if (face) *face = r.hull < 0 ? -1 : face_of_[r.hull];
-  if (r.hull < 0) return {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-  if (r.touching) return {0.0, tol_};
-  return {r.distance + tol_, r.distance + tol_};
+  return bounds_of(r, tol_);
 }
 
 DistanceBounds AllowanceJudge::to_hulls(const Eigen::Vector3d& p, int& hull, Eigen::Vector3d& nearest) const {
-  bvh::DistanceResult r;
-  bvh::DistanceRequest request{bvh::QueryShape::sphere(tol_), Eigen::Isometry3d(Eigen::Translation3d(p))};
-  if (!hulls_.distance(request, r).ok()) throw std::runtime_error("point-to-hull distance failed");
+  const bvh::DistanceResult r = distance_from(hulls_, p, tol_);
   hull = r.hull;
   nearest = r.on_world;
-  if (r.hull < 0) return {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-  if (r.touching) return {0.0, tol_};
-  return {r.distance + tol_, r.distance + tol_};
+  return bounds_of(r, tol_);
 }
 
 void AllowanceJudge::judge(const ProbeRay& ray, const Eigen::Vector3d& start, double length, double stand_off,
