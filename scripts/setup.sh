@@ -8,6 +8,7 @@ packages=(
   build-essential cmake pkg-config
   libfcl-dev libccd-dev libeigen3-dev liboctomap-dev libqhull-dev libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev
+  libcairo2-dev
 )
 
 missing=()

@@ -15,5 +15,6 @@ void register_demo_command(CLI::App& app, int& exit_status);
 void register_decompose_command(CLI::App& app, int& exit_status);
 void register_query_command(CLI::App& app, int& exit_status);
 void register_audit_command(CLI::App& app, int& exit_status);
+void register_bench_command(CLI::App& app, int& exit_status);
 
 } // namespace hullcover::app

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   hullcover::app::register_decompose_command(app, exit_status);
   hullcover::app::register_query_command(app, exit_status);
   hullcover::app::register_audit_command(app, exit_status);
+  hullcover::app::register_bench_command(app, exit_status);
   hullcover::app::register_demo_command(app, exit_status);
 
   try {

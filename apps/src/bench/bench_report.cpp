@@ -1,0 +1,118 @@
+#include "bench_report.h"
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace hullcover::app::bench {
+namespace {
+
+std::string format(const char* pattern, double x) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, pattern, x);
+  return buffer;
+}
+
+// CSV quoting: a field with a comma or a quote is quoted, quotes doubled.
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+Status write_text(const std::string& text, const std::string& path) {
+  std::ofstream out(path);
+  out << text;
+  out.close();
+  if (!out) return {StatusCode::unwritable_file, path + ": cannot write"};
+  return Status::success();
+}
+
+// "1,234" for counts people compare at a glance.
+std::string grouped(long n) {
+  std::string digits = std::to_string(n < 0 ? -n : n), out;
+  for (size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return (n < 0 ? "-" : "") + out;
+}
+
+std::string speedup(const QueryTiming& t) { return format("%.2fx", t.speedup()); }
+
+} // namespace
+
+std::optional<BenchRow> exact_row_of(const std::vector<BenchRow>& rows, const std::string& scene) {
+  for (const BenchRow& r : rows)
+    if (r.scene == scene && r.agent_radius == 0.0 && r.max_deviation == 0.0) return r;
+  return std::nullopt;
+}
+
+std::optional<double> hull_change_percent(const std::vector<BenchRow>& rows, const BenchRow& row) {
+  const std::optional<BenchRow> exact = exact_row_of(rows, row.scene);
+  if (!exact || exact->hulls == 0) return std::nullopt;
+  return 100.0 * (static_cast<double>(row.hulls) / static_cast<double>(exact->hulls) - 1.0);
+}
+
+Status write_bench_csv(const std::vector<BenchRow>& rows, const std::string& path) {
+  std::ostringstream out;
+  out << "scene,setting,agent_radius,max_deviation,max_deviation_percent_of_diagonal,tolerance,diagonal,faces,"
+         "decompose_s,hulls,hull_change_vs_exact_percent,hulls_per_face,facets_per_hull,vertices_per_hull,hcw_bytes,"
+         "capsule_radius,capsule_half_height,touches_hull_us,touches_triangle_us,touches_speedup,contacts_hull_us,"
+         "contacts_triangle_us,contacts_speedup,contacts_speedup_vs_exact,ray_hull_us,ray_triangle_us,ray_speedup,"
+         "audit_s,clean,findings,front_rays,front_lost,opening_rays,opening_lost,max_lost_depth,max_lost_deviation,"
+         "centre_rays,reach_lost,undecided,proxies,missed_contacts,false_contacts,coverage_percent\n";
+  out.precision(9);
+  for (const BenchRow& r : rows) {
+    const std::optional<double> change = hull_change_percent(rows, r);
+    const std::optional<BenchRow> exact = exact_row_of(rows, r.scene);
+    const double exact_contacts = exact ? exact->queries.contacts.speedup() : 0.0;
+    out << csv_field(r.scene) << ',' << csv_field(r.setting) << ',' << r.agent_radius << ',' << r.max_deviation << ','
+        << r.max_deviation_percent << ',' << r.tolerance << ',' << r.diagonal << ',' << r.faces << ','
+        << r.decompose_seconds << ',' << r.hulls << ',' << (change ? std::to_string(*change) : std::string()) << ','
+        << r.hulls_per_face << ',' << r.facets_per_hull << ',' << r.vertices_per_hull << ',' << r.runtime_bytes << ','
+        << r.query_radius << ',' << r.query_half_height << ',' << r.queries.touches.hull_us << ','
+        << r.queries.touches.triangle_us << ',' << r.queries.touches.speedup() << ',' << r.queries.contacts.hull_us
+        << ',' << r.queries.contacts.triangle_us << ',' << r.queries.contacts.speedup() << ','
+        << (exact_contacts > 0.0 ? std::to_string(r.queries.contacts.speedup() / exact_contacts) : std::string())
+        << ',' << r.queries.ray.hull_us << ',' << r.queries.ray.triangle_us << ',' << r.queries.ray.speedup() << ','
+        << r.audit_seconds << ',' << (r.clean ? "yes" : "no") << ',' << csv_field(r.findings) << ',' << r.front_rays
+        << ',' << r.front_lost << ',' << r.opening_rays << ',' << r.opening_lost << ',' << r.max_lost_depth << ','
+        << r.max_lost_deviation << ',' << r.centre_rays << ',' << r.reach_lost << ',' << r.undecided << ','
+        << r.proxies << ',' << r.missed_contacts << ',' << r.false_contacts << ',' << r.coverage_percent << '\n';
+  }
+  return write_text(out.str(), path);
+}
+
+std::string bench_markdown(const std::vector<BenchRow>& rows) {
+  std::ostringstream out;
+  out << "| scene | setting | decompose | hulls (vs exact) | hulls/face | facets, vertices/hull | .hcw | yes/no | contacts "
+         "| ray | strict lost rays, deepest | farthest lost from mesh | reach lost | missed, false | coverage | audit |\n"
+         "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|\n";
+  for (const BenchRow& r : rows) {
+    const std::optional<double> change = hull_change_percent(rows, r);
+    out << "| " << r.scene << " | " << r.setting << " | " << format("%.1f s", r.decompose_seconds) << " | "
+        << grouped(r.hulls) << (change && r.setting != "exact" ? format(" (%+.0f%%)", *change) : std::string())
+        << " | " << format("%.3f", r.hulls_per_face) << " | " << format("%.1f", r.facets_per_hull) << ", "
+        << format("%.1f", r.vertices_per_hull) << " | " << format("%.0f KB", r.runtime_bytes / 1024.0) << " | "
+        << speedup(r.queries.touches) << " | " << speedup(r.queries.contacts) << " | " << speedup(r.queries.ray)
+        << " | " << grouped(r.front_lost + r.opening_lost) << ", " << format("%.3g", r.max_lost_depth) << " | "
+        << (r.max_deviation > 0.0 ? format("%.3g", r.max_lost_deviation) + format(" (E %.3g)", r.max_deviation)
+                                  : std::string("-"))
+        << " | " << (r.agent_radius > 0.0 ? grouped(r.reach_lost) : std::string("-")) << " | "
+        << grouped(r.missed_contacts) << ", " << grouped(r.false_contacts) << " | "
+        << format("%.2f%%", r.coverage_percent) << " | " << (r.clean ? "CLEAN" : "**" + r.findings + "**") << " |\n";
+  }
+  out << "\nSpeed-ups are triangles / hulls (TriangleWorld over HullWorld) per query, on the same capsule poses near "
+         "the surfaces, timed side by side in one process. Strict lost rays are reported under an allowance, not "
+         "judged: the allowance audit judges it (farthest lost point <= E + tol, no ball of the agent radius clear of "
+         "the mesh reaching into a hull).\n";
+  return out.str();
+}
+
+Status write_bench_markdown(const std::vector<BenchRow>& rows, const std::string& path) {
+  return write_text(bench_markdown(rows), path);
+}
+
+} // namespace hullcover::app::bench

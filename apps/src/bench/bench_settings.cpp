@@ -1,0 +1,110 @@
+#include "bench_settings.h"
+
+#include <cmath>
+#include <cstdlib>
+
+namespace hullcover::app::bench {
+namespace {
+
+Status bad(const std::string& what, const std::string& text) {
+  return {StatusCode::invalid_argument, what + " '" + text + "'"};
+}
+
+// The whole of `text` as a finite number, or nothing.
+std::optional<double> whole_number(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  char* end = nullptr;
+  const double x = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size() || !std::isfinite(x)) return std::nullopt;
+  return x;
+}
+
+// "0.2%" -> "0.2pct": '%' is awkward in file names and shells.
+std::string for_file(const std::string& text) {
+  std::string out;
+  for (char c : text) out += c == '%' ? std::string("pct") : std::string(1, c);
+  return out;
+}
+
+} // namespace
+
+double LengthSpec::resolve(double units_per_metre, double diagonal) const {
+  switch (unit) {
+  case Unit::metres: return value * units_per_metre;
+  case Unit::diagonal_percent: return value / 100.0 * diagonal;
+  case Unit::scene: break;
+  }
+  return value;
+}
+
+Result<LengthSpec> parse_length(const std::string& text) {
+  LengthSpec spec;
+  spec.text = text;
+  std::string number = text;
+  if (!number.empty() && number.back() == 'm') {
+    spec.unit = LengthSpec::Unit::metres;
+    number.pop_back();
+  } else if (!number.empty() && number.back() == '%') {
+    spec.unit = LengthSpec::Unit::diagonal_percent;
+    number.pop_back();
+  }
+  const std::optional<double> x = whole_number(number);
+  if (!x || *x < 0.0)
+    return bad("a length is a number >= 0 in scene units, or with 'm' (metres) or '%' (of the diagonal), not", text);
+  spec.value = *x;
+  return spec;
+}
+
+double SceneSpec::metre(double diagonal) const {
+  return units_per_metre ? *units_per_metre : kObjectDiagonalsPerMetre * diagonal;
+}
+
+Result<SceneSpec> parse_scene(const std::string& text) {
+  SceneSpec spec;
+  const size_t at = text.rfind('@');
+  spec.path = text.substr(0, at);
+  if (spec.path.empty()) return bad("a scene is FILE or FILE@UNITS_PER_METRE, not", text);
+  if (at != std::string::npos) {
+    const std::optional<double> u = whole_number(text.substr(at + 1));
+    if (!u || !(*u > 0.0)) return bad("units per metre after '@' must be a number > 0 in", text);
+    spec.units_per_metre = *u;
+  }
+  return spec;
+}
+
+std::string Setting::label() const {
+  std::string out;
+  if (agent_radius.value > 0.0) out = "r=" + agent_radius.text;
+  if (max_deviation.value > 0.0) out += (out.empty() ? "" : " ") + std::string("E=") + max_deviation.text;
+  return out.empty() ? "exact" : out;
+}
+
+std::string Setting::file_label() const {
+  std::string out;
+  if (agent_radius.value > 0.0) out = "r" + for_file(agent_radius.text);
+  if (max_deviation.value > 0.0) out += (out.empty() ? "" : "_") + std::string("E") + for_file(max_deviation.text);
+  return out.empty() ? "exact" : out;
+}
+
+Result<std::vector<Setting>> sweep_settings(const std::vector<std::string>& agent_radii,
+                                            const std::vector<std::string>& max_deviations) {
+  if (agent_radii.empty() || max_deviations.empty())
+    return Status(StatusCode::invalid_argument, "the sweep needs at least one agent radius and one max deviation (0 = off)");
+  std::vector<LengthSpec> radii, deviations;
+  for (const std::string& text : agent_radii) {
+    Result<LengthSpec> r = parse_length(text);
+    if (!r.ok()) return r.status();
+    radii.push_back(r.value());
+  }
+  for (const std::string& text : max_deviations) {
+    Result<LengthSpec> e = parse_length(text);
+    if (!e.ok()) return e.status();
+    deviations.push_back(e.value());
+  }
+  std::vector<Setting> settings;
+  for (const LengthSpec& r : radii)
+    for (const LengthSpec& e : deviations) settings.push_back({r, e});
+  return settings;
+}
+
+} // namespace hullcover::app::bench
