@@ -299,7 +299,7 @@ void register_audit_command(CLI::App& app, int& exit_status) {
   cmd->add_option("--max-deviation", o->audit.probe.allowance.max_deviation,
                   "Audit a covering allowed to take free space within this distance of the mesh (scene units):\n"
                   "the farthest point any hull takes from a probe ray is found (within the tolerance) and must\n"
-                  "lie no farther. With --agent-radius, a reachable ball lying wholly that close is allowed.")
+                  "lie no farther. With --agent-radius, both are judged.")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--json", o->json_path, "Write the figures as JSON");
   cmd->callback([o, &exit_status] { exit_status = run_audit_command(*o); });

@@ -122,7 +122,7 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--max-deviation", o->decompose.max_deviation,
                   "Exact mode for props: hulls may also fill free space within this distance of the mesh, scene "
-                  "units; combines with --agent-radius (default 0: exact)")
+                  "units; with --agent-radius, a hull takes only space that both allow (default 0: exact)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--near-merge", o->decompose.near_merge_distance,
                   "After the paper's merging, also try patches that share no edge but come within this distance, "

@@ -1,6 +1,7 @@
 // Drives the real `hullcover` binary as a user would and checks its exit
 // status, what it prints and what it writes.
 
+#include "command_run.h"
 #include "temp_dir.h"
 
 #include <gtest/gtest.h>
@@ -15,28 +16,10 @@ namespace {
 
 using hullcover::test::TempDir;
 
-struct CommandRun {
-  int status = -1;
-  std::string out, err;
-};
+using hullcover::test::CommandRun;
+using hullcover::test::slurp;
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-CommandRun run(const TempDir& dir, const std::string& arguments) {
-  const std::string command = std::string(HULLCOVER_EXECUTABLE) + " " + arguments + " >" + dir.path("stdout") +
-                              " 2>" + dir.path("stderr") + " </dev/null";
-  const int raw = std::system(command.c_str());
-  CommandRun r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  r.out = slurp(dir.path("stdout"));
-  r.err = slurp(dir.path("stderr"));
-  return r;
-}
+CommandRun run(const TempDir& dir, const std::string& arguments) { return hullcover::test::run_hullcover(dir, arguments); }
 
 const char* kQuadObj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
 

@@ -121,15 +121,14 @@ void AllowanceJudge::judge(const ProbeRay& ray, const Eigen::Vector3d& start, do
 }
 
 // The farthest point of stretch [from, to] from the mesh, within tol; with
-// E alone, also whether some point lies farther than E + tol.
+// E, also whether some point lies farther than E + tol.
 void AllowanceJudge::farthest_lost(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to,
                                    int hull) {
   ++report_.lost_stretches;
-  // With E alone the stretch is judged against E + tol; otherwise only
+  // With E the stretch is judged against E + tol; with r alone only
   // measured (an infinite limit is never broken).
-  const double limit = report_.options.max_deviation && !report_.options.agent_radius
-                           ? *report_.options.max_deviation + tol_
-                           : std::numeric_limits<double>::infinity();
+  const double limit = report_.options.max_deviation ? *report_.options.max_deviation + tol_
+                                                     : std::numeric_limits<double>::infinity();
   const auto sample = [&](double t) {
     Sample s;
     s.t = t;
@@ -241,9 +240,8 @@ double AllowanceJudge::most_clear_between(const Eigen::Vector3d& start, const Ei
 }
 
 // Every centre on [from, to] with clearance >= r must lie at least r - tol
-// from every hull (unless, with E, its whole ball lies within E + tol of the
-// mesh, or the ball reaches in only where the strict definition's space is
-// enclosed). The first centre that breaks it ends the ray.
+// from every hull (unless the ball reaches in only where the strict
+// definition's space is enclosed). The first centre that breaks it ends the ray.
 void AllowanceJudge::reachable_balls(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to) {
   ++report_.centre_rays;
   int evaluations = 0;
@@ -262,8 +260,6 @@ void AllowanceJudge::balls_over(const ProbeRay& ray, const Eigen::Vector3d& star
   // far off a face, so a ball resting on the face may meet a hull that
   // lies as far above it (and a face may lie that deep inside its hull).
   const double needed = r - (kRayStandOffInTolerances + 1.0) * tol_;
-  const double exempt = report_.options.max_deviation ? *report_.options.max_deviation + tol_
-                                                      : -std::numeric_limits<double>::infinity();
   const auto sample = [&](double t) {
     ++evaluations;
     Sample s;
@@ -276,7 +272,7 @@ void AllowanceJudge::balls_over(const ProbeRay& ray, const Eigen::Vector3d& star
   // A centre whose ball reaches deeper than tol into a hull, in space the
   // strict definition calls free: reported, and the ray is done.
   const auto breaks = [&](const Sample& s) {
-    if (!(s.mesh.low >= r && s.hulls.high < needed && s.mesh.low + r > exempt)) return false;
+    if (!(s.mesh.low >= r && s.hulls.high < needed)) return false;
     const Eigen::Vector3d c = start + s.t * ray.direction;
     const Eigen::Vector3d toward = s.nearest - c;
     const Eigen::Vector3d deepest = s.hulls.low > 0.0 ? Eigen::Vector3d(c + toward * (r / toward.norm())) : c;
@@ -298,7 +294,7 @@ void AllowanceJudge::balls_over(const ProbeRay& ray, const Eigen::Vector3d& star
     open.pop_back();
     const double length = i.b.t - i.a.t;
     const double most_clear = most_clear_between(start, ray.direction, i.a, i.b);
-    const bool no_clear_centre = most_clear < r || most_clear + r <= exempt;
+    const bool no_clear_centre = most_clear < r;
     const bool far_from_hulls = lipschitz_min(i.a.hulls.low, i.b.hulls.low, length) >= needed;
     if (no_clear_centre || far_from_hulls || length <= tol_) continue;
     if (evaluations >= kMaxEvaluationsPerRay) {

@@ -82,12 +82,13 @@ std::vector<AuditFinding> audit_findings(const ProbeReport& probe, const CheckRe
   if (exact && probe.opening.lost != 0) findings.push_back(AuditFinding::openings_lost);
   if (recheck.violations() != 0) findings.push_back(AuditFinding::recheck_violations);
   if (behaviour.missed != 0) findings.push_back(AuditFinding::contacts_missed);
-  // With E set a proxy's ball may lie within E of the mesh, taken by right:
-  // the rays judge it there.
-  const bool agent_alone = allowance.options.agent_radius && !allowance.options.max_deviation;
-  const long judged_false = exact         ? behaviour.deep_false_contacts
-                            : agent_alone ? behaviour.deep_false_contacts - behaviour.deep_false_boxes
-                                          : 0;
+  // With E alone a proxy may meet a hull within E of the mesh, taken by
+  // right: the rays judge it there. An agent radius promises spheres and
+  // capsules of that size exact contacts, E or not (the knobs combine as
+  // both promises: README "Agent-exact coverings").
+  const long judged_false = exact                            ? behaviour.deep_false_contacts
+                            : allowance.options.agent_radius ? behaviour.deep_false_contacts - behaviour.deep_false_boxes
+                                                             : 0;
   if (judged_false != 0) findings.push_back(AuditFinding::false_contacts);
   if (allowance.beyond_deviation != 0) findings.push_back(AuditFinding::deviation_exceeded);
   if (allowance.reach_lost != 0) findings.push_back(AuditFinding::reachable_space_lost);

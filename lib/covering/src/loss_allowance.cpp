@@ -124,10 +124,11 @@ bool out_of_agents_reach(const SceneIndex& index, const std::vector<Plane>& lost
 } // namespace
 
 bool loss_allowed(const SceneIndex& index, const std::vector<Plane>& lost, const Aabb& box,
-                  const Eigen::Vector3d& lost_point) {
+                  const Eigen::Vector3d& lost_point, bool within_deviation_known) {
+  if (!index.has_allowance()) return false;
   std::vector<int> near;
-  if (index.max_deviation > 0.0 && within_deviation(index, lost, box, near)) return true;
-  return index.agent_radius > 0.0 && out_of_agents_reach(index, lost, box, lost_point, near);
+  if (index.max_deviation > 0.0 && !within_deviation_known && !within_deviation(index, lost, box, near)) return false;
+  return !(index.agent_radius > 0.0) || out_of_agents_reach(index, lost, box, lost_point, near);
 }
 
 // An upper bound on how far from the sweep's base, along its rays, the rays
@@ -158,7 +159,9 @@ bool piece_loss_allowed(const SceneIndex& index, const FreeSpaceSweep& sweep, co
   // the mesh. So a loss no farther along its rays than max_deviation - tol
   // is allowed without a proof.
   const double tol = index.tol();
-  if (index.max_deviation > 0.0 && farthest_inside(sweep, interior, region) + tol <= index.max_deviation) return true;
+  bool within_deviation_known =
+      index.max_deviation > 0.0 && farthest_inside(sweep, interior, region) + tol <= index.max_deviation;
+  if (within_deviation_known && !(index.agent_radius > 0.0)) return true;
   const Eigen::Vector3d& dir = sweep.direction;
   // Rays start on the base (a face crossing the hull starts its rays
   // inside it): nothing behind the base is theirs.
@@ -180,9 +183,10 @@ bool piece_loss_allowed(const SceneIndex& index, const FreeSpaceSweep& sweep, co
     }
     box.min = box.min.cwiseMax(column.min);
     box.max = box.max.cwiseMin(column.max);
-    if (index.max_deviation > 0.0 && reach + tol <= index.max_deviation) return true;
+    within_deviation_known |= index.max_deviation > 0.0 && reach + tol <= index.max_deviation;
+    if (within_deviation_known && !(index.agent_radius > 0.0)) return true;
   }
-  return loss_allowed(index, lost, box, centroid_of(region));
+  return loss_allowed(index, lost, box, centroid_of(region), within_deviation_known);
 }
 
 } // namespace hullcover::detail

@@ -36,13 +36,16 @@ namespace hullcover::detail {
 /// refused): a bound on the work, where giving up is conservative.
 inline constexpr int kMaxAllowanceCells = 128;
 
-/// True when the user's allowance (index.agent_radius, index.max_deviation)
-/// covers every point of the convex polytope `lost`: the points behind
-/// every plane of it, all within `box`. `lost_point` is a point known to be
-/// lost (a counterexample found near it ends the proof early). False when no
+/// True when the user's allowance covers every point of the convex
+/// polytope `lost` (the points behind every plane of it, all within `box`):
+/// with both knobs set, both must (each is a promise the user relies on:
+/// agents of radius r lose nothing, and no loss lies farther than E).
+/// `within_deviation_known` skips the E proof when the caller has already
+/// bounded the loss within E. `lost_point` is a point known to be lost (a
+/// counterexample found near it ends the proof early). False when no
 /// allowance is set.
 bool loss_allowed(const SceneIndex& index, const std::vector<Plane>& lost, const Aabb& box,
-                  const Eigen::Vector3d& lost_point);
+                  const Eigen::Vector3d& lost_point, bool within_deviation_known = false);
 
 /// With an allowance: true when the free space the rays of `sweep` through
 /// convex `region` (on a facet of `interior`, where they enter it) can lose

@@ -1,5 +1,7 @@
 #include "patch_merging.h"
 
+#include "flat_polygon_cover.h"
+
 #include "hullcover/geometry/incremental_hull.h"
 #include "hullcover/geometry/planar_hull.h"
 
@@ -191,6 +193,13 @@ PatchMerger::Candidate PatchMerger::evaluate(int a, int b) {
       if (2 * static_cast<int>(polygon.corners.size()) > options_.max_hull_vertices) {
         out.validity = Validity::too_many_vertices;
         return out;
+      }
+      // The paper's conditions alone let a polygon span a hole with nothing
+      // below it (a window); exact mode does not.
+      if (index_.mode == ValidityMode::exact) {
+        out.validity = check_polygon_covered(index_, polygon, positions_of(mesh, pa.hull_vertices),
+                                             positions_of(mesh, pb.hull_vertices), scratch_);
+        if (out.validity != Validity::valid) return out;
       }
       out.validity = check_flat_polygon(
           index_, polygon, [&](int f) { return face_patch_[f] == a || face_patch_[f] == b; }, scratch_);

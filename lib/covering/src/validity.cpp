@@ -17,6 +17,7 @@ const char* validity_name(Validity v) {
     case Validity::front_space_inside: return "front_space_inside";
     case Validity::opening_inside: return "opening_inside";
     case Validity::face_crosses_hull: return "face_crosses_hull";
+    case Validity::polygon_spans_gap: return "polygon_spans_gap";
   }
   return "unknown";
 }

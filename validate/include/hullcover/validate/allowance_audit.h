@@ -22,9 +22,8 @@
 ///   its clearance (distance to the nearest triangle) is at least r, the
 ///   ball of radius r around it is reachable space and must lie no deeper
 ///   than tol in any hull: c's distance to every hull at least r - tol.
-///   With E set as well, a ball whose every point lies within E + tol of the
-///   mesh (clearance + r <= E + tol) may be taken (the two knobs combine as
-///   the decomposer's "either proof").
+///   With E set as well, both are judged (the two knobs combine as both
+///   promises, as in the decomposer).
 /// Ball centres lie on the probe's rays, so their spacing across rays is the
 /// probe's resolution: a covering that takes reachable space only between
 /// rays is not seen here, but by the proxies (behaviour_equivalence.h), which

@@ -58,7 +58,8 @@ struct DecomposeOptions {
   std::optional<double> agent_radius;
   /// Exact mode, relaxed for props: hulls may also take free space within
   /// this distance of the mesh, scene units, >= 0; unset or 0: exact.
-  /// Combines with agent_radius: a point either allows may be taken.
+  /// With agent_radius as well, both hold: a hull takes only space no
+  /// agent reaches that also lies within this distance of the mesh.
   std::optional<double> max_deviation;
   /// Cap on a planar patch's prism thickness (>= 0); default
   /// kDefaultPrismCapRelative x diagonal.

@@ -29,9 +29,10 @@ enum class Validity : std::uint8_t {
   front_space_inside,    ///< exact E1: a face's front space enters the hull
   opening_inside,        ///< exact E2: the opening beyond an open edge enters the hull
   face_crosses_hull,     ///< exact E3: a face's interior deeper than tol inside
+  polygon_spans_gap,     ///< a flat polygon spans area of its plane that none of its faces covers
 };
 /// How many Validity values there are (rejection counters per value).
-inline constexpr int kValidityCount = static_cast<int>(Validity::face_crosses_hull) + 1;
+inline constexpr int kValidityCount = static_cast<int>(Validity::polygon_spans_gap) + 1;
 
 /// Stable snake_case name, for reports.
 const char* validity_name(Validity v);

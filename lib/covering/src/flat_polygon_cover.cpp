@@ -1,0 +1,68 @@
+#include "flat_polygon_cover.h"
+
+#include "hullcover/geometry/convex_polygon_2d.h"
+#include "hullcover/geometry/tolerances.h"
+
+#include <cmath>
+
+namespace hullcover {
+namespace {
+
+using Polygon2d = std::vector<Eigen::Vector2d>;
+
+// The convex hull of `points` in the frame, counter-clockwise (fewer than 3
+// corners when they span no area).
+Polygon2d convex_in_frame(const PlaneFrame& frame, const std::vector<Eigen::Vector3d>& points, double tol) {
+  Polygon2d projected, polygon;
+  for (const Eigen::Vector3d& p : points) projected.push_back(frame.to_plane(p));
+  for (int i : convex_hull_2d(projected, tol)) polygon.push_back(projected[i]);
+  return polygon;
+}
+
+// Every piece less `cutter`, dropping slivers no wider than about 2 tol.
+std::vector<Polygon2d> subtract_from_all(const std::vector<Polygon2d>& pieces, const Polygon2d& cutter, double tol) {
+  std::vector<Polygon2d> out;
+  for (const Polygon2d& piece : pieces)
+    for (Polygon2d& rest : subtract_convex_polygon(piece, cutter))
+      if (polygon_area(rest) > tol * polygon_perimeter(rest)) out.push_back(std::move(rest));
+  return out;
+}
+
+} // namespace
+
+Validity check_polygon_covered(const SceneIndex& index, const FlatPolygon& merged,
+                               const std::vector<Eigen::Vector3d>& corners_a,
+                               const std::vector<Eigen::Vector3d>& corners_b, std::vector<int>& scratch) {
+  if (merged.corners.size() < 3) return Validity::valid;
+  const double tol = index.tol();
+  const PlaneFrame frame = PlaneFrame::from_normal(merged.corners.front(), merged.plane.normal);
+  std::vector<Polygon2d> uncovered = {convex_in_frame(frame, merged.corners, tol)};
+  uncovered = subtract_from_all(uncovered, convex_in_frame(frame, corners_a, tol), tol);
+  uncovered = subtract_from_all(uncovered, convex_in_frame(frame, corners_b, tol), tol);
+  if (uncovered.empty()) return Validity::valid;
+
+  // Other faces in the slab may cover the rest (a near merge across a tile
+  // of another patch; a merge that reaches over faces merged later).
+  const double slab = kPlanarSlabInTolerances * tol;
+  Aabb box;
+  for (const Polygon2d& piece : uncovered)
+    for (const Eigen::Vector2d& q : piece) box.extend(frame.origin + q.x() * frame.u + q.y() * frame.v);
+  scratch.clear();
+  index.face_tree.overlapping(grown(box, slab), scratch);
+  const Mesh& mesh = index.mesh();
+  std::vector<Eigen::Vector3d> corners(3);
+  for (int f : scratch) {
+    bool in_slab = true;
+    for (int k = 0; k < 3; ++k) {
+      corners[k] = mesh.positions[mesh.triangles[f][k]];
+      in_slab = in_slab && std::abs(merged.plane.signed_distance(corners[k])) <= slab;
+    }
+    if (!in_slab) continue;
+    uncovered = subtract_from_all(uncovered, convex_in_frame(frame, corners, tol), tol);
+    if (uncovered.empty()) return Validity::valid;
+    if (static_cast<int>(uncovered.size()) > kMaxUncoveredPieces) return Validity::polygon_spans_gap;
+  }
+  return Validity::polygon_spans_gap;
+}
+
+} // namespace hullcover

@@ -1,0 +1,31 @@
+#pragma once
+/// \file convex_polygon_2d.h
+/// Area and overlap of convex polygons in a plane's 2D frame: enough to
+/// tell whether a flat hull spans area its faces leave open.
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace hullcover {
+
+/// Signed area of a polygon (positive when counter-clockwise), square
+/// units; 0 for fewer than 3 corners.
+double polygon_area(const std::vector<Eigen::Vector2d>& corners);
+
+/// Length of a closed polygon's boundary; 0 for fewer than 2 corners.
+double polygon_perimeter(const std::vector<Eigen::Vector2d>& corners);
+
+/// The intersection of two convex counter-clockwise polygons (each clipped
+/// by the other's edges): convex, counter-clockwise, possibly empty or
+/// degenerate (fewer than 3 corners).
+std::vector<Eigen::Vector2d> intersect_convex_polygons(const std::vector<Eigen::Vector2d>& a,
+                                                       const std::vector<Eigen::Vector2d>& b);
+
+/// `piece` minus `cutter` (both convex, counter-clockwise): disjoint convex
+/// pieces, one per edge of the cutter the piece reaches beyond, each
+/// counter-clockwise. Empty when the cutter covers the piece.
+std::vector<std::vector<Eigen::Vector2d>> subtract_convex_polygon(const std::vector<Eigen::Vector2d>& piece,
+                                                                  const std::vector<Eigen::Vector2d>& cutter);
+
+} // namespace hullcover
