@@ -95,6 +95,18 @@ TEST(ExactConditions, EnclosedSpaceMayBeFilled) {
   EXPECT_TRUE(test::point_inside_covering(exact->covering, V(0.5, 0.5, 0.5), exact->tol()));
 }
 
+// Coplanar tiles of one floor still make one polygon: what a merge adds
+// beyond its two parts is covered by the tiles merged later.
+TEST(ExactConditions, FlatPolygonOverTilesOfOtherPatchesIsOneHull) {
+  Mesh m;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      add_quad_facing(m, V(i, 0, j), V(i + 1, 0, j), V(i + 1, 0, j + 1), V(i, 0, j + 1), V(0, 1, 0));
+  const auto d = decompose_and_check(m);
+  ASSERT_TRUE(d);
+  EXPECT_EQ(d->covering.hulls.size(), 1u);
+}
+
 TEST(ExactConditions, FoldEdgeIsOpen) {
   // The rim of a double-sided sheet is a fold edge: both faces use it.
   Mesh m;

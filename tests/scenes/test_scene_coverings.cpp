@@ -202,5 +202,33 @@ TEST(Decompose, DissolvingOnCollisionWorldSavesHullsAndIsDeterministic) {
   EXPECT_EQ(test::covering_obj_bytes(first->covering), test::covering_obj_bytes(second->covering));
 }
 
+// Regression from the agent audit: a wall (x = -53.906, facing -x) has a
+// triangular window above a ramp that leaves it; no edge of the window is
+// open and nothing lies behind it, so only the flat-polygon rule keeps the
+// wall's polygon from spanning it (it did, 10 m across). A ray through the
+// window meets no triangle, and must meet no hull either.
+TEST(Decompose, CollisionWorldWallPolygonLeavesTheWindowAboveTheRampOpen) {
+  HULLCOVER_REQUIRE_SHARED_SCENES(dir);
+  const Result<ImportedMesh> imported = import_mesh(dir + "/threejs-collision-world.glb");
+  ASSERT_TRUE(imported.ok()) << imported.status().message();
+  const auto d = test::decompose_and_check(imported.value().mesh);
+  ASSERT_TRUE(d);
+  EXPECT_GT(d->covering.statistics.rejections[static_cast<int>(Validity::polygon_spans_gap)], 0);
+  const Eigen::Vector3d in_window(-53.9056, 15.4398, -24.1025), across(1.0, 0.0, 0.0);
+  const Mesh& mesh = d->prepared.mesh;
+  for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) {  // the triangles leave it open
+    const Eigen::Vector3i& t = mesh.triangles[f];
+    const Eigen::Vector3d &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    const double at = n.dot(a - in_window) / n.dot(across);
+    if (!(std::abs(at) <= 0.5)) continue;
+    const Eigen::Vector3d p = in_window + at * across;
+    const bool inside = n.dot((b - a).cross(p - a)) >= 0 && n.dot((c - b).cross(p - b)) >= 0 &&
+                        n.dot((a - c).cross(p - c)) >= 0;
+    ASSERT_FALSE(inside) << "face " << f << " lies across the window";
+  }
+  EXPECT_FALSE(test::segment_hits_covering(d->covering, in_window - 0.5 * across, in_window + 0.5 * across, d->tol()));
+}
+
 } // namespace
 } // namespace hullcover::validate
