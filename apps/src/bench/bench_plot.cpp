@@ -1,5 +1,7 @@
 #include "bench_plot.h"
 
+#include "bench_report.h"
+
 #include <cairo-svg.h>
 #include <cairo.h>
 
@@ -53,12 +55,10 @@ struct Panel {
 };
 
 double hulls_percent(const BenchRow& row, const std::vector<BenchRow>& rows) {
-  for (const BenchRow& r : rows)  // the scene's exact row, else its first
-    if (r.scene == row.scene && r.agent_radius == 0.0 && r.max_deviation == 0.0 && r.hulls > 0)
-      return 100.0 * static_cast<double>(row.hulls) / static_cast<double>(r.hulls);
-  for (const BenchRow& r : rows)
-    if (r.scene == row.scene) return r.hulls > 0 ? 100.0 * static_cast<double>(row.hulls) / r.hulls : NAN;
-  return NAN;
+  const BenchRow* base = exact_row_of(rows, row.scene);  // the scene's exact row, else its first
+  if (!base || base->hulls == 0)
+    base = &*std::find_if(rows.begin(), rows.end(), [&](const BenchRow& r) { return r.scene == row.scene; });
+  return base->hulls > 0 ? 100.0 * static_cast<double>(row.hulls) / static_cast<double>(base->hulls) : NAN;
 }
 
 void text_at(cairo_t* cr, double x, double y, const std::string& text, double align) {

@@ -43,14 +43,14 @@ std::string speedup(const QueryTiming& t) { return format("%.2fx", t.speedup());
 
 } // namespace
 
-std::optional<BenchRow> exact_row_of(const std::vector<BenchRow>& rows, const std::string& scene) {
+const BenchRow* exact_row_of(const std::vector<BenchRow>& rows, const std::string& scene) {
   for (const BenchRow& r : rows)
-    if (r.scene == scene && r.agent_radius == 0.0 && r.max_deviation == 0.0) return r;
-  return std::nullopt;
+    if (r.scene == scene && r.agent_radius == 0.0 && r.max_deviation == 0.0) return &r;
+  return nullptr;
 }
 
 std::optional<double> hull_change_percent(const std::vector<BenchRow>& rows, const BenchRow& row) {
-  const std::optional<BenchRow> exact = exact_row_of(rows, row.scene);
+  const BenchRow* exact = exact_row_of(rows, row.scene);
   if (!exact || exact->hulls == 0) return std::nullopt;
   return 100.0 * (static_cast<double>(row.hulls) / static_cast<double>(exact->hulls) - 1.0);
 }
@@ -66,7 +66,7 @@ Status write_bench_csv(const std::vector<BenchRow>& rows, const std::string& pat
   out.precision(9);
   for (const BenchRow& r : rows) {
     const std::optional<double> change = hull_change_percent(rows, r);
-    const std::optional<BenchRow> exact = exact_row_of(rows, r.scene);
+    const BenchRow* exact = exact_row_of(rows, r.scene);
     const double exact_contacts = exact ? exact->queries.contacts.speedup() : 0.0;
     out << csv_field(r.scene) << ',' << csv_field(r.setting) << ',' << r.agent_radius << ',' << r.max_deviation << ','
         << r.max_deviation_percent << ',' << r.tolerance << ',' << r.diagonal << ',' << r.faces << ','

@@ -13,8 +13,9 @@
 
 namespace hullcover::app::bench {
 
-/// The row of the same scene with no allowance, if the sweep ran one.
-std::optional<BenchRow> exact_row_of(const std::vector<BenchRow>& rows, const std::string& scene);
+/// The row of the same scene with no allowance (in `rows`), or null when
+/// the sweep ran none.
+const BenchRow* exact_row_of(const std::vector<BenchRow>& rows, const std::string& scene);
 
 /// Hulls as a change against the scene's exact row, in percent (-40 = 40%
 /// fewer); nothing without an exact row.
