@@ -12,7 +12,6 @@
 namespace hullcover::validate::probe {
 namespace {
 
-
 // The largest value a 1-Lipschitz function can take between two points
 // `length` apart whose values are at most `a` and `b`.
 double lipschitz_max(double a, double b, double length) { return 0.5 * (a + b + length); }
@@ -70,6 +69,22 @@ std::pair<double, double> within_grown_planes(const std::vector<Plane>& planes, 
   return {from, to};
 }
 
+// The point of `interior` nearest `c`: c itself inside it, else the nearest
+// point of its facet polygons (each fanned into triangles). Any point found
+// lies in the interior (up to rounding); infinity away when it is empty.
+Eigen::Vector3d nearest_interior_point(const HullInterior& interior, const Eigen::Vector3d& c) {
+  if (interior.empty()) return Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  if (deepest_signed_distance(interior.planes, c) <= 0.0) return c;
+  Eigen::Vector3d best = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  double best2 = std::numeric_limits<double>::infinity();
+  for (const std::vector<Eigen::Vector3d>& facet : interior.facets)
+    for (size_t i = 2; i < facet.size(); ++i) {
+      const Eigen::Vector3d q = closest_point_on_triangle(c, facet[0], facet[i - 1], facet[i]);
+      if ((q - c).squaredNorm() < best2) best2 = (q - c).squaredNorm(), best = q;
+    }
+  return best;
+}
+
 } // namespace
 
 AllowanceJudge::AllowanceJudge(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles,
@@ -91,9 +106,27 @@ AllowanceJudge::AllowanceJudge(const PreparedMesh& prepared, const bvh::Triangle
   };
   std::sort(normals_.begin(), normals_.end(), lexicographic);
   normals_.erase(std::unique(normals_.begin(), normals_.end()), normals_.end());
+  for (size_t i = 0; i < face_of_.size(); ++i) {
+    const Eigen::Vector3i& t = mesh.triangles[face_of_[i]];
+    const Eigen::Vector3d n = triangle_area_vector(mesh, face_of_[i]).normalized();
+    FrontPrism prism;
+    prism.front = {n, n.dot(mesh.positions[t[0]])};
+    for (int e = 0; e < 3; ++e) {
+      const Eigen::Vector3d& a = mesh.positions[t[e]];
+      const Eigen::Vector3d out = (mesh.positions[t[(e + 1) % 3]] - a).cross(n).normalized();
+      prism.sides[e] = {out, out.dot(a)};
+    }
+    prism.normal = static_cast<int>(std::lower_bound(normals_.begin(), normals_.end(), n, lexicographic) - normals_.begin());
+    prisms_.push_back(prism);
+  }
   Result<std::shared_ptr<const bvh::HullWorld>> world = bvh::HullWorld::build(faces);
   if (!world.ok()) throw std::runtime_error("the mesh's faces as flat hulls: " + world.status().message());
   mesh_ = std::move(world).value();
+  // What a ball must reach into to take space: each hull shrunk by the
+  // probe's stand-off and the tolerance (the margin balls_over allows).
+  if (report_.options.agent_radius)
+    for (const bvh::RuntimeHull& h : hulls.hulls())
+      interiors_.push_back(hull_interior(h.shape, (kRayStandOffInTolerances + 1.0) * tol_));
 }
 
 DistanceBounds AllowanceJudge::to_mesh(const Eigen::Vector3d& p, int* face) const {
@@ -215,10 +248,44 @@ bool AllowanceJudge::on_open_ray(const Eigen::Vector3d& p, const Eigen::Vector3d
 // enclosed when no face's front ray through it is open. Every distinct
 // face normal is tried (opening rays, from edges, make surfaces, not
 // volumes, and are left to the probe).
+//
+// Only a face whose front column holds p can have p on its ray, so only
+// their normals are cast (each column grown by tol sideways, so every face
+// whose exact column holds p is tried: the definition's rays start on the
+// face itself).
 bool AllowanceJudge::in_enclosed_space(const Eigen::Vector3d& p) const {
-  for (const Eigen::Vector3d& m : normals_)
-    if (on_open_ray(p, m)) return false;
+  std::vector<int> tried;
+  for (const FrontPrism& prism : prisms_) {
+    if (!(prism.front.signed_distance(p) > 0.0)) continue;
+    if (prism.sides[0].signed_distance(p) > tol_ || prism.sides[1].signed_distance(p) > tol_ ||
+        prism.sides[2].signed_distance(p) > tol_)
+      continue;
+    if (std::find(tried.begin(), tried.end(), prism.normal) != tried.end()) continue;
+    tried.push_back(prism.normal);
+    if (on_open_ray(p, normals_[prism.normal])) return false;
+  }
   return true;
+}
+
+// Where the ball of radius r around c meets a hull deeper than the margin,
+// at the point of each hull's interior nearest c, in free space? The
+// distance query only says the ball comes within the margin of a hull's
+// boundary; a thin hull (a wedge's edge) may hold no point that deep, and a
+// point the ball reaches just under a face's edge would be judged on that
+// face's ray by the ray casts' tolerance. Judged at a point genuinely inside.
+AllowanceJudge::BallReach AllowanceJudge::ball_takes_free_space(const Eigen::Vector3d& c, double r) const {
+  std::vector<int> near;
+  Aabb around;
+  around.extend(c);
+  hull_tree_.overlapping(grown(around, r), near);
+  BallReach reach = BallReach::not_deep;
+  for (int h : near) {
+    const Eigen::Vector3d q = nearest_interior_point(interiors_[h], c);
+    if (!((q - c).norm() < r)) continue;
+    if (!in_enclosed_space(q)) return BallReach::free;
+    reach = BallReach::enclosed;
+  }
+  return reach;
 }
 
 // The most clearance any point between samples a and b can have: the
@@ -274,11 +341,10 @@ void AllowanceJudge::balls_over(const ProbeRay& ray, const Eigen::Vector3d& star
   const auto breaks = [&](const Sample& s) {
     if (!(s.mesh.low >= r && s.hulls.high < needed)) return false;
     const Eigen::Vector3d c = start + s.t * ray.direction;
-    const Eigen::Vector3d toward = s.nearest - c;
-    const Eigen::Vector3d deepest = s.hulls.low > 0.0 ? Eigen::Vector3d(c + toward * (r / toward.norm())) : c;
-    if (in_enclosed_space(deepest)) {
-      ++report_.enclosed_balls;
-      return false;
+    switch (ball_takes_free_space(c, r)) {
+      case BallReach::not_deep: return false;
+      case BallReach::enclosed: ++report_.enclosed_balls; return false;
+      case BallReach::free: break;
     }
     ++report_.reach_lost;
     const double depth = r - s.hulls.high;

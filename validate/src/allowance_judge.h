@@ -61,6 +61,9 @@ private:
   double most_clear_between(const Eigen::Vector3d& start, const Eigen::Vector3d& dir, const Sample& a,
                             const Sample& b) const;
   bool in_enclosed_space(const Eigen::Vector3d& p) const;
+  /// What the ball of radius r around c does with the hulls' interiors.
+  enum class BallReach { not_deep, enclosed, free };
+  BallReach ball_takes_free_space(const Eigen::Vector3d& c, double r) const;
   bool on_open_ray(const Eigen::Vector3d& p, const Eigen::Vector3d& m) const;
 
   const PreparedMesh& prepared_;
@@ -70,6 +73,15 @@ private:
   std::shared_ptr<const bvh::HullWorld> mesh_;
   std::vector<int> face_of_;  // mesh face id of mesh_'s hull i
   std::vector<Eigen::Vector3d> normals_;  // every distinct unit face normal
+  /// A face's front column: in front of `front`, behind its three `sides`;
+  /// `normal` indexes normals_.
+  struct FrontPrism {
+    Plane front;
+    Plane sides[3];
+    int normal = 0;
+  };
+  std::vector<FrontPrism> prisms_;  // per face with a surface
+  std::vector<HullInterior> interiors_;   // per hull, shrunk by the margin a ball may reach in (agent radius only)
   AllowanceReport& report_;
   double tol_;
 };

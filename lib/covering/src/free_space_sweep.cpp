@@ -82,45 +82,4 @@ FreeSpaceSweep opening_fan(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
   return opening_sweep(p0, p1, inner, c * face_normal - s * out, reach, tol);
 }
 
-HullInterior hull_interior(const ConvexPolytope& hull, double tol) {
-  HullInterior interior;
-  for (const Plane& p : hull.planes) interior.planes.push_back({p.normal, p.offset - tol});
-  // Facet k of the shrunk hull: its whole shrunk plane, cut by every other
-  // shrunk plane. Not facet k moved in by tol: where two facets meet at a
-  // shallow angle (a grown hull's nearly coplanar triangles) their shrunk
-  // edge moves by tol / sin(angle / 2), far beyond either facet, and one
-  // facet may vanish while its neighbour takes its place; rays leaving
-  // there would go unjudged.
-  const Aabb box = bounding_box_of(hull.vertices);
-  const Eigen::Vector3d centre = 0.5 * (box.min + box.max);
-  const double half = (box.max - box.min).norm() + tol;
-  std::vector<std::vector<Eigen::Vector3d>> squares;
-  for (const Plane& p : interior.planes) {
-    const Eigen::Vector3d on = centre - p.signed_distance(centre) * p.normal;
-    const Eigen::Vector3d u = p.normal.unitOrthogonal() * half;
-    const Eigen::Vector3d v = p.normal.cross(u);
-    squares.push_back({on - u - v, on + u - v, on + u + v, on - u + v});
-  }
-  // Planes within kOnePlaneInTolerances of each other across the hull (a
-  // grown hull's coplanar triangles) are one: cutting each by the other
-  // would leave the facet to rounding. The first holds it.
-  const auto same_plane = [&](size_t j, size_t k) {
-    for (const Eigen::Vector3d& c : squares[k])
-      if (std::abs(interior.planes[j].signed_distance(c)) > kOnePlaneInTolerances * tol) return false;
-    return true;
-  };
-  // Held by: the first plane the same as k that holds its own facet (k if
-  // none); one the same as a holder but not as k holds its own.
-  std::vector<bool> holds(interior.planes.size(), true);
-  for (size_t k = 0; k < interior.planes.size(); ++k) {
-    for (size_t j = 0; j < k && holds[k]; ++j) holds[k] = !(holds[j] && same_plane(j, k));
-    std::vector<Eigen::Vector3d> facet = holds[k] ? squares[k] : std::vector<Eigen::Vector3d>{};
-    for (size_t j = 0; j < interior.planes.size() && !facet.empty(); ++j)
-      if (j != k && !same_plane(j, k)) facet = clip_polygon(facet, interior.planes[j], 0.0);
-    if (facet.size() < 3) facet.clear();
-    interior.facets.push_back(std::move(facet));
-  }
-  return interior;
-}
-
 } // namespace hullcover

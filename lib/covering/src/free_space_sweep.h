@@ -1,8 +1,9 @@
 #pragma once
 /// \file free_space_sweep.h
 /// The pieces of free space the exact conditions (exact_conditions.h) and
-/// their witness rays (witness_rays.h) judge, and a hull's interior: the
-/// shapes both read, kept apart so neither includes the other.
+/// their witness rays (witness_rays.h) judge: the shapes both read, kept
+/// apart so neither includes the other (a hull's interior is
+/// hull_interior, convex_polytope.h).
 
 #include "hullcover/geometry/convex_polytope.h"
 #include "hullcover/geometry/tolerances.h"
@@ -40,20 +41,5 @@ inline constexpr int kOpeningFans = 3;
 /// (as opening_sweep).
 FreeSpaceSweep opening_fan(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
                            const Eigen::Vector3d& face_normal, int fan, double reach, double tol);
-
-/// A solid hull's interior: the hull shrunk by tol (what "strictly inside"
-/// means), as planes and facet polygons. Empty for a hull thinner than 2 tol.
-struct HullInterior {
-  std::vector<Plane> planes;                         ///< the hull's planes moved in by tol
-  std::vector<std::vector<Eigen::Vector3d>> facets;  ///< per plane, its facet (empty when gone)
-  bool empty() const {
-    for (const auto& f : facets)
-      if (!f.empty()) return false;
-    return true;
-  }
-};
-
-/// The interior of `hull` (facets and planes in the same order).
-HullInterior hull_interior(const ConvexPolytope& hull, double tol);
 
 } // namespace hullcover

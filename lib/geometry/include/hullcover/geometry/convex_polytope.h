@@ -60,6 +60,23 @@ std::vector<Eigen::Vector3d> clip_polygon(const std::vector<Eigen::Vector3d>& po
 std::vector<Eigen::Vector3d> clip_polygon_to_planes(std::vector<Eigen::Vector3d> polygon,
                                                     const std::vector<Plane>& planes, double inset);
 
+/// A solid hull's interior: the hull shrunk by tol (what "strictly inside"
+/// means), as planes and facet polygons. Empty for a hull thinner than 2 tol.
+struct HullInterior {
+  std::vector<Plane> planes;                         ///< the hull's planes moved in by tol
+  std::vector<std::vector<Eigen::Vector3d>> facets;  ///< per plane, its facet (empty when gone)
+  bool empty() const {
+    for (const auto& f : facets)
+      if (!f.empty()) return false;
+    return true;
+  }
+};
+
+/// The interior of `hull` (facets and planes in the same order). Shared by
+/// the decomposer's exact conditions and the audit's reach check, so both
+/// mean the same by "deeper than tol".
+HullInterior hull_interior(const ConvexPolytope& hull, double tol);
+
 /// Volume of a closed polytope (0 for a flat one), from its facets.
 double polytope_volume(const ConvexPolytope& polytope);
 
