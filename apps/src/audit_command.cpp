@@ -24,6 +24,7 @@ constexpr int kExitViolation = 1;
 struct AuditCommandOptions {
   std::string mesh, hulls, json_path;
   std::optional<double> tolerance;
+  ImportLimits limits;
   validate::AuditOptions audit;
 };
 
@@ -234,7 +235,7 @@ bool write_json(const std::string& path, const nlohmann::json& j) {
 // Loads the files, audits, prints; the verdict (validate::run_audit's, as a
 // library user gets it) picks the exit status.
 int run_audit_command(const AuditCommandOptions& o) {
-  const std::optional<LoadedScene> scene = load_scene(o.mesh, o.tolerance);
+  const std::optional<LoadedScene> scene = load_scene(o.mesh, o.tolerance, o.limits);
   if (!scene) return kExitBadInput;
   const Result<validate::HullSet> set = validate::load_hull_set(o.hulls);
   if (!set.ok()) return bad_input(set.status());
@@ -270,6 +271,7 @@ void register_audit_command(CLI::App& app, int& exit_status) {
                   "hull of its group's vertices; a group in one plane is a flat polygon)")
       ->required();
   cmd->add_option("--tol", o->tolerance, "Tolerance in scene units (default 1e-5 x bounding-box diagonal)");
+  add_import_limit_options(*cmd, o->limits);
   cmd->add_option("--probe", o->audit.probe.probe_distance,
                   "Optional cap on every ray's length in scene units (default none: the strict definition;\n"
                   "a cap audits less than it)")

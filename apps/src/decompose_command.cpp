@@ -22,6 +22,7 @@ struct DecomposeCommandOptions {
   std::string json_path;
   std::string world_path;
   std::optional<double> tolerance;
+  ImportLimits limits;
   std::string order = "compact";
   std::string conditions = "exact";
   std::string dissolve;  // "", "on" or "off"
@@ -31,7 +32,7 @@ struct DecomposeCommandOptions {
 
 int run_decompose(DecomposeCommandOptions& o) {
   const auto start = std::chrono::steady_clock::now();
-  const std::optional<LoadedScene> scene = load_scene(o.input, o.tolerance);
+  const std::optional<LoadedScene> scene = load_scene(o.input, o.tolerance, o.limits);
   if (!scene) return kExitBadInput;
   o.decompose.order = o.order == "random" ? MergeOrder::random : MergeOrder::compact;
   o.decompose.conditions = o.conditions == "paper" ? ValidityMode::paper : ValidityMode::exact;
@@ -104,6 +105,7 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
   cmd->add_option("--json", o->json_path, "Also write per-hull figures, totals, options and timing as JSON");
   cmd->add_option("--world", o->world_path, "Also write the runtime file (.hcw) that 'query' and game servers load");
   cmd->add_option("--tol", o->tolerance, "Tolerance in scene units (default 1e-5 x bounding-box diagonal)");
+  add_import_limit_options(*cmd, o->limits);
   cmd->add_option("--order", o->order, "Merge order: compact (the paper's) or random")
       ->check(CLI::IsMember({"compact", "random"}))
       ->capture_default_str();

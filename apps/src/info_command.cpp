@@ -17,11 +17,12 @@ namespace {
 struct InfoOptions {
   std::string path;
   std::optional<double> tolerance;
+  ImportLimits limits;
   bool json = false;
 };
 
 int run_info(const InfoOptions& options) {
-  const std::optional<LoadedScene> scene = load_scene(options.path, options.tolerance);
+  const std::optional<LoadedScene> scene = load_scene(options.path, options.tolerance, options.limits);
   if (!scene) return kExitBadInput;
   const MeshFigures figures = measure_mesh(scene->prepared);
   const ImportReport& report = scene->report;
@@ -51,6 +52,7 @@ void register_info_command(CLI::App& app, int& exit_status) {
   info->add_option("--tol", options->tolerance,
                    "Tolerance in scene units for welding and zero-area tests\n"
                    "(default 1e-5 x bounding-box diagonal; never below the data's rounding floor)");
+  add_import_limit_options(*info, options->limits);
   info->add_flag("--json", options->json, "Print the figures as JSON on standard output");
   info->callback([options, &exit_status] { exit_status = run_info(*options); });
 }

@@ -1,11 +1,14 @@
 #include "scene_loading.h"
 
+#include <CLI/CLI.hpp>
+
 #include <cstdio>
 
 namespace hullcover::app {
 
-std::optional<LoadedScene> load_scene(const std::string& path, std::optional<double> tolerance) {
-  Result<ImportedMesh> imported = import_mesh(path);
+std::optional<LoadedScene> load_scene(const std::string& path, std::optional<double> tolerance,
+                                      const ImportLimits& limits) {
+  Result<ImportedMesh> imported = import_mesh(path, limits);
   if (!imported.ok()) {
     std::fprintf(stderr, "hullcover: error: %s\n", imported.status().message().c_str());
     return std::nullopt;
@@ -16,6 +19,25 @@ std::optional<LoadedScene> load_scene(const std::string& path, std::optional<dou
     return std::nullopt;
   }
   return LoadedScene{std::move(prepared).value(), imported.value().report};
+}
+
+void add_import_limit_options(CLI::App& command, ImportLimits& limits) {
+  command
+      .add_option("--max-file-size", limits.max_file_bytes,
+                  "Largest scene file, and file it refers to, in bytes (a bound on what a file from anyone may make "
+                  "the importer read)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  command
+      .add_option("--max-node-depth", limits.max_node_depth,
+                  "Deepest node hierarchy (and glTF JSON nesting) a scene may have")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  command
+      .add_option("--max-triangles", limits.max_triangles,
+                  "Most triangles a scene may place, counting a mesh once per node that places it")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
 }
 
 } // namespace hullcover::app

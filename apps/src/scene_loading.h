@@ -8,6 +8,10 @@
 #include <optional>
 #include <string>
 
+namespace CLI {
+class App;
+}
+
 namespace hullcover::app {
 
 struct LoadedScene {
@@ -15,9 +19,14 @@ struct LoadedScene {
   ImportReport report;
 };
 
-/// Imports `path` and prepares it with the tolerance given (or the
-/// default). On failure prints "hullcover: error: PATH: problem" to stderr
-/// and returns nothing.
-std::optional<LoadedScene> load_scene(const std::string& path, std::optional<double> tolerance);
+/// Imports `path` within `limits` and prepares it with the tolerance given
+/// (or the default). On failure prints "hullcover: error: PATH: problem" to
+/// stderr and returns nothing.
+std::optional<LoadedScene> load_scene(const std::string& path, std::optional<double> tolerance,
+                                      const ImportLimits& limits = {});
+
+/// Adds --max-file-size, --max-node-depth and --max-triangles to `command`,
+/// filling `limits` (mesh_import.h documents each and its default).
+void add_import_limit_options(CLI::App& command, ImportLimits& limits);
 
 } // namespace hullcover::app

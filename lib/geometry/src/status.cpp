@@ -15,6 +15,8 @@ const char* status_code_name(StatusCode code) {
     case StatusCode::invalid_argument: return "invalid_argument";
     case StatusCode::degenerate_scene: return "degenerate_scene";
     case StatusCode::internal_error: return "internal_error";
+    case StatusCode::reference_outside_folder: return "reference_outside_folder";
+    case StatusCode::limit_exceeded: return "limit_exceeded";
   }
   return "unknown";
 }

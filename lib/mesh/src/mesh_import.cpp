@@ -1,13 +1,23 @@
 #include "hullcover/mesh/mesh_import.h"
 
+#include "confined_io.h"
+#include "scene_file_checks.h"
+
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
 #include <Eigen/Geometry>
 
+#include <pthread.h>
+
 #include <filesystem>
+#include <exception>
+#include <functional>
 #include <limits>
+#include <optional>
+#include <utility>
+#include <vector>
 
 namespace hullcover {
 namespace {
@@ -18,10 +28,9 @@ Eigen::Matrix4d to_eigen(const aiMatrix4x4& m) {
   return out;
 }
 
-/// Appends every mesh under `node` with the accumulated transform applied
-/// in double precision.
-void append_node(const aiScene& scene, const aiNode& node, const Eigen::Matrix4d& parent, ImportedMesh& out) {
-  const Eigen::Matrix4d world = parent * to_eigen(node.mTransformation);
+/// Appends the meshes of `node` with its world transform applied in double
+/// precision.
+void append_meshes(const aiScene& scene, const aiNode& node, const Eigen::Matrix4d& world, ImportedMesh& out) {
   const Eigen::Matrix3d linear = world.topLeftCorner<3, 3>();
   // A mirroring transform turns counter-clockwise into clockwise; flip the
   // winding back so the front stays where the file put it.
@@ -47,7 +56,37 @@ void append_node(const aiScene& scene, const aiNode& node, const Eigen::Matrix4d
       out.mesh.material_ids.push_back(static_cast<int>(source.mMaterialIndex));
     }
   }
-  for (unsigned c = 0; c < node.mNumChildren; ++c) append_node(scene, *node.mChildren[c], world, out);
+}
+
+/// Every node in depth-first order with its world transform, walked with an
+/// explicit stack (a deep hierarchy must not run the call stack out), and
+/// the faces and vertices they place. Fails with `limit_exceeded` past the
+/// depth or triangle limit, before anything is placed.
+struct PlacedNode {
+  const aiNode* node;
+  Eigen::Matrix4d world;
+};
+Result<std::vector<PlacedNode>> place_nodes(const aiScene& scene, const ImportLimits& limits) {
+  std::vector<PlacedNode> placed;
+  std::vector<std::pair<PlacedNode, int>> pending = {{{scene.mRootNode, Eigen::Matrix4d::Identity()}, 1}};
+  std::uint64_t faces = 0;
+  while (!pending.empty()) {
+    auto [item, depth] = pending.back();
+    pending.pop_back();
+    if (depth > limits.max_node_depth)
+      return Status{StatusCode::limit_exceeded, "node hierarchy deeper than the limit of " +
+                                                    std::to_string(limits.max_node_depth) +
+                                                    " levels (raise it with --max-node-depth)"};
+    item.world = item.world * to_eigen(item.node->mTransformation);
+    for (unsigned i = 0; i < item.node->mNumMeshes; ++i) faces += scene.mMeshes[item.node->mMeshes[i]]->mNumFaces;
+    if (faces > limits.max_triangles)
+      return Status{StatusCode::limit_exceeded, "more than the limit of " + std::to_string(limits.max_triangles) +
+                                                    " triangles once every node places its meshes (raise it with "
+                                                    "--max-triangles)"};
+    for (unsigned c = item.node->mNumChildren; c-- > 0;) pending.push_back({{item.node->mChildren[c], item.world}, depth + 1});
+    placed.push_back(item);
+  }
+  return placed;
 }
 
 Status check_face_indices(const aiScene& scene) {
@@ -63,8 +102,21 @@ Status check_face_indices(const aiScene& scene) {
   return Status::success();
 }
 
-Result<ImportedMesh> import_with_assimp(const std::string& path) {
+Result<ImportedMesh> import_with_assimp(const std::string& path, const ImportLimits& limits) {
   Assimp::Importer importer;
+  // The importer owns the IO system; `confined` stays valid while it lives.
+  // Assimp is given the absolute path: its OBJ reader joins a relative
+  // path's folder to it twice when it holds '..', sending the material
+  // library's lookup out of the folder.
+  std::error_code error;
+  const std::string absolute = std::filesystem::absolute(path, error).lexically_normal().string();
+  auto* confined = new detail::ConfinedIOSystem(absolute, limits.max_file_bytes);
+  importer.SetIOHandler(confined);
+  const auto refused = [&]() -> std::optional<Status> {
+    if (confined->refusal().empty()) return std::nullopt;
+    return Status{confined->refused_for_size() ? StatusCode::limit_exceeded : StatusCode::reference_outside_folder,
+                  path + ": " + confined->refusal()};
+  };
   const std::string extension = std::filesystem::path(path).extension().string();
   if (extension.empty() || !importer.IsExtensionSupported(extension))
     return Status{StatusCode::unknown_format,
@@ -72,7 +124,8 @@ Result<ImportedMesh> import_with_assimp(const std::string& path) {
 
   // Read without post-processing first: triangulation reads vertices by
   // index, so indices are checked before it runs.
-  const aiScene* scene = importer.ReadFile(path, 0);
+  const aiScene* scene = importer.ReadFile(absolute, 0);
+  if (std::optional<Status> refusal = refused()) return *refusal;
   if (scene == nullptr)
     return Status{StatusCode::unreadable_file, path + ": cannot read: " + importer.GetErrorString()};
   if (scene->mRootNode == nullptr || scene->mNumMeshes == 0)
@@ -83,8 +136,10 @@ Result<ImportedMesh> import_with_assimp(const std::string& path) {
   if (scene == nullptr)
     return Status{StatusCode::unreadable_file, path + ": cannot read: " + importer.GetErrorString()};
 
+  Result<std::vector<PlacedNode>> placed = place_nodes(*scene, limits);
+  if (!placed.ok()) return Status{placed.status().code(), path + ": " + placed.status().message()};
   ImportedMesh out;
-  append_node(*scene, *scene->mRootNode, Eigen::Matrix4d::Identity(), out);
+  for (const PlacedNode& p : placed.value()) append_meshes(*scene, *p.node, p.world, out);
   for (unsigned m = 0; m < scene->mNumMaterials; ++m)
     out.mesh.material_names.emplace_back(scene->mMaterials[m]->GetName().C_Str());
   if (out.mesh.material_names.empty()) out.mesh.material_names.emplace_back("default");
@@ -99,16 +154,61 @@ Result<ImportedMesh> import_with_assimp(const std::string& path) {
   return out;
 }
 
-} // namespace
+// Runs `work` on a thread with a stack of kImportStackBytes: the readers of
+// formats without a pre-check (FBX, COLLADA, ...) recurse over the node
+// hierarchy, which a hostile file can make as deep as it likes; the depth
+// limit is applied after they return. Reserved address space only, touched
+// as used. Runs on the caller's thread when no such thread can be made.
+constexpr std::size_t kImportStackBytes = std::size_t{512} << 20;
 
-Result<ImportedMesh> import_mesh(const std::string& path) {
+void run_on_large_stack(const std::function<void()>& work) {
+  pthread_attr_t attributes;
+  pthread_t thread;
+  const auto trampoline = [](void* f) -> void* {
+    (*static_cast<const std::function<void()>*>(f))();
+    return nullptr;
+  };
+  const bool made = pthread_attr_init(&attributes) == 0 &&
+                    pthread_attr_setstacksize(&attributes, kImportStackBytes) == 0 &&
+                    pthread_create(&thread, &attributes, trampoline, const_cast<std::function<void()>*>(&work)) == 0;
+  pthread_attr_destroy(&attributes);
+  if (made)
+    pthread_join(thread, nullptr);
+  else
+    work();
+}
+
+Result<ImportedMesh> import_checked(const std::string& path, const ImportLimits& limits) {
   std::error_code error;
   if (!std::filesystem::exists(path, error)) return Status{StatusCode::file_not_found, path + ": no such file"};
   if (!std::filesystem::is_regular_file(path, error))
     return Status{StatusCode::file_not_found, path + ": not a regular file"};
-  if (std::filesystem::file_size(path, error) == 0) return Status{StatusCode::empty_scene, path + ": the file is empty"};
+  const std::uintmax_t bytes = std::filesystem::file_size(path, error);
+  if (bytes == 0) return Status{StatusCode::empty_scene, path + ": the file is empty"};
+  if (bytes > limits.max_file_bytes)
+    return Status{StatusCode::limit_exceeded, path + ": " + std::to_string(bytes) + " bytes, more than the limit of " +
+                                                  std::to_string(limits.max_file_bytes) +
+                                                  " (raise it with --max-file-size)"};
+  if (Status checked = detail::check_scene_file(path, limits); !checked.ok())
+    return Status{checked.code(), path + ": " + checked.message()};
+  return import_with_assimp(path, limits);
+}
+
+} // namespace
+
+Result<ImportedMesh> import_mesh(const std::string& path, const ImportLimits& limits) {
   try {
-    return import_with_assimp(path);
+    std::optional<Result<ImportedMesh>> result;
+    std::exception_ptr failure;
+    run_on_large_stack([&] {
+      try {
+        result = import_checked(path, limits);
+      } catch (...) {
+        failure = std::current_exception();
+      }
+    });
+    if (failure) std::rethrow_exception(failure);
+    return std::move(*result);
   } catch (const std::exception& e) {
     return Status{StatusCode::unreadable_file, path + ": cannot read: " + e.what()};
   } catch (...) {

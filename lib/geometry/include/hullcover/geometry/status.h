@@ -27,6 +27,8 @@ enum class StatusCode {
   invalid_argument,      ///< an option is out of its documented range
   degenerate_scene,      ///< the input has no extent (all points coincide)
   internal_error,        ///< a bug or exhausted memory, caught before it left the library
+  reference_outside_folder, ///< a scene file refers to a file outside its own folder
+  limit_exceeded,        ///< an input is larger than a documented, overridable limit
 };
 
 /// Short stable name of a code ("file_not_found", ...), for logs and JSON.

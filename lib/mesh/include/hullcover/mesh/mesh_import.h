@@ -5,9 +5,27 @@
 #include "hullcover/geometry/mesh.h"
 #include "hullcover/geometry/status.h"
 
+#include <cstdint>
 #include <string>
 
 namespace hullcover {
+
+/// Bounds on what one import may read and build, checked before the reader
+/// allocates for it (a file may come from anyone: a baking service's upload).
+/// Every limit is the user's to raise (`--max-file-size`, `--max-node-depth`,
+/// `--max-triangles` on every command that reads a scene).
+struct ImportLimits {
+  /// Bytes of the scene file, and of each file it refers to (glTF buffers
+  /// and images, OBJ material libraries). 1 GiB.
+  std::uint64_t max_file_bytes = std::uint64_t{1} << 30;
+  /// Depth of a glTF node hierarchy (and of its JSON). Real scenes nest a few
+  /// tens deep; a 100,000-deep one would run the importer out of stack.
+  int max_node_depth = 256;
+  /// Triangles after node instancing (a mesh placed by two nodes counts
+  /// twice): a small file can place a mesh millions of times. About 100
+  /// bytes of memory each while importing; 4 million.
+  std::uint64_t max_triangles = std::uint64_t{4} << 20;
+};
 
 /// What an import saw besides the mesh itself.
 struct ImportReport {
@@ -35,10 +53,18 @@ struct ImportedMesh {
 /// `coordinate_error` is set to the float32 rounding bound at the scene's
 /// magnitude.
 ///
+/// Confined: files the scene refers to (glTF buffers and images, OBJ
+/// material libraries, any reference of another format) are read only when
+/// they resolve, symlinks followed, to a regular file inside the scene
+/// file's own folder; data URIs are read in place; nothing else is opened.
+///
 /// Fails, with a message that starts with the path, with `file_not_found`,
 /// `unknown_format` (no reader for the extension), `unreadable_file` (the
-/// reader failed; Assimp's reason is quoted), `empty_scene` (no triangle),
-/// `non_finite_coordinate` or `index_out_of_range`. Never throws.
-Result<ImportedMesh> import_mesh(const std::string& path);
+/// reader failed, Assimp's reason quoted, or the file contradicts itself: a
+/// PLY header with no end, counts the bytes cannot hold, a glTF node graph
+/// with a cycle), `reference_outside_folder` (naming the reference),
+/// `limit_exceeded` (naming the limit and how to raise it), `empty_scene` (no
+/// triangle), `non_finite_coordinate` or `index_out_of_range`. Never throws.
+Result<ImportedMesh> import_mesh(const std::string& path, const ImportLimits& limits = {});
 
 } // namespace hullcover
