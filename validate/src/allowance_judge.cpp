@@ -1,6 +1,7 @@
 #include "allowance_judge.h"
 
 #include "hullcover/bvh/runtime_hull.h"
+#include "hullcover/geometry/planar_hull.h"
 #include "hullcover/geometry/tolerances.h"
 #include "hullcover/geometry/triangle_distance.h"
 
@@ -96,9 +97,12 @@ AllowanceJudge::AllowanceJudge(const PreparedMesh& prepared, const bvh::Triangle
   for (size_t f = 0; f < mesh.triangles.size(); ++f) {
     if (prepared.connectivity.zero_area[f]) continue;
     const Eigen::Vector3i& t = mesh.triangles[f];
-    faces.push_back(bvh::flat_triangle_hull(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]));
+    const std::vector<Eigen::Vector3d> corners = {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
+    faces.push_back(bvh::flat_triangle_hull(corners[0], corners[1], corners[2]));
     face_of_.push_back(static_cast<int>(f));
-    normals_.push_back(triangle_area_vector(mesh, static_cast<int>(f)).normalized());
+    const Eigen::Vector3d n = triangle_area_vector(mesh, static_cast<int>(f)).normalized();
+    normals_.push_back(n);
+    prisms_.push_back({{n, n.dot(corners[0])}, polygon_side_planes(corners, n), 0});
   }
   // One ray family per direction: faces sharing a normal to the last bit share it.
   const auto lexicographic = [](const Eigen::Vector3d& x, const Eigen::Vector3d& y) {
@@ -106,19 +110,9 @@ AllowanceJudge::AllowanceJudge(const PreparedMesh& prepared, const bvh::Triangle
   };
   std::sort(normals_.begin(), normals_.end(), lexicographic);
   normals_.erase(std::unique(normals_.begin(), normals_.end()), normals_.end());
-  for (size_t i = 0; i < face_of_.size(); ++i) {
-    const Eigen::Vector3i& t = mesh.triangles[face_of_[i]];
-    const Eigen::Vector3d n = triangle_area_vector(mesh, face_of_[i]).normalized();
-    FrontPrism prism;
-    prism.front = {n, n.dot(mesh.positions[t[0]])};
-    for (int e = 0; e < 3; ++e) {
-      const Eigen::Vector3d& a = mesh.positions[t[e]];
-      const Eigen::Vector3d out = (mesh.positions[t[(e + 1) % 3]] - a).cross(n).normalized();
-      prism.sides[e] = {out, out.dot(a)};
-    }
-    prism.normal = static_cast<int>(std::lower_bound(normals_.begin(), normals_.end(), n, lexicographic) - normals_.begin());
-    prisms_.push_back(prism);
-  }
+  for (FrontPrism& prism : prisms_)
+    prism.normal = static_cast<int>(
+        std::lower_bound(normals_.begin(), normals_.end(), prism.front.normal, lexicographic) - normals_.begin());
   Result<std::shared_ptr<const bvh::HullWorld>> world = bvh::HullWorld::build(faces);
   if (!world.ok()) throw std::runtime_error("the mesh's faces as flat hulls: " + world.status().message());
   mesh_ = std::move(world).value();
@@ -256,10 +250,7 @@ bool AllowanceJudge::on_open_ray(const Eigen::Vector3d& p, const Eigen::Vector3d
 bool AllowanceJudge::in_enclosed_space(const Eigen::Vector3d& p) const {
   std::vector<int> tried;
   for (const FrontPrism& prism : prisms_) {
-    if (!(prism.front.signed_distance(p) > 0.0)) continue;
-    if (prism.sides[0].signed_distance(p) > tol_ || prism.sides[1].signed_distance(p) > tol_ ||
-        prism.sides[2].signed_distance(p) > tol_)
-      continue;
+    if (!(prism.front.signed_distance(p) > 0.0) || deepest_signed_distance(prism.sides, p) > tol_) continue;
     if (std::find(tried.begin(), tried.end(), prism.normal) != tried.end()) continue;
     tried.push_back(prism.normal);
     if (on_open_ray(p, normals_[prism.normal])) return false;

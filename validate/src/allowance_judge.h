@@ -73,11 +73,11 @@ private:
   std::shared_ptr<const bvh::HullWorld> mesh_;
   std::vector<int> face_of_;  // mesh face id of mesh_'s hull i
   std::vector<Eigen::Vector3d> normals_;  // every distinct unit face normal
-  /// A face's front column: in front of `front`, behind its three `sides`;
-  /// `normal` indexes normals_.
+  /// A face's front column: in front of `front`, behind its `sides`
+  /// (polygon_side_planes); `normal` indexes normals_.
   struct FrontPrism {
     Plane front;
-    Plane sides[3];
+    std::vector<Plane> sides;
     int normal = 0;
   };
   std::vector<FrontPrism> prisms_;  // per face with a surface

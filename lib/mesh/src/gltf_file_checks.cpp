@@ -1,5 +1,7 @@
 #include "gltf_file_checks.h"
 
+#include "scene_file_checks.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -13,11 +15,6 @@ namespace {
 using Json = nlohmann::json;
 
 Status damaged(const std::string& why) { return {StatusCode::unreadable_file, "glTF: " + why}; }
-
-std::uint32_t little_endian_u32(const unsigned char* b) {
-  return static_cast<std::uint32_t>(b[0]) | static_cast<std::uint32_t>(b[1]) << 8 |
-         static_cast<std::uint32_t>(b[2]) << 16 | static_cast<std::uint32_t>(b[3]) << 24;
-}
 
 // The deepest nesting of objects and arrays, counted without parsing (the
 // parser and the value's destructor recurse).
@@ -127,9 +124,7 @@ Status check_nodes(const Json& gltf, const ImportLimits& limits) {
     pending.pop_back();
     ++reached;
     if (depth > limits.max_node_depth)
-      return {StatusCode::limit_exceeded, "glTF node hierarchy deeper than the limit of " +
-                                              std::to_string(limits.max_node_depth) +
-                                              " levels (raise it with --max-node-depth)"};
+      return deeper_than_limit("glTF node hierarchy", limits);
     for (const std::size_t c : children[node]) pending.push_back({c, depth + 1});
   }
   if (reached != n) return damaged("the node hierarchy has a cycle");
@@ -224,9 +219,7 @@ Status check_gltf(const std::string& path, std::ifstream& in, std::uint64_t file
     in.read(text.data(), static_cast<std::streamsize>(file_bytes));
   }
   if (json_nesting(text) > limits.max_node_depth)
-    return {StatusCode::limit_exceeded, "glTF JSON nested deeper than the limit of " +
-                                            std::to_string(limits.max_node_depth) +
-                                            " levels (raise it with --max-node-depth)"};
+    return deeper_than_limit("glTF JSON nested", limits);
   const Json gltf = Json::parse(text, nullptr, false);
   if (gltf.is_discarded() || !gltf.is_object()) return damaged("the JSON does not parse to an object");
   if (Status references = check_references(gltf); !references.ok()) return references;

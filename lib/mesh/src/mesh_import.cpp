@@ -74,9 +74,7 @@ Result<std::vector<PlacedNode>> place_nodes(const aiScene& scene, const ImportLi
     auto [item, depth] = pending.back();
     pending.pop_back();
     if (depth > limits.max_node_depth)
-      return Status{StatusCode::limit_exceeded, "node hierarchy deeper than the limit of " +
-                                                    std::to_string(limits.max_node_depth) +
-                                                    " levels (raise it with --max-node-depth)"};
+      return detail::deeper_than_limit("node hierarchy", limits);
     item.world = item.world * to_eigen(item.node->mTransformation);
     for (unsigned i = 0; i < item.node->mNumMeshes; ++i) faces += scene.mMeshes[item.node->mMeshes[i]]->mNumFaces;
     if (faces > limits.max_triangles)

@@ -121,10 +121,7 @@ Status check_stl(std::ifstream& in, std::uint64_t file_bytes) {
   std::string start(head, static_cast<std::size_t>(std::min<std::uint64_t>(got, 80)));
   start.erase(0, start.find_first_not_of(" \t\r\n"));
   if (got == 84) {
-    const std::uint64_t count = static_cast<std::uint64_t>(static_cast<unsigned char>(head[80])) |
-                                static_cast<std::uint64_t>(static_cast<unsigned char>(head[81])) << 8 |
-                                static_cast<std::uint64_t>(static_cast<unsigned char>(head[82])) << 16 |
-                                static_cast<std::uint64_t>(static_cast<unsigned char>(head[83])) << 24;
+    const std::uint64_t count = little_endian_u32(reinterpret_cast<const unsigned char*>(head + 80));
     if (84 + 50 * count == file_bytes) return Status::success();
     if (start.compare(0, 5, "solid") == 0) return Status::success();
     return damaged("binary STL declares " + std::to_string(count) + " triangles, which take " +

@@ -8,9 +8,24 @@
 #include "hullcover/geometry/status.h"
 #include "hullcover/mesh/mesh_import.h"
 
+#include <cstdint>
 #include <string>
 
 namespace hullcover::detail {
+
+/// The unsigned 32-bit little-endian number in `bytes[0..3]` (GLB chunk
+/// lengths, a binary STL's triangle count).
+inline std::uint32_t little_endian_u32(const unsigned char* bytes) {
+  return static_cast<std::uint32_t>(bytes[0]) | static_cast<std::uint32_t>(bytes[1]) << 8 |
+         static_cast<std::uint32_t>(bytes[2]) << 16 | static_cast<std::uint32_t>(bytes[3]) << 24;
+}
+
+/// `limit_exceeded` for `what` (a hierarchy, a nesting) deeper than
+/// limits.max_node_depth, naming the option that raises it.
+inline Status deeper_than_limit(const std::string& what, const ImportLimits& limits) {
+  return {StatusCode::limit_exceeded, what + " deeper than the limit of " + std::to_string(limits.max_node_depth) +
+                                          " levels (raise it with --max-node-depth)"};
+}
 
 /// How far into a PLY file its header may run before the file is taken as
 /// damaged (a header cut off would otherwise be read to the end).
