@@ -4,12 +4,12 @@
 #include "commands.h"
 #include "scene_loading.h"
 
+#include "hullcover/geometry/atomic_file.h"
 #include "hullcover/validate/audit.h"
 
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -226,12 +226,6 @@ nlohmann::json audit_json(const AuditCommandOptions& o, const PreparedMesh& prep
   };
 }
 
-bool write_json(const std::string& path, const nlohmann::json& j) {
-  std::ofstream out(path);
-  out << j.dump(1) << "\n";
-  return static_cast<bool>(out);
-}
-
 // Loads the files, audits, prints; the verdict (validate::run_audit's, as a
 // library user gets it) picks the exit status.
 int run_audit_command(const AuditCommandOptions& o) {
@@ -243,10 +237,10 @@ int run_audit_command(const AuditCommandOptions& o) {
   if (!audited.ok()) return bad_input(audited.status());
   const validate::AuditReport& a = audited.value();
   print_audit(o, scene->prepared, a);
-  if (!o.json_path.empty() && !write_json(o.json_path, audit_json(o, scene->prepared, a))) {
-    std::fprintf(stderr, "hullcover: error: %s: cannot write\n", o.json_path.c_str());
-    return kExitBadInput;
-  }
+  if (!o.json_path.empty())
+    if (Status written = write_file_atomically(o.json_path, audit_json(o, scene->prepared, a).dump(1) + "\n");
+        !written.ok())
+      return bad_input(written);
   return a.clean() ? kExitSuccess : kExitViolation;
 }
 

@@ -2,6 +2,7 @@
 
 #include "query_guard.h"
 
+#include "hullcover/geometry/atomic_file.h"
 #include "hullcover/geometry/tolerances.h"
 
 #include <cmath>
@@ -107,19 +108,17 @@ Status write_hulls(const std::vector<RuntimeHull>& hulls, const std::string& pat
     if (flags)
       for (bool on_surface : h.surface_planes) payload.bytes.push_back(on_surface ? 1 : 0);
   }
-  Writer file;
-  file.bytes.insert(file.bytes.end(), kMagic, kMagic + 8);
+  Writer file{std::vector<unsigned char>(kMagic, kMagic + 8)};
   file.u32(kRuntimeFileVersion);
   file.u32(0);
   file.u64(hulls.size());
   file.u64(payload.bytes.size());
   file.u64(fnv1a(payload.bytes.data(), payload.bytes.size()));
-  std::ofstream out(path, std::ios::binary);
-  if (!out) return {StatusCode::unwritable_file, path + ": cannot open for writing"};
-  out.write(reinterpret_cast<const char*>(file.bytes.data()), static_cast<std::streamsize>(file.bytes.size()));
-  out.write(reinterpret_cast<const char*>(payload.bytes.data()), static_cast<std::streamsize>(payload.bytes.size()));
-  if (!out) return {StatusCode::unwritable_file, path + ": write failed"};
-  return Status::success();
+  return write_file_atomically(path, [&file, &payload](std::FILE* out) {
+    std::fwrite(file.bytes.data(), 1, file.bytes.size(), out);
+    std::fwrite(payload.bytes.data(), 1, payload.bytes.size(), out);
+    return true;  // a short write sets the stream's error flag, which the caller checks
+  });
 }
 
 Result<std::vector<RuntimeHull>> read_hulls(const std::string& path) {

@@ -2,6 +2,8 @@
 
 #include "bench_report.h"
 
+#include "hullcover/geometry/atomic_file.h"
+
 #include <cairo-svg.h>
 #include <cairo.h>
 
@@ -160,6 +162,13 @@ void draw(cairo_t* cr, const std::vector<BenchRow>& rows) {
   }
 }
 
+// Cairo's stream callback: the closure is the atomic writer's stream, whose
+// error flag reports a failed write.
+cairo_status_t write_to_stream(void* closure, const unsigned char* data, unsigned int length) {
+  auto* out = static_cast<std::FILE*>(closure);
+  return std::fwrite(data, 1, length, out) == length ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+}
+
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
@@ -168,24 +177,29 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 
 Status write_bench_plot(const std::vector<BenchRow>& rows, const std::string& path) {
   if (rows.empty()) return {StatusCode::invalid_argument, "nothing to plot: no bench rows"};
-  const Status unwritable(StatusCode::unwritable_file, path + ": cannot write the plot");
   const bool svg = ends_with(path, ".svg");
-  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
-      svg ? cairo_svg_surface_create(path.c_str(), kWidth, kHeight)
-          : cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(kWidth), static_cast<int>(kHeight)),
-      cairo_surface_destroy);
-  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) return unwritable;
-  cairo_t* cr = cairo_create(surface.get());
-  draw(cr, rows);
-  const bool drawn = cairo_status(cr) == CAIRO_STATUS_SUCCESS;
-  cairo_destroy(cr);
-  if (!drawn) return {StatusCode::internal_error, path + ": cairo could not draw the plot"};
-  // An SVG surface writes as it is finished; an image surface is written
-  // out (finishing it first would leave nothing to write).
-  if (svg) cairo_surface_finish(surface.get());
-  else if (cairo_surface_write_to_png(surface.get(), path.c_str()) != CAIRO_STATUS_SUCCESS) return unwritable;
-  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) return unwritable;
-  return Status::success();
+  bool drawn = false;
+  // Cairo writes through the stream of the atomic writer: an SVG surface as
+  // it is finished, an image surface once it is drawn (finishing it first
+  // would leave nothing to write).
+  const Status written = write_file_atomically(path, [&](std::FILE* out) {
+    std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
+        svg ? cairo_svg_surface_create_for_stream(write_to_stream, out, kWidth, kHeight)
+            : cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(kWidth), static_cast<int>(kHeight)),
+        cairo_surface_destroy);
+    if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) return false;
+    cairo_t* cr = cairo_create(surface.get());
+    draw(cr, rows);
+    drawn = cairo_status(cr) == CAIRO_STATUS_SUCCESS;
+    cairo_destroy(cr);
+    if (!drawn) return false;
+    if (svg) cairo_surface_finish(surface.get());
+    else if (cairo_surface_write_to_png_stream(surface.get(), write_to_stream, out) != CAIRO_STATUS_SUCCESS)
+      return false;
+    return cairo_surface_status(surface.get()) == CAIRO_STATUS_SUCCESS;
+  });
+  if (!written.ok() && !drawn) return {StatusCode::internal_error, path + ": cairo could not draw the plot"};
+  return written;
 }
 
 } // namespace hullcover::app::bench

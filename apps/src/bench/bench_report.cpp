@@ -1,7 +1,8 @@
 #include "bench_report.h"
 
+#include "hullcover/geometry/atomic_file.h"
+
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
 namespace hullcover::app::bench {
@@ -19,14 +20,6 @@ std::string csv_field(const std::string& text) {
   std::string out = "\"";
   for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
   return out + "\"";
-}
-
-Status write_text(const std::string& text, const std::string& path) {
-  std::ofstream out(path);
-  out << text;
-  out.close();
-  if (!out) return {StatusCode::unwritable_file, path + ": cannot write"};
-  return Status::success();
 }
 
 // "1,234" for counts people compare at a glance.
@@ -82,7 +75,7 @@ Status write_bench_csv(const std::vector<BenchRow>& rows, const std::string& pat
         << r.max_lost_deviation << ',' << r.centre_rays << ',' << r.reach_lost << ',' << r.undecided << ','
         << r.proxies << ',' << r.missed_contacts << ',' << r.false_contacts << ',' << r.coverage_percent << '\n';
   }
-  return write_text(out.str(), path);
+  return write_file_atomically(path, out.str());
 }
 
 std::string bench_markdown(const std::vector<BenchRow>& rows) {
@@ -112,7 +105,7 @@ std::string bench_markdown(const std::vector<BenchRow>& rows) {
 }
 
 Status write_bench_markdown(const std::vector<BenchRow>& rows, const std::string& path) {
-  return write_text(bench_markdown(rows), path);
+  return write_file_atomically(path, bench_markdown(rows));
 }
 
 } // namespace hullcover::app::bench

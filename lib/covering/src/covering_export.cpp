@@ -1,15 +1,15 @@
 #include "hullcover/covering/covering_export.h"
 
+#include "hullcover/geometry/atomic_file.h"
+
 #include <cstdio>
-#include <fstream>
-#include <memory>
 
 namespace hullcover {
 
-Status write_covering_obj(const Covering& covering, const std::string& path) {
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "w"), &std::fclose);
-  if (!file) return {StatusCode::unwritable_file, path + ": cannot open for writing"};
-  std::FILE* out = file.get();
+namespace {
+
+// The OBJ text; the stream's error flag tells whether it was all written.
+void print_covering_obj(const Covering& covering, std::FILE* out) {
   std::fprintf(out, "# hullcover covering: %zu hulls of %d faces, tolerance %.17g\n", covering.hulls.size(),
                covering.statistics.faces, covering.tolerance.length);
   long base = 1;
@@ -27,8 +27,15 @@ Status write_covering_obj(const Covering& covering, const std::string& path) {
     }
     base += static_cast<long>(hull.polytope.vertices.size());
   }
-  if (std::ferror(out)) return {StatusCode::unwritable_file, path + ": write failed"};
-  return Status::success();
+}
+
+} // namespace
+
+Status write_covering_obj(const Covering& covering, const std::string& path) {
+  return write_file_atomically(path, [&covering](std::FILE* out) {
+    print_covering_obj(covering, out);
+    return true;
+  });
 }
 
 nlohmann::json covering_json(const Covering& covering) {
@@ -96,11 +103,7 @@ nlohmann::json covering_json(const Covering& covering) {
 Status write_covering_json(const Covering& covering, const nlohmann::json& extra, const std::string& path) {
   nlohmann::json j = covering_json(covering);
   for (const auto& [key, value] : extra.items()) j[key] = value;
-  std::ofstream out(path);
-  if (!out) return {StatusCode::unwritable_file, path + ": cannot open for writing"};
-  out << j.dump(1) << "\n";
-  if (!out) return {StatusCode::unwritable_file, path + ": write failed"};
-  return Status::success();
+  return write_file_atomically(path, j.dump(1) + "\n");
 }
 
 } // namespace hullcover

@@ -1,14 +1,15 @@
 #include "hullcover/mesh/mesh_export.h"
 
+#include "hullcover/geometry/atomic_file.h"
+
 #include <cstdio>
-#include <memory>
 
 namespace hullcover {
 
-Status write_mesh_obj(const Mesh& mesh, const std::string& path) {
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "w"), &std::fclose);
-  if (!file) return {StatusCode::unwritable_file, path + ": cannot open for writing"};
-  std::FILE* out = file.get();
+namespace {
+
+// The OBJ text; the stream's error flag tells whether it was all written.
+void print_mesh_obj(const Mesh& mesh, std::FILE* out) {
   std::fprintf(out, "# written by hullcover: %zu vertices, %zu triangles\n", mesh.positions.size(),
                mesh.triangles.size());
   for (const Eigen::Vector3d& p : mesh.positions) std::fprintf(out, "v %.17g %.17g %.17g\n", p.x(), p.y(), p.z());
@@ -24,8 +25,15 @@ Status write_mesh_obj(const Mesh& mesh, const std::string& path) {
     const Eigen::Vector3i& tri = mesh.triangles[t];
     std::fprintf(out, "f %d %d %d\n", tri[0] + 1, tri[1] + 1, tri[2] + 1);
   }
-  if (std::ferror(out)) return {StatusCode::unwritable_file, path + ": write failed"};
-  return Status::success();
+}
+
+} // namespace
+
+Status write_mesh_obj(const Mesh& mesh, const std::string& path) {
+  return write_file_atomically(path, [&mesh](std::FILE* out) {
+    print_mesh_obj(mesh, out);
+    return true;
+  });
 }
 
 } // namespace hullcover

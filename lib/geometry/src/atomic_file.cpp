@@ -1,0 +1,143 @@
+#include "hullcover/geometry/atomic_file.h"
+
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
+#include <memory>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace hullcover {
+namespace {
+
+// Names a sibling of the destination gets while it is being made visible:
+// hidden, and telling whoever finds one which program left it.
+constexpr const char* kTemporaryInfix = ".hullcover-";
+// Attempts at a free temporary name before giving up (each collision means
+// another process is writing the same destination at this moment).
+constexpr int kTemporaryNameAttempts = 64;
+// New files get these permissions less the umask, as fopen's do.
+constexpr mode_t kNewFileMode = 0666;
+
+struct DestinationParts {
+  std::string folder;  ///< "." for a bare file name
+  std::string name;
+};
+
+DestinationParts split_destination(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  if (slash == std::string::npos) return {".", path};
+  return {slash == 0 ? "/" : path.substr(0, slash), path.substr(slash + 1)};
+}
+
+Status failure(const std::string& path, const std::string& what, int error_number) {
+  return {StatusCode::unwritable_file, path + ": " + what + ": " + std::strerror(error_number)};
+}
+
+// A stream over a file that exists only while it is open (O_TMPFILE), or,
+// where the file system cannot make one, over a named temporary file that is
+// removed unless it was renamed into place.
+class TemporaryFile {
+public:
+  TemporaryFile(const DestinationParts& destination) : destination_(destination) {}
+  TemporaryFile(const TemporaryFile&) = delete;
+  TemporaryFile& operator=(const TemporaryFile&) = delete;
+  ~TemporaryFile() {
+    if (stream_ != nullptr) std::fclose(stream_);
+    if (!named_path_.empty()) ::unlink(named_path_.c_str());
+  }
+
+  // Opens the stream; errno tells why when it returns false.
+  bool open() {
+    int fd = ::open(destination_.folder.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, kNewFileMode);
+    if (fd < 0) {
+      if (errno != EOPNOTSUPP && errno != EISDIR && errno != EINVAL) return false;
+      std::string pattern = sibling_prefix() + "XXXXXX";
+      fd = ::mkstemp(pattern.data());
+      if (fd < 0) return false;
+      named_path_ = pattern;
+      const mode_t mask = ::umask(0);
+      ::umask(mask);
+      ::fchmod(fd, kNewFileMode & ~mask);
+    }
+    stream_ = ::fdopen(fd, "w");
+    if (stream_ == nullptr) {
+      const int saved = errno;
+      ::close(fd);
+      errno = saved;
+      return false;
+    }
+    return true;
+  }
+
+  std::FILE* stream() const { return stream_; }
+
+  // Flushes the content to the disk and closes the stream; errno tells why
+  // when it returns false. A full disk shows here at the latest.
+  bool finish_content() {
+    errno = 0;
+    if (std::fflush(stream_) != 0 || std::ferror(stream_) != 0 || ::fsync(fileno(stream_)) != 0) {
+      if (errno == 0) errno = EIO;  // an earlier write set the error flag and errno moved on
+      return false;
+    }
+    if (named_path_.empty()) return give_name();  // the name comes from the open descriptor
+    const bool closed = std::fclose(stream_) == 0;
+    stream_ = nullptr;
+    return closed;
+  }
+
+  // Renames the finished file over `path`; errno tells why when it fails.
+  bool replace(const std::string& path) {
+    if (::rename(named_path_.c_str(), path.c_str()) != 0) return false;
+    named_path_.clear();
+    return true;
+  }
+
+private:
+  std::string sibling_prefix() const {
+    return destination_.folder + "/." + destination_.name + kTemporaryInfix;
+  }
+
+  // Links the unnamed file into the folder under a free temporary name (a
+  // link cannot replace an existing file; the rename that follows can).
+  bool give_name() {
+    const std::string descriptor = "/proc/self/fd/" + std::to_string(fileno(stream_));
+    const std::string prefix = sibling_prefix() + std::to_string(::getpid()) + "-";
+    for (int attempt = 0; attempt < kTemporaryNameAttempts; ++attempt) {
+      const std::string candidate = prefix + std::to_string(attempt);
+      if (::linkat(AT_FDCWD, descriptor.c_str(), AT_FDCWD, candidate.c_str(), AT_SYMLINK_FOLLOW) == 0) {
+        named_path_ = candidate;
+        const bool closed = std::fclose(stream_) == 0;
+        stream_ = nullptr;
+        return closed;
+      }
+      if (errno != EEXIST) return false;
+    }
+    return false;
+  }
+
+  DestinationParts destination_;
+  std::FILE* stream_ = nullptr;
+  std::string named_path_;
+};
+
+} // namespace
+
+Status write_file_atomically(const std::string& path, const FileContentWriter& write_content) {
+  if (path.empty() || path.back() == '/') return {StatusCode::unwritable_file, "'" + path + "': not a file name"};
+  TemporaryFile file(split_destination(path));
+  if (!file.open()) return failure(path, "cannot create a file in its folder", errno);
+  if (!write_content(file.stream())) return {StatusCode::unwritable_file, path + ": the content could not be made"};
+  if (!file.finish_content()) return failure(path, "write failed", errno);
+  if (!file.replace(path)) return failure(path, "cannot replace it", errno);
+  return Status::success();
+}
+
+Status write_file_atomically(const std::string& path, const std::string& content) {
+  return write_file_atomically(path, [&content](std::FILE* out) {
+    std::fwrite(content.data(), 1, content.size(), out);  // a short write sets the error flag, checked after
+    return true;
+  });
+}
+
+} // namespace hullcover

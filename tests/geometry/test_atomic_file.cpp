@@ -1,0 +1,150 @@
+// write_file_atomically: the destination holds its old content or all of the
+// new, whatever stops the write (a failing writer, a full disk, a kill).
+
+#include "hullcover/geometry/atomic_file.h"
+
+#include "temp_dir.h"
+
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <dirent.h>
+#include <fcntl.h>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace hullcover {
+namespace {
+
+using test::TempDir;
+
+std::string read_whole(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::set<std::string> entries(const std::string& folder) {
+  std::set<std::string> names;
+  if (DIR* d = opendir(folder.c_str())) {
+    while (const dirent* e = readdir(d))
+      if (std::string(e->d_name) != "." && std::string(e->d_name) != "..") names.insert(e->d_name);
+    closedir(d);
+  }
+  return names;
+}
+
+// Whether the folder's file system makes unnamed files; where it does not,
+// a killed writer may leave its named temporary file (documented).
+bool makes_unnamed_files(const std::string& folder) {
+  const int fd = open(folder.c_str(), O_TMPFILE | O_WRONLY, 0600);
+  if (fd < 0) return false;
+  close(fd);
+  return true;
+}
+
+// Runs `work` in a child process, so limits and kills stay out of the test
+// runner; returns the child's raw wait status.
+template <typename Work>
+int in_child(Work work) {
+  const pid_t child = fork();
+  if (child == 0) _exit(work());
+  int status = 0;
+  waitpid(child, &status, 0);
+  return status;
+}
+
+// Big enough to pass stdio's buffer and any small file-size limit.
+const std::string kLargeContent(1 << 20, 'x');
+
+TEST(AtomicFile, WritesTheContentAndNothingElse) {
+  const TempDir dir;
+  const std::string path = dir.path("out.txt");
+  ASSERT_TRUE(write_file_atomically(path, std::string("hull 1\n")).ok());
+  EXPECT_EQ(read_whole(path), "hull 1\n");
+  EXPECT_EQ(entries(dir.path("")), std::set<std::string>{"out.txt"});
+}
+
+TEST(AtomicFile, ReplacesAnExistingFileWhole) {
+  const TempDir dir;
+  const std::string path = dir.write("out.txt", "old content that is longer than the new\n");
+  ASSERT_TRUE(write_file_atomically(path, std::string("new\n")).ok());
+  EXPECT_EQ(read_whole(path), "new\n");
+  EXPECT_EQ(entries(dir.path("")), std::set<std::string>{"out.txt"});
+}
+
+TEST(AtomicFile, AWriterThatGivesUpLeavesTheOldFileAndNoTemporary) {
+  const TempDir dir;
+  const std::string path = dir.write("out.txt", "old\n");
+  const Status s = write_file_atomically(path, [](std::FILE* out) {
+    std::fputs("half of the new", out);
+    return false;
+  });
+  EXPECT_EQ(s.code(), StatusCode::unwritable_file);
+  EXPECT_EQ(read_whole(path), "old\n");
+  EXPECT_EQ(entries(dir.path("")), std::set<std::string>{"out.txt"});
+}
+
+TEST(AtomicFile, AMissingFolderOrAFolderAtThePathIsAnErrorNamingIt) {
+  const TempDir dir;
+  const Status missing = write_file_atomically(dir.path("no/such/folder/out.txt"), std::string("x"));
+  EXPECT_EQ(missing.code(), StatusCode::unwritable_file);
+  EXPECT_NE(missing.message().find("no/such/folder/out.txt"), std::string::npos) << missing.message();
+  ASSERT_EQ(mkdir(dir.path("taken").c_str(), 0700), 0);
+  const Status folder = write_file_atomically(dir.path("taken"), std::string("x"));
+  EXPECT_EQ(folder.code(), StatusCode::unwritable_file);
+  EXPECT_EQ(entries(dir.path("")), std::set<std::string>{"taken"});
+  EXPECT_TRUE(entries(dir.path("taken")).empty());
+}
+
+// A full disk, as the file-size limit makes one: writes fail with EFBIG
+// (SIGXFSZ ignored, as a disk that is full raises no signal).
+TEST(AtomicFile, AFullDiskLeavesTheOldFileAndNoTemporary) {
+  const TempDir dir;
+  const std::string path = dir.write("out.txt", "old\n");
+  constexpr rlim_t kSmallFileLimit = 64 * 1024;
+  const int status = in_child([&] {
+    std::signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{kSmallFileLimit, kSmallFileLimit};
+    if (setrlimit(RLIMIT_FSIZE, &limit) != 0) return 3;
+    const Status s = write_file_atomically(path, kLargeContent);
+    if (s.ok()) return 4;
+    return s.message().find("write failed") != std::string::npos ? 0 : 5;
+  });
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << "3: no limit, 4: the write succeeded, 5: another message";
+  EXPECT_EQ(read_whole(path), "old\n");
+  EXPECT_EQ(entries(dir.path("")), std::set<std::string>{"out.txt"});
+}
+
+// Killed half way through its content: the destination keeps its old content.
+TEST(AtomicFile, AKillDuringTheWriteLeavesTheOldFile) {
+  const TempDir dir;
+  const std::string path = dir.write("out.txt", "old\n");
+  const int status = in_child([&] {
+    const Status s = write_file_atomically(path, [](std::FILE* out) {
+      std::fwrite(kLargeContent.data(), 1, kLargeContent.size(), out);
+      std::fflush(out);
+      std::raise(SIGKILL);
+      return true;
+    });
+    return s.ok() ? 0 : 1;
+  });
+  ASSERT_TRUE(WIFSIGNALED(status));
+  EXPECT_EQ(read_whole(path), "old\n");
+  const std::set<std::string> left = entries(dir.path(""));
+  if (makes_unnamed_files(dir.path(""))) {
+    EXPECT_EQ(left, std::set<std::string>{"out.txt"});
+  } else {
+    for (const std::string& name : left)
+      EXPECT_TRUE(name == "out.txt" || name.rfind(".out.txt.hullcover-", 0) == 0) << name;
+  }
+}
+
+} // namespace
+} // namespace hullcover
