@@ -32,6 +32,7 @@ struct BenchCommandOptions {
   std::string query_radius = "0.4m";
   std::string out_dir = "bench";
   bench::BenchRunOptions run;
+  ImportLimits limits;
   bool quiet = false;
 };
 
@@ -71,7 +72,7 @@ int run_bench(BenchCommandOptions& o) {
   std::vector<bench::BenchRow> rows;
   const size_t cells = scenes.size() * settings.value().size();
   for (const bench::SceneSpec& scene : scenes) {
-    const std::optional<LoadedScene> loaded = load_scene(scene.path, std::nullopt);
+    const std::optional<LoadedScene> loaded = load_scene(scene.path, std::nullopt, o.limits);
     if (!loaded) return kExitBadInput;
     const PreparedMesh& prepared = loaded->prepared;
     const Result<std::shared_ptr<const bvh::TriangleWorld>> triangles =
@@ -141,6 +142,7 @@ void register_bench_command(CLI::App& app, int& exit_status) {
       ->capture_default_str();
   cmd->add_option("--out", o->out_dir, "Folder for the files written (made if missing)")->capture_default_str();
   cmd->add_flag("-q,--quiet", o->quiet, "No progress on stderr");
+  add_import_limit_options(*cmd, o->limits);
   cmd->callback([o, &exit_status] { exit_status = run_bench(*o); });
 }
 

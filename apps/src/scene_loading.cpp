@@ -35,7 +35,11 @@ void add_import_limit_options(CLI::App& command, ImportLimits& limits) {
       ->check(CLI::PositiveNumber);
   command
       .add_option("--max-triangles", limits.max_triangles,
-                  "Most triangles a scene may place, counting a mesh once per node that places it")
+                  "Most triangles a scene may place, counting a mesh once per node that places it (default: one per "
+                  "8 bytes of the files read, at least 65,536, at most 4,194,304)")
+      ->check(CLI::PositiveNumber);
+  command
+      .add_option("--max-materials", limits.max_materials, "Most distinct materials an OBJ file may name (usemtl)")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
 }

@@ -134,12 +134,14 @@ bool segment_meets_hull(const RuntimeHull& hull, const Eigen::Vector3d& a, const
 ClosestPoints closest_to_segment_apart(const RuntimeHull& hull, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                        double good_enough) {
   // Apart: the closest hull point lies on a facet some point of the segment
-  // is in front of (sd is linear along the segment, so an end point is).
+  // is in front of (sd is linear along the segment, so an end point is), or
+  // on the plane of: a segment in a flat hull's plane, beside its rim, is in
+  // front of neither face, and only a side, which has no facet, separates it.
   // There it is either the projection of an end point or on an edge.
   ClosestPoints best{kInfinity, a, a};
   for (int f = 0; f < static_cast<int>(hull.shape.facets.size()) && best.distance > good_enough; ++f) {
     const Plane& plane = hull.shape.planes[f];
-    const bool a_in_front = plane.signed_distance(a) > 0.0, b_in_front = plane.signed_distance(b) > 0.0;
+    const bool a_in_front = plane.signed_distance(a) >= 0.0, b_in_front = plane.signed_distance(b) >= 0.0;
     if (!a_in_front && !b_in_front) continue;
     // An end point's own closest point on this facet is its projection when
     // that falls inside; otherwise it is on an edge, which the edge pass

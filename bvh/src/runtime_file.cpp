@@ -3,11 +3,11 @@
 #include "query_guard.h"
 
 #include "hullcover/geometry/atomic_file.h"
+#include "hullcover/geometry/regular_file.h"
 #include "hullcover/geometry/tolerances.h"
 
 #include <cmath>
 #include <cstring>
-#include <fstream>
 
 namespace hullcover::bvh {
 namespace {
@@ -122,14 +122,9 @@ Status write_hulls(const std::vector<RuntimeHull>& hulls, const std::string& pat
 }
 
 Result<std::vector<RuntimeHull>> read_hulls(const std::string& path) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) return Status{StatusCode::file_not_found, path + ": no such file"};
-  const std::streamoff length = in.tellg();
-  if (length < 0) return Status{StatusCode::unreadable_file, path + ": cannot read"};
-  std::vector<unsigned char> bytes(static_cast<size_t>(length));
-  in.seekg(0);
-  if (!in.read(reinterpret_cast<char*>(bytes.data()), length))
-    return Status{StatusCode::unreadable_file, path + ": cannot read"};
+  Result<std::string> content = read_regular_file(path);
+  if (!content.ok()) return content.status();
+  const std::vector<unsigned char> bytes(content.value().begin(), content.value().end());
   Reader r{bytes.data(), bytes.size()};
   if (!r.has(kHeaderBytes) || std::memcmp(bytes.data(), kMagic, 8) != 0)
     return Status{StatusCode::unknown_format, path + ": not a hullcover runtime file (no HCWORLD header)"};
@@ -180,6 +175,7 @@ Result<std::vector<RuntimeHull>> read_hulls(const std::string& path) {
     for (std::vector<int>& f : s.facets) {
       const std::uint32_t n = r.u32();
       if (n < 3) return broken(path, where + "a facet has fewer than 3 corners");
+      if (n > I - total) return broken(path, where + "facet sizes add up to more than the index count");
       f.resize(n);
       total += n;
     }

@@ -136,7 +136,7 @@ TEST(BenchCommand, BadSweepsAndScenesExitWithTwoAndSaySo) {
   const std::string scene = dir.write("crates.obj", crates_obj());
   for (const std::string& arguments :
        {scene + " --agent-radius 0.3x", scene + " --max-deviation -1", scene + "@0", scene + "@metres",
-        dir.path("missing.obj"), scene + " --query-radius 0"}) {
+        dir.path("missing.obj"), scene + " --query-radius 0", scene + " --max-triangles 2"}) {
     const CommandRun r = run_hullcover(dir, "bench " + arguments + " --out " + dir.path("out") + kQuick);
     EXPECT_EQ(r.status, 2) << arguments;
     EXPECT_NE(r.err.find("error"), std::string::npos) << arguments << ": " << r.err;

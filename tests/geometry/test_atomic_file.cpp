@@ -8,7 +8,6 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
-#include <dirent.h>
 #include <fcntl.h>
 #include <fstream>
 #include <set>
@@ -29,15 +28,6 @@ std::string read_whole(const std::string& path) {
   return s.str();
 }
 
-std::set<std::string> entries(const std::string& folder) {
-  std::set<std::string> names;
-  if (DIR* d = opendir(folder.c_str())) {
-    while (const dirent* e = readdir(d))
-      if (std::string(e->d_name) != "." && std::string(e->d_name) != "..") names.insert(e->d_name);
-    closedir(d);
-  }
-  return names;
-}
 
 // Whether the folder's file system makes unnamed files; where it does not,
 // a killed writer may leave its named temporary file (documented).
@@ -67,7 +57,7 @@ TEST(AtomicFile, WritesTheContentAndNothingElse) {
   const std::string path = dir.path("out.txt");
   ASSERT_TRUE(write_file_atomically(path, std::string("hull 1\n")).ok());
   EXPECT_EQ(read_whole(path), "hull 1\n");
-  EXPECT_EQ(entries(dir.path("")), std::set<std::string>{"out.txt"});
+  EXPECT_EQ(test::folder_entries(dir.path("")), std::set<std::string>{"out.txt"});
 }
 
 TEST(AtomicFile, ReplacesAnExistingFileWhole) {
@@ -75,7 +65,7 @@ TEST(AtomicFile, ReplacesAnExistingFileWhole) {
   const std::string path = dir.write("out.txt", "old content that is longer than the new\n");
   ASSERT_TRUE(write_file_atomically(path, std::string("new\n")).ok());
   EXPECT_EQ(read_whole(path), "new\n");
-  EXPECT_EQ(entries(dir.path("")), std::set<std::string>{"out.txt"});
+  EXPECT_EQ(test::folder_entries(dir.path("")), std::set<std::string>{"out.txt"});
 }
 
 TEST(AtomicFile, AWriterThatGivesUpLeavesTheOldFileAndNoTemporary) {
@@ -87,7 +77,7 @@ TEST(AtomicFile, AWriterThatGivesUpLeavesTheOldFileAndNoTemporary) {
   });
   EXPECT_EQ(s.code(), StatusCode::unwritable_file);
   EXPECT_EQ(read_whole(path), "old\n");
-  EXPECT_EQ(entries(dir.path("")), std::set<std::string>{"out.txt"});
+  EXPECT_EQ(test::folder_entries(dir.path("")), std::set<std::string>{"out.txt"});
 }
 
 TEST(AtomicFile, AMissingFolderOrAFolderAtThePathIsAnErrorNamingIt) {
@@ -98,8 +88,8 @@ TEST(AtomicFile, AMissingFolderOrAFolderAtThePathIsAnErrorNamingIt) {
   ASSERT_EQ(mkdir(dir.path("taken").c_str(), 0700), 0);
   const Status folder = write_file_atomically(dir.path("taken"), std::string("x"));
   EXPECT_EQ(folder.code(), StatusCode::unwritable_file);
-  EXPECT_EQ(entries(dir.path("")), std::set<std::string>{"taken"});
-  EXPECT_TRUE(entries(dir.path("taken")).empty());
+  EXPECT_EQ(test::folder_entries(dir.path("")), std::set<std::string>{"taken"});
+  EXPECT_TRUE(test::folder_entries(dir.path("taken")).empty());
 }
 
 // A full disk, as the file-size limit makes one: writes fail with EFBIG
@@ -119,7 +109,7 @@ TEST(AtomicFile, AFullDiskLeavesTheOldFileAndNoTemporary) {
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 0) << "3: no limit, 4: the write succeeded, 5: another message";
   EXPECT_EQ(read_whole(path), "old\n");
-  EXPECT_EQ(entries(dir.path("")), std::set<std::string>{"out.txt"});
+  EXPECT_EQ(test::folder_entries(dir.path("")), std::set<std::string>{"out.txt"});
 }
 
 // Killed half way through its content: the destination keeps its old content.
@@ -137,7 +127,7 @@ TEST(AtomicFile, AKillDuringTheWriteLeavesTheOldFile) {
   });
   ASSERT_TRUE(WIFSIGNALED(status));
   EXPECT_EQ(read_whole(path), "old\n");
-  const std::set<std::string> left = entries(dir.path(""));
+  const std::set<std::string> left = test::folder_entries(dir.path(""));
   if (makes_unnamed_files(dir.path(""))) {
     EXPECT_EQ(left, std::set<std::string>{"out.txt"});
   } else {

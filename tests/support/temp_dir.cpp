@@ -27,4 +27,12 @@ std::string TempDir::write(const std::string& name, const std::string& content) 
   return p;
 }
 
+std::set<std::string> folder_entries(const std::string& folder) {
+  std::set<std::string> names;
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, error))
+    names.insert(entry.path().filename().string());
+  return names;
+}
+
 } // namespace hullcover::test

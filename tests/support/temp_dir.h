@@ -1,6 +1,7 @@
 #pragma once
 // A fresh directory per test, removed afterwards, for files tests write.
 
+#include <set>
 #include <string>
 
 namespace hullcover::test {
@@ -20,5 +21,8 @@ public:
 private:
   std::string dir_;
 };
+
+/// Every name in `folder` (not "." or ".."); empty when it cannot be read.
+std::set<std::string> folder_entries(const std::string& folder);
 
 } // namespace hullcover::test

@@ -3,13 +3,13 @@
 #include "hullcover/bvh/runtime_file.h"
 #include "hullcover/covering/convex_hull_3d.h"
 #include "hullcover/geometry/planar_hull.h"
+#include "hullcover/geometry/regular_file.h"
 #include "hullcover/geometry/tolerances.h"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <optional>
 #include <sstream>
 
@@ -75,8 +75,9 @@ std::optional<bvh::RuntimeHull> group_hull(ConvexHullBuilder& builder, const std
 }
 
 Result<HullSet> read_obj_groups(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return Status{StatusCode::file_not_found, path + ": no such file"};
+  const Result<std::string> content = read_regular_file(path);
+  if (!content.ok()) return content.status();
+  std::istringstream in(content.value());
   std::vector<Eigen::Vector3d> vertices;
   std::vector<ObjGroup> groups(1);  // group 0: faces before any o/g line
   std::string line;

@@ -6,9 +6,63 @@
 
 #include "patch_merging.h"
 
+#include "hullcover/geometry/triangle_distance.h"
+
 #include <algorithm>
 
 namespace hullcover::detail {
+namespace {
+
+void corners_of_face(const Mesh& mesh, int f, Eigen::Vector3d (&corners)[3]) {
+  const Eigen::Vector3i& t = mesh.triangles[f];
+  for (int k = 0; k < 3; ++k) corners[k] = mesh.positions[t[k]];
+}
+
+Aabb box_of_face(const Eigen::Vector3d (&corners)[3]) {
+  Aabb box;
+  for (const Eigen::Vector3d& p : corners) box.extend(p);
+  return box;
+}
+
+// Patches of up to this many faces are searched face by face: a tree query
+// costs about as much as that many box tests.
+constexpr size_t kFacesReadDirectly = 32;
+
+} // namespace
+
+bool PatchMerger::face_near_patch(int f, int q) const {
+  const Mesh& mesh = index_.mesh();
+  Eigen::Vector3d face[3], other[3];
+  corners_of_face(mesh, f, face);
+  const Aabb reach = grown(box_of_face(face), near_merge_distance_);
+  const std::vector<int>& faces = patches_[q].faces;
+  // A small patch is read face by face; a large one through the scene's
+  // face tree, which finds only the faces near this one.
+  std::vector<int> candidates;
+  if (faces.size() > kFacesReadDirectly) {
+    index_.face_tree.overlapping(reach, candidates);
+    candidates.erase(std::remove_if(candidates.begin(), candidates.end(), [&](int g) { return face_patch_[g] != q; }),
+                     candidates.end());
+  }
+  for (int g : faces.size() > kFacesReadDirectly ? candidates : faces) {
+    corners_of_face(mesh, g, other);
+    if (boxes_overlap(reach, box_of_face(other)) && triangle_distance(face, other) <= near_merge_distance_)
+      return true;
+  }
+  return false;
+}
+
+bool PatchMerger::patches_near(int a, int b) const {
+  const Aabb reach = grown(bounding_box_of(positions_of(index_.mesh(), patches_[b].hull_vertices)),
+                           near_merge_distance_);
+  Eigen::Vector3d face[3];
+  for (int f : patches_[a].faces) {
+    corners_of_face(index_.mesh(), f, face);
+    if (!boxes_overlap(reach, box_of_face(face))) continue;
+    if (face_near_patch(f, b)) return true;
+  }
+  return false;
+}
 
 int PatchMerger::push_near_pairs() {
   const int patch_count = static_cast<int>(patches_.size());
@@ -25,7 +79,7 @@ int PatchMerger::push_near_pairs() {
       const Patch& pb = patches_[b];
       if (b <= a || pa.shared_length.count(b)) continue;
       if (!near_pairs_tried_.insert({a, pa.version, b, pb.version}).second) continue;
-      if (!patches_support_each_other(index_, pa, pb)) continue;
+      if (!patches_support_each_other(index_, pa, pb) || !patches_near(a, b)) continue;
       push_pair(a, b);
       ++pushed;
     }

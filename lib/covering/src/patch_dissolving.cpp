@@ -35,7 +35,8 @@ std::vector<int> PatchMerger::receivers_of(int f, int h, const AabbTree& near_tr
     near_tree.overlapping(box, near);
     std::sort(near.begin(), near.end());
     for (int q : near)
-      if (q != h && patches_[q].alive && std::find(out.begin(), out.end(), q) == out.end()) out.push_back(q);
+      if (q != h && patches_[q].alive && std::find(out.begin(), out.end(), q) == out.end() && face_near_patch(f, q))
+        out.push_back(q);
   }
   return out;
 }

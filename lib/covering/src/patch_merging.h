@@ -93,6 +93,12 @@ private:
   /// Each patch's bounding box grown by half the near-merge distance
   /// (empty for dead patches): boxes that overlap are within that distance.
   std::vector<Aabb> near_boxes() const;
+  /// Whether face `f` comes within the near-merge distance of a face of
+  /// patch `q` (nearest points of the triangles, not boxes: the same pairs
+  /// however the scene is turned; boxes only pick the candidates).
+  bool face_near_patch(int f, int q) const;
+  /// Whether patches `a` and `b` come within the near-merge distance.
+  bool patches_near(int a, int b) const;
   /// Queues every pair of patches sharing an edge of which one changed
   /// after `changed_after` (a value of changes_; -1: every pair).
   void push_neighbour_pairs(long changed_after);
@@ -100,9 +106,10 @@ private:
   /// how many were emptied.
   int dissolve_patches();
   /// Moves each face of patch `h` into a patch across one of its edges or
-  /// in `near_tree` (patch boxes grown by half the near-merge distance),
-  /// the first that stays valid; when one face finds none, puts everything
-  /// back and returns false. `lone`: as in face_fits.
+  /// within the near-merge distance of it (`near_tree`: patch boxes grown by
+  /// half that distance, to find candidates), the first that stays valid;
+  /// when one face finds none, puts everything back and returns false.
+  /// `lone`: as in face_fits.
   bool dissolve(int h, const AabbTree& near_tree, int lone);
   /// The candidate for face `f` joining patch `q`, if valid; patch slot
   /// `lone` holds the face alone (single_face_patch) meanwhile.
@@ -111,7 +118,8 @@ private:
   /// patch slot `lone` holds the face alone.
   void move_face(int f, int q, int lone, Candidate&& candidate);
   /// The patches face `f` of patch `h` may move to: across its edges, the
-  /// longest shared first, then those of `near_tree` overlapping it.
+  /// longest shared first, then those within the near-merge distance
+  /// (candidates from `near_tree`).
   std::vector<int> receivers_of(int f, int h, const AabbTree& near_tree) const;
   /// Exact mode: condition 4 of a flat polygon for a solid hull of patches
   /// a and b (`ids` their hull corners' mesh vertex ids) no wider than
@@ -128,7 +136,8 @@ private:
   /// Takes pairs off the queue until it is empty.
   void run_pairs();
   /// Queues every pair of patches sharing no edge whose boxes, grown by half
-  /// the near-merge distance, overlap, and that pass condition 2, unless
+  /// the near-merge distance, overlap, whose faces come within that distance
+  /// (patches_near), and that pass condition 2, unless
   /// tried before as they are; returns how many.
   int push_near_pairs();
 

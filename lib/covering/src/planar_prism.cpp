@@ -75,6 +75,17 @@ double allowed_prism_thickness(const SceneIndex& index, const FlatPolygon& polyg
   double thickness = cap;
   scratch.clear();
   index.face_tree.overlapping(region, scratch);
+  // Across an edge whose two faces wind opposite ways, "behind" this patch
+  // is the other face's front: a prism would fill its free space (a flipped
+  // triangle in a floor would grow a prism up into the room). Flat instead.
+  const MeshConnectivity& connectivity = index.prepared->connectivity;
+  for (int f : scratch) {
+    if (!in_patch(f)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int e = connectivity.face_edges[f][k];
+      if (e >= 0 && connectivity.edges[e].kind == EdgeKind::orientation_conflict) return 0.0;
+    }
+  }
   std::vector<Eigen::Vector3d> triangle(3);
   for (int f : scratch) {
     if (in_patch(f)) continue;

@@ -1,6 +1,9 @@
 #include "hullcover/geometry/triangle_distance.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
+#include <limits>
 
 namespace hullcover {
 
@@ -41,6 +44,62 @@ Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen:
     });
   }
   return a + ab * (vb / sum) + ac * (vc / sum);
+}
+
+double segment_distance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,
+                        const Eigen::Vector3d& q1) {
+  // The parameters of the nearest points, clamped to the segments in turn,
+  // as in Ericson's Real-Time Collision Detection, 5.1.9.
+  const Eigen::Vector3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  double s = 0.0, t = 0.0;
+  if (!(a > 0.0) && !(e > 0.0)) return r.norm();
+  if (!(a > 0.0)) {
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = d1.dot(r);
+    if (!(e > 0.0)) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = d1.dot(d2), denominator = a * e - b * b;
+      s = denominator > 0.0 ? std::clamp((b * f - c * e) / denominator, 0.0, 1.0) : 0.0;  // parallel: any s
+      t = (b * s + f) / e;
+      if (t < 0.0) {
+        t = 0.0;
+        s = std::clamp(-c / a, 0.0, 1.0);
+      } else if (t > 1.0) {
+        t = 1.0;
+        s = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  return ((p0 + s * d1) - (q0 + t * d2)).norm();
+}
+
+double triangle_distance(const Eigen::Vector3d (&s)[3], const Eigen::Vector3d (&t)[3]) {
+  // Every candidate is the distance of a real pair of points, one on each
+  // triangle, so none is below the true distance; and the true one is among
+  // them: it is met at a corner against a face, at two sides, or, where the
+  // triangles cross, at a side's crossing of the other's plane (distance 0).
+  double best = std::numeric_limits<double>::infinity();
+  const auto corners_against = [&best](const Eigen::Vector3d (&from)[3], const Eigen::Vector3d (&onto)[3]) {
+    const Eigen::Vector3d normal = (onto[1] - onto[0]).cross(onto[2] - onto[0]);
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d& p = from[i];
+      best = std::min(best, (p - closest_point_on_triangle(p, onto[0], onto[1], onto[2])).norm());
+      const Eigen::Vector3d& q = from[(i + 1) % 3];
+      const double side_p = normal.dot(p - onto[0]), side_q = normal.dot(q - onto[0]);
+      if ((side_p <= 0.0) != (side_q <= 0.0)) {
+        const Eigen::Vector3d crossing = p + (side_p / (side_p - side_q)) * (q - p);
+        best = std::min(best, (crossing - closest_point_on_triangle(crossing, onto[0], onto[1], onto[2])).norm());
+      }
+    }
+  };
+  corners_against(s, t);
+  corners_against(t, s);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) best = std::min(best, segment_distance(s[i], s[(i + 1) % 3], t[j], t[(j + 1) % 3]));
+  return best;
 }
 
 } // namespace hullcover

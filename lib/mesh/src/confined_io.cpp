@@ -1,5 +1,7 @@
 #include "confined_io.h"
 
+#include <assimp/IOStream.hpp>
+
 #include <algorithm>
 #include <cstring>
 #include <system_error>
@@ -64,7 +66,11 @@ Assimp::IOStream* ConfinedIOSystem::Open(const char* file, const char* mode) {
   const Verdict verdict = judge(file);
   note(file, verdict);
   if (verdict != Verdict::allowed) return nullptr;
-  return Assimp::DefaultIOSystem::Open(file, mode);
+  Assimp::IOStream* stream = Assimp::DefaultIOSystem::Open(file, mode);
+  std::error_code error;
+  const std::filesystem::path resolved = std::filesystem::weakly_canonical(std::filesystem::absolute(file, error), error);
+  if (stream != nullptr && !error && opened_.insert(resolved).second) bytes_opened_ += stream->FileSize();
+  return stream;
 }
 
 } // namespace hullcover::detail

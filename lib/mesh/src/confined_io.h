@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <set>
 #include <string>
 
 namespace hullcover::detail {
@@ -29,6 +30,10 @@ public:
   /// True when the refusal was a file over max_file_bytes (a limit, not
   /// confinement).
   bool refused_for_size() const { return refused_for_size_; }
+  /// Bytes of the distinct files opened so far (each counted once, however
+  /// often the importer opens it): what the default triangle limit scales
+  /// with.
+  std::uint64_t bytes_opened() const { return bytes_opened_; }
 
 private:
   enum class Verdict { allowed, outside, too_large };
@@ -42,6 +47,8 @@ private:
   // before it opens, and give up quietly on a no.
   mutable std::string refusal_;
   mutable bool refused_for_size_ = false;
+  std::set<std::filesystem::path> opened_;
+  std::uint64_t bytes_opened_ = 0;
 };
 
 } // namespace hullcover::detail

@@ -77,12 +77,7 @@ Status check_references(const Json& gltf) {
       if (uri == item.end() || !uri->is_string()) continue;
       const std::string text = uri->get<std::string>();
       if (text.compare(0, 5, "data:") == 0) continue;
-      const std::string path = percent_decoded(text);
-      const bool scheme = path.find(':') != std::string::npos;
-      const bool absolute = !path.empty() && (path[0] == '/' || path[0] == '\\');
-      bool climbs = false;
-      for (const auto& part : std::filesystem::path(path)) climbs |= part == "..";
-      if (scheme || absolute || climbs || path.find('\\') != std::string::npos)
+      if (reference_text_leaves_folder(percent_decoded(text)))
         return {StatusCode::reference_outside_folder,
                 std::string("refers to '") + text + "' (" + list +
                     "), outside the scene file's folder (references are read only inside it: no absolute paths, "

@@ -11,6 +11,7 @@
 
 #include <pthread.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <exception>
 #include <functional>
@@ -66,7 +67,8 @@ struct PlacedNode {
   const aiNode* node;
   Eigen::Matrix4d world;
 };
-Result<std::vector<PlacedNode>> place_nodes(const aiScene& scene, const ImportLimits& limits) {
+Result<std::vector<PlacedNode>> place_nodes(const aiScene& scene, const ImportLimits& limits,
+                                            std::uint64_t triangle_limit) {
   std::vector<PlacedNode> placed;
   std::vector<std::pair<PlacedNode, int>> pending = {{{scene.mRootNode, Eigen::Matrix4d::Identity()}, 1}};
   std::uint64_t faces = 0;
@@ -77,10 +79,14 @@ Result<std::vector<PlacedNode>> place_nodes(const aiScene& scene, const ImportLi
       return detail::deeper_than_limit("node hierarchy", limits);
     item.world = item.world * to_eigen(item.node->mTransformation);
     for (unsigned i = 0; i < item.node->mNumMeshes; ++i) faces += scene.mMeshes[item.node->mMeshes[i]]->mNumFaces;
-    if (faces > limits.max_triangles)
-      return Status{StatusCode::limit_exceeded, "more than the limit of " + std::to_string(limits.max_triangles) +
-                                                    " triangles once every node places its meshes (raise it with "
-                                                    "--max-triangles)"};
+    if (faces > triangle_limit)
+      return Status{StatusCode::limit_exceeded,
+                    "more than the limit of " + std::to_string(triangle_limit) +
+                        " triangles once every node places its meshes (" +
+                        (limits.max_triangles ? std::string("--max-triangles")
+                                              : "by default one per " + std::to_string(kInputBytesPerDefaultTriangle) +
+                                                    " bytes of the files read; raise it with --max-triangles") +
+                        ")"};
     for (unsigned c = item.node->mNumChildren; c-- > 0;) pending.push_back({{item.node->mChildren[c], item.world}, depth + 1});
     placed.push_back(item);
   }
@@ -134,7 +140,9 @@ Result<ImportedMesh> import_with_assimp(const std::string& path, const ImportLim
   if (scene == nullptr)
     return Status{StatusCode::unreadable_file, path + ": cannot read: " + importer.GetErrorString()};
 
-  Result<std::vector<PlacedNode>> placed = place_nodes(*scene, limits);
+  const std::uint64_t triangle_limit =
+      limits.max_triangles ? *limits.max_triangles : default_triangle_limit(confined->bytes_opened());
+  Result<std::vector<PlacedNode>> placed = place_nodes(*scene, limits, triangle_limit);
   if (!placed.ok()) return Status{placed.status().code(), path + ": " + placed.status().message()};
   ImportedMesh out;
   for (const PlacedNode& p : placed.value()) append_meshes(*scene, *p.node, p.world, out);
@@ -193,6 +201,11 @@ Result<ImportedMesh> import_checked(const std::string& path, const ImportLimits&
 }
 
 } // namespace
+
+std::uint64_t default_triangle_limit(std::uint64_t input_bytes) {
+  return std::clamp(input_bytes / kInputBytesPerDefaultTriangle, kDefaultTriangleLimitFloor,
+                    kDefaultTriangleLimitCeiling);
+}
 
 Result<ImportedMesh> import_mesh(const std::string& path, const ImportLimits& limits) {
   try {

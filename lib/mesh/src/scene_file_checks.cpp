@@ -1,6 +1,7 @@
 #include "scene_file_checks.h"
 
 #include "gltf_file_checks.h"
+#include "obj_file_checks.h"
 
 #include <algorithm>
 #include <cctype>
@@ -143,6 +144,7 @@ Status check_scene_file(const std::string& path, const ImportLimits& limits) {
   if (ext == ".ply") return check_ply(in, file_bytes);
   if (ext == ".stl") return check_stl(in, file_bytes);
   if (ext == ".gltf" || ext == ".glb") return check_gltf(path, in, file_bytes, ext == ".glb", limits);
+  if (ext == ".obj") return check_obj(in, limits);
   return Status::success();
 }
 

@@ -9,6 +9,7 @@
 #include "hullcover/mesh/mesh_import.h"
 
 #include <cstdint>
+#include <filesystem>
 #include <string>
 
 namespace hullcover::detail {
@@ -27,17 +28,33 @@ inline Status deeper_than_limit(const std::string& what, const ImportLimits& lim
                                           " levels (raise it with --max-node-depth)"};
 }
 
+/// Whether the text of a reference a scene file makes (a glTF URI once
+/// percent-decoded, an OBJ material library's name) could lead outside the
+/// scene's folder: a scheme (`http:`, `file:`), an absolute path, a `..`
+/// or a backslash. Judged on the text before any reader resolves it; the
+/// confined IO system judges the path the reader makes of it as well.
+inline bool reference_text_leaves_folder(const std::string& path) {
+  const bool scheme = path.find(':') != std::string::npos;
+  const bool absolute = !path.empty() && (path[0] == '/' || path[0] == '\\');
+  bool climbs = false;
+  for (const auto& part : std::filesystem::path(path)) climbs |= part == "..";
+  return scheme || absolute || climbs || path.find('\\') != std::string::npos;
+}
+
 /// How far into a PLY file its header may run before the file is taken as
 /// damaged (a header cut off would otherwise be read to the end).
 inline constexpr std::size_t kMaxPlyHeaderBytes = std::size_t{1} << 20;
 
-/// Checks a glTF (.gltf, .glb), PLY or binary STL file against itself and
-/// `limits`; other formats pass (Assimp reads them within the file's bytes).
+/// Checks a glTF (.gltf, .glb), PLY, binary STL or OBJ file against itself
+/// and `limits`; other formats pass (Assimp reads them within the file's
+/// bytes).
 /// Fails with `unreadable_file` when the file contradicts itself (a GLB
 /// chunk past the end, a PLY header with no end, counts or accessors that
 /// need more bytes than there are, a node graph that is not a forest), and
 /// `limit_exceeded` when JSON nesting or the node hierarchy is deeper than
-/// limits.max_node_depth. Messages do not start with the path.
+/// limits.max_node_depth or an OBJ names more than limits.max_materials
+/// materials, and `reference_outside_folder` for a reference whose text
+/// leads out of the folder. Messages do not start with the path.
 Status check_scene_file(const std::string& path, const ImportLimits& limits);
 
 } // namespace hullcover::detail

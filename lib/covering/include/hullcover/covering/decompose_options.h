@@ -65,7 +65,7 @@ struct DecomposeOptions {
   /// kDefaultPrismCapRelative x diagonal.
   std::optional<double> prism_thickness_cap;
   /// Near merges, after the paper's merging of patches that share an edge:
-  /// patches sharing none whose bounding boxes come within this distance,
+  /// patches sharing none whose faces come within this distance (nearest points),
   /// scene units, are tried as pairs too, under the same conditions; then
   /// the paper's pass resumes, until neither merges. >= 0, 0 = off; default
   /// exact kDefaultNearMergeRelative x diagonal, paper 0 (the paper's

@@ -16,4 +16,15 @@ Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen:
 /// The point of segment a-b nearest to `p` (`a` when a = b).
 Eigen::Vector3d closest_point_on_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b);
 
+/// Distance between segments p0-p1 and q0-q1 (either may be a single
+/// point), scene units; cannot fail.
+double segment_distance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,
+                        const Eigen::Vector3d& q1);
+
+/// Distance between two triangles, each given by its three corners: 0 when
+/// they touch or cross, and the same whichever way the scene is turned or
+/// moved (up to rounding), unlike a distance between their bounding boxes.
+/// Scene units; cannot fail (degenerate triangles measure as their sides).
+double triangle_distance(const Eigen::Vector3d (&s)[3], const Eigen::Vector3d (&t)[3]);
+
 } // namespace hullcover

@@ -6,6 +6,7 @@
 #include "hullcover/geometry/status.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace hullcover {
@@ -13,7 +14,7 @@ namespace hullcover {
 /// Bounds on what one import may read and build, checked before the reader
 /// allocates for it (a file may come from anyone: a baking service's upload).
 /// Every limit is the user's to raise (`--max-file-size`, `--max-node-depth`,
-/// `--max-triangles` on every command that reads a scene).
+/// `--max-triangles`, `--max-materials` on every command that reads a scene).
 struct ImportLimits {
   /// Bytes of the scene file, and of each file it refers to (glTF buffers
   /// and images, OBJ material libraries). 1 GiB.
@@ -22,10 +23,27 @@ struct ImportLimits {
   /// tens deep; a 100,000-deep one would run the importer out of stack.
   int max_node_depth = 256;
   /// Triangles after node instancing (a mesh placed by two nodes counts
-  /// twice): a small file can place a mesh millions of times. About 100
-  /// bytes of memory each while importing; 4 million.
-  std::uint64_t max_triangles = std::uint64_t{4} << 20;
+  /// twice): a small file can place a mesh millions of times. Unset: the
+  /// default rule, `default_triangle_limit` of the bytes read. Set: that
+  /// many, whatever the files' size.
+  std::optional<std::uint64_t> max_triangles;
+  /// Distinct materials an OBJ file may name with `usemtl` (Assimp's OBJ
+  /// reader takes about 35 KB and quadratic time per name).
+  int max_materials = 4096;
 };
+
+/// Placed triangles the default rule allows for `input_bytes` read (the
+/// scene file and the files it refers to): one per
+/// `kInputBytesPerDefaultTriangle` bytes, at least
+/// `kDefaultTriangleLimitFloor`, at most `kDefaultTriangleLimitCeiling`. A
+/// file stores a triangle in 9 bytes or more (a GLB with 16-bit indices and
+/// shared vertices), so only instancing meets the rule; and at about 450
+/// bytes of memory per placed triangle a file under 1 MB stays under
+/// 512 MB.
+inline constexpr std::uint64_t kInputBytesPerDefaultTriangle = 8;
+inline constexpr std::uint64_t kDefaultTriangleLimitFloor = std::uint64_t{1} << 16;
+inline constexpr std::uint64_t kDefaultTriangleLimitCeiling = std::uint64_t{4} << 20;
+std::uint64_t default_triangle_limit(std::uint64_t input_bytes);
 
 /// What an import saw besides the mesh itself.
 struct ImportReport {

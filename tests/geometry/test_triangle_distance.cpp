@@ -1,0 +1,87 @@
+// triangle_distance and segment_distance: exact on cases whose answer is
+// known by construction, never above a dense sampling of point pairs, and
+// the same under a rotation (what near merges rely on).
+
+#include "hullcover/geometry/triangle_distance.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <limits>
+#include <random>
+#include <vector>
+
+namespace hullcover {
+namespace {
+
+using V = Eigen::Vector3d;
+
+// Rounding allowed in a distance computed from unit-sized coordinates.
+constexpr double kUnitRounding = 1e-12;
+
+TEST(SegmentDistance, SkewParallelAndPointCases) {
+  // Skew: x axis and a line along z one unit above it.
+  EXPECT_NEAR(segment_distance(V(-1, 0, 0), V(1, 0, 0), V(0, 1, -1), V(0, 1, 1)), 1.0, kUnitRounding);
+  // Parallel and overlapping, 2 apart.
+  EXPECT_NEAR(segment_distance(V(0, 0, 0), V(2, 0, 0), V(1, 2, 0), V(3, 2, 0)), 2.0, kUnitRounding);
+  // Collinear with a gap of 1.
+  EXPECT_NEAR(segment_distance(V(0, 0, 0), V(1, 0, 0), V(2, 0, 0), V(3, 0, 0)), 1.0, kUnitRounding);
+  // A point against a segment, and two points.
+  EXPECT_NEAR(segment_distance(V(0.5, 3, 0), V(0.5, 3, 0), V(0, 0, 0), V(1, 0, 0)), 3.0, kUnitRounding);
+  EXPECT_NEAR(segment_distance(V(0, 0, 0), V(0, 0, 0), V(0, 0, 4), V(0, 0, 4)), 4.0, kUnitRounding);
+}
+
+TEST(TriangleDistance, KnownConfigurations) {
+  const V floor[3] = {V(0, 0, 0), V(2, 0, 0), V(0, 0, 2)};
+  const V above[3] = {V(0, 1, 0), V(2, 1, 0), V(0, 1, 2)};          // parallel, 1 above
+  const V crossing[3] = {V(0.5, -1, 0.5), V(0.5, 1, 0.5), V(0.6, 0, -3)};  // pierces the floor
+  const V edge_to_edge[3] = {V(3, 0, -1), V(3, 0, 3), V(5, 0, 1)};  // side x = 3 faces the floor's hypotenuse end
+  const V touching[3] = {V(2, 0, 0), V(3, 1, 0), V(3, -1, 0)};      // shares the floor's corner
+  EXPECT_NEAR(triangle_distance(floor, above), 1.0, kUnitRounding);
+  EXPECT_NEAR(triangle_distance(floor, crossing), 0.0, kUnitRounding);
+  EXPECT_NEAR(triangle_distance(floor, edge_to_edge), 1.0, kUnitRounding);
+  EXPECT_NEAR(triangle_distance(floor, touching), 0.0, kUnitRounding);
+  // Two crossing sides, neither triangle's corner near the other (edge-edge).
+  const V bar_a[3] = {V(-1, 0, 0), V(1, 0, 0), V(0, -0.001, -5)};
+  const V bar_b[3] = {V(0, 0.5, -1), V(0, 0.5, 1), V(5, 0.501, 0)};
+  EXPECT_NEAR(triangle_distance(bar_a, bar_b), 0.5, kUnitRounding);
+}
+
+constexpr int kPairs = 200, kSamplesPerSide = 30;
+// A sampled pair's distance exceeds the true one by at most the sample
+// spacing on both triangles (their sides are under 2 sqrt(3) long).
+constexpr double kSamplingSlack = 2.0 * 3.5 / kSamplesPerSide;
+
+// Random pairs: never above the nearest of many sampled point pairs, not far
+// below it (sampling resolution), and the same once both are turned.
+TEST(TriangleDistance, AgreesWithSamplingAndIgnoresRotation) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
+  const auto random_point = [&] { return V(coordinate(rng), coordinate(rng), coordinate(rng)); };
+  const auto samples = [](const V (&t)[3]) {
+    std::vector<V> out;
+    for (int i = 0; i <= kSamplesPerSide; ++i)
+      for (int j = 0; i + j <= kSamplesPerSide; ++j)
+        out.push_back(t[0] + (t[1] - t[0]) * i / kSamplesPerSide + (t[2] - t[0]) * j / kSamplesPerSide);
+    return out;
+  };
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.7, V(1, 2, 3).normalized()).toRotationMatrix();
+  for (int k = 0; k < kPairs; ++k) {
+    const V offset = 1.5 * random_point();
+    const V s[3] = {random_point(), random_point(), random_point()};
+    const V t[3] = {random_point() + offset, random_point() + offset, random_point() + offset};
+    const double d = triangle_distance(s, t);
+    double sampled = std::numeric_limits<double>::infinity();
+    for (const V& p : samples(s))
+      for (const V& q : samples(t)) sampled = std::min(sampled, (p - q).norm());
+    EXPECT_LE(d, sampled + kUnitRounding) << "pair " << k;
+    EXPECT_GE(d, sampled - kSamplingSlack) << "pair " << k;
+    const V s_turned[3] = {turn * s[0], turn * s[1], turn * s[2]};
+    const V t_turned[3] = {turn * t[0], turn * t[1], turn * t[2]};
+    EXPECT_NEAR(triangle_distance(s_turned, t_turned), d, kUnitRounding) << "pair " << k;
+  }
+}
+
+} // namespace
+} // namespace hullcover
