@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 namespace hullcover::validate {
 namespace {
@@ -49,8 +50,10 @@ TEST_P(SceneMetamorphic, TransformedSceneAuditsCleanWithTheSameHullCount) {
   const Mesh& mesh = imported.value().mesh;
   const long reference = clean_hull_count(mesh, "untransformed");
   ASSERT_GT(reference, 0);
+  std::printf("%s untransformed: %ld hulls\n", GetParam(), reference);
   for (const test::MeshTransform& t : test::metamorphic_transforms()) {
     const long count = clean_hull_count(test::transformed(mesh, t.map), t.name);
+    std::printf("%s %s: %ld hulls\n", GetParam(), t.name.c_str(), count);  // the figures for the issue
     EXPECT_LE(std::abs(count - reference), std::floor(t.hull_count_spread * reference))
         << t.name << ": " << count << " hulls, " << reference << " untransformed";
   }
