@@ -5,13 +5,17 @@
 
 #include "hullcover/mesh/mesh_import.h"
 
+#include "shared_data.h"
 #include "temp_dir.h"
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <string>
+#include <type_traits>
 
 namespace hullcover {
 namespace {
@@ -121,6 +125,140 @@ TEST(HostileImport, DeclaredCountsMustFitTheBytesPresent) {
   std::string buffer = gltf_with("bin.bin");
   dir.write("scene/bin.bin", std::string(8, '\0'));
   expect_failure(import_in(dir, "short_buffer.gltf", buffer), StatusCode::unreadable_file, "holds 8");
+}
+
+// A PLY header: three float coordinates a vertex, one list a face.
+std::string ply_header(const std::string& format, int vertices, int faces,
+                       const std::string& list_types = "uchar int") {
+  return "ply\nformat " + format + " 1.0\nelement vertex " + std::to_string(vertices) +
+         "\nproperty float x\nproperty float y\nproperty float z\nelement face " + std::to_string(faces) +
+         "\nproperty list " + list_types + " vertex_indices\nend_header\n";
+}
+
+// `value`'s bytes in a binary PLY of the given byte order.
+template <class T>
+std::string ply_bytes(T value, bool big_endian) {
+  std::uint64_t bits = 0;
+  if constexpr (std::is_floating_point_v<T>) {
+    static_assert(sizeof(T) == sizeof(std::uint32_t));
+    std::uint32_t narrow = 0;
+    std::memcpy(&narrow, &value, sizeof narrow);
+    bits = narrow;
+  } else {
+    bits = static_cast<std::make_unsigned_t<T>>(value);
+  }
+  std::string bytes(sizeof(T), '\0');
+  for (std::size_t i = 0; i < sizeof(T); ++i)
+    bytes[big_endian ? sizeof(T) - 1 - i : i] = static_cast<char>(bits >> (8 * i) & 0xff);
+  return bytes;
+}
+
+// A tetrahedron (four triangles) as a binary PLY.
+std::string binary_tetrahedron(bool big_endian) {
+  std::string ply = ply_header(big_endian ? "binary_big_endian" : "binary_little_endian", 4, 4);
+  for (float coordinate : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f})
+    ply += ply_bytes(coordinate, big_endian);
+  for (const auto& face : {std::array<int, 3>{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}}) {
+    ply += ply_bytes(std::uint8_t{3}, big_endian);
+    for (int index : face) ply += ply_bytes(index, big_endian);
+  }
+  return ply;
+}
+
+// One triangle whose face list declares `length` items of which only three
+// follow.
+std::string binary_face_declaring(std::uint32_t length, bool big_endian) {
+  std::string ply = ply_header(big_endian ? "binary_big_endian" : "binary_little_endian", 3, 1, "uint int");
+  for (float coordinate : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) ply += ply_bytes(coordinate, big_endian);
+  ply += ply_bytes(length, big_endian);
+  for (int index : {0, 1, 2}) ply += ply_bytes(index, big_endian);
+  return ply;
+}
+
+void expect_refused(const Result<ImportedMesh>& r, const std::string& mentions, const std::string& also) {
+  expect_failure(r, StatusCode::unreadable_file, mentions);
+  if (!r.ok()) {
+    EXPECT_NE(r.status().message().find(also), std::string::npos) << r.status().message();
+  }
+}
+
+TEST(HostileImport, PlyListLengthsMustFitTheBytesLeft) {
+  TempDir dir;
+  constexpr std::uint32_t kBinaryLength = std::uint32_t{1} << 27;  // Assimp sized this list at 1 GiB
+  for (bool big_endian : {false, true}) {
+    const std::string ply = binary_face_declaring(kBinaryLength, big_endian);
+    ASSERT_LT(ply.size(), 256u);
+    expect_refused(import_in(dir, big_endian ? "be.ply" : "le.ply", ply), std::to_string(kBinaryLength), "bytes left");
+  }
+  std::string negative = ply_header("binary_little_endian", 3, 1, "char int");
+  for (float coordinate : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) negative += ply_bytes(coordinate, false);
+  negative += ply_bytes(std::int8_t{-1}, false) + ply_bytes(0, false);
+  expect_refused(import_in(dir, "negative.ply", negative), "-1", "negative");
+
+  constexpr std::uint32_t kAsciiLength = std::uint32_t{1} << 26;  // 1 GiB in Assimp
+  const std::string vertices = "0 0 0\n1 0 0\n0 1 0\n";
+  const std::string ascii = ply_header("ascii", 3, 1) + vertices + std::to_string(kAsciiLength) + " 0 1 2\n";
+  expect_refused(import_in(dir, "ascii.ply", ascii), std::to_string(kAsciiLength), "bytes left");
+  expect_refused(import_in(dir, "word.ply", ply_header("ascii", 3, 1) + vertices + "three 0 1 2\n"), "'three'",
+                 "not a whole number");
+  // The second face's length fits the bytes (blank lines) but its last item is missing.
+  expect_refused(import_in(dir, "short.ply", ply_header("ascii", 3, 2) + vertices + "3 0 1 2\n3 0 1\n\n\n\n"),
+                 "face #1", "ends inside");
+}
+
+// Assimp reads an ASCII PLY one element a line and stops a number at the
+// first character it does not take, so a file that is sound token by token
+// can still hand it a huge list length; the header too must mean to the
+// check what it means to Assimp.
+TEST(HostileImport, PlyIsCheckedAsAssimpReadsIt) {
+  TempDir dir;
+  const std::string vertices = "0 0 0\n1 0 0\n0 1 0\n";
+  // Token by token: a list of one item (67108864), then an empty one.
+  expect_refused(import_in(dir, "lines.ply", ply_header("ascii", 3, 2) + vertices + "1\n67108864\n0\n"), "67108864",
+                 "one element a line");
+  const std::string flagged = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                              "property float z\nelement face 1\nproperty int flags\n"
+                              "property list int int vertex_indices\nend_header\n";
+  expect_refused(import_in(dir, "plus.ply", flagged + vertices + "5+67108864 3 0 1 2\n"), "'5+67108864'",
+                 "reads whole");
+  std::string camera = binary_tetrahedron(false);
+  camera.replace(camera.find("element vertex"), 0, "element camera 1\nproperty float a\n");
+  camera.replace(camera.find("end_header\n") + 11, 0, ply_bytes(1.f, false));
+  expect_refused(import_in(dir, "camera.ply", camera), "'camera'", "wrong place");
+  std::string dropped = binary_tetrahedron(false);
+  dropped.replace(dropped.find("property list"), 0, "obj_info scanner\n");
+  expect_refused(import_in(dir, "dropped.ply", dropped), "property list", "drop");
+  std::string newline_first = binary_tetrahedron(false);
+  newline_first.replace(newline_first.find("end_header\n") + 11, 1, "\n");  // first byte of x = 0x0A
+  expect_refused(import_in(dir, "newline.ply", newline_first), "0x0A", "Assimp");
+}
+
+TEST(HostileImport, SoundPlyFilesStillImport) {
+  TempDir dir;
+  for (bool big_endian : {false, true}) {
+    const Result<ImportedMesh> r =
+        import_in(dir, big_endian ? "tetra_be.ply" : "tetra_le.ply", binary_tetrahedron(big_endian));
+    ASSERT_TRUE(r.ok()) << r.status().message();
+    EXPECT_EQ(r.value().mesh.triangles.size(), 4u);
+  }
+  const std::string quad = ply_header("ascii", 4, 1) + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n";
+  const Result<ImportedMesh> ascii = import_in(dir, "quad.ply", quad);
+  ASSERT_TRUE(ascii.ok()) << ascii.status().message();
+  EXPECT_EQ(ascii.value().mesh.triangles.size(), 2u);
+  std::string crlf = quad;  // Windows line ends, and a comment naming the header's end
+  for (std::size_t at = crlf.find('\n'); at != std::string::npos; at = crlf.find('\n', at + 2))
+    crlf.replace(at, 1, "\r\n");
+  crlf.replace(crlf.find("element"), 0, "comment end_header\r\n");
+  const Result<ImportedMesh> windows = import_in(dir, "crlf.ply", crlf);
+  ASSERT_TRUE(windows.ok()) << windows.status().message();
+  EXPECT_EQ(windows.value().mesh.triangles.size(), 2u);
+}
+
+TEST(HostileImport, TheStanfordBunnyStillImports) {
+  HULLCOVER_REQUIRE_SHARED_SCENES(scenes);
+  const Result<ImportedMesh> r = import_mesh(scenes + "/stanford-bunny-res2.ply");
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  EXPECT_EQ(r.value().mesh.triangles.size(), 16301u);
 }
 
 TEST(HostileImport, LimitsAreEnforcedAndNamed) {

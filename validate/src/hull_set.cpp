@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -22,6 +23,11 @@ struct ObjGroup {
   std::vector<int> vertices;
   Eigen::Vector3d winding = Eigen::Vector3d::Zero();
 };
+
+// Scenes are read as float32, so no hull that stands for one lies farther
+// out; beyond it the hull builder's products of three coordinates would
+// overflow a double (Qhull crashed on 1e300).
+constexpr double kLargestHullCoordinate = std::numeric_limits<float>::max();
 
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
@@ -91,6 +97,9 @@ Result<HullSet> read_obj_groups(const std::string& path) {
       Eigen::Vector3d v;
       if (!(words >> v.x() >> v.y() >> v.z()) || !v.allFinite())
         return Status{StatusCode::unreadable_file, path + ":" + std::to_string(number) + ": bad vertex"};
+      if (v.cwiseAbs().maxCoeff() > kLargestHullCoordinate)
+        return Status{StatusCode::unreadable_file, path + ":" + std::to_string(number) +
+                                                       ": vertex beyond the float32 range a scene can have"};
       vertices.push_back(v);
     } else if (tag == "o" || tag == "g") {
       if (!groups.back().vertices.empty()) groups.emplace_back();
