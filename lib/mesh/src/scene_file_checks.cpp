@@ -8,8 +8,6 @@
 #include <cctype>
 #include <cstdint>
 #include <fstream>
-#include <sstream>
-#include <vector>
 
 namespace hullcover::detail {
 namespace {
