@@ -9,6 +9,7 @@ packages=(
   libfcl-dev libccd-dev libeigen3-dev liboctomap-dev libqhull-dev libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev
   libcairo2-dev
+  clang libclang-rt-14-dev
 )
 
 missing=()

@@ -137,6 +137,9 @@ private:
     note(deepest);
   }
 
+  // OctoMap's keys are 16 bits: 2^15 cells each side of the centre.
+  static constexpr double kOctreeKeysEachSide = 32768.0;
+
   // The octree's picture of the lost rays: the cell of each one's deepest
   // point (every cell along every stretch would cost as much as the volume
   // lost, which peers' hulls make most of the scene).
@@ -144,7 +147,10 @@ private:
     const Eigen::Vector3d local = p - centre_;
     octomap::OcTreeKey key;
     // A cell beyond the octree's reach (a hull far outside the scene) is
-    // left out of the picture; the rays have counted it.
+    // left out of the picture; the rays have counted it. Judged here first:
+    // OctoMap converts the coordinate to an int before its own check, which
+    // is undefined for one far out (a hull at 1e38).
+    if (local.cwiseAbs().maxCoeff() >= tree_.getResolution() * kOctreeKeysEachSide) return;
     if (tree_.coordToKeyChecked(
             octomap::point3d(static_cast<float>(local.x()), static_cast<float>(local.y()), static_cast<float>(local.z())),
             key))

@@ -1,0 +1,28 @@
+#pragma once
+// What the fuzz target bodies share: a scratch folder per process, and a
+// few queries on hulls a reader accepted.
+
+#include "hullcover/bvh/runtime_hull.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace hullcover::fuzz {
+
+/// Writes `size` bytes to `name` in this process's scratch folder (made on
+/// first use under the system temp folder, removed at exit) and returns the
+/// file's path. The folder holds nothing else unless a body leaves it there.
+std::string write_scratch_file(const std::string& name, const std::uint8_t* data, std::size_t size);
+
+/// Removes `path` (a file write_scratch_file made), so the next input's
+/// folder is empty again.
+void remove_scratch_file(const std::string& path);
+
+/// Builds a HullWorld from `hulls` (when it accepts them) and asks it a
+/// touch, a contact, a ray and a distance query near the first hull: a
+/// reader's accepted hulls must be safe to query.
+void query_hulls(std::vector<bvh::RuntimeHull> hulls);
+
+} // namespace hullcover::fuzz
