@@ -27,6 +27,9 @@ cmake --build --preset fuzz -j"$(nproc)" --target "${targets[@]/#/fuzz_}"
 artifacts="$PWD/build/fuzz/fuzz-artifacts"
 work="$(mktemp -d "${TMPDIR:-/tmp}/hullcover-fuzz-corpus-XXXXXX")"
 trap 'rm -rf "$work"' EXIT
+# The targets' scratch folders go there too: libFuzzer ends with _Exit, so
+# a target cannot remove its own.
+export TMPDIR="$work"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
 # Leaks inside Debian's libraries that hullcover cannot fix (the file says which).
 export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan_suppressions.txt:print_suppressions=0${LSAN_OPTIONS:+:$LSAN_OPTIONS}"

@@ -238,7 +238,7 @@ int run_audit_command(const AuditCommandOptions& o) {
   const validate::AuditReport& a = audited.value();
   print_audit(o, scene->prepared, a);
   if (!o.json_path.empty())
-    if (Status written = write_file_atomically(o.json_path, audit_json(o, scene->prepared, a).dump(1) + "\n");
+    if (Status written = write_file_atomically(o.json_path, audit_json(o, scene->prepared, a).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
         !written.ok())
       return bad_input(written);
   return a.clean() ? kExitSuccess : kExitViolation;

@@ -30,7 +30,7 @@ int run_info(const InfoOptions& options) {
     nlohmann::json out = mesh_figures_json(figures);
     out["file"] = options.path;
     out["skipped_non_triangle_primitives"] = report.skipped_non_triangle_primitives;
-    std::cout << out.dump(2) << "\n";
+    std::cout << out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";  // a path need not be UTF-8
   } else {
     std::printf("%s\n%s", options.path.c_str(), format_mesh_figures(figures).c_str());
     if (report.skipped_non_triangle_primitives > 0)

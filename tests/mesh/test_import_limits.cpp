@@ -81,6 +81,18 @@ TEST(ImportLimits, AnObjNamingTooManyMaterialsIsRefusedUnlessRaised) {
   EXPECT_EQ(allowed.value().mesh.triangles.size(), static_cast<size_t>(kNames));
 }
 
+// Assimp ends an OBJ line at '\r' too: names split only by it are as many
+// materials to Assimp, and must be to the check.
+TEST(ImportLimits, MaterialNamesOnCarriageReturnOnlyLinesCountToo) {
+  const TempDir dir;
+  std::string obj = "v 0 0 0\rv 1 0 0\rv 0 1 0\r";
+  constexpr int kNames = 4097;
+  for (int i = 0; i < kNames; ++i) obj += "usemtl m" + std::to_string(i) + "\rf 1 2 3\r";
+  const Result<ImportedMesh> refused = import_mesh(dir.write("cr.obj", obj));
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.status().code(), StatusCode::limit_exceeded) << refused.status().message();
+}
+
 TEST(ImportLimits, AnObjMaterialLibraryOutsideTheFolderIsRefusedByItsText) {
   const TempDir dir;
   for (const std::string name : {"/etc/passwd", "../outside.mtl", "sub/../../x.mtl", "http://host/x.mtl",

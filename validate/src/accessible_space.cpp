@@ -150,7 +150,7 @@ private:
     // left out of the picture; the rays have counted it. Judged here first:
     // OctoMap converts the coordinate to an int before its own check, which
     // is undefined for one far out (a hull at 1e38).
-    if (local.cwiseAbs().maxCoeff() >= tree_.getResolution() * kOctreeKeysEachSide) return;
+    if (!(local.cwiseAbs().maxCoeff() < tree_.getResolution() * kOctreeKeysEachSide)) return;  // NaN too
     if (tree_.coordToKeyChecked(
             octomap::point3d(static_cast<float>(local.x()), static_cast<float>(local.y()), static_cast<float>(local.z())),
             key))

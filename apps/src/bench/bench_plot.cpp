@@ -178,27 +178,30 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 Status write_bench_plot(const std::vector<BenchRow>& rows, const std::string& path) {
   if (rows.empty()) return {StatusCode::invalid_argument, "nothing to plot: no bench rows"};
   const bool svg = ends_with(path, ".svg");
-  bool drawn = false;
+  bool drawing_failed = false;
   // Cairo writes through the stream of the atomic writer: an SVG surface as
   // it is finished, an image surface once it is drawn (finishing it first
-  // would leave nothing to write).
+  // would leave nothing to write). A failed write sets the stream's error
+  // flag, which the atomic writer reports with the system's reason.
   const Status written = write_file_atomically(path, [&](std::FILE* out) {
     std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
         svg ? cairo_svg_surface_create_for_stream(write_to_stream, out, kWidth, kHeight)
             : cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(kWidth), static_cast<int>(kHeight)),
         cairo_surface_destroy);
-    if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) return false;
+    if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) {
+      drawing_failed = true;
+      return false;
+    }
     cairo_t* cr = cairo_create(surface.get());
     draw(cr, rows);
-    drawn = cairo_status(cr) == CAIRO_STATUS_SUCCESS;
+    drawing_failed = cairo_status(cr) != CAIRO_STATUS_SUCCESS;
     cairo_destroy(cr);
-    if (!drawn) return false;
+    if (drawing_failed) return false;
     if (svg) cairo_surface_finish(surface.get());
-    else if (cairo_surface_write_to_png_stream(surface.get(), write_to_stream, out) != CAIRO_STATUS_SUCCESS)
-      return false;
-    return cairo_surface_status(surface.get()) == CAIRO_STATUS_SUCCESS;
+    else cairo_surface_write_to_png_stream(surface.get(), write_to_stream, out);
+    return true;
   });
-  if (!written.ok() && !drawn) return {StatusCode::internal_error, path + ": cairo could not draw the plot"};
+  if (drawing_failed) return {StatusCode::internal_error, path + ": cairo could not draw the plot"};
   return written;
 }
 

@@ -94,7 +94,6 @@ Result<QueryTimings> time_queries(const bvh::HullWorld& hulls, const bvh::Triang
                                   const QueryPoses& poses, double min_seconds) {
   const int n = static_cast<int>(poses.poses.size());
   const bvh::QueryShape capsule = bvh::QueryShape::capsule(poses.radius, poses.half_height);
-  QueryTimings out;
   bvh::TouchResult touch;
   Result<QueryTiming> touches = time_side_by_side(
       n, min_seconds, [&](int i) { return hulls.touches({capsule, poses.poses[i]}, touch); },

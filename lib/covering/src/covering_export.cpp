@@ -103,7 +103,8 @@ nlohmann::json covering_json(const Covering& covering) {
 Status write_covering_json(const Covering& covering, const nlohmann::json& extra, const std::string& path) {
   nlohmann::json j = covering_json(covering);
   for (const auto& [key, value] : extra.items()) j[key] = value;
-  return write_file_atomically(path, j.dump(1) + "\n");
+  // A path in the JSON need not be UTF-8: such bytes are replaced, not thrown on.
+  return write_file_atomically(path, j.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 } // namespace hullcover

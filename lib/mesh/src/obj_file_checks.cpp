@@ -21,13 +21,36 @@ std::pair<std::string, std::string> statement(const std::string& line) {
   return {line.substr(start, end - start), text};
 }
 
+// The next line as Assimp's OBJ reader splits them: a line ends at '\n',
+// '\r', '\f' or NUL, and one ending in '\' goes on in the next. Splitting
+// only at '\n' would let "usemtl a\rusemtl b\r..." past as one line.
+bool next_assimp_line(std::istream& in, std::string& line) {
+  line.clear();
+  char c = 0;
+  bool any = false;
+  while (in.get(c)) {
+    any = true;
+    if (c == '\n' || c == '\r' || c == '\f' || c == '\0') {
+      if (c == '\r' && in.peek() == '\n') in.get(c);  // CRLF: one line end, for the line numbers
+      if (!line.empty() && line.back() == '\\') {
+        line.pop_back();
+        continue;
+      }
+      return true;
+    }
+    line += c;
+  }
+  return any;
+}
+
 } // namespace
 
 Status check_obj(std::istream& in, const ImportLimits& limits) {
+  if (limits.max_materials < 0) return {StatusCode::invalid_argument, "--max-materials must not be negative"};
   std::unordered_set<std::string> materials;
   std::string line;
   long number = 0;
-  while (std::getline(in, line)) {
+  while (next_assimp_line(in, line)) {
     ++number;
     const auto [keyword, text] = statement(line);
     if (keyword == "mtllib") {

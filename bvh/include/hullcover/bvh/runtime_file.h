@@ -38,8 +38,10 @@ Status write_runtime_file(const std::vector<RuntimeHull>& hulls, const std::stri
 
 /// Reads and checks a runtime file: magic, version, sizes against the file
 /// length, checksum, index ranges (facet indices < V, facet sizes >= 3,
-/// their sum = I, P >= F), finite values, unit normals. Fails with
-/// `file_not_found`, `unreadable_file` (with what is wrong and where) or
+/// their sum = I, P >= F), finite values, unit normals. Reads only a
+/// regular file (a FIFO or device is refused, not waited on) of at most
+/// kDefaultMaxInputFileBytes. Fails with `file_not_found`, `unreadable_file`
+/// (with what is wrong and where), `limit_exceeded` (over 1 GiB) or
 /// `unknown_format` (not a runtime file, or a newer version).
 Result<std::vector<RuntimeHull>> read_runtime_file(const std::string& path);
 

@@ -23,9 +23,11 @@ struct HullSet {
   int groups_without_area = 0;  ///< OBJ groups whose points span no area (collinear or one point: skipped)
 };
 
-/// Reads `path`: a `.hcw` runtime file, or else an OBJ with groups.
-/// Fails with `file_not_found`, `unreadable_file` (a malformed line, named
-/// by number, or a damaged runtime file) or `empty_scene` (no hull).
+/// Reads `path`: a `.hcw` runtime file, or else an OBJ with groups; only a
+/// regular file of at most 1 GiB (kDefaultMaxInputFileBytes). Fails with
+/// `file_not_found`, `unreadable_file` (a malformed line, named by number, a
+/// vertex beyond float32 range, a damaged runtime file, a FIFO or device),
+/// `limit_exceeded` (over 1 GiB) or `empty_scene` (no hull).
 Result<HullSet> load_hull_set(const std::string& path);
 
 } // namespace hullcover::validate
