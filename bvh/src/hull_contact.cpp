@@ -17,38 +17,6 @@ using detail::touching_distance;
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-// Closest points of segments p1-q1 and p2-q2 (Ericson, Real-Time Collision
-// Detection, 5.1.9).
-std::pair<Eigen::Vector3d, Eigen::Vector3d> closest_between_segments(const Eigen::Vector3d& p1,
-                                                                     const Eigen::Vector3d& q1,
-                                                                     const Eigen::Vector3d& p2,
-                                                                     const Eigen::Vector3d& q2) {
-  const Eigen::Vector3d d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
-  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  double s = 0.0, t = 0.0;
-  if (a == 0.0 && e == 0.0) return {p1, p2};
-  if (a == 0.0) {
-    t = std::clamp(f / e, 0.0, 1.0);
-  } else {
-    const double c = d1.dot(r);
-    if (e == 0.0) {
-      s = std::clamp(-c / a, 0.0, 1.0);
-    } else {
-      const double b = d1.dot(d2), denom = a * e - b * b;
-      s = denom > 0.0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
-      t = (b * s + f) / e;
-      if (t < 0.0) {
-        t = 0.0;
-        s = std::clamp(-c / a, 0.0, 1.0);
-      } else if (t > 1.0) {
-        t = 1.0;
-        s = std::clamp((b - c) / a, 0.0, 1.0);
-      }
-    }
-  }
-  return {p1 + d1 * s, p2 + d2 * t};
-}
-
 // Is q (on facet f's plane) inside its polygon?
 bool inside_facet(const RuntimeHull& hull, int f, const Eigen::Vector3d& q) {
   const Eigen::Vector3d& n = hull.shape.planes[f].normal;
@@ -155,7 +123,7 @@ ClosestPoints closest_to_segment_apart(const RuntimeHull& hull, const Eigen::Vec
     }
     const std::vector<int>& poly = hull.shape.facets[f];
     for (size_t i = 0; i < poly.size() && best.distance > good_enough; ++i) {
-      const auto [on_segment, on_edge] = closest_between_segments(
+      const auto [on_segment, on_edge] = closest_points_of_segments(
           a, b, hull.shape.vertices[poly[i]], hull.shape.vertices[poly[(i + 1) % poly.size()]]);
       const double d = (on_segment - on_edge).norm();
       if (d < best.distance) best = {d, on_edge, on_segment};
@@ -330,7 +298,7 @@ ClosestPoints closest_between(const RuntimeHull& hull, const RuntimeHull& shape)
   }
   for (const auto& [u, w] : hull.edges)
     for (const auto& [x, y] : shape.edges) {
-      const auto [on_hull, on_shape] = closest_between_segments(hull.shape.vertices[u], hull.shape.vertices[w],
+      const auto [on_hull, on_shape] = closest_points_of_segments(hull.shape.vertices[u], hull.shape.vertices[w],
                                                                  shape.shape.vertices[x], shape.shape.vertices[y]);
       const double d = (on_hull - on_shape).norm();
       if (d < best.distance) best = {d, on_hull, on_shape};

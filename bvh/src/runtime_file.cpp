@@ -124,9 +124,11 @@ Status write_hulls(const std::vector<RuntimeHull>& hulls, const std::string& pat
 Result<std::vector<RuntimeHull>> read_hulls(const std::string& path) {
   Result<std::string> content = read_regular_file(path);
   if (!content.ok()) return content.status();
-  const std::vector<unsigned char> bytes(content.value().begin(), content.value().end());
-  Reader r{bytes.data(), bytes.size()};
-  if (!r.has(kHeaderBytes) || std::memcmp(bytes.data(), kMagic, 8) != 0)
+  // Read in place: a copy would double the memory a large file takes.
+  const auto* bytes = reinterpret_cast<const unsigned char*>(content.value().data());
+  const size_t size = content.value().size();
+  Reader r{bytes, size};
+  if (!r.has(kHeaderBytes) || std::memcmp(bytes, kMagic, 8) != 0)
     return Status{StatusCode::unknown_format, path + ": not a hullcover runtime file (no HCWORLD header)"};
   r.at = 8;
   const std::uint32_t version = r.u32();
@@ -136,10 +138,10 @@ Result<std::vector<RuntimeHull>> read_hulls(const std::string& path) {
                       std::to_string(kRuntimeFileFirstVersion) + " to " + std::to_string(kRuntimeFileVersion)};
   r.u32();
   const std::uint64_t hull_count = r.u64(), payload_bytes = r.u64(), checksum = r.u64();
-  if (payload_bytes != bytes.size() - kHeaderBytes)
-    return broken(path, "payload is " + std::to_string(bytes.size() - kHeaderBytes) + " bytes, header says " +
+  if (payload_bytes != size - kHeaderBytes)
+    return broken(path, "payload is " + std::to_string(size - kHeaderBytes) + " bytes, header says " +
                             std::to_string(payload_bytes));
-  if (fnv1a(bytes.data() + kHeaderBytes, payload_bytes) != checksum) return broken(path, "checksum mismatch");
+  if (fnv1a(bytes + kHeaderBytes, payload_bytes) != checksum) return broken(path, "checksum mismatch");
   if (hull_count > payload_bytes / kHullFixedBytes) return broken(path, "hull count larger than the payload");
 
   std::vector<RuntimeHull> hulls;
@@ -204,7 +206,7 @@ Result<std::vector<RuntimeHull>> read_hulls(const std::string& path) {
       return broken(path, where + "bounding box does not match its vertices");
     hulls.push_back(std::move(full));
   }
-  if (r.at != bytes.size()) return broken(path, "bytes left after the last hull");
+  if (r.at != size) return broken(path, "bytes left after the last hull");
   return hulls;
 }
 

@@ -23,7 +23,7 @@ ConfinedIOSystem::ConfinedIOSystem(const std::string& scene_path, std::uint64_t 
   folder_ = std::filesystem::canonical(std::filesystem::absolute(scene_path, error).parent_path(), error);
 }
 
-ConfinedIOSystem::Verdict ConfinedIOSystem::judge(const char* file) const {
+ConfinedIOSystem::Verdict ConfinedIOSystem::judge(const char* file, std::filesystem::path* resolved_out) const {
   if (file == nullptr || folder_.empty()) return Verdict::outside;
   std::error_code error;
   // Only plain relative or absolute paths: a URI scheme (http:, file:) is
@@ -38,6 +38,7 @@ ConfinedIOSystem::Verdict ConfinedIOSystem::judge(const char* file) const {
     return Verdict::outside;
   if (std::filesystem::is_regular_file(resolved, error) && std::filesystem::file_size(resolved, error) > max_file_bytes_)
     return Verdict::too_large;
+  if (resolved_out != nullptr) *resolved_out = resolved;
   return Verdict::allowed;
 }
 
@@ -63,13 +64,12 @@ bool ConfinedIOSystem::Exists(const char* file) const {
 Assimp::IOStream* ConfinedIOSystem::Open(const char* file, const char* mode) {
   // Reading only: an importer has no business writing.
   if (mode == nullptr || std::strchr(mode, 'w') != nullptr || std::strchr(mode, 'a') != nullptr) return nullptr;
-  const Verdict verdict = judge(file);
+  std::filesystem::path resolved;
+  const Verdict verdict = judge(file, &resolved);
   note(file, verdict);
   if (verdict != Verdict::allowed) return nullptr;
   Assimp::IOStream* stream = Assimp::DefaultIOSystem::Open(file, mode);
-  std::error_code error;
-  const std::filesystem::path resolved = std::filesystem::weakly_canonical(std::filesystem::absolute(file, error), error);
-  if (stream != nullptr && !error && opened_.insert(resolved).second) bytes_opened_ += stream->FileSize();
+  if (stream != nullptr && opened_.insert(resolved).second) bytes_opened_ += stream->FileSize();
   return stream;
 }
 

@@ -37,7 +37,9 @@ public:
 
 private:
   enum class Verdict { allowed, outside, too_large };
-  Verdict judge(const char* file) const;
+  /// Whether `file` may be read; when it may, `resolved` (if given) gets
+  /// its canonical path, which counts each file once in bytes_opened.
+  Verdict judge(const char* file, std::filesystem::path* resolved = nullptr) const;
   void note(const char* file, Verdict verdict) const;
 
   std::string scene_path_;

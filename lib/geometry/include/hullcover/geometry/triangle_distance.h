@@ -6,6 +6,8 @@
 
 #include <Eigen/Core>
 
+#include <utility>
+
 namespace hullcover {
 
 /// The point of triangle a, b, c nearest to `p` (a degenerate triangle
@@ -15,6 +17,13 @@ Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen:
 
 /// The point of segment a-b nearest to `p` (`a` when a = b).
 Eigen::Vector3d closest_point_on_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b);
+
+/// The nearest points of segments p0-p1 and q0-q1, the first on p0-p1
+/// (either segment may be a single point); cannot fail.
+std::pair<Eigen::Vector3d, Eigen::Vector3d> closest_points_of_segments(const Eigen::Vector3d& p0,
+                                                                       const Eigen::Vector3d& p1,
+                                                                       const Eigen::Vector3d& q0,
+                                                                       const Eigen::Vector3d& q1);
 
 /// Distance between segments p0-p1 and q0-q1 (either may be a single
 /// point), scene units; cannot fail.
