@@ -1,14 +1,31 @@
 #!/usr/bin/env bash
-# Installs the Debian packages hullcover builds against. Idempotent and
-# non-interactive: packages already present are left alone, so a second run
-# asks nothing of the network. Needs root (or sudo) only when something is missing.
+# Installs the Debian packages hullcover builds against, and the npm test
+# tools (tests/tools/gltf-validator: the Khronos glTF validator, pinned by its
+# package-lock.json). Idempotent and non-interactive: what is present is left
+# alone, so a second run asks nothing of the network. Needs root (or sudo)
+# only when a Debian package is missing.
 set -euo pipefail
+
+# The glTF validator the export tests run on every .glb hullcover writes
+# (test_collider_export skips, saying so, where npm is absent).
+install_test_tools() {
+  local tools
+  tools="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tests/tools/gltf-validator"
+  if [ -d "$tools/node_modules/gltf-validator" ]; then return 0; fi
+  if ! command -v npm >/dev/null; then
+    echo "setup: npm not found: the glTF validator test will be skipped" >&2
+    return 0
+  fi
+  echo "setup: installing the glTF validator (npm ci in tests/tools/gltf-validator)"
+  npm ci --prefix "$tools" --no-audit --no-fund --loglevel=error
+}
 
 packages=(
   build-essential cmake pkg-config
   libfcl-dev libccd-dev libeigen3-dev liboctomap-dev libqhull-dev libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev
   libcairo2-dev
+  chromium  # tests/apps/test_audit_html.cpp opens the audit's HTML report headless (skipped without it)
   clang libclang-rt-14-dev
 )
 
@@ -19,6 +36,7 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#packages[@]} Debian packages present"
+  install_test_tools
   exit 0
 fi
 
@@ -31,3 +49,4 @@ echo "setup: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 "${sudo_cmd[@]}" apt-get update -qq
 "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+install_test_tools

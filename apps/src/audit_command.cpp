@@ -3,6 +3,9 @@
 
 #include "commands.h"
 #include "scene_loading.h"
+#include "terminal_progress.h"
+
+#include "render/audit_report_html.h"
 
 #include "hullcover/geometry/atomic_file.h"
 #include "hullcover/validate/audit.h"
@@ -22,10 +25,12 @@ constexpr int kExitViolation = 1;
 // What the command line holds: the files, the scene's tolerance, and the
 // audit's own options (validate::AuditOptions, defaults included).
 struct AuditCommandOptions {
-  std::string mesh, hulls, json_path;
+  std::string mesh, hulls, json_path, html_path;
+  std::string html_up = "y";  // the pictures' up axis
   std::optional<double> tolerance;
   ImportLimits limits;
   validate::AuditOptions audit;
+  bool quiet = false;
 };
 
 double percent(long part, long whole) { return whole > 0 ? 100.0 * static_cast<double>(part) / whole : 0.0; }
@@ -231,9 +236,15 @@ nlohmann::json audit_json(const AuditCommandOptions& o, const PreparedMesh& prep
 int run_audit_command(const AuditCommandOptions& o) {
   const std::optional<LoadedScene> scene = load_scene(o.mesh, o.tolerance, o.limits);
   if (!scene) return kExitBadInput;
+  const Result<render::UpAxis> html_up = render::parse_up_axis(o.html_up);
+  if (!html_up.ok()) return bad_input(html_up.status());
   const Result<validate::HullSet> set = validate::load_hull_set(o.hulls);
   if (!set.ok()) return bad_input(set.status());
-  const Result<validate::AuditReport> audited = validate::run_audit(scene->prepared, set.value(), o.audit);
+  TerminalProgress bar("auditing (re-check, rays, proxies)", o.quiet);
+  validate::AuditOptions options = o.audit;
+  if (bar.enabled()) options.progress = [&bar](double fraction) { bar.update(fraction); };
+  const Result<validate::AuditReport> audited = validate::run_audit(scene->prepared, set.value(), options);
+  bar.finish();
   if (!audited.ok()) return bad_input(audited.status());
   const validate::AuditReport& a = audited.value();
   print_audit(o, scene->prepared, a);
@@ -241,6 +252,17 @@ int run_audit_command(const AuditCommandOptions& o) {
     if (Status written = write_file_atomically(o.json_path, audit_json(o, scene->prepared, a).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
         !written.ok())
       return bad_input(written);
+  if (!o.html_path.empty()) {
+    render::AuditHtmlInput page;
+    page.scene = &scene->prepared.mesh;
+    page.hulls = &set.value().hulls;
+    page.report = &a;
+    page.figures = audit_json(o, scene->prepared, a);
+    page.mesh_path = o.mesh;
+    page.hulls_path = o.hulls;
+    page.up = html_up.value();
+    if (Status written = render::write_audit_report_html(o.html_path, page); !written.ok()) return bad_input(written);
+  }
   return a.clean() ? kExitSuccess : kExitViolation;
 }
 
@@ -298,6 +320,13 @@ void register_audit_command(CLI::App& app, int& exit_status) {
                   "lie no farther. With --agent-radius, both are judged.")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--json", o->json_path, "Write the figures as JSON");
+  cmd->add_option("--html", o->html_path,
+                  "Write a self-contained HTML report (pictures embedded): the verdict in a green or red banner,\n"
+                  "every figure of --json, the scene with its hulls, and the located lost places as red balls over\n"
+                  "pale, cut-away hulls (see 'hullcover render --help' for the cut)");
+  cmd->add_option("--html-up", o->html_up, "The scene's up axis for the HTML report's pictures: x, y or z")
+      ->capture_default_str();
+  cmd->add_flag("-q,--quiet", o->quiet, "No progress bar (drawn on stderr only when it is a terminal)");
   cmd->callback([o, &exit_status] { exit_status = run_audit_command(*o); });
 }
 

@@ -4,6 +4,7 @@
 // its audit; written as a CSV, a Markdown table and a plot.
 
 #include "commands.h"
+#include "terminal_progress.h"
 #include "scene_loading.h"
 
 #include "bench/bench_plot.h"
@@ -71,6 +72,7 @@ int run_bench(BenchCommandOptions& o) {
 
   std::vector<bench::BenchRow> rows;
   const size_t cells = scenes.size() * settings.value().size();
+  TerminalProgress bar("bench", o.quiet);
   for (const bench::SceneSpec& scene : scenes) {
     const std::optional<LoadedScene> loaded = load_scene(scene.path, std::nullopt, o.limits);
     if (!loaded) return kExitBadInput;
@@ -82,20 +84,27 @@ int run_bench(BenchCommandOptions& o) {
     const bench::QueryPoses poses =
         bench::surface_poses(prepared.mesh, radius, kCapsuleHalfHeightPerRadius * radius, o.run.query_poses, 42);
     for (const bench::Setting& setting : settings.value()) {
-      if (!o.quiet)
-        std::fprintf(stderr, "bench [%zu/%zu] %s %s ...\n", rows.size() + 1, cells, scene.path.c_str(),
-                     setting.label().c_str());
+      bar.relabel("bench " + std::to_string(rows.size() + 1) + "/" + std::to_string(cells) + ": " + scene.path + " " +
+                  setting.label());
+      bar.update(static_cast<double>(rows.size()) / static_cast<double>(cells));
       Result<bench::BenchRow> row = bench::bench_setting(prepared, scene, setting, *triangles.value(), poses, o.run);
       if (!row.ok()) return fail(scene.path + " (" + setting.label() + "): " + row.status().message());
       const bench::BenchRow& r = row.value();
-      if (!o.quiet)
-        std::fprintf(stderr, "  %ld hulls in %.1f s; contacts %.2fx, yes/no %.2fx, ray %.2fx; audit %s in %.1f s\n",
-                     r.hulls, r.decompose_seconds, r.queries.contacts.speedup(), r.queries.touches.speedup(),
-                     r.queries.ray.speedup(), r.clean ? "CLEAN" : r.findings.c_str(), r.audit_seconds);
+      if (bar.enabled()) {
+        char line[512];
+        std::snprintf(line, sizeof line,
+                      "%s %s: %ld hulls in %.1f s; contacts %.2fx, yes/no %.2fx, ray %.2fx; audit %s in %.1f s",
+                      scene.path.c_str(), setting.label().c_str(), r.hulls, r.decompose_seconds,
+                      r.queries.contacts.speedup(), r.queries.touches.speedup(), r.queries.ray.speedup(),
+                      r.clean ? "CLEAN" : r.findings.c_str(), r.audit_seconds);
+        bar.note(line);
+      }
       rows.push_back(std::move(row).value());
     }
   }
 
+  bar.update(1.0);
+  bar.finish();
   const std::filesystem::path out(o.out_dir);
   for (const Status& s : {bench::write_bench_csv(rows, (out / "bench.csv").string()),
                           bench::write_bench_markdown(rows, (out / "bench.md").string()),
@@ -141,7 +150,7 @@ void register_bench_command(CLI::App& app, int& exit_status) {
       ->check(CLI::Range(1e-3, 60.0))
       ->capture_default_str();
   cmd->add_option("--out", o->out_dir, "Folder for the files written (made if missing)")->capture_default_str();
-  cmd->add_flag("-q,--quiet", o->quiet, "No progress on stderr");
+  cmd->add_flag("-q,--quiet", o->quiet, "No progress bar (drawn on stderr only when it is a terminal)");
   add_import_limit_options(*cmd, o->limits);
   cmd->callback([o, &exit_status] { exit_status = run_bench(*o); });
 }

@@ -16,5 +16,7 @@ void register_decompose_command(CLI::App& app, int& exit_status);
 void register_query_command(CLI::App& app, int& exit_status);
 void register_audit_command(CLI::App& app, int& exit_status);
 void register_bench_command(CLI::App& app, int& exit_status);
+void register_render_command(CLI::App& app, int& exit_status);
+void register_export_command(CLI::App& app, int& exit_status);
 
 } // namespace hullcover::app

@@ -1,7 +1,9 @@
 // `hullcover decompose IN -o OUT.obj`: the convex hull covering of a scene.
 
 #include "commands.h"
+#include "export/collider_export.h"
 #include "scene_loading.h"
+#include "terminal_progress.h"
 
 #include "hullcover/bvh/covering_hulls.h"
 #include "hullcover/bvh/runtime_file.h"
@@ -27,6 +29,7 @@ struct DecomposeCommandOptions {
   std::string conditions = "exact";
   std::string dissolve;  // "", "on" or "off"
   DecomposeOptions decompose;
+  ColliderExportOptions exported;  // with --format, -o is an engine export
   bool quiet = false;
 };
 
@@ -37,20 +40,29 @@ int run_decompose(DecomposeCommandOptions& o) {
   o.decompose.order = o.order == "random" ? MergeOrder::random : MergeOrder::compact;
   o.decompose.conditions = o.conditions == "paper" ? ValidityMode::paper : ValidityMode::exact;
   if (!o.dissolve.empty()) o.decompose.dissolve = o.dissolve == "on";
-  if (!o.quiet)
-    o.decompose.progress = [](double fraction) {
-      std::fprintf(stderr, "\rdecomposing: %3.0f%% of merges at most", 100.0 * fraction);
-      if (fraction >= 1.0) std::fputc('\n', stderr);
-    };
+  TerminalProgress bar("decomposing (merges at most)", o.quiet);
+  if (bar.enabled()) o.decompose.progress = [&bar](double fraction) { bar.update(fraction); };
   const Result<Covering> covering = decompose(scene->prepared, o.decompose);
+  bar.finish();
   if (!covering.ok()) {
     std::fprintf(stderr, "hullcover: error: %s\n", covering.status().message().c_str());
     return kExitBadInput;
   }
   const Covering& c = covering.value();
-  if (Status s = write_covering_obj(c, o.obj_path); !s.ok()) {
-    std::fprintf(stderr, "hullcover: error: %s\n", s.message().c_str());
-    return kExitBadInput;
+  std::string exported;
+  if (o.exported.format.empty()) {
+    if (Status s = write_covering_obj(c, o.obj_path); !s.ok()) {
+      std::fprintf(stderr, "hullcover: error: %s\n", s.message().c_str());
+      return kExitBadInput;
+    }
+  } else {
+    const Result<ColliderExportReport> report =
+        export_colliders(bvh::runtime_hulls(c), c.tolerance.length, &scene->prepared.mesh, o.exported, o.obj_path);
+    if (!report.ok()) {
+      std::fprintf(stderr, "hullcover: error: %s\n", report.status().message().c_str());
+      return kExitBadInput;
+    }
+    exported = describe_export(report.value(), o.obj_path);
   }
   if (!o.world_path.empty()) {
     if (Status s = bvh::write_runtime_file(bvh::runtime_hulls(c), o.world_path); !s.ok()) {
@@ -87,6 +99,7 @@ int run_decompose(DecomposeCommandOptions& o) {
                 c.statistics.near_merges, c.statistics.merges);
   if (c.dissolve)
     std::printf("  dissolved patches (emptied into their neighbours): %d\n", c.statistics.dissolved_patches);
+  if (!exported.empty()) std::printf("  %s\n", exported.c_str());
   std::printf("  wrote %s%s%s%s%s\n", o.obj_path.c_str(), o.json_path.empty() ? "" : ", ", o.json_path.c_str(),
               o.world_path.empty() ? "" : ", ", o.world_path.c_str());
   return kExitSuccess;
@@ -101,7 +114,7 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
       "Compute the convex hull covering of a scene (the paper's greedy, compactness-ordered merging)\n"
       "and write it as OBJ, one 'o' group per hull, with an optional JSON sidecar.");
   cmd->add_option("IN", o->input, "Scene file (OBJ, PLY, STL, glTF/GLB, FBX)")->required();
-  cmd->add_option("-o,--output", o->obj_path, "Output OBJ")->required();
+  cmd->add_option("-o,--output", o->obj_path, "Output: the hull OBJ, or with --format an engine export (glb or obj)")->required();
   cmd->add_option("--json", o->json_path, "Also write per-hull figures, totals, options and timing as JSON");
   cmd->add_option("--world", o->world_path, "Also write the runtime file (.hcw) that 'query' and game servers load");
   cmd->add_option("--tol", o->tolerance, "Tolerance in scene units (default 1e-5 x bounding-box diagonal)");
@@ -153,9 +166,14 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
                   "Largest vertex count of a hull; a merge that exceeds it is not made")
       ->check(CLI::Range(8, 1 << 20))
       ->capture_default_str();
+  cmd->add_option("--max-hull-triangles", o->decompose.max_hull_triangles,
+                  "Largest triangle count of a hull, its facets fanned into triangles, a flat hull counted as the "
+                  "prism an engine export makes of it (Unity's convex MeshCollider: 255); default no limit")
+      ->check(CLI::Range(kFewestTrianglesOfAHullLimit, 1 << 22));
   cmd->add_flag("--materials", o->decompose.keep_materials_apart,
                 "Keep materials apart: one material per hull, bars on material borders");
-  cmd->add_flag("-q,--quiet", o->quiet, "No progress on stderr");
+  add_collider_export_options(cmd, o->exported);
+  cmd->add_flag("-q,--quiet", o->quiet, "No progress bar (drawn on stderr only when it is a terminal)");
   cmd->callback([o, &exit_status] { exit_status = run_decompose(*o); });
 }
 

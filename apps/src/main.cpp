@@ -20,7 +20,9 @@ int main(int argc, char** argv) {
   hullcover::app::register_query_command(app, exit_status);
   hullcover::app::register_audit_command(app, exit_status);
   hullcover::app::register_bench_command(app, exit_status);
+  hullcover::app::register_export_command(app, exit_status);
   hullcover::app::register_demo_command(app, exit_status);
+  hullcover::app::register_render_command(app, exit_status);
 
   try {
     app.parse(argc, argv);

@@ -188,6 +188,10 @@ private:
 
 } // namespace
 
+// The part of the probe's progress its front rays stand for (they
+// outnumber the openings' rays several times on real scenes).
+constexpr double kFrontRayShareOfProbe = 0.8;
+
 Result<ProbeReport> probe_accessible_space(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles,
                                            const bvh::HullWorld& hulls, const ProbeOptions& options) {
   ProbeReport report;
@@ -207,9 +211,19 @@ Result<ProbeReport> probe_accessible_space(const PreparedMesh& prepared, const b
     return Status{StatusCode::invalid_argument, "resolution too fine: the octree has 16 levels (32768 cells a side)"};
   try {
     Prober prober(prepared, triangles, hulls, options.probe_distance, options.allowance, report);
-    const auto trace = [&](const probe::ProbeRay& ray) { prober.trace(ray); };
+    // Progress by face: rays go face by face, front rays (most of the work)
+    // then openings.
+    const double faces = std::max<double>(1.0, static_cast<double>(prepared.mesh.triangles.size()));
+    double share = kFrontRayShareOfProbe, start = 0.0;
+    const auto trace = [&](const probe::ProbeRay& ray) {
+      prober.trace(ray);
+      if (options.progress) options.progress(start + share * ray.face / faces);
+    };
     probe::for_each_front_ray(prepared, report.resolution, trace);
+    start = kFrontRayShareOfProbe;
+    share = 1.0 - kFrontRayShareOfProbe;
     probe::for_each_opening_ray(prepared, report.resolution, trace);
+    if (options.progress) options.progress(1.0);
     prober.fill_octree();
     if (!options.octree_path.empty() && !prober.tree().writeBinary(options.octree_path))
       return Status{StatusCode::unwritable_file, options.octree_path + ": cannot write the octree"};

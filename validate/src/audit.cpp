@@ -27,6 +27,11 @@ Result<Worlds> build_worlds(const PreparedMesh& prepared, const HullSet& set) {
   return Worlds{std::move(hulls).value(), std::move(triangles).value()};
 }
 
+// Where the audit's progress stands after the re-check and before the
+// proxies: the probe's rays take most of its time.
+constexpr double kRecheckShareOfAudit = 0.1;
+constexpr double kProxiesStartOfAudit = 0.9;
+
 Result<AuditReport> audit(const PreparedMesh& prepared, const HullSet& set, const AuditOptions& options) {
   const double bar_half_length =
       options.bar_half_length.value_or(kDefaultBarHalfLengthRelative * prepared.tolerance.diagonal);
@@ -42,15 +47,26 @@ Result<AuditReport> audit(const PreparedMesh& prepared, const HullSet& set, cons
   AuditReport report;
   report.hull_count = set.hulls.size();
   report.groups_without_area = set.groups_without_area;
+  const auto progress = [&](double fraction) {
+    if (options.progress) options.progress(fraction);
+  };
   report.recheck = recheck_hulls(prepared, hulls_under_check(set.hulls), bar_half_length, allowance.any());
+  progress(kRecheckShareOfAudit);
   const Result<Worlds> worlds = build_worlds(prepared, set);
   if (!worlds.ok()) return worlds.status();
   const bvh::TriangleWorld& triangles = *worlds.value().triangles;
   const bvh::HullWorld& hulls = *worlds.value().hulls;
-  Result<ProbeReport> probed = probe_accessible_space(prepared, triangles, hulls, options.probe);
+  ProbeOptions probe = options.probe;
+  if (options.progress)
+    probe.progress = [&](double fraction) {
+      progress(kRecheckShareOfAudit + (kProxiesStartOfAudit - kRecheckShareOfAudit) * fraction);
+    };
+  Result<ProbeReport> probed = probe_accessible_space(prepared, triangles, hulls, probe);
   if (!probed.ok()) return probed.status();
   report.probe = std::move(probed).value();
+  progress(kProxiesStartOfAudit);
   Result<BehaviourReport> compared = compare_behaviour(prepared, triangles, hulls, behaviour);
+  progress(1.0);
   if (!compared.ok()) return compared.status();
   report.behaviour = std::move(compared).value();
   report.findings = audit_findings(report.probe, report.recheck, report.behaviour);

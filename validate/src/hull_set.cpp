@@ -1,5 +1,7 @@
 #include "hullcover/validate/hull_set.h"
 
+#include "hull_groups.h"
+
 #include "hullcover/bvh/runtime_file.h"
 #include "hullcover/covering/convex_hull_3d.h"
 #include "hullcover/geometry/planar_hull.h"
@@ -9,6 +11,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -17,12 +20,8 @@
 namespace hullcover::validate {
 namespace {
 
-// One `o` or `g` group: the vertices its faces use, and the sum of their
-// winding normals (which side a flat group faces).
-struct ObjGroup {
-  std::vector<int> vertices;
-  Eigen::Vector3d winding = Eigen::Vector3d::Zero();
-};
+using detail::HullGroup;
+using detail::HullGroups;
 
 // Scenes are read as float32, so no hull that stands for one lies farther
 // out; beyond it the hull builder's products of three coordinates would
@@ -59,7 +58,7 @@ Plane group_plane(const std::vector<Eigen::Vector3d>& points, const Eigen::Vecto
 // that gives a scene its default tol: the set carries no scene tolerance.
 // Nothing for points that span no area (collinear, or one point).
 std::optional<bvh::RuntimeHull> group_hull(ConvexHullBuilder& builder, const std::vector<Eigen::Vector3d>& vertices,
-                                           const ObjGroup& group) {
+                                           const HullGroup& group) {
   std::vector<int> ids = group.vertices;
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
@@ -80,12 +79,10 @@ std::optional<bvh::RuntimeHull> group_hull(ConvexHullBuilder& builder, const std
   return bvh::make_runtime_hull(flat_polytope(polygon, true), 0);
 }
 
-Result<HullSet> read_obj_groups(const std::string& path) {
-  const Result<std::string> content = read_regular_file(path);
-  if (!content.ok()) return content.status();
-  std::istringstream in(content.value());
+Result<HullGroups> read_obj_groups(const std::string& path, const std::string& content) {
+  std::istringstream in(content);
   std::vector<Eigen::Vector3d> vertices;
-  std::vector<ObjGroup> groups(1);  // group 0: faces before any o/g line
+  std::vector<HullGroup> groups(1);  // group 0: faces before any o/g line
   std::string line;
   int number = 0;
   while (std::getline(in, line)) {
@@ -103,6 +100,10 @@ Result<HullSet> read_obj_groups(const std::string& path) {
       vertices.push_back(v);
     } else if (tag == "o" || tag == "g") {
       if (!groups.back().vertices.empty()) groups.emplace_back();
+      std::string name;
+      std::getline(words >> std::ws, name);
+      while (!name.empty() && std::isspace(static_cast<unsigned char>(name.back()))) name.pop_back();
+      groups.back().name = name;
     } else if (tag == "f") {
       std::string corner;
       std::vector<Eigen::Vector3d> face;
@@ -119,11 +120,16 @@ Result<HullSet> read_obj_groups(const std::string& path) {
       for (size_t i = 0; i < face.size(); ++i) groups.back().winding += face[i].cross(face[(i + 1) % face.size()]);
     }
   }
+  return HullGroups{std::move(vertices), std::move(groups)};
+}
+
+Result<HullSet> hulls_of_groups(const std::string& path, HullGroups groups) {
+  detail::keep_named_colliders(groups);
   HullSet set;
   ConvexHullBuilder builder;
-  for (const ObjGroup& group : groups) {
+  for (const HullGroup& group : groups.groups) {
     if (group.vertices.empty()) continue;
-    std::optional<bvh::RuntimeHull> hull = group_hull(builder, vertices, group);
+    std::optional<bvh::RuntimeHull> hull = group_hull(builder, groups.positions, group);
     if (hull)
       set.hulls.push_back(std::move(*hull));
     else
@@ -135,6 +141,22 @@ Result<HullSet> read_obj_groups(const std::string& path) {
 
 } // namespace
 
+namespace detail {
+
+void keep_named_colliders(HullGroups& groups) {
+  const auto keep_if = [&](const auto& named) {
+    if (std::none_of(groups.groups.begin(), groups.groups.end(), named)) return false;
+    groups.groups.erase(std::remove_if(groups.groups.begin(), groups.groups.end(),
+                                       [&](const HullGroup& g) { return !named(g); }),
+                        groups.groups.end());
+    return true;
+  };
+  if (keep_if([](const HullGroup& g) { return g.name.rfind("UCX_", 0) == 0; })) return;
+  keep_if([](const HullGroup& g) { return ends_with(g.name, "-convcolonly") || ends_with(g.name, "-convcol"); });
+}
+
+} // namespace detail
+
 Result<HullSet> load_hull_set(const std::string& path) {
   if (ends_with(path, ".hcw")) {
     Result<std::vector<bvh::RuntimeHull>> hulls = bvh::read_runtime_file(path);
@@ -143,8 +165,13 @@ Result<HullSet> load_hull_set(const std::string& path) {
     set.hulls = std::move(hulls).value();
     return set;
   }
+  const Result<std::string> content = read_regular_file(path);
+  if (!content.ok()) return content.status();
   try {
-    return read_obj_groups(path);
+    Result<HullGroups> groups = ends_with(path, ".glb") ? detail::read_glb_hull_groups(path, content.value())
+                                                        : read_obj_groups(path, content.value());
+    if (!groups.ok()) return groups.status();
+    return hulls_of_groups(path, std::move(groups).value());
   } catch (const std::exception& e) {
     return Status{StatusCode::unreadable_file, path + ": cannot read: " + e.what()};
   }

@@ -2,6 +2,8 @@
 
 #include "bench_report.h"
 
+#include "render/cairo_file_output.h"
+
 #include "hullcover/geometry/atomic_file.h"
 
 #include <cairo-svg.h>
@@ -162,13 +164,6 @@ void draw(cairo_t* cr, const std::vector<BenchRow>& rows) {
   }
 }
 
-// Cairo's stream callback: the closure is the atomic writer's stream, whose
-// error flag reports a failed write.
-cairo_status_t write_to_stream(void* closure, const unsigned char* data, unsigned int length) {
-  auto* out = static_cast<std::FILE*>(closure);
-  return std::fwrite(data, 1, length, out) == length ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
-}
-
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
@@ -185,7 +180,7 @@ Status write_bench_plot(const std::vector<BenchRow>& rows, const std::string& pa
   // flag, which the atomic writer reports with the system's reason.
   const Status written = write_file_atomically(path, [&](std::FILE* out) {
     std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
-        svg ? cairo_svg_surface_create_for_stream(write_to_stream, out, kWidth, kHeight)
+        svg ? cairo_svg_surface_create_for_stream(write_cairo_bytes_to_stream, out, kWidth, kHeight)
             : cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(kWidth), static_cast<int>(kHeight)),
         cairo_surface_destroy);
     if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) {
@@ -198,7 +193,7 @@ Status write_bench_plot(const std::vector<BenchRow>& rows, const std::string& pa
     cairo_destroy(cr);
     if (drawing_failed) return false;
     if (svg) cairo_surface_finish(surface.get());
-    else cairo_surface_write_to_png_stream(surface.get(), write_to_stream, out);
+    else cairo_surface_write_to_png_stream(surface.get(), write_cairo_bytes_to_stream, out);
     return true;
   });
   if (drawing_failed) return {StatusCode::internal_error, path + ": cairo could not draw the plot"};

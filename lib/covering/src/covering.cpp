@@ -38,6 +38,8 @@ Status check_options(const DecomposeOptions& o) {
   if (o.order_tries < 1) return {StatusCode::invalid_argument, "order tries must be at least 1"};
   if (o.max_hull_vertices < 8)
     return {StatusCode::invalid_argument, "max hull vertices must be at least 8 (a prism over a quad)"};
+  if (o.max_hull_triangles && *o.max_hull_triangles < kFewestTrianglesOfAHullLimit)
+    return {StatusCode::invalid_argument, "max hull triangles must be at least 12 (a box)"};
   return Status::success();
 }
 

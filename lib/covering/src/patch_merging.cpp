@@ -194,6 +194,11 @@ PatchMerger::Candidate PatchMerger::evaluate(int a, int b) {
         out.validity = Validity::too_many_vertices;
         return out;
       }
+      if (options_.max_hull_triangles &&
+          triangles_of_prism(static_cast<int>(polygon.corners.size())) > *options_.max_hull_triangles) {
+        out.validity = Validity::too_many_triangles;
+        return out;
+      }
       // The paper's conditions alone let a polygon span a hole with nothing
       // below it (a window); exact mode does not.
       if (index_.mode == ValidityMode::exact) {
@@ -220,6 +225,10 @@ PatchMerger::Candidate PatchMerger::evaluate(int a, int b) {
   }
   if (static_cast<int>(hull->vertices.size()) > options_.max_hull_vertices) {
     out.validity = Validity::too_many_vertices;
+    return out;
+  }
+  if (options_.max_hull_triangles && triangles_of_facets(hull->facets) > *options_.max_hull_triangles) {
+    out.validity = Validity::too_many_triangles;
     return out;
   }
   out.validity = check_solid_hull(index_, *hull, scratch_);

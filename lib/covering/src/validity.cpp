@@ -18,6 +18,7 @@ const char* validity_name(Validity v) {
     case Validity::opening_inside: return "opening_inside";
     case Validity::face_crosses_hull: return "face_crosses_hull";
     case Validity::polygon_spans_gap: return "polygon_spans_gap";
+    case Validity::too_many_triangles: return "too_many_triangles";
   }
   return "unknown";
 }

@@ -1,5 +1,7 @@
 #include "gltf_file_checks.h"
 
+#include "hullcover/mesh/json_nesting.h"
+
 #include "scene_file_checks.h"
 
 #include <nlohmann/json.hpp>
@@ -15,25 +17,6 @@ namespace {
 using Json = nlohmann::json;
 
 Status damaged(const std::string& why) { return {StatusCode::unreadable_file, "glTF: " + why}; }
-
-// The deepest nesting of objects and arrays, counted without parsing (the
-// parser and the value's destructor recurse).
-int json_nesting(const std::string& text) {
-  int depth = 0, deepest = 0;
-  bool in_string = false, escaped = false;
-  for (const char c : text) {
-    if (in_string) {
-      if (escaped) escaped = false;
-      else if (c == '\\') escaped = true;
-      else if (c == '"') in_string = false;
-      continue;
-    }
-    if (c == '"') in_string = true;
-    else if (c == '{' || c == '[') deepest = std::max(deepest, ++depth);
-    else if (c == '}' || c == ']') --depth;
-  }
-  return deepest;
-}
 
 // A non-negative integer member, or `fallback` when absent; false when
 // present but not one.
@@ -213,7 +196,7 @@ Status check_gltf(const std::string& path, std::ifstream& in, std::uint64_t file
     text.resize(static_cast<std::size_t>(file_bytes));
     in.read(text.data(), static_cast<std::streamsize>(file_bytes));
   }
-  if (json_nesting(text) > limits.max_node_depth)
+  if (json_nesting_depth(text) > limits.max_node_depth)
     return deeper_than_limit("glTF JSON nested", limits);
   const Json gltf = Json::parse(text, nullptr, false);
   if (gltf.is_discarded() || !gltf.is_object()) return damaged("the JSON does not parse to an object");

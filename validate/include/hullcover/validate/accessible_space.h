@@ -31,6 +31,7 @@
 #include "hullcover/bvh/triangle_world.h"
 #include "hullcover/mesh/prepared_mesh.h"
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -54,6 +55,9 @@ struct ProbeOptions {
   std::string octree_path;  ///< write the lost cells' octree here (.bt) when not empty
   /// What the covering was allowed to take (allowance_audit.h); none: exact mode.
   AllowanceOptions allowance;
+  /// Called now and then with the fraction of the rays' faces done (0..1),
+  /// front rays first, then openings; may be empty.
+  std::function<void(double)> progress;
 };
 
 /// One place where free space is lost: a ray's deepest point inside a hull.

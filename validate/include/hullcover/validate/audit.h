@@ -12,6 +12,7 @@
 #include "hullcover/validate/validity_recheck.h"
 
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -32,6 +33,9 @@ struct AuditOptions {
   /// agent radius (probe.allowance) the size defaults to it and may not be
   /// smaller.
   BehaviourOptions behaviour;
+  /// Called now and then with the fraction of the audit done (0..1): the
+  /// re-check, the probe's rays, then the proxies; may be empty.
+  std::function<void(double)> progress;
 };
 
 /// One reason the audit is not clean.

@@ -8,6 +8,14 @@
 /// hull, a convex polygon of thickness 0 facing the way its faces wind, as
 /// hullcover writes its flat hulls: an OBJ and the `.hcw` of one covering
 /// are the same hulls.
+///
+/// Engine exports (`hullcover export`) mean to the audit what they mean to
+/// the engine: in an OBJ whose groups carry Unreal's `UCX_` prefix, or
+/// else Godot's `-convcolonly` / `-convcol` suffix, only those groups are
+/// hulls (the rest is the render mesh); in a glTF binary (`.glb`), the
+/// meshes of the nodes declared static convex colliders
+/// (KHR_physics_rigid_bodies, OMI_physics_shape), or every node's mesh when
+/// none is declared.
 
 #include "hullcover/bvh/runtime_hull.h"
 #include "hullcover/geometry/status.h"
@@ -23,7 +31,7 @@ struct HullSet {
   int groups_without_area = 0;  ///< OBJ groups whose points span no area (collinear or one point: skipped)
 };
 
-/// Reads `path`: a `.hcw` runtime file, or else an OBJ with groups; only a
+/// Reads `path`: a `.hcw` runtime file, a `.glb`, or else an OBJ with groups; only a
 /// regular file of at most 1 GiB (kDefaultMaxInputFileBytes). Fails with
 /// `file_not_found`, `unreadable_file` (a malformed line, named by number, a
 /// vertex beyond float32 range, a damaged runtime file, a FIFO or device),

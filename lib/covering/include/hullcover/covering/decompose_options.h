@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <vector>
 
 namespace hullcover {
 
@@ -27,6 +28,20 @@ inline constexpr double kDefaultNearMergeRelative = kDefaultFreeSpaceReachRelati
 inline constexpr double kDefaultPrismCapRelative = 0.01;
 /// PhysX, Unity and Jolt reject convex shapes with more vertices.
 inline constexpr int kDefaultMaxHullVertices = 255;
+/// The smallest max_hull_triangles accepted: a box's 12 (no hull over a
+/// quad's prism has fewer).
+inline constexpr int kFewestTrianglesOfAHullLimit = 12;
+
+/// Triangles of a convex polytope's facets once each is fanned: a facet of
+/// k corners gives k - 2.
+inline int triangles_of_facets(const std::vector<std::vector<int>>& facets) {
+  int triangles = 0;
+  for (const std::vector<int>& facet : facets) triangles += static_cast<int>(facet.size()) - 2;
+  return triangles;
+}
+/// Triangles of the prism an engine export makes of a flat n-gon: two caps
+/// of n - 2 and n sides of 2.
+inline int triangles_of_prism(int corners) { return 4 * corners - 4; }
 
 /// The order in which mergeable pairs are taken.
 enum class MergeOrder {
@@ -84,6 +99,11 @@ struct DecomposeOptions {
   int order_tries = 1;
   bool keep_materials_apart = false;          ///< one material per hull, bars on material borders
   int max_hull_vertices = kDefaultMaxHullVertices;  ///< >= 8 (a prism of a quad)
+  /// Most triangles a hull may have once its facets are triangulated, >= 12
+  /// (a box); a planar patch counts as the prism an engine export makes of
+  /// it (4 n - 4 for an n-gon). Unity's convex MeshCollider takes 255.
+  /// Unset: no limit beyond max_hull_vertices.
+  std::optional<int> max_hull_triangles;
   /// Called now and then with the fraction of work done (0..1); may be empty.
   std::function<void(double)> progress;
 };

@@ -30,9 +30,10 @@ enum class Validity : std::uint8_t {
   opening_inside,        ///< exact E2: the opening beyond an open edge enters the hull
   face_crosses_hull,     ///< exact E3: a face's interior deeper than tol inside
   polygon_spans_gap,     ///< a flat polygon spans area of its plane that none of its faces covers
+  too_many_triangles,    ///< the option max_hull_triangles
 };
 /// How many Validity values there are (rejection counters per value).
-inline constexpr int kValidityCount = static_cast<int>(Validity::polygon_spans_gap) + 1;
+inline constexpr int kValidityCount = static_cast<int>(Validity::too_many_triangles) + 1;
 
 /// Stable snake_case name, for reports.
 const char* validity_name(Validity v);
