@@ -185,6 +185,10 @@ TEST(ColliderExport, UnrealAndGodotNamesAreReadBackAsTheHullsOnly) {
     EXPECT_EQ(static_cast<int>(set.value().hulls.size()), d.hulls) << file;
   }
   EXPECT_NE(run_hullcover(d.dir, common + "-o " + d.dir.path("both.obj") + " --ucx Room --godot").status, 0);
+  // A name that would split an OBJ line (or an Unreal asset name) is refused.
+  const CommandRun spaced = run_hullcover(d.dir, common + "-o " + d.dir.path("bad.obj") + " --ucx 'My Room'");
+  EXPECT_EQ(spaced.status, 2);
+  EXPECT_NE(spaced.err.find("--ucx NAME"), std::string::npos) << spaced.err;
 }
 
 TEST(ColliderExport, TriangleLimitHoldsForEveryHullAndItsExport) {

@@ -4,6 +4,7 @@
 #include "export/flat_hull_thickening.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 
@@ -77,6 +78,11 @@ Result<ColliderExportReport> export_colliders(const std::vector<bvh::RuntimeHull
   const std::optional<ColliderFormat> format = format_of(options, path);
   if (!format)
     return Status{StatusCode::invalid_argument, path + ": give --format glb or obj (or end the name in .glb or .obj)"};
+  // The name becomes OBJ object names and Unreal asset names: letters,
+  // digits, '_' and '-' only, so no line break or space can split a line.
+  if (!std::all_of(options.ucx_name.begin(), options.ucx_name.end(),
+                   [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; }))
+    return Status{StatusCode::invalid_argument, "--ucx NAME may hold only letters, digits, '_' and '-'"};
   const std::optional<TargetEngine> engine = engine_named(options.engine);
   if (!engine) return Status{StatusCode::invalid_argument, "unknown engine '" + options.engine + "'"};
   if (options.with_scene && !scene) return Status{StatusCode::invalid_argument, "--with-scene needs the scene"};

@@ -50,8 +50,9 @@ std::vector<Eigen::Vector3d> front_polygon(const ConvexPolytope& flat) {
 bool faces_it_back(const ConvexPolytope& flat, const ConvexPolytope& other, double tol) {
   const Plane& front = flat.planes[0];
   const Plane& back = other.planes[0];
-  // Normals within about tol per unit of extent of opposite.
-  if (front.normal.dot(back.normal) > -(1.0 - tol * tol)) return false;
+  // Facing away from each other; that they share the plane is decided by
+  // every corner of `other` lying within tol of it.
+  if (!(front.normal.dot(back.normal) < 0.0)) return false;
   for (const Eigen::Vector3d& p : other.vertices)
     if (std::abs(front.signed_distance(p)) > tol) return false;
   const std::vector<Eigen::Vector3d> corners = front_polygon(flat);
