@@ -18,5 +18,6 @@ void register_audit_command(CLI::App& app, int& exit_status);
 void register_bench_command(CLI::App& app, int& exit_status);
 void register_render_command(CLI::App& app, int& exit_status);
 void register_export_command(CLI::App& app, int& exit_status);
+void register_world_command(CLI::App& app, int& exit_status);
 
 } // namespace hullcover::app

@@ -85,6 +85,8 @@ int run_decompose(DecomposeCommandOptions& o) {
               faces > 0 ? static_cast<double>(c.hulls.size()) / faces : 0.0, seconds, c.statistics.seconds_merging);
   std::printf("  tolerance %.6g, bar half-length %.6g, prism cap %.6g, order %s, conditions %s\n",
               c.tolerance.length, c.bar_half_length, c.prism_thickness_cap, o.order.c_str(), o.conditions.c_str());
+  std::printf("  %d island%s, %d cell%s, threads %d\n", c.statistics.islands, c.statistics.islands == 1 ? "" : "s",
+              c.statistics.cells, c.statistics.cells == 1 ? "" : "s", o.decompose.threads);
   if (c.statistics.order_tries > 1) {
     const std::string kept = c.statistics.kept_try == 0
                                  ? std::string("the first (") + o.order + ")"
@@ -119,6 +121,15 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
   cmd->add_option("--world", o->world_path, "Also write the runtime file (.hcw) that 'query' and game servers load");
   cmd->add_option("--tol", o->tolerance, "Tolerance in scene units (default 1e-5 x bounding-box diagonal)");
   add_import_limit_options(*cmd, o->limits);
+  cmd->add_option("--threads", o->decompose.threads,
+                  "Threads merging cells at once (default 0: every core); the output is the same for any count")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--cell-size", o->decompose.cell_size,
+                  "Patches merge only within cells of this side, scene units, laid out per island (pieces of the "
+                  "scene set apart from the rest); every hull is still checked against the whole scene. Default: "
+                  "automatic, one cell per island of up to 8192 faces, a centred grid over larger ones; 0: one cell "
+                  "for the whole scene")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--order", o->order, "Merge order: compact (the paper's) or random")
       ->check(CLI::IsMember({"compact", "random"}))
       ->capture_default_str();

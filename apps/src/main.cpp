@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   hullcover::app::register_export_command(app, exit_status);
   hullcover::app::register_demo_command(app, exit_status);
   hullcover::app::register_render_command(app, exit_status);
+  hullcover::app::register_world_command(app, exit_status);
 
   try {
     app.parse(argc, argv);

@@ -1,15 +1,21 @@
 #include "hullcover/covering/covering.h"
 
+#include "hullcover/covering/merge_cells.h"
 #include "hullcover/geometry/tolerances.h"
+#include "hullcover/mesh/mesh_islands.h"
 
 #include "planar_prism.h"
 #include "patch_merging.h"
 #include "surface_facets.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <mutex>
+#include <numeric>
+#include <thread>
 
 namespace hullcover {
 namespace {
@@ -35,6 +41,9 @@ Status check_options(const DecomposeOptions& o) {
     return {StatusCode::invalid_argument, "max deviation must be a length >= 0"};
   if (has_allowance(o) && o.conditions != ValidityMode::exact)
     return {StatusCode::invalid_argument, "agent radius and max deviation relax exact mode: use them with exact conditions"};
+  if (o.cell_size && !(std::isfinite(*o.cell_size) && *o.cell_size >= 0.0))
+    return {StatusCode::invalid_argument, "cell size must be a length >= 0 (0: no cells)"};
+  if (o.threads < 0) return {StatusCode::invalid_argument, "threads must be >= 0 (0: every core)"};
   if (o.order_tries < 1) return {StatusCode::invalid_argument, "order tries must be at least 1"};
   if (o.max_hull_vertices < 8)
     return {StatusCode::invalid_argument, "max hull vertices must be at least 8 (a prism over a quad)"};
@@ -63,6 +72,161 @@ CoveringHull planar_hull(const SceneIndex& index, const detail::PatchMerger& mer
   return hull;
 }
 
+// What one cell gave: the patches it kept and its counts.
+struct CellResult {
+  std::vector<detail::Patch> patches;  ///< alive ones only
+  CoveringStatistics statistics;
+};
+
+// Merges one cell (every order try; the try with the fewest hulls is kept).
+// `progress(fraction)` reports the cell's own share.
+CellResult merge_cell(const SceneIndex& index, const Covering& covering, const CellLayout& cells, int cell,
+                      const std::function<void(double)>& progress) {
+  const DecomposeOptions& options = covering.options;
+  // Each try keeps its own options and statistics: the merger refers to them.
+  struct Try {
+    DecomposeOptions options;
+    CoveringStatistics statistics;
+    std::unique_ptr<detail::PatchMerger> merger;
+    int hulls = 0;
+  };
+  std::unique_ptr<Try> kept;
+  for (int attempt = 0; attempt < options.order_tries; ++attempt) {
+    auto run = std::make_unique<Try>();
+    run->options = options;
+    run->options.dissolve = covering.dissolve;
+    if (attempt > 0) {
+      run->options.order = MergeOrder::random;
+      run->options.seed = options.seed + static_cast<std::uint64_t>(attempt - 1);
+    }
+    run->options.progress = nullptr;
+    if (progress)
+      run->options.progress = [&progress, attempt, &options](double fraction) {
+        progress((attempt + fraction) / options.order_tries);
+      };
+    run->merger = std::make_unique<detail::PatchMerger>(index, run->options, covering.near_merge_distance, cells,
+                                                        cell, run->statistics);
+    run->merger->run();
+    for (const detail::Patch& patch : run->merger->patches()) run->hulls += patch.alive;
+    if (!kept || run->hulls < kept->hulls) {
+      run->statistics.kept_try = attempt;
+      kept = std::move(run);
+    }
+  }
+  CellResult result;
+  result.statistics = kept->statistics;
+  for (const detail::Patch& patch : kept->merger->patches())
+    if (patch.alive) result.patches.push_back(patch);
+  return result;
+}
+
+// The hull of one patch of the final merger.
+CoveringHull make_hull(const SceneIndex& index, const detail::PatchMerger& merger, int id, double prism_cap,
+                       ConvexHullBuilder& builder, CoveringStatistics& stats, std::vector<int>& scratch) {
+  const detail::Patch& patch = merger.patches()[id];
+  CoveringHull hull;
+  if (patch.planar) {
+    hull = planar_hull(index, merger, id, patch, prism_cap, builder, scratch);
+    stats.prisms_made_flat += hull.thickness == 0.0;
+  } else {
+    // Rebuild once with Qhull: hulls grown during merging keep the
+    // triangles they grew by, Qhull merges coplanar facets into polygons.
+    std::vector<Eigen::Vector3d> points;
+    for (int v : patch.hull_vertices) points.push_back(index.mesh().positions[v]);
+    Result<ConvexPolytope> rebuilt = builder.build(points, patch.hull_vertices);
+    ++stats.qhull_calls;
+    // The hull validated during merging may differ from the rebuilt one by
+    // up to tol (points within tol of it were not added): the rebuilt hull
+    // is kept only if it passes the same checks.
+    const bool rebuilt_valid = rebuilt.ok() && check_solid_hull(index, rebuilt.value(), scratch) == Validity::valid;
+    hull.polytope = rebuilt_valid ? std::move(rebuilt).value() : *patch.solid;
+    stats.solids_kept_as_grown += !rebuilt_valid;
+  }
+  hull.faces = patch.faces;
+  std::sort(hull.faces.begin(), hull.faces.end());
+  hull.material = patch.material;
+  hull.volume = polytope_volume(hull.polytope);
+  hull.surface_planes = detail::surface_planes(index, hull.polytope, scratch);
+  return hull;
+}
+
+// Runs `job(i)` for i in [0, count) on `threads` threads, taking the i in
+// the given order; the first exception a job throws is rethrown here, after
+// every thread has stopped (the others stop after their current job).
+void run_in_parallel(int count, int threads, const std::vector<int>& order, const std::function<void(int)>& job) {
+  std::atomic<int> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  const auto work = [&] {
+    for (int i = next++; i < count; i = next++) {
+      try {
+        job(order.empty() ? i : order[i]);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(failure_mutex);
+        if (!failure) failure = std::current_exception();
+        next = count;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::min(threads, count); ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& thread : pool) thread.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+// Adds a cell's counts to the scene's (timings are measured for the whole).
+void add_counts(CoveringStatistics& total, const CoveringStatistics& cell) {
+  total.zero_area_faces_skipped += cell.zero_area_faces_skipped;
+  total.merges += cell.merges;
+  total.near_merges += cell.near_merges;
+  total.dissolved_patches += cell.dissolved_patches;
+  total.candidates_tested += cell.candidates_tested;
+  for (size_t i = 0; i < total.rejections.size(); ++i) total.rejections[i] += cell.rejections[i];
+  total.qhull_calls += cell.qhull_calls;
+  total.incremental_hulls += cell.incremental_hulls;
+  total.prisms_made_flat += cell.prisms_made_flat;
+  total.solids_kept_as_grown += cell.solids_kept_as_grown;
+}
+
+// Merges every cell with `threads` threads, largest cells first (so the
+// last to finish is a small one). Results are kept per cell: which thread
+// ran a cell changes nothing in them.
+std::vector<CellResult> merge_cells(const SceneIndex& index, const Covering& covering, const CellLayout& cells,
+                                    int threads) {
+  const int cell_count = static_cast<int>(cells.faces_of_cell.size());
+  std::vector<int> order(cell_count);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return cells.faces_of_cell[a].size() > cells.faces_of_cell[b].size();
+  });
+  // Progress: each cell's fraction, weighted by its faces; reported one
+  // call at a time.
+  std::mutex progress_mutex;
+  std::vector<double> done(cell_count, 0.0);
+  double done_faces = 0.0;
+  const double total_faces = std::max<double>(1.0, static_cast<double>(index.mesh().triangles.size()));
+  const auto report = [&](int cell, double fraction) {
+    const std::lock_guard<std::mutex> lock(progress_mutex);
+    done_faces += (fraction - done[cell]) * static_cast<double>(cells.faces_of_cell[cell].size());
+    done[cell] = fraction;
+    covering.options.progress(std::min(1.0, done_faces / total_faces));
+  };
+  std::vector<CellResult> results(cell_count);
+  run_in_parallel(cell_count, threads, order, [&](int cell) {
+    std::function<void(double)> progress;
+    if (covering.options.progress) progress = [&report, cell](double fraction) { report(cell, fraction); };
+    results[cell] = merge_cell(index, covering, cells, cell, progress);
+    if (progress) progress(1.0);
+  });
+  return results;
+}
+
+int threads_to_use(int requested) {
+  if (requested > 0) return requested;
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
 Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const DecomposeOptions& options);
 
 } // namespace
@@ -83,7 +247,9 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
   Covering covering;
   covering.options = options;
   covering.tolerance = prepared.tolerance;
-  const double diagonal = prepared.tolerance.diagonal;
+  // Defaults scale with the local extent (the largest island), not the
+  // whole world: a map keeps its hulls when laid beside others.
+  const double diagonal = prepared.tolerance.local_extent;
   const bool exact = options.conditions == ValidityMode::exact;
   covering.bar_half_length = options.bar_half_length.value_or(
       exact ? kExactBarHalfLengthInTolerances * prepared.tolerance.length : kDefaultBarHalfLengthRelative * diagonal);
@@ -103,76 +269,59 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
       build_scene_index(prepared, {covering.bar_half_length, options.keep_materials_apart, options.conditions,
                                    covering.free_space_reach, hull_margin, options.agent_radius.value_or(0.0),
                                    options.max_deviation.value_or(0.0)});
+  const MeshIslands islands = find_mesh_islands(prepared.mesh);
+  const CellLayout cells = lay_out_cells(prepared, islands, options.cell_size);
+  covering.cell_sizes = cells.island_cell_size;
+  stats.islands = static_cast<int>(islands.boxes.size());
+  stats.cells = static_cast<int>(cells.faces_of_cell.size());
   stats.seconds_index = seconds_since(start);
 
   start = Clock::now();
-  // Each try keeps its own options and statistics: the merger refers to them.
-  struct Try {
-    DecomposeOptions options;
-    CoveringStatistics statistics;
-    std::unique_ptr<detail::PatchMerger> merger;
-    int hulls = 0;
-  };
-  std::unique_ptr<Try> kept;
-  for (int attempt = 0; attempt < options.order_tries; ++attempt) {
-    auto run = std::make_unique<Try>();
-    run->options = options;
-    run->options.dissolve = covering.dissolve;
-    if (attempt > 0) {
-      run->options.order = MergeOrder::random;
-      run->options.seed = options.seed + static_cast<std::uint64_t>(attempt - 1);
-    }
-    if (options.progress)
-      run->options.progress = [&options, attempt](double fraction) {
-        options.progress((attempt + fraction) / options.order_tries);
-      };
-    run->statistics = stats;
-    run->merger = std::make_unique<detail::PatchMerger>(index, run->options, covering.near_merge_distance,
-                                                        run->statistics);
-    run->merger->run();
-    for (const detail::Patch& patch : run->merger->patches()) run->hulls += patch.alive;
-    if (!kept || run->hulls < kept->hulls) {
-      run->statistics.kept_try = attempt;
-      kept = std::move(run);
+  const int threads = threads_to_use(options.threads);
+  std::vector<CellResult> results = merge_cells(index, covering, cells, threads);
+  // Kept try: the largest cell's (the one that weighs most in the count).
+  int largest = 0;
+  std::vector<detail::Patch> patches;
+  std::vector<int> cell_of_patch;
+  for (int c = 0; c < stats.cells; ++c) {
+    add_counts(stats, results[c].statistics);
+    if (cells.faces_of_cell[c].size() > cells.faces_of_cell[largest].size()) largest = c;
+    for (detail::Patch& patch : results[c].patches) {
+      patches.push_back(std::move(patch));
+      cell_of_patch.push_back(c);
     }
   }
-  stats = kept->statistics;
+  stats.kept_try = results.empty() ? 0 : results[largest].statistics.kept_try;
   stats.order_tries = options.order_tries;
-  const detail::PatchMerger& merger = *kept->merger;
+  results.clear();
+  // The seam pass runs over one cell holding every face.
+  const CellLayout whole = lay_out_cells(prepared, islands, 0.0);
+  DecomposeOptions seam_options = options;
+  seam_options.progress = nullptr;
+  CoveringStatistics seam_stats;
+  detail::PatchMerger merger(index, seam_options, whole, std::move(patches), std::move(cell_of_patch), seam_stats);
+  merger.run_seams();
+  stats.seam_merges = seam_stats.merges;
+  add_counts(stats, seam_stats);
   stats.seconds_merging = seconds_since(start);
 
   start = Clock::now();
-  std::vector<int> scratch;
-  ConvexHullBuilder output_hulls;
-  const std::vector<detail::Patch>& patches = merger.patches();
-  for (int id = 0; id < static_cast<int>(patches.size()); ++id) {
-    const detail::Patch& patch = patches[id];
-    if (!patch.alive) continue;
-    CoveringHull hull;
-    if (patch.planar) {
-      hull = planar_hull(index, merger, id, patch, covering.prism_thickness_cap, output_hulls, scratch);
-      stats.prisms_made_flat += hull.thickness == 0.0;
-    } else {
-      // Rebuild once with Qhull: hulls grown during merging keep the
-      // triangles they grew by, Qhull merges coplanar facets into polygons.
-      std::vector<Eigen::Vector3d> points;
-      for (int v : patch.hull_vertices) points.push_back(prepared.mesh.positions[v]);
-      Result<ConvexPolytope> rebuilt = output_hulls.build(points, patch.hull_vertices);
-      ++stats.qhull_calls;
-      // The hull validated during merging may differ from the rebuilt one by
-      // up to tol (points within tol of it were not added): the rebuilt hull
-      // is kept only if it passes the same checks.
-      const bool rebuilt_valid = rebuilt.ok() && check_solid_hull(index, rebuilt.value(), scratch) == Validity::valid;
-      hull.polytope = rebuilt_valid ? std::move(rebuilt).value() : *patch.solid;
-      stats.solids_kept_as_grown += !rebuilt_valid;
-    }
-    hull.faces = patch.faces;
-    std::sort(hull.faces.begin(), hull.faces.end());
-    hull.material = patch.material;
-    hull.volume = polytope_volume(hull.polytope);
-    hull.surface_planes = detail::surface_planes(index, hull.polytope, scratch);
-    covering.hulls.push_back(std::move(hull));
-  }
+  std::vector<int> alive;
+  for (int id = 0; id < static_cast<int>(merger.patches().size()); ++id)
+    if (merger.patches()[id].alive) alive.push_back(id);
+  covering.hulls.resize(alive.size());
+  std::vector<CoveringStatistics> output_stats(alive.size());
+  // Hulls are made in runs, each with its own Qhull builder and scratch.
+  constexpr int kHullsPerRun = 64;
+  const int hull_count = static_cast<int>(alive.size());
+  run_in_parallel((hull_count + kHullsPerRun - 1) / kHullsPerRun, threads, {}, [&](int run) {
+    ConvexHullBuilder builder;
+    std::vector<int> scratch;
+    for (int i = run * kHullsPerRun; i < std::min(hull_count, (run + 1) * kHullsPerRun); ++i)
+      covering.hulls[i] =
+          make_hull(index, merger, alive[i], covering.prism_thickness_cap, builder, output_stats[i], scratch);
+  });
+  for (const CoveringStatistics& s : output_stats) add_counts(stats, s);
   std::sort(covering.hulls.begin(), covering.hulls.end(),
             [](const CoveringHull& x, const CoveringHull& y) { return x.faces.front() < y.faces.front(); });
   stats.seconds_output = seconds_since(start);

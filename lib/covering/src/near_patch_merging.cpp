@@ -41,7 +41,7 @@ bool PatchMerger::face_near_patch(int f, int q) const {
   std::vector<int> candidates;
   if (faces.size() > kFacesReadDirectly) {
     index_.face_tree.overlapping(reach, candidates);
-    candidates.erase(std::remove_if(candidates.begin(), candidates.end(), [&](int g) { return face_patch_[g] != q; }),
+    candidates.erase(std::remove_if(candidates.begin(), candidates.end(), [&](int g) { return patch_of(g) != q; }),
                      candidates.end());
   }
   for (int g : faces.size() > kFacesReadDirectly ? candidates : faces) {

@@ -16,8 +16,8 @@ std::vector<int> PatchMerger::receivers_of(int f, int h, const AabbTree& near_tr
   for (int k = 0; k < 3; ++k) {
     const int g = c.face_neighbours[f][k];
     if (g < 0) continue;
-    const int q = face_patch_[g];
-    if (q == h || !patches_[q].alive) continue;
+    const int q = patch_of(g);
+    if (q < 0 || q == h || !patches_[q].alive) continue;
     const double length = face_edge_length(index_.mesh(), f, k);
     auto same = std::find_if(by_shared.begin(), by_shared.end(), [q](const auto& e) { return e.second == q; });
     if (same != by_shared.end()) same->first -= length;
@@ -42,11 +42,11 @@ std::vector<int> PatchMerger::receivers_of(int f, int h, const AabbTree& near_tr
 }
 
 std::optional<PatchMerger::Candidate> PatchMerger::face_fits(int f, int q, int lone) {
-  const int home = face_patch_[f];
-  face_patch_[f] = lone;
+  const int home = patch_entry(f);
+  patch_entry(f) = lone;
   ++statistics_.candidates_tested;
   Candidate candidate = evaluate(q, lone);
-  face_patch_[f] = home;
+  patch_entry(f) = home;
   if (candidate.validity == Validity::valid) return candidate;
   ++statistics_.rejections[static_cast<int>(candidate.validity)];
   return std::nullopt;
@@ -56,7 +56,7 @@ void PatchMerger::move_face(int f, int q, int lone_id, Candidate&& candidate) {
   const Patch& lone = patches_[lone_id];
   Patch& r = patches_[q];
   r.faces.push_back(f);
-  face_patch_[f] = q;
+  patch_entry(f) = q;
   add_plane(r.face_planes, lone.face_planes.front(), scene_same_plane_gap(index_), index_.tol());
   r.hull_vertices = std::move(candidate.hull_vertices);
   r.planar = candidate.planar;
@@ -121,7 +121,7 @@ bool PatchMerger::dissolve(int h, const AabbTree& near_tree, int lone) {
     }
     if (!moved) {
       for (auto& [q, receiver] : before) patches_[q] = std::move(receiver);
-      for (int g : faces) face_patch_[g] = h;
+      for (int g : faces) patch_entry(g) = h;
       patches_[h].dissolve_failed_at = changes_;
       patches_[h].dissolve_failed_face = f;
       return false;

@@ -28,7 +28,7 @@ double pseudo_random_cost(std::uint64_t seed, int a, int b, int va, int vb) {
 // Face planes within tolerances.h's same-plane gap across the scene are kept
 // once: a patch's faces can lie anywhere in it.
 double scene_same_plane_gap(const SceneIndex& index) {
-  return same_plane_cosine_gap(index.tol(), index.prepared->tolerance.diagonal);
+  return same_plane_cosine_gap(index.tol(), index.prepared->tolerance.local_extent);
 }
 
 void add_plane(std::vector<Plane>& planes, const Plane& p, double cosine_gap, double tol) {
@@ -73,21 +73,23 @@ double merged_patch_cost(const Patch& a, const Patch& b, double shared) {
 }
 
 PatchMerger::PatchMerger(const SceneIndex& index, const DecomposeOptions& options, double near_merge_distance,
-                         CoveringStatistics& statistics)
-    : index_(index), options_(options), statistics_(statistics), near_merge_distance_(near_merge_distance) {
-  const Mesh& mesh = index.mesh();
+                         const CellLayout& cells, int cell, CoveringStatistics& statistics)
+    : index_(index), options_(options), cells_(cells), cell_(cell), statistics_(statistics),
+      near_merge_distance_(near_merge_distance) {
   const MeshConnectivity& c = index.prepared->connectivity;
-  const int face_count = static_cast<int>(mesh.triangles.size());
+  const std::vector<int>& faces = cells.faces_of_cell[cell];
+  const int face_count = static_cast<int>(faces.size());
   patches_.resize(face_count);
   face_patch_.resize(face_count);
-  for (int f = 0; f < face_count; ++f) {
-    face_patch_[f] = f;
+  for (int slot = 0; slot < face_count; ++slot) {
+    const int f = faces[slot];
+    face_patch_[slot] = slot;
     if (c.zero_area[f]) {
-      patches_[f].alive = false;
+      patches_[slot].alive = false;
       ++statistics_.zero_area_faces_skipped;
       continue;
     }
-    patches_[f] = single_face_patch(f);
+    patches_[slot] = single_face_patch(f);
   }
   recount_shared_edges();
   push_neighbour_pairs(-1);
@@ -115,13 +117,15 @@ void PatchMerger::recount_shared_edges() {
     p.shared_length.clear();
     p.boundary_length = 0.0;
   }
-  for (int f = 0; f < static_cast<int>(face_patch_.size()); ++f) {
-    Patch& p = patches_[face_patch_[f]];
+  for (int f : cells_.faces_of_cell[cell_]) {
+    const int own = patch_of(f);
+    Patch& p = patches_[own];
     if (!p.alive) continue;
     for (int k = 0; k < 3; ++k) {
       const int g = c.face_neighbours[f][k];
-      const int q = g < 0 ? -1 : face_patch_[g];
-      if (q == face_patch_[f]) continue;
+      // A face of another cell is a border: counted as boundary, no pair.
+      const int q = g < 0 ? -1 : patch_of(g);
+      if (q == own) continue;
       const double length = face_edge_length(mesh, f, k);
       p.boundary_length += length;
       if (q >= 0 && patches_[q].alive) p.shared_length[q] += length;
@@ -207,7 +211,7 @@ PatchMerger::Candidate PatchMerger::evaluate(int a, int b) {
         if (out.validity != Validity::valid) return out;
       }
       out.validity = check_flat_polygon(
-          index_, polygon, [&](int f) { return face_patch_[f] == a || face_patch_[f] == b; }, scratch_);
+          index_, polygon, [&](int f) { const int p = patch_of(f); return p == a || p == b; }, scratch_);
       return out;
     }
   }
@@ -264,7 +268,10 @@ Validity PatchMerger::check_thin_hull(int a, int b, const ConvexPolytope& hull, 
   const FlatPolygon polygon = make_flat_polygon(index_.mesh().positions, ids, across, tol);
   if (polygon.corners.empty()) return Validity::valid;
   const double half_width = 0.5 * thinnest + tol;
-  auto in_patch = [&](int f) { return face_patch_[f] == a || face_patch_[f] == b; };
+  auto in_patch = [&](int f) {
+    const int p = patch_of(f);
+    return p == a || p == b;
+  };
   // "Below" is behind the patches' faces, as for a flat polygon (a pillar
   // standing on a floor is allowed). Where the faces point both ways (a
   // slab's top and bottom together) neither side is the back: both are held.
@@ -326,7 +333,7 @@ void PatchMerger::merge(int a, int b, Candidate&& candidate) {
   k.boundary_length = std::max(0.0, k.boundary_length + g.boundary_length - 2.0 * shared_length);
   k.area += g.area;
   k.area_vector += g.area_vector;
-  for (int f : g.faces) face_patch_[f] = keep;
+  for (int f : g.faces) patch_entry(f) = keep;
   k.faces.insert(k.faces.end(), g.faces.begin(), g.faces.end());
   for (const Plane& p : g.face_planes) add_plane(k.face_planes, p, cosine_gap, index_.tol());
   k.hull_vertices = std::move(candidate.hull_vertices);

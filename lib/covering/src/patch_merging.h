@@ -3,6 +3,7 @@
 
 #include "hullcover/covering/convex_hull_3d.h"
 #include "hullcover/covering/decompose_options.h"
+#include "hullcover/covering/merge_cells.h"
 #include "validity_conditions.h"
 #include "scene_index.h"
 
@@ -61,13 +62,29 @@ bool patches_support_each_other(const SceneIndex& index, const Patch& a, const P
 /// of boundary: B / sqrt(A) (0 for a closed union).
 double merged_patch_cost(const Patch& a, const Patch& b, double shared);
 
-/// Runs the merging to the end and returns the surviving patches.
+/// Runs the merging of one cell's faces to the end and returns the
+/// surviving patches. Patch ids are local to the cell (0 .. its face
+/// count - 1, the i-th starting as its i-th face alone); faces of other
+/// cells belong to no patch, so no pair, near pair or dissolving crosses a
+/// cell's border. Mergers of different cells share only the read-only
+/// scene index and cell layout: they may run on different threads.
 class PatchMerger {
 public:
   /// `near_merge_distance`: see DecomposeOptions (resolved; 0 = the
-  /// paper's pass alone).
+  /// paper's pass alone). `cells` and `index` must outlive the merger.
   PatchMerger(const SceneIndex& index, const DecomposeOptions& options, double near_merge_distance,
-              CoveringStatistics& statistics);
+              const CellLayout& cells, int cell, CoveringStatistics& statistics);
+
+  /// The seam pass, over a layout of one cell holding every face: starts
+  /// from `patches`, the patches the cells kept (patch i from cell
+  /// `cell_of_patch[i]`), and merges pairs sharing an edge across a cell
+  /// border, then whatever pairs those merges open, until none is left
+  /// (run_seams). No near merges or dissolving: those stay within cells.
+  PatchMerger(const SceneIndex& index, const DecomposeOptions& options, const CellLayout& whole,
+              std::vector<Patch> patches, std::vector<int> cell_of_patch, CoveringStatistics& statistics);
+
+  /// The seam pass (see the constructor above).
+  void run_seams();
 
   /// Merges until no mergeable pair is left: the paper's pass, then near
   /// merges (near_patch_merging.cpp) and dissolving (patch_dissolving.cpp),
@@ -75,7 +92,11 @@ public:
   void run();
 
   const std::vector<Patch>& patches() const { return patches_; }
-  bool in_patch(int face, int patch) const { return face_patch_[face] == patch; }
+  bool in_patch(int face, int patch) const { return patch_of(face) == patch; }
+  /// The patch holding face `f`, -1 for a face of another cell.
+  int patch_of(int f) const {
+    return cells_.cell_of_face[f] == cell_ ? face_patch_[cells_.slot_in_cell[f]] : -1;
+  }
 
 private:
   struct Candidate {
@@ -152,17 +173,23 @@ private:
     }
   };
 
+  /// The patch entry of face `f`, which must be in this cell.
+  int& patch_entry(int f) { return face_patch_[cells_.slot_in_cell[f]]; }
+
   const SceneIndex& index_;
   const DecomposeOptions& options_;
+  const CellLayout& cells_;
+  int cell_;
   CoveringStatistics& statistics_;
   std::vector<Patch> patches_;
-  std::vector<int> face_patch_;
+  std::vector<int> face_patch_;  // per face of the cell (by CellLayout::slot_in_cell)
   std::vector<QueueEntry> queue_;  // a min-heap by QueueEntry::operator>
   ConvexHullBuilder hull_builder_;
   std::vector<int> scratch_;
   double near_merge_distance_;
   std::set<std::array<int, 4>> near_pairs_tried_;  // {a, version a, b, version b}
   long changes_ = 0;  // counts changes to patches, for Patch::changed_at
+  std::vector<int> cell_of_patch_;  // seam pass: the cell each starting patch came from
 };
 
 } // namespace hullcover::detail

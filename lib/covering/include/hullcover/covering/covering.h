@@ -48,12 +48,16 @@ struct Covering {
   double prism_thickness_cap = 0.0;
   double near_merge_distance = 0.0;  ///< scene units; 0 = no near merges
   bool dissolve = false;             ///< whether dissolving ran (resolved DecomposeOptions::dissolve)
+  /// Cell side per island (hullcover/mesh/mesh_islands.h numbering), scene
+  /// units; 0 where an island is one cell (merge_cells.h).
+  std::vector<double> cell_sizes;
   DecomposeOptions options;  ///< as given (progress callback included)
   CoveringStatistics statistics;
 };
 
-/// Decomposes the prepared mesh. Deterministic: the same mesh and options
-/// give the same hulls in the same order.
+/// Decomposes the prepared mesh, cell by cell (merge_cells.h) on
+/// DecomposeOptions::threads threads. Deterministic: the same mesh and
+/// options give the same hulls in the same order, whatever the thread count.
 /// Fails with `invalid_argument` for options out of range.
 Result<Covering> decompose(const PreparedMesh& prepared, const DecomposeOptions& options);
 

@@ -104,7 +104,18 @@ struct DecomposeOptions {
   /// it (4 n - 4 for an n-gon). Unity's convex MeshCollider takes 255.
   /// Unset: no limit beyond max_hull_vertices.
   std::optional<int> max_hull_triangles;
-  /// Called now and then with the fraction of work done (0..1); may be empty.
+  /// Cells (hullcover/covering/merge_cells.h): patches merge only within a
+  /// cell, while every hull is still checked against the whole scene.
+  /// Scene units, >= 0. Unset: automatic, per island (a grid centred on
+  /// each island, fine enough that its occupied cells hold
+  /// kFacesPerAutomaticCell faces on average; one cell for a smaller
+  /// island). 0: one cell for the whole scene (no cells).
+  std::optional<double> cell_size;
+  /// Threads that merge cells at once (>= 0; 0 = every core). The covering
+  /// does not depend on it: the same hulls in the same order for any count.
+  int threads = 0;
+  /// Called now and then with the fraction of work done (0..1); may be
+  /// empty. Called from the merging threads, one call at a time.
   std::function<void(double)> progress;
 };
 
@@ -130,8 +141,11 @@ struct CoveringStatistics {
   int prisms_made_flat = 0;        ///< planar hulls with thickness 0
   int solids_kept_as_grown = 0;    ///< solid hulls output as validated during merging (Qhull's rebuild differed)
   double seconds_index = 0.0;
-  double seconds_merging = 0.0;
-  double seconds_output = 0.0;
+  double seconds_merging = 0.0;  ///< wall time of the cells' merging (all threads) and the seam pass
+  double seconds_output = 0.0;   ///< wall time of making the hulls (all threads)
+  int seam_merges = 0;           ///< merges of patches across cell borders (the seam pass), part of `merges`
+  int cells = 0;                 ///< cells merged apart (merge_cells.h)
+  int islands = 0;               ///< the scene's islands (hullcover/mesh/mesh_islands.h)
 };
 
 } // namespace hullcover

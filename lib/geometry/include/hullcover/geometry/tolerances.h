@@ -4,7 +4,8 @@
 /// Jolt's PhysicsSettings.h do). Read this before adding a threshold.
 ///
 /// The base: ONE length per scene, `tol` (hullcover/mesh/tolerance.h chooses
-/// it: `kDefaultRelativeTolerance` x the scene's diagonal, never below the
+/// it: `kDefaultRelativeTolerance` x the scene's local extent, the diagonal of
+/// its largest island (hullcover/mesh/mesh_islands.h), never below the
 /// data's own rounding floor; printed by every command; overridable with
 /// --tol). Every sidedness and containment test uses it: "strictly inside"
 /// means deeper than tol, "coincident" closer than tol. Every other length
@@ -21,7 +22,11 @@ namespace hullcover {
 
 // ---- The scene tolerance ---------------------------------------------------
 
-/// Default tolerance as a fraction of the bounding-box diagonal.
+/// Default tolerance as a fraction of the scene's local extent (the diagonal
+/// of its largest island; of its bounding box for a scene of one island).
+/// Every other default length that scales with a scene (reach, near-merge
+/// distance, prism cap, bars) is a fraction of the same extent: a map keeps
+/// its defaults, and so its hulls, when laid beside others in a world.
 inline constexpr double kDefaultRelativeTolerance = 1e-5;
 
 /// How many units of rounding error one sidedness test (a plane through three
@@ -98,7 +103,8 @@ inline constexpr double kParallelSine = 1e-9;
 /// Two planes whose normals differ by less than this in 1 - cos are one
 /// plane across `extent`: over that length their offsets drift apart by at
 /// most tol, since 1 - cos(a) ~ a^2 / 2 and the drift is extent x a.
-/// Used for the planes of a patch's faces (extent: the scene's diagonal). A
+/// Used for the planes of a patch's faces (extent: the scene's local extent;
+/// a patch lies within one cell of one island). A
 /// hull's shrunk facets use kOnePlaneInTolerances instead: their planes are
 /// compared by distance across the hull, not by angle.
 inline double same_plane_cosine_gap(double tol, double extent) {

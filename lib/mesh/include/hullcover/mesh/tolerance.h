@@ -8,7 +8,9 @@
 /// lengths as named multiples of it, directions and the runtime's as
 /// dimensionless numbers. See ../shared/DESIGN.md, "tolerance".
 ///
-/// Default: `kDefaultRelativeTolerance` x the scene's bounding-box diagonal.
+/// Default: `kDefaultRelativeTolerance` x the scene's local extent: the
+/// diagonal of its largest island (mesh_islands.h), not of the whole world,
+/// so a map laid beside others keeps the tolerance it has alone.
 /// A user may override it with an absolute length, but never below the floor
 /// the data itself imposes (its own rounding error, as Jolt and Manifold do):
 /// a tolerance under the noise of the coordinates would turn rounding into
@@ -30,8 +32,16 @@ struct Tolerance {
   /// (input error plus double-precision arithmetic at its magnitude), times
   /// `kRoundingErrorsPerPlaneTest`.
   double floor = 0.0;
-  /// The scene's bounding-box diagonal the default was derived from.
+  /// The whole scene's bounding-box diagonal: how far a ray may have to run
+  /// to cross it.
   double diagonal = 0.0;
+  /// The diagonal of the scene's largest island (mesh_islands.h): what the
+  /// default tolerance, and every default length that scales with a scene
+  /// (reach, near-merge distance, prism cap), is derived from. Equal to
+  /// `diagonal` for a scene of one island.
+  double local_extent = 0.0;
+  /// How many islands the scene has.
+  int islands = 0;
   /// True when the user gave the length.
   bool user_given = false;
   /// True when the requested (or default) length was below `floor` and was

@@ -1,0 +1,91 @@
+#include "hullcover/covering/merge_cells.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+
+namespace hullcover {
+namespace {
+
+using CellKey = std::array<long long, 3>;
+
+Eigen::Vector3d centroid(const Mesh& mesh, int f) {
+  const Eigen::Vector3i& t = mesh.triangles[f];
+  return (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+}
+
+// The grid cell of a point: cubes of side `size` with a corner at `centre`.
+CellKey cell_key(const Eigen::Vector3d& p, const Eigen::Vector3d& centre, double size) {
+  CellKey key;
+  for (int axis = 0; axis < 3; ++axis) key[axis] = static_cast<long long>(std::floor((p[axis] - centre[axis]) / size));
+  return key;
+}
+
+// Faces of one island per occupied cell of side `size`, in key order.
+std::map<CellKey, std::vector<int>> cells_of_island(const Mesh& mesh, const std::vector<int>& faces,
+                                                    const Aabb& box, double size) {
+  std::map<CellKey, std::vector<int>> cells;
+  const Eigen::Vector3d centre = 0.5 * (box.min + box.max);
+  for (int f : faces) cells[cell_key(centroid(mesh, f), centre, size)].push_back(f);
+  return cells;
+}
+
+// Finer grids than this many cells along an island's longest side are not
+// tried: a cluster of faces that dense stays one cell (a bound on the work
+// for any input).
+constexpr long long kMostCellsAlongAnIsland = 1024;
+
+// The automatic side for an island: its longest extent over k, for the
+// smallest power of two k whose occupied cells average at most
+// kFacesPerAutomaticCell.
+double automatic_cell_size(const Mesh& mesh, const std::vector<int>& faces, const Aabb& box) {
+  if (static_cast<int>(faces.size()) <= kFacesPerAutomaticCell) return 0.0;
+  const double longest = (box.max - box.min).maxCoeff();
+  if (!(longest > 0.0)) return 0.0;
+  double size = longest;
+  for (long long k = 2; k <= kMostCellsAlongAnIsland; k *= 2) {
+    size = longest / static_cast<double>(k);
+    const size_t occupied = cells_of_island(mesh, faces, box, size).size();
+    if (faces.size() <= occupied * static_cast<size_t>(kFacesPerAutomaticCell)) return size;
+  }
+  return size;
+}
+
+} // namespace
+
+CellLayout lay_out_cells(const PreparedMesh& prepared, const MeshIslands& islands, std::optional<double> cell_size) {
+  const Mesh& mesh = prepared.mesh;
+  const int face_count = static_cast<int>(mesh.triangles.size());
+  CellLayout layout;
+  layout.cell_of_face.assign(face_count, 0);
+  layout.slot_in_cell.assign(face_count, 0);
+  if (cell_size && *cell_size == 0.0) {
+    layout.faces_of_cell.emplace_back(face_count);
+    for (int f = 0; f < face_count; ++f) layout.faces_of_cell[0][f] = f, layout.slot_in_cell[f] = f;
+    layout.island_cell_size.assign(islands.boxes.size(), 0.0);
+    return layout;
+  }
+  std::vector<std::vector<int>> faces_of_island(islands.boxes.size());
+  for (int f = 0; f < face_count; ++f) faces_of_island[islands.island_of_face[f]].push_back(f);
+  for (size_t i = 0; i < faces_of_island.size(); ++i) {
+    const std::vector<int>& faces = faces_of_island[i];
+    const double size = cell_size ? *cell_size : automatic_cell_size(mesh, faces, islands.boxes[i]);
+    layout.island_cell_size.push_back(size);
+    if (!(size > 0.0)) {
+      layout.faces_of_cell.push_back(faces);
+      continue;
+    }
+    for (auto& [key, cell] : cells_of_island(mesh, faces, islands.boxes[i], size))
+      layout.faces_of_cell.push_back(std::move(cell));
+  }
+  for (int c = 0; c < static_cast<int>(layout.faces_of_cell.size()); ++c)
+    for (int slot = 0; slot < static_cast<int>(layout.faces_of_cell[c].size()); ++slot) {
+      const int f = layout.faces_of_cell[c][slot];
+      layout.cell_of_face[f] = c;
+      layout.slot_in_cell[f] = slot;
+    }
+  return layout;
+}
+
+} // namespace hullcover

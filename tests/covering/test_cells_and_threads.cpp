@@ -1,0 +1,169 @@
+// Worlds: islands and the tolerance that follows them, cells, the seam pass
+// and threads, on scenes built in code (the shared scenes:
+// tests/scenes/test_scene_worlds.cpp).
+
+#include "covering_fixture.h"
+
+#include "hullcover/covering/merge_cells.h"
+#include "hullcover/mesh/mesh_islands.h"
+#include "hullcover/mesh/scene_builder.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+namespace hullcover {
+namespace {
+
+// `mesh` followed by a copy of it moved by `offset`.
+Mesh with_moved_copy(const Mesh& mesh, const Eigen::Vector3d& offset) {
+  Mesh out = mesh;
+  const int base = static_cast<int>(out.positions.size());
+  for (const Eigen::Vector3d& p : mesh.positions) out.positions.push_back(p + offset);
+  for (const Eigen::Vector3i& t : mesh.triangles) out.triangles.push_back(t + Eigen::Vector3i::Constant(base));
+  out.material_ids.insert(out.material_ids.end(), mesh.material_ids.begin(), mesh.material_ids.end());
+  return out;
+}
+
+// A flat floor of 2 x n x n triangles over [0, n]^2 at height 0, facing up.
+Mesh flat_floor(int n) {
+  Mesh m;
+  std::vector<double> ticks;
+  for (int i = 0; i <= n; ++i) ticks.push_back(i);
+  add_height_field(m, ticks, ticks, [](double, double) { return 0.0; });
+  return m;
+}
+
+TEST(MeshIslands, FarApartCopiesAreIslandsOfTheirOwn) {
+  const Mesh building = demo_building();
+  const MeshIslands one = find_mesh_islands(building);
+  // 1024 is a power of two: the copy's coordinates are the original's to the bit
+  // but for the move, so both islands have the same box diagonal.
+  const MeshIslands two = find_mesh_islands(with_moved_copy(building, {1024.0, 0.0, 0.0}));
+  ASSERT_EQ(two.boxes.size(), 2 * one.boxes.size());
+  EXPECT_DOUBLE_EQ(two.largest_diagonal(), one.largest_diagonal());
+  // Numbered by their lowest face: the original's islands come first.
+  for (size_t f = 0; f < building.triangles.size(); ++f) EXPECT_LT(two.island_of_face[f], static_cast<int>(one.boxes.size()));
+}
+
+TEST(MeshIslands, PiecesWithinOnePercentOfEachOtherAreOneIsland) {
+  const Mesh floor = flat_floor(4);  // diagonal sqrt(32)
+  // A gap of 1% of the floor's diagonal, minus a little: within reach.
+  const double near_gap = 4.0 + 0.009 * std::sqrt(32.0);
+  EXPECT_EQ(find_mesh_islands(with_moved_copy(floor, {near_gap, 0.0, 0.0})).boxes.size(), 1u);
+  const double far_gap = 4.0 + 0.03 * std::sqrt(32.0);
+  EXPECT_EQ(find_mesh_islands(with_moved_copy(floor, {far_gap, 0.0, 0.0})).boxes.size(), 2u);
+}
+
+TEST(Tolerance, AMapKeepsItsToleranceInAWorld) {
+  const Mesh building = demo_building();
+  Mesh world = building;
+  for (int i = 1; i <= 5; ++i) world = with_moved_copy(world, {2048.0 * i, 0.0, 1024.0 * i});
+  const Result<PreparedMesh> alone = prepare_mesh(building, std::nullopt);
+  const Result<PreparedMesh> in_world = prepare_mesh(world, std::nullopt);
+  ASSERT_TRUE(alone.ok() && in_world.ok());
+  EXPECT_DOUBLE_EQ(in_world.value().tolerance.length, alone.value().tolerance.length);
+  EXPECT_GT(in_world.value().tolerance.diagonal, 100.0 * alone.value().tolerance.diagonal);
+}
+
+TEST(Decompose, FarApartCopiesGiveEachCopyTheHullsOfOne) {
+  const Mesh building = demo_building();
+  const auto one = test::decompose_and_check(building);
+  const auto two = test::decompose_and_check(with_moved_copy(building, {1024.0, 0.0, 0.0}));
+  ASSERT_TRUE(one && two);
+  ASSERT_EQ(two->covering.hulls.size(), 2 * one->covering.hulls.size());
+  // The copy's hulls are the original's, moved: compare their faces.
+  const int faces = static_cast<int>(building.triangles.size());
+  std::set<std::vector<int>> original, copy;
+  for (const CoveringHull& h : two->covering.hulls) {
+    std::vector<int> ids = h.faces;
+    const bool moved = ids.front() >= faces;
+    if (moved)
+      for (int& f : ids) f -= faces;
+    (moved ? copy : original).insert(ids);
+  }
+  EXPECT_EQ(original, copy);
+}
+
+TEST(MergeCells, EveryFaceIsInOneCellAndSmallIslandsAreOneCell) {
+  const Result<PreparedMesh> p = prepare_mesh(flat_floor(8), std::nullopt);
+  ASSERT_TRUE(p.ok());
+  const MeshIslands islands = find_mesh_islands(p.value().mesh);
+  const CellLayout automatic = lay_out_cells(p.value(), islands, std::nullopt);
+  EXPECT_EQ(automatic.faces_of_cell.size(), 1u);  // 128 faces: far below kFacesPerAutomaticCell
+  const CellLayout cells = lay_out_cells(p.value(), islands, 2.0);
+  EXPECT_EQ(cells.faces_of_cell.size(), 16u);  // a grid of side 2 centred on (4, 4) over [0, 8]^2
+  std::vector<int> seen(p.value().mesh.triangles.size(), 0);
+  for (size_t c = 0; c < cells.faces_of_cell.size(); ++c) {
+    EXPECT_FALSE(cells.faces_of_cell[c].empty());
+    for (size_t slot = 0; slot < cells.faces_of_cell[c].size(); ++slot) {
+      const int f = cells.faces_of_cell[c][slot];
+      ++seen[f];
+      EXPECT_EQ(cells.cell_of_face[f], static_cast<int>(c));
+      EXPECT_EQ(cells.slot_in_cell[f], static_cast<int>(slot));
+    }
+  }
+  for (int count : seen) EXPECT_EQ(count, 1);
+}
+
+TEST(MergeCells, AQuarterTurnKeepsTheCells) {
+  Mesh floor;
+  add_height_field(floor, {0, 1, 2, 3, 4, 5, 6}, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10},
+                   [](double x, double z) { return 0.1 * x * z; });
+  Mesh turned = floor;
+  for (Eigen::Vector3d& v : turned.positions) v = Eigen::Vector3d(-v.z(), v.y(), v.x());
+  const auto partition = [](const Mesh& m) {
+    const Result<PreparedMesh> p = prepare_mesh(m, std::nullopt);
+    const CellLayout cells = lay_out_cells(p.value(), find_mesh_islands(p.value().mesh), 2.0);
+    return std::set<std::vector<int>>(cells.faces_of_cell.begin(), cells.faces_of_cell.end());
+  };
+  EXPECT_EQ(partition(floor), partition(turned));
+  EXPECT_GT(partition(floor).size(), 4u);
+}
+
+TEST(Decompose, TheSeamPassJoinsPatchesAcrossCellBorders) {
+  // One flat floor: a single polygon, however it is cut into cells.
+  DecomposeOptions o;
+  o.cell_size = 2.0;
+  const auto d = test::decompose_and_check(flat_floor(8), o);
+  ASSERT_TRUE(d);
+  EXPECT_EQ(d->covering.statistics.cells, 16);
+  EXPECT_EQ(d->covering.hulls.size(), 1u);
+  EXPECT_EQ(d->covering.statistics.seam_merges, 15);
+}
+
+TEST(Decompose, SameCoveringForAnyThreadCount) {
+  const Mesh building = demo_building();
+  const Result<PreparedMesh> p = prepare_mesh(building, std::nullopt);
+  ASSERT_TRUE(p.ok());
+  DecomposeOptions o;
+  o.cell_size = p.value().tolerance.local_extent / 6.0;
+  std::string first;
+  int cells = 0;
+  for (int threads : {1, 2, 3, 8}) {
+    o.threads = threads;
+    const auto d = test::decompose_and_check(building, o);
+    ASSERT_TRUE(d);
+    cells = d->covering.statistics.cells;
+    const std::string bytes = test::covering_obj_bytes(d->covering);
+    if (first.empty()) first = bytes;
+    EXPECT_EQ(bytes, first) << threads << " threads";
+  }
+  EXPECT_GT(cells, 8);
+}
+
+TEST(Decompose, RejectsACellSizeOrThreadCountOutOfRange) {
+  Result<PreparedMesh> p = prepare_mesh(demo_building(), std::nullopt);
+  ASSERT_TRUE(p.ok());
+  for (double size : {-1.0, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()}) {
+    DecomposeOptions o;
+    o.cell_size = size;
+    EXPECT_EQ(decompose(p.value(), o).status().code(), StatusCode::invalid_argument) << size;
+  }
+  DecomposeOptions o;
+  o.threads = -1;
+  EXPECT_EQ(decompose(p.value(), o).status().code(), StatusCode::invalid_argument);
+}
+
+} // namespace
+} // namespace hullcover
