@@ -30,7 +30,8 @@ std::string describe_tolerance(const Tolerance& t) {
   else if (t.user_given)
     std::snprintf(line, sizeof line, "%.6g (given)", t.length);
   else
-    std::snprintf(line, sizeof line, "%.6g (default: 1e-5 x bounding-box diagonal %.6g)", t.length, t.diagonal);
+    std::snprintf(line, sizeof line, "%.6g (default: 1e-5 x local extent %.6g, the largest of %d island%s)",
+                  t.length, t.local_extent, t.islands, t.islands == 1 ? "" : "s");
   return line;
 }
 
@@ -79,6 +80,8 @@ nlohmann::json mesh_figures_json(const MeshFigures& f) {
        {{"length", f.tolerance.length},
         {"floor", f.tolerance.floor},
         {"diagonal", f.tolerance.diagonal},
+        {"local_extent", f.tolerance.local_extent},
+        {"islands", f.tolerance.islands},
         {"user_given", f.tolerance.user_given},
         {"raised_to_floor", f.tolerance.raised_to_floor}}},
   };

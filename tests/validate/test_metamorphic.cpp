@@ -76,7 +76,10 @@ long clean_hull_count(const Mesh& mesh, double scale, const std::string& what) {
   const Result<AuditReport> audit = run_audit(d->prepared, set, audit_options_at_scale(scale));
   EXPECT_TRUE(audit.ok()) << what << ": " << audit.status().message();
   if (!audit.ok()) return -1;
-  EXPECT_TRUE(audit.value().clean()) << what << ": " << audit.value().findings.size() << " kinds of finding";
+  const validate::BehaviourReport& b = audit.value().behaviour;
+  EXPECT_TRUE(audit.value().clean()) << what << ": " << audit.value().findings.size() << " kinds of finding; deep false "
+                                     << b.deep_false_contacts << " (boxes " << b.deep_false_boxes << ") depth "
+                                     << b.max_false_depth << " tol " << d->tol() << " proxy " << b.size;
   EXPECT_GT(audit.value().probe.front.rays, 0) << what;
   return static_cast<long>(d->covering.hulls.size());
 }
