@@ -85,6 +85,39 @@ TEST(Decompose, FarApartCopiesGiveEachCopyTheHullsOfOne) {
   EXPECT_EQ(original, copy);
 }
 
+TEST(Tolerance, ASmallObjectBesideALargeMapKeepsItsOwnPrecision) {
+  // The building at 1/8 scale (exact: a power of two) beside the full one:
+  // the tolerance follows the smaller, never the larger, and the small one
+  // decomposes to the hulls it has alone, face for face.
+  const Mesh building = demo_building();
+  Mesh small = building;
+  for (Eigen::Vector3d& p : small.positions) p *= 0.125;
+  Mesh world = small;
+  const int small_faces = static_cast<int>(small.triangles.size());
+  Mesh large = building;
+  for (Eigen::Vector3d& p : large.positions) p += Eigen::Vector3d(512.0, 0.0, 0.0);
+  const int base = static_cast<int>(world.positions.size());
+  world.positions.insert(world.positions.end(), large.positions.begin(), large.positions.end());
+  for (const Eigen::Vector3i& t : large.triangles) world.triangles.push_back(t + Eigen::Vector3i::Constant(base));
+  world.material_ids.insert(world.material_ids.end(), large.material_ids.begin(), large.material_ids.end());
+
+  const Result<PreparedMesh> alone = prepare_mesh(small, std::nullopt);
+  const Result<PreparedMesh> large_alone = prepare_mesh(building, std::nullopt);
+  const Result<PreparedMesh> in_world = prepare_mesh(world, std::nullopt);
+  ASSERT_TRUE(alone.ok() && large_alone.ok() && in_world.ok());
+  EXPECT_DOUBLE_EQ(in_world.value().tolerance.length, alone.value().tolerance.length);
+  EXPECT_LT(in_world.value().tolerance.length, large_alone.value().tolerance.length);
+
+  const auto d_alone = test::decompose_and_check(small);
+  const auto d_world = test::decompose_and_check(world);
+  ASSERT_TRUE(d_alone && d_world);
+  std::set<std::vector<int>> hulls_alone, hulls_in_world;
+  for (const CoveringHull& h : d_alone->covering.hulls) hulls_alone.insert(h.faces);
+  for (const CoveringHull& h : d_world->covering.hulls)
+    if (h.faces.front() < small_faces) hulls_in_world.insert(h.faces);
+  EXPECT_EQ(hulls_in_world, hulls_alone);
+}
+
 TEST(MergeCells, EveryFaceIsInOneCellAndSmallIslandsAreOneCell) {
   const Result<PreparedMesh> p = prepare_mesh(flat_floor(8), std::nullopt);
   ASSERT_TRUE(p.ok());

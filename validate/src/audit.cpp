@@ -34,7 +34,7 @@ constexpr double kProxiesStartOfAudit = 0.9;
 
 Result<AuditReport> audit(const PreparedMesh& prepared, const HullSet& set, const AuditOptions& options) {
   const double bar_half_length =
-      options.bar_half_length.value_or(kDefaultBarHalfLengthRelative * prepared.tolerance.local_extent);
+      options.bar_half_length.value_or(kDefaultBarHalfLengthRelative * prepared.tolerance.largest_island);
   if (!(bar_half_length > 0.0) || std::isinf(bar_half_length))
     return Status{StatusCode::invalid_argument, "the bar half-length must be a positive length"};
   const AllowanceOptions& allowance = options.probe.allowance;

@@ -83,6 +83,14 @@ struct CellResult {
 CellResult merge_cell(const SceneIndex& index, const Covering& covering, const CellLayout& cells, int cell,
                       const std::function<void(double)>& progress) {
   const DecomposeOptions& options = covering.options;
+  // The cell's island's own near-merge distance (the largest island's for a
+  // cell of several: --cell-size 0).
+  const int island = cells.island_of_cell[cell];
+  const double near_merge_distance =
+      options.near_merge_distance || island < 0
+          ? covering.near_merge_distance
+          : (options.conditions == ValidityMode::exact ? kDefaultNearMergeRelative * covering.island_extents[island]
+                                                       : 0.0);
   // Each try keeps its own options and statistics: the merger refers to them.
   struct Try {
     DecomposeOptions options;
@@ -104,7 +112,7 @@ CellResult merge_cell(const SceneIndex& index, const Covering& covering, const C
       run->options.progress = [&progress, attempt, &options](double fraction) {
         progress((attempt + fraction) / options.order_tries);
       };
-    run->merger = std::make_unique<detail::PatchMerger>(index, run->options, covering.near_merge_distance, cells,
+    run->merger = std::make_unique<detail::PatchMerger>(index, run->options, near_merge_distance, cells,
                                                         cell, run->statistics);
     run->merger->run();
     for (const detail::Patch& patch : run->merger->patches()) run->hulls += patch.alive;
@@ -222,6 +230,15 @@ std::vector<CellResult> merge_cells(const SceneIndex& index, const Covering& cov
   return results;
 }
 
+// The prism cap of a patch: the user's, or its island's own (the largest
+// island's among its faces').
+double prism_cap_of(const Covering& covering, const MeshIslands& islands, const detail::Patch& patch) {
+  if (covering.options.prism_thickness_cap) return *covering.options.prism_thickness_cap;
+  double extent = 0.0;
+  for (int f : patch.faces) extent = std::max(extent, covering.island_extents[islands.island_of_face[f]]);
+  return kDefaultPrismCapRelative * extent;
+}
+
 int threads_to_use(int requested) {
   if (requested > 0) return requested;
   return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
@@ -247,9 +264,11 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
   Covering covering;
   covering.options = options;
   covering.tolerance = prepared.tolerance;
-  // Defaults scale with the local extent (the largest island), not the
-  // whole world: a map keeps its hulls when laid beside others.
-  const double diagonal = prepared.tolerance.local_extent;
+  // Default lengths scale with islands, not the whole world: each island's
+  // near merges and prisms follow its own diagonal, so a map keeps its hulls
+  // when laid beside others. The values kept in `covering` are the largest
+  // island's (the prism cap is also how far any hull may reach).
+  const double diagonal = prepared.tolerance.largest_island;
   const bool exact = options.conditions == ValidityMode::exact;
   covering.bar_half_length = options.bar_half_length.value_or(
       exact ? kExactBarHalfLengthInTolerances * prepared.tolerance.length : kDefaultBarHalfLengthRelative * diagonal);
@@ -271,6 +290,9 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
                                    options.max_deviation.value_or(0.0)});
   const MeshIslands islands = find_mesh_islands(prepared.mesh);
   const CellLayout cells = lay_out_cells(prepared, islands, options.cell_size);
+  covering.island_extents.clear();
+  for (const Aabb& box : islands.boxes)
+    covering.island_extents.push_back(box.diagonal() > 0.0 ? box.diagonal() : prepared.tolerance.local_extent);
   covering.cell_sizes = cells.island_cell_size;
   stats.islands = static_cast<int>(islands.boxes.size());
   stats.cells = static_cast<int>(cells.faces_of_cell.size());
@@ -318,8 +340,9 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
     ConvexHullBuilder builder;
     std::vector<int> scratch;
     for (int i = run * kHullsPerRun; i < std::min(hull_count, (run + 1) * kHullsPerRun); ++i)
-      covering.hulls[i] =
-          make_hull(index, merger, alive[i], covering.prism_thickness_cap, builder, output_stats[i], scratch);
+        covering.hulls[i] =
+          make_hull(index, merger, alive[i], prism_cap_of(covering, islands, merger.patches()[alive[i]]), builder,
+                    output_stats[i], scratch);
   });
   for (const CoveringStatistics& s : output_stats) add_counts(stats, s);
   std::sort(covering.hulls.begin(), covering.hulls.end(),

@@ -64,6 +64,7 @@ CellLayout lay_out_cells(const PreparedMesh& prepared, const MeshIslands& island
     layout.faces_of_cell.emplace_back(face_count);
     for (int f = 0; f < face_count; ++f) layout.faces_of_cell[0][f] = f, layout.slot_in_cell[f] = f;
     layout.island_cell_size.assign(islands.boxes.size(), 0.0);
+    layout.island_of_cell = {islands.boxes.size() == 1 ? 0 : -1};
     return layout;
   }
   std::vector<std::vector<int>> faces_of_island(islands.boxes.size());
@@ -74,10 +75,13 @@ CellLayout lay_out_cells(const PreparedMesh& prepared, const MeshIslands& island
     layout.island_cell_size.push_back(size);
     if (!(size > 0.0)) {
       layout.faces_of_cell.push_back(faces);
+      layout.island_of_cell.push_back(static_cast<int>(i));
       continue;
     }
-    for (auto& [key, cell] : cells_of_island(mesh, faces, islands.boxes[i], size))
+    for (auto& [key, cell] : cells_of_island(mesh, faces, islands.boxes[i], size)) {
       layout.faces_of_cell.push_back(std::move(cell));
+      layout.island_of_cell.push_back(static_cast<int>(i));
+    }
   }
   for (int c = 0; c < static_cast<int>(layout.faces_of_cell.size()); ++c)
     for (int slot = 0; slot < static_cast<int>(layout.faces_of_cell[c].size()); ++slot) {

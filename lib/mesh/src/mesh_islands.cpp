@@ -73,6 +73,13 @@ double MeshIslands::largest_diagonal() const {
   return largest;
 }
 
+double MeshIslands::smallest_diagonal() const {
+  double smallest = 0.0;
+  for (const Aabb& box : boxes)
+    if (box.diagonal() > 0.0 && (smallest == 0.0 || box.diagonal() < smallest)) smallest = box.diagonal();
+  return smallest;
+}
+
 MeshIslands find_mesh_islands(const Mesh& mesh) {
   const int n = static_cast<int>(mesh.triangles.size());
   const std::vector<int> piece = connected_pieces(mesh);

@@ -19,9 +19,12 @@ Result<Tolerance> choose_tolerance(const Mesh& mesh, std::optional<double> user_
 
   const MeshIslands islands = find_mesh_islands(mesh);
   tol.islands = static_cast<int>(islands.boxes.size());
-  tol.local_extent = islands.largest_diagonal();
-  // Islands of no extent (a lone degenerate triangle) leave the whole scene.
+  tol.local_extent = islands.smallest_diagonal();
+  tol.largest_island = islands.largest_diagonal();
+  // Islands of no extent (a lone degenerate triangle) are passed over; none
+  // with extent leaves the whole scene.
   if (!(tol.local_extent > 0.0)) tol.local_extent = tol.diagonal;
+  if (!(tol.largest_island > 0.0)) tol.largest_island = tol.diagonal;
 
   const double arithmetic_error = largest_coordinate_magnitude(mesh) * std::numeric_limits<double>::epsilon();
   tol.floor = kRoundingErrorsPerPlaneTest * std::max(mesh.coordinate_error, arithmetic_error);

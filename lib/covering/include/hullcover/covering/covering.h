@@ -45,9 +45,12 @@ struct Covering {
   /// (the default) a length beyond which no hull lies.
   double free_space_reach = 0.0;
   bool free_space_capped = false;  ///< the user asked for a reach
-  double prism_thickness_cap = 0.0;
-  double near_merge_distance = 0.0;  ///< scene units; 0 = no near merges
+  double prism_thickness_cap = 0.0;  ///< the given one, or the largest island's (each island has its own)
+  double near_merge_distance = 0.0;  ///< scene units; 0 = no near merges; the given one, or the largest island's
   bool dissolve = false;             ///< whether dissolving ran (resolved DecomposeOptions::dissolve)
+  /// Diagonal of each island (hullcover/mesh/mesh_islands.h numbering), scene
+  /// units: its default near-merge distance and prism cap scale with it.
+  std::vector<double> island_extents;
   /// Cell side per island (hullcover/mesh/mesh_islands.h numbering), scene
   /// units; 0 where an island is one cell (merge_cells.h).
   std::vector<double> cell_sizes;

@@ -34,6 +34,7 @@ struct CellLayout {
   std::vector<std::vector<int>> faces_of_cell;
   std::vector<int> cell_of_face;   ///< per face
   std::vector<int> slot_in_cell;   ///< per face: its index in its cell's list
+  std::vector<int> island_of_cell; ///< per cell; -1 for the one cell of --cell-size 0 (every island)
   /// Cell side used per island, scene units; 0 where the island is one cell.
   std::vector<double> island_cell_size;
 };

@@ -5,7 +5,7 @@
 ///
 /// The base: ONE length per scene, `tol` (hullcover/mesh/tolerance.h chooses
 /// it: `kDefaultRelativeTolerance` x the scene's local extent, the diagonal of
-/// its largest island (hullcover/mesh/mesh_islands.h), never below the
+/// its smallest island (hullcover/mesh/mesh_islands.h), never below the
 /// data's own rounding floor; printed by every command; overridable with
 /// --tol). Every sidedness and containment test uses it: "strictly inside"
 /// means deeper than tol, "coincident" closer than tol. Every other length
@@ -23,10 +23,10 @@ namespace hullcover {
 // ---- The scene tolerance ---------------------------------------------------
 
 /// Default tolerance as a fraction of the scene's local extent (the diagonal
-/// of its largest island; of its bounding box for a scene of one island).
-/// Every other default length that scales with a scene (reach, near-merge
-/// distance, prism cap, bars) is a fraction of the same extent: a map keeps
-/// its defaults, and so its hulls, when laid beside others in a world.
+/// of its smallest island; of its bounding box for a scene of one island).
+/// The near-merge distance and the prism cap are fractions of each island's
+/// own diagonal: a map keeps its defaults, and so its hulls, when laid beside
+/// others no smaller than itself in a world.
 inline constexpr double kDefaultRelativeTolerance = 1e-5;
 
 /// How many units of rounding error one sidedness test (a plane through three
@@ -103,8 +103,8 @@ inline constexpr double kParallelSine = 1e-9;
 /// Two planes whose normals differ by less than this in 1 - cos are one
 /// plane across `extent`: over that length their offsets drift apart by at
 /// most tol, since 1 - cos(a) ~ a^2 / 2 and the drift is extent x a.
-/// Used for the planes of a patch's faces (extent: the scene's local extent;
-/// a patch lies within one cell of one island). A
+/// Used for the planes of a patch's faces (extent: the largest island's
+/// diagonal; a patch lies within one island). A
 /// hull's shrunk facets use kOnePlaneInTolerances instead: their planes are
 /// compared by distance across the hull, not by angle.
 inline double same_plane_cosine_gap(double tol, double extent) {

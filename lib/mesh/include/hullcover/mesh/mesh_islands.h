@@ -2,10 +2,11 @@
 /// \file mesh_islands.h
 /// Islands: the pieces of a scene that sit together (a map, a building), as
 /// opposed to a world that lays many of them side by side. The defaults that
-/// scale with a scene (tolerance, reach, near-merge distance, prism cap) are
-/// taken from the largest island's extent, not the whole world's, so a map
+/// scale with a scene follow islands, not the whole world's extent, so a map
 /// keeps its tolerance and its hulls when it is placed in a larger world
-/// (../shared/DESIGN.md, "tolerance"); and the decomposer lays its cells
+/// (../shared/DESIGN.md, "tolerance"): the tolerance follows the smallest
+/// island (hullcover/mesh/tolerance.h), the near-merge distance and the
+/// prism cap each island's own extent; and the decomposer lays its cells
 /// out per island (hullcover/covering/merge_cells.h).
 
 #include "hullcover/geometry/aabb.h"
@@ -31,8 +32,11 @@ struct MeshIslands {
   /// Triangles per island.
   std::vector<int> face_counts;
 
-  /// The largest island diagonal: the extent scene defaults scale with.
+  /// The largest island diagonal (0 for no islands).
   double largest_diagonal() const;
+  /// The smallest island diagonal above 0 (0 when every island is a
+  /// point): the extent the default tolerance follows.
+  double smallest_diagonal() const;
 };
 
 /// Finds the islands of `mesh`. Triangles are connected when they share a

@@ -9,8 +9,12 @@
 /// dimensionless numbers. See ../shared/DESIGN.md, "tolerance".
 ///
 /// Default: `kDefaultRelativeTolerance` x the scene's local extent: the
-/// diagonal of its largest island (mesh_islands.h), not of the whole world,
-/// so a map laid beside others keeps the tolerance it has alone.
+/// diagonal of its SMALLEST island (mesh_islands.h), not of the whole world.
+/// A map laid beside others no smaller than itself keeps the tolerance it has
+/// alone; beside a smaller one it is judged at the smaller one's precision,
+/// never coarser than alone (conservative: a tolerance derived from a larger
+/// neighbour would let a small object's hulls take space, or weld its
+/// vertices, at the neighbour's scale).
 /// A user may override it with an absolute length, but never below the floor
 /// the data itself imposes (its own rounding error, as Jolt and Manifold do):
 /// a tolerance under the noise of the coordinates would turn rounding into
@@ -35,11 +39,13 @@ struct Tolerance {
   /// The whole scene's bounding-box diagonal: how far a ray may have to run
   /// to cross it.
   double diagonal = 0.0;
-  /// The diagonal of the scene's largest island (mesh_islands.h): what the
-  /// default tolerance, and every default length that scales with a scene
-  /// (reach, near-merge distance, prism cap), is derived from. Equal to
-  /// `diagonal` for a scene of one island.
+  /// The diagonal of the scene's smallest island (mesh_islands.h): what the
+  /// default tolerance is derived from. Equal to `diagonal` for a scene of
+  /// one island.
   double local_extent = 0.0;
+  /// The diagonal of the scene's largest island: the farthest a patch (and
+  /// so a hull made of one) can span. Equal to `diagonal` for one island.
+  double largest_island = 0.0;
   /// How many islands the scene has.
   int islands = 0;
   /// True when the user gave the length.
