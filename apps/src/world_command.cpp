@@ -9,6 +9,7 @@
 #include "hullcover/mesh/mesh_export.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -50,11 +51,26 @@ int run_world(const WorldOptions& o) {
   const int up = o.up == "x" ? 0 : o.up == "z" ? 2 : 1;
   std::vector<Piece> pieces;
   double cell = 0.0;
-  for (const std::string& path : o.scenes) {
+  for (const std::string& spec : o.scenes) {
+    // SCENE@UNITS_PER_METRE: scaled to metres, so levels in different units
+    // sit together at their true sizes.
+    std::string path = spec;
+    double units_per_metre = 1.0;
+    if (const size_t at = spec.rfind('@'); at != std::string::npos) {
+      char* end = nullptr;
+      units_per_metre = std::strtod(spec.c_str() + at + 1, &end);
+      if (end == spec.c_str() + at + 1 || *end != '\0' || !(units_per_metre > 0.0) || !std::isfinite(units_per_metre)) {
+        std::fprintf(stderr, "hullcover: error: %s: units per metre after '@' must be a positive number\n",
+                     spec.c_str());
+        return kExitBadInput;
+      }
+      path = spec.substr(0, at);
+    }
     const std::optional<LoadedScene> scene = load_scene(path, std::nullopt, o.limits);
     if (!scene) return kExitBadInput;
     Piece piece;
     piece.mesh = scene->prepared.mesh;
+    for (Eigen::Vector3d& p : piece.mesh.positions) p /= units_per_metre;
     piece.box = referenced_bounding_box(piece.mesh);
     cell = std::max(cell, (piece.box.max - piece.box.min).norm());
     pieces.push_back(std::move(piece));
@@ -107,7 +123,7 @@ void register_world_command(CLI::App& app, int& exit_status) {
       "Build a test world: copies of the scenes, in turn, on a square grid (a step of the largest scene's\n"
       "diagonal plus a gap, so no copy touches another), each turned by the next multiple of 90 degrees\n"
       "about the up axis, until the world holds --triangles. Writes one OBJ.");
-  cmd->add_option("SCENES", o->scenes, "Scene files, taken in turn")->required();
+  cmd->add_option("SCENES", o->scenes, "Scene files, taken in turn; SCENE@N scales one in N units per metre to metres")->required();
   cmd->add_option("-o,--output", o->output, "The world OBJ")->required();
   cmd->add_option("--triangles", o->triangles, "Stop once the world holds at least this many (default: one copy each)")
       ->check(CLI::NonNegativeNumber);

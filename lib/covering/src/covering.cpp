@@ -284,15 +284,27 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
   stats.faces = static_cast<int>(prepared.mesh.triangles.size());
 
   Clock::time_point start = Clock::now();
-  const SceneIndex index =
-      build_scene_index(prepared, {covering.bar_half_length, options.keep_materials_apart, options.conditions,
-                                   covering.free_space_reach, hull_margin, options.agent_radius.value_or(0.0),
-                                   options.max_deviation.value_or(0.0)});
   const MeshIslands islands = find_mesh_islands(prepared.mesh);
   const CellLayout cells = lay_out_cells(prepared, islands, options.cell_size);
   covering.island_extents.clear();
   for (const Aabb& box : islands.boxes)
     covering.island_extents.push_back(box.diagonal() > 0.0 ? box.diagonal() : prepared.tolerance.local_extent);
+  // Patches never span islands unless the whole scene is one cell, so every
+  // hull lies in its island's box grown by the prism cap: the sweeps need be
+  // indexed only there.
+  std::vector<Aabb> hull_zones;
+  if (!(options.cell_size && *options.cell_size == 0.0))
+    for (const Aabb& box : islands.boxes) hull_zones.push_back(grown(box, hull_margin));
+  BarOptions bars;
+  bars.half_length = covering.bar_half_length;
+  bars.material_boundaries = options.keep_materials_apart;
+  bars.mode = options.conditions;
+  bars.free_space_reach = covering.free_space_reach;
+  bars.hull_margin = hull_margin;
+  bars.agent_radius = options.agent_radius.value_or(0.0);
+  bars.max_deviation = options.max_deviation.value_or(0.0);
+  bars.hull_zones = std::move(hull_zones);
+  const SceneIndex index = build_scene_index(prepared, bars);
   covering.cell_sizes = cells.island_cell_size;
   stats.islands = static_cast<int>(islands.boxes.size());
   stats.cells = static_cast<int>(cells.faces_of_cell.size());
@@ -303,34 +315,54 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
   std::vector<CellResult> results = merge_cells(index, covering, cells, threads);
   // Kept try: the largest cell's (the one that weighs most in the count).
   int largest = 0;
-  std::vector<detail::Patch> patches;
-  std::vector<int> cell_of_patch;
+  // The seam pass runs per island (no edge joins two islands), each island
+  // one seam cell (the whole scene one, with --cell-size 0); islands in
+  // parallel.
+  const CellLayout seams = options.cell_size && *options.cell_size == 0.0 ? lay_out_cells(prepared, islands, 0.0)
+                                                                         : lay_out_islands(prepared, islands);
+  const int seam_count = static_cast<int>(seams.faces_of_cell.size());
+  std::vector<std::vector<detail::Patch>> seam_patches(seam_count);
+  std::vector<std::vector<int>> seam_origins(seam_count);
   for (int c = 0; c < stats.cells; ++c) {
     add_counts(stats, results[c].statistics);
     if (cells.faces_of_cell[c].size() > cells.faces_of_cell[largest].size()) largest = c;
     for (detail::Patch& patch : results[c].patches) {
-      patches.push_back(std::move(patch));
-      cell_of_patch.push_back(c);
+      const int s = seams.cell_of_face[patch.faces.front()];
+      seam_patches[s].push_back(std::move(patch));
+      seam_origins[s].push_back(c);
     }
   }
   stats.kept_try = results.empty() ? 0 : results[largest].statistics.kept_try;
   stats.order_tries = options.order_tries;
   results.clear();
-  // The seam pass runs over one cell holding every face.
-  const CellLayout whole = lay_out_cells(prepared, islands, 0.0);
   DecomposeOptions seam_options = options;
   seam_options.progress = nullptr;
-  CoveringStatistics seam_stats;
-  detail::PatchMerger merger(index, seam_options, whole, std::move(patches), std::move(cell_of_patch), seam_stats);
-  merger.run_seams();
-  stats.seam_merges = seam_stats.merges;
-  add_counts(stats, seam_stats);
+  std::vector<CoveringStatistics> seam_stats(seam_count);
+  std::vector<std::unique_ptr<detail::PatchMerger>> seam_mergers(seam_count);
+  std::vector<int> seam_order(seam_count);
+  std::iota(seam_order.begin(), seam_order.end(), 0);
+  std::stable_sort(seam_order.begin(), seam_order.end(), [&](int a, int b) {
+    return seams.faces_of_cell[a].size() > seams.faces_of_cell[b].size();
+  });
+  const Clock::time_point seams_start = Clock::now();
+  run_in_parallel(seam_count, threads, seam_order, [&](int s) {
+    seam_mergers[s] = std::make_unique<detail::PatchMerger>(index, seam_options, seams, s, std::move(seam_patches[s]),
+                                                            std::move(seam_origins[s]), seam_stats[s]);
+    seam_mergers[s]->run_seams();
+  });
+  stats.seconds_seams = seconds_since(seams_start);
+  for (const CoveringStatistics& s : seam_stats) {
+    stats.seam_merges += s.merges;
+    add_counts(stats, s);
+  }
   stats.seconds_merging = seconds_since(start);
 
   start = Clock::now();
-  std::vector<int> alive;
-  for (int id = 0; id < static_cast<int>(merger.patches().size()); ++id)
-    if (merger.patches()[id].alive) alive.push_back(id);
+  // Every surviving patch, as (seam cell, patch id), in seam cell order.
+  std::vector<std::pair<int, int>> alive;
+  for (int s = 0; s < seam_count; ++s)
+    for (int id = 0; id < static_cast<int>(seam_mergers[s]->patches().size()); ++id)
+      if (seam_mergers[s]->patches()[id].alive) alive.emplace_back(s, id);
   covering.hulls.resize(alive.size());
   std::vector<CoveringStatistics> output_stats(alive.size());
   // Hulls are made in runs, each with its own Qhull builder and scratch.
@@ -339,10 +371,12 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
   run_in_parallel((hull_count + kHullsPerRun - 1) / kHullsPerRun, threads, {}, [&](int run) {
     ConvexHullBuilder builder;
     std::vector<int> scratch;
-    for (int i = run * kHullsPerRun; i < std::min(hull_count, (run + 1) * kHullsPerRun); ++i)
-        covering.hulls[i] =
-          make_hull(index, merger, alive[i], prism_cap_of(covering, islands, merger.patches()[alive[i]]), builder,
-                    output_stats[i], scratch);
+    for (int i = run * kHullsPerRun; i < std::min(hull_count, (run + 1) * kHullsPerRun); ++i) {
+      const detail::PatchMerger& merger = *seam_mergers[alive[i].first];
+      const int id = alive[i].second;
+      covering.hulls[i] = make_hull(index, merger, id, prism_cap_of(covering, islands, merger.patches()[id]), builder,
+                                    output_stats[i], scratch);
+    }
   });
   for (const CoveringStatistics& s : output_stats) add_counts(stats, s);
   std::sort(covering.hulls.begin(), covering.hulls.end(),

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <numeric>
 
 namespace hullcover {
 namespace {
@@ -52,7 +53,31 @@ double automatic_cell_size(const Mesh& mesh, const std::vector<int>& faces, cons
   return size;
 }
 
+// Fills cell_of_face and slot_in_cell from faces_of_cell.
+void index_faces(CellLayout& layout) {
+  for (int c = 0; c < static_cast<int>(layout.faces_of_cell.size()); ++c)
+    for (int slot = 0; slot < static_cast<int>(layout.faces_of_cell[c].size()); ++slot) {
+      const int f = layout.faces_of_cell[c][slot];
+      layout.cell_of_face[f] = c;
+      layout.slot_in_cell[f] = slot;
+    }
+}
+
 } // namespace
+
+CellLayout lay_out_islands(const PreparedMesh& prepared, const MeshIslands& islands) {
+  const int face_count = static_cast<int>(prepared.mesh.triangles.size());
+  CellLayout layout;
+  layout.cell_of_face.assign(face_count, 0);
+  layout.slot_in_cell.assign(face_count, 0);
+  layout.faces_of_cell.resize(islands.boxes.size());
+  for (int f = 0; f < face_count; ++f) layout.faces_of_cell[islands.island_of_face[f]].push_back(f);
+  layout.island_of_cell.resize(islands.boxes.size());
+  std::iota(layout.island_of_cell.begin(), layout.island_of_cell.end(), 0);
+  layout.island_cell_size.assign(islands.boxes.size(), 0.0);
+  index_faces(layout);
+  return layout;
+}
 
 CellLayout lay_out_cells(const PreparedMesh& prepared, const MeshIslands& islands, std::optional<double> cell_size) {
   const Mesh& mesh = prepared.mesh;
@@ -83,12 +108,7 @@ CellLayout lay_out_cells(const PreparedMesh& prepared, const MeshIslands& island
       layout.island_of_cell.push_back(static_cast<int>(i));
     }
   }
-  for (int c = 0; c < static_cast<int>(layout.faces_of_cell.size()); ++c)
-    for (int slot = 0; slot < static_cast<int>(layout.faces_of_cell[c].size()); ++slot) {
-      const int f = layout.faces_of_cell[c][slot];
-      layout.cell_of_face[f] = c;
-      layout.slot_in_cell[f] = slot;
-    }
+  index_faces(layout);
   return layout;
 }
 

@@ -75,12 +75,12 @@ public:
   PatchMerger(const SceneIndex& index, const DecomposeOptions& options, double near_merge_distance,
               const CellLayout& cells, int cell, CoveringStatistics& statistics);
 
-  /// The seam pass, over a layout of one cell holding every face: starts
-  /// from `patches`, the patches the cells kept (patch i from cell
+  /// The seam pass, over cell `seam_cell` of `seams` (an island, or every
+  /// face): starts from `patches`, the patches the cells kept there (patch i from cell
   /// `cell_of_patch[i]`), and merges pairs sharing an edge across a cell
   /// border, then whatever pairs those merges open, until none is left
   /// (run_seams). No near merges or dissolving: those stay within cells.
-  PatchMerger(const SceneIndex& index, const DecomposeOptions& options, const CellLayout& whole,
+  PatchMerger(const SceneIndex& index, const DecomposeOptions& options, const CellLayout& seams, int seam_cell,
               std::vector<Patch> patches, std::vector<int> cell_of_patch, CoveringStatistics& statistics);
 
   /// The seam pass (see the constructor above).

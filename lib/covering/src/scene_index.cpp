@@ -38,15 +38,65 @@ Aabb clipped(const Aabb& box, const Aabb& bounds) {
   return out;
 }
 
+// Where a sweep's base moved along it meets `zone`: the box of the stretch
+// of the sweep whose moving base box (grown by tol: a sweep keeps points
+// within tol of its sides and start) overlaps the zone, grown by tol and
+// clipped to the zone (empty when it never does). A superset of the sweep's
+// part in the zone: the moving base lies in its moving box.
+Aabb sweep_part_in(const FreeSpaceSweep& sweep, const Aabb& zone, double tol) {
+  Aabb base, moved;
+  for (const Eigen::Vector3d& p : sweep.base) base.extend(p);
+  const Eigen::Vector3d along = sweep.reach * sweep.direction;
+  base = grown(base, tol);
+  double enter = 0.0, leave = 1.0;  // fractions of the sweep
+  for (int axis = 0; axis < 3; ++axis) {
+    const double d = along[axis];
+    if (d == 0.0) {
+      if (base.max[axis] < zone.min[axis] || base.min[axis] > zone.max[axis]) return Aabb{};
+      continue;
+    }
+    double a = (zone.min[axis] - base.max[axis]) / d, b = (zone.max[axis] - base.min[axis]) / d;
+    if (a > b) std::swap(a, b);
+    enter = std::max(enter, a);
+    leave = std::min(leave, b);
+  }
+  if (!(enter <= leave)) return Aabb{};
+  moved.extend(base.min + enter * along);
+  moved.extend(base.max + enter * along);
+  moved.extend(base.min + leave * along);
+  moved.extend(base.max + leave * along);
+  return clipped(grown(moved, tol), zone);
+}
+
+// Adds `item`'s box once per hull zone its sweep crosses.
+void add_sweep_boxes(const FreeSpaceSweep& sweep, int item, const std::vector<Aabb>& zones, const AabbTree& zone_tree,
+                     double tol, std::vector<int>& near, std::vector<Aabb>& boxes, std::vector<int>& items) {
+  Aabb whole;
+  for (const Eigen::Vector3d& corner : sweep.corners) whole.extend(corner);
+  near.clear();
+  zone_tree.overlapping(grown(whole, tol), near);
+  std::sort(near.begin(), near.end());
+  for (int z : near) {
+    const Aabb part = sweep_part_in(sweep, zones[z], tol);
+    if (part.empty()) continue;
+    boxes.push_back(part);
+    items.push_back(item);
+  }
+}
+
 // How far every face's front sweep and every open edge's fans run, and
-// their boxes, clipped to where hulls can be: the trees the exact
-// conditions look up.
-void index_sweeps(SceneIndex& index, double hull_margin) {
+// their boxes, per hull zone they cross: the trees the exact conditions
+// look up.
+void index_sweeps(SceneIndex& index, double hull_margin, const std::vector<Aabb>& hull_zones) {
   const Mesh& mesh = index.mesh();
   const MeshConnectivity& c = index.prepared->connectivity;
   const double reach = index.free_space_reach;
   const double tol = index.tol();
-  const Aabb bounds = grown(referenced_bounding_box(mesh), hull_margin + tol);
+  std::vector<Aabb> zones;
+  for (const Aabb& zone : hull_zones) zones.push_back(grown(zone, tol));
+  if (zones.empty()) zones.push_back(grown(referenced_bounding_box(mesh), hull_margin + tol));
+  const AabbTree zone_tree(zones);
+  std::vector<int> near;
   std::vector<int> scratch;
   std::vector<Eigen::Vector3d> triangle(3);
   std::vector<Aabb> boxes;
@@ -57,12 +107,7 @@ void index_sweeps(SceneIndex& index, double hull_margin) {
     const FreeSpaceSweep full = front_space_sweep(triangle, index.face_normals[f], reach, tol);
     index.front_reach[f] = std::min(reach, detail::first_hit_bound(index, full, scratch));
     const FreeSpaceSweep sweep = front_space_sweep(triangle, index.face_normals[f], index.front_reach[f], tol);
-    Aabb box;
-    for (const Eigen::Vector3d& corner : sweep.corners) box.extend(corner);
-    box = clipped(grown(box, tol), bounds);
-    if (box.empty()) continue;
-    boxes.push_back(box);
-    index.front_sweep_face.push_back(f);
+    add_sweep_boxes(sweep, f, zones, zone_tree, tol, near, boxes, index.front_sweep_face);
   }
   index.front_sweep_tree = AabbTree(boxes);
   boxes.clear();
@@ -74,18 +119,31 @@ void index_sweeps(SceneIndex& index, double hull_margin) {
     const Eigen::Vector3d& p0 = mesh.positions[t[use.corner]];
     const Eigen::Vector3d& p1 = mesh.positions[t[(use.corner + 1) % 3]];
     const Eigen::Vector3d& inner = mesh.positions[t[(use.corner + 2) % 3]];
-    Aabb box;
+    // The three fans together, each cut to the zones it crosses; an edge
+    // with parts of several fans in one zone keeps one box there.
+    std::vector<Aabb> fan_boxes;
+    std::vector<int> fan_items;
     for (int fan = 0; fan < kOpeningFans; ++fan) {
       const Eigen::Vector3d& n = index.face_normals[use.face];
       const FreeSpaceSweep full = opening_fan(p0, p1, inner, n, fan, reach, tol);
       index.opening_reach[e][fan] = std::min(reach, detail::first_hit_bound(index, full, scratch));
-      for (const Eigen::Vector3d& corner : opening_fan(p0, p1, inner, n, fan, index.opening_reach[e][fan], tol).corners)
-        box.extend(corner);
+      const FreeSpaceSweep sweep = opening_fan(p0, p1, inner, n, fan, index.opening_reach[e][fan], tol);
+      add_sweep_boxes(sweep, e, zones, zone_tree, tol, near, fan_boxes, fan_items);
     }
-    box = clipped(grown(box, tol), bounds);
-    if (box.empty()) continue;
-    boxes.push_back(box);
-    index.opening_sweep_edge.push_back(e);
+    Aabb box;
+    for (const Aabb& part : fan_boxes) box.extend(part.min), box.extend(part.max);
+    // One box over the fans' parts is the simplest superset; kept per zone
+    // only when the parts lie in several zones far apart.
+    if (fan_boxes.size() <= 1 || zones.size() == 1) {
+      if (box.empty()) continue;
+      boxes.push_back(box);
+      index.opening_sweep_edge.push_back(e);
+      continue;
+    }
+    for (const Aabb& part : fan_boxes) {
+      boxes.push_back(part);
+      index.opening_sweep_edge.push_back(e);
+    }
   }
   index.opening_sweep_tree = AabbTree(boxes);
 }
@@ -180,7 +238,7 @@ SceneIndex build_scene_index(const PreparedMesh& prepared, const BarOptions& opt
     }
   }
   index.bar_tree = AabbTree(boxes);
-  if (index.mode == ValidityMode::exact) index_sweeps(index, options.hull_margin);
+  if (index.mode == ValidityMode::exact) index_sweeps(index, options.hull_margin, options.hull_zones);
   return index;
 }
 

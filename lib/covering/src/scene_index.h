@@ -55,6 +55,14 @@ struct BarOptions {
   double agent_radius = 0.0;
   /// ... or within this distance of the mesh.
   double max_deviation = 0.0;
+  /// Where hulls can be, when known more closely than the scene's box grown
+  /// by `hull_margin`: boxes (already grown by the margin) such that every
+  /// hull lies within one of them. The decomposer passes each island's box
+  /// grown by the margin (its patches never span islands); sweeps are then
+  /// indexed only where they cross one, so a wall's outward sweep across a
+  /// world of far-apart maps is not met by every hull check on its way.
+  /// Empty: the scene's box grown by `hull_margin`.
+  std::vector<Aabb> hull_zones = {};
 };
 
 /// The mesh as the validity checks see it. Holds a reference to `prepared`,
@@ -79,9 +87,10 @@ struct SceneIndex {
   AabbTree face_tree;    ///< over faces
   AabbTree bar_tree;     ///< over pieces of bars (long bars are split, so boxes stay small)
   /// Exact mode: over the boxes of the faces' front sweeps (the triangle
-  /// swept along its normal by the reach, within the box hulls can occupy);
-  /// item i is face front_sweep_face[i]. A hull can lose a face's front space
-  /// only where its box meets that face's sweep box.
+  /// swept along its normal by the reach), one per hull zone the sweep
+  /// crosses (BarOptions::hull_zones), clipped to it; item i is face
+  /// front_sweep_face[i] (a face may have several items). A hull can lose a
+  /// face's front space only where its box meets one of that face's boxes.
   AabbTree front_sweep_tree;
   std::vector<int> front_sweep_face;
   /// Exact mode, per face: how far its front sweep runs, scene units: the
@@ -89,7 +98,7 @@ struct SceneIndex {
   /// (first_hit_bound, witness_rays.h). 0 for a face with no sweep.
   std::vector<double> front_reach;
   /// Exact mode: the same for the openings beyond open edges; item i is
-  /// edge opening_sweep_edge[i].
+  /// edge opening_sweep_edge[i] (an edge may have several items).
   AabbTree opening_sweep_tree;
   std::vector<int> opening_sweep_edge;
   /// Exact mode, per open edge and fan (free_space_sweep.h): how far that

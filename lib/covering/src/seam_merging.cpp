@@ -9,12 +9,13 @@
 
 namespace hullcover::detail {
 
-PatchMerger::PatchMerger(const SceneIndex& index, const DecomposeOptions& options, const CellLayout& whole,
-                         std::vector<Patch> patches, std::vector<int> cell_of_patch, CoveringStatistics& statistics)
-    : index_(index), options_(options), cells_(whole), cell_(0), statistics_(statistics), near_merge_distance_(0.0),
-      cell_of_patch_(std::move(cell_of_patch)) {
+PatchMerger::PatchMerger(const SceneIndex& index, const DecomposeOptions& options, const CellLayout& seams,
+                         int seam_cell, std::vector<Patch> patches, std::vector<int> cell_of_patch,
+                         CoveringStatistics& statistics)
+    : index_(index), options_(options), cells_(seams), cell_(seam_cell), statistics_(statistics),
+      near_merge_distance_(0.0), cell_of_patch_(std::move(cell_of_patch)) {
   patches_ = std::move(patches);
-  face_patch_.assign(index.mesh().triangles.size(), -1);
+  face_patch_.assign(seams.faces_of_cell[seam_cell].size(), -1);
   for (int p = 0; p < static_cast<int>(patches_.size()); ++p)
     for (int f : patches_[p].faces) patch_entry(f) = p;
   // Zero-area faces are in no patch: alone and dead, as the cells left them.

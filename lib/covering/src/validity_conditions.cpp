@@ -1,5 +1,7 @@
 #include "validity_conditions.h"
 
+#include <algorithm>
+
 #include "exact_conditions.h"
 
 namespace hullcover {
@@ -22,10 +24,16 @@ Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& h
   std::vector<int> ray_scratch;
   const HullInterior interior = hull_interior(hull, tol);
   if (interior.empty()) return Validity::valid;  // thinner than 2 tol: nothing is strictly inside
+  // A sweep has a box per hull zone it crosses: each face or edge once.
+  const auto owners = [&scratch](const std::vector<int>& owner_of_item) {
+    for (int& item : scratch) item = owner_of_item[item];
+    std::sort(scratch.begin(), scratch.end());
+    scratch.erase(std::unique(scratch.begin(), scratch.end()), scratch.end());
+  };
   scratch.clear();
   index.front_sweep_tree.overlapping(box, scratch);
-  for (int item : scratch) {
-    const int f = index.front_sweep_face[item];
+  owners(index.front_sweep_face);
+  for (int f : scratch) {
     triangle_corners(mesh, f, triangle);
     const FreeSpaceSweep front = front_space_sweep(triangle, index.face_normals[f], index.front_reach[f], tol);
     if (crossing_face_leaks(index, front, interior, ray_scratch)) return Validity::face_crosses_hull;
@@ -33,9 +41,9 @@ Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& h
   }
   scratch.clear();
   index.opening_sweep_tree.overlapping(box, scratch);
+  owners(index.opening_sweep_edge);
   const MeshConnectivity& c = index.prepared->connectivity;
-  for (int item : scratch) {
-    const int e = index.opening_sweep_edge[item];
+  for (int e : scratch) {
     // The use names the face and where the edge sits in it: its far corner
     // is the face's side of the edge.
     const EdgeUse& use = c.edge_uses[index.open_edge_use[e]];

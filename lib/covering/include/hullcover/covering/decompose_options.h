@@ -143,6 +143,7 @@ struct CoveringStatistics {
   double seconds_index = 0.0;
   double seconds_merging = 0.0;  ///< wall time of the cells' merging (all threads) and the seam pass
   double seconds_output = 0.0;   ///< wall time of making the hulls (all threads)
+  double seconds_seams = 0.0;    ///< wall time of the seam pass alone (part of seconds_merging)
   int seam_merges = 0;           ///< merges of patches across cell borders (the seam pass), part of `merges`
   int cells = 0;                 ///< cells merged apart (merge_cells.h)
   int islands = 0;               ///< the scene's islands (hullcover/mesh/mesh_islands.h)

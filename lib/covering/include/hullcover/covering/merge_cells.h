@@ -45,4 +45,7 @@ struct CellLayout {
 /// fails for a prepared mesh; a cell is never empty.
 CellLayout lay_out_cells(const PreparedMesh& prepared, const MeshIslands& islands, std::optional<double> cell_size);
 
+/// One cell per island (the seam pass's layout: no edge joins two islands).
+CellLayout lay_out_islands(const PreparedMesh& prepared, const MeshIslands& islands);
+
 } // namespace hullcover
