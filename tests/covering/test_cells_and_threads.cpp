@@ -118,6 +118,38 @@ TEST(Tolerance, ASmallObjectBesideALargeMapKeepsItsOwnPrecision) {
   EXPECT_EQ(hulls_in_world, hulls_alone);
 }
 
+// A pillar: four walls facing out, open at top and bottom (its inside is
+// behind every wall: enclosed, a hull may fill it).
+Mesh pillar() {
+  using V = Eigen::Vector3d;
+  Mesh m;
+  test::add_quad_facing(m, V(0, 0, 0), V(1, 0, 0), V(1, 2, 0), V(0, 2, 0), V(0, 0, -1));
+  test::add_quad_facing(m, V(0, 0, 1), V(1, 0, 1), V(1, 2, 1), V(0, 2, 1), V(0, 0, 1));
+  test::add_quad_facing(m, V(0, 0, 0), V(0, 0, 1), V(0, 2, 1), V(0, 2, 0), V(-1, 0, 0));
+  test::add_quad_facing(m, V(1, 0, 0), V(1, 0, 1), V(1, 2, 1), V(1, 2, 0), V(1, 0, 0));
+  return m;
+}
+
+TEST(Decompose, AnotherIslandsRaysStillKeepTheirSpace) {
+  // Alone, the pillar is one hull filling its inside. With a ceiling far
+  // above it (another island) facing down, the ceiling's front rays fall
+  // through the pillar and out of its open bottom: its inside is free space,
+  // which no hull may take, though the ray comes from another island.
+  const Eigen::Vector3d inside(0.5, 1.0, 0.5);
+  const auto alone = test::decompose_and_check(pillar());
+  ASSERT_TRUE(alone);
+  EXPECT_EQ(alone->covering.hulls.size(), 1u);
+  EXPECT_TRUE(test::point_inside_covering(alone->covering, inside, alone->tol()));
+
+  Mesh world = pillar();
+  using V = Eigen::Vector3d;
+  test::add_quad_facing(world, V(-1, 40, -1), V(2, 40, -1), V(2, 40, 2), V(-1, 40, 2), V(0, -1, 0));
+  ASSERT_EQ(find_mesh_islands(world).boxes.size(), 2u);
+  const auto under_ceiling = test::decompose_and_check(world);
+  ASSERT_TRUE(under_ceiling);
+  EXPECT_FALSE(test::point_inside_covering(under_ceiling->covering, inside, under_ceiling->tol()));
+}
+
 TEST(MergeCells, EveryFaceIsInOneCellAndSmallIslandsAreOneCell) {
   const Result<PreparedMesh> p = prepare_mesh(flat_floor(8), std::nullopt);
   ASSERT_TRUE(p.ok());
