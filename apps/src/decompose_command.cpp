@@ -9,11 +9,13 @@
 #include "hullcover/bvh/runtime_file.h"
 #include "hullcover/covering/covering_export.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <map>
 #include <memory>
 #include <string>
+#include <thread>
 
 namespace hullcover::app {
 namespace {
@@ -86,7 +88,9 @@ int run_decompose(DecomposeCommandOptions& o) {
   std::printf("  tolerance %.6g, bar half-length %.6g, prism cap %.6g, order %s, conditions %s\n",
               c.tolerance.length, c.bar_half_length, c.prism_thickness_cap, o.order.c_str(), o.conditions.c_str());
   std::printf("  %d island%s, %d cell%s, threads %d\n", c.statistics.islands, c.statistics.islands == 1 ? "" : "s",
-              c.statistics.cells, c.statistics.cells == 1 ? "" : "s", o.decompose.threads);
+              c.statistics.cells, c.statistics.cells == 1 ? "" : "s",
+              o.decompose.threads > 0 ? o.decompose.threads
+                                      : std::max(1, static_cast<int>(std::thread::hardware_concurrency())));
   if (c.statistics.order_tries > 1) {
     const std::string kept = c.statistics.kept_try == 0
                                  ? std::string("the first (") + o.order + ")"

@@ -92,7 +92,6 @@ struct Decomposition {
 py::list hull_arrays(const Decomposition& d) {
   py::list out;
   for (const CoveringHull& hull : d.covering.hulls) {
-    std::vector<Eigen::Vector3d> triangles;
     py::array_t<std::int32_t> fanned({static_cast<py::ssize_t>(triangles_of_facets(hull.polytope.facets)),
                                       static_cast<py::ssize_t>(3)});
     auto w = fanned.mutable_unchecked<2>();
