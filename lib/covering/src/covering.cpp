@@ -4,6 +4,7 @@
 #include "hullcover/geometry/tolerances.h"
 #include "hullcover/mesh/mesh_islands.h"
 
+#include "cell_merging.h"
 #include "planar_prism.h"
 #include "patch_merging.h"
 #include "surface_facets.h"
@@ -72,62 +73,6 @@ CoveringHull planar_hull(const SceneIndex& index, const detail::PatchMerger& mer
   return hull;
 }
 
-// What one cell gave: the patches it kept and its counts.
-struct CellResult {
-  std::vector<detail::Patch> patches;  ///< alive ones only
-  CoveringStatistics statistics;
-};
-
-// Merges one cell (every order try; the try with the fewest hulls is kept).
-// `progress(fraction)` reports the cell's own share.
-CellResult merge_cell(const SceneIndex& index, const Covering& covering, const CellLayout& cells, int cell,
-                      const std::function<void(double)>& progress) {
-  const DecomposeOptions& options = covering.options;
-  // The cell's island's own near-merge distance (the largest island's for a
-  // cell of several: --cell-size 0).
-  const int island = cells.island_of_cell[cell];
-  const double near_merge_distance =
-      options.near_merge_distance || island < 0
-          ? covering.near_merge_distance
-          : (options.conditions == ValidityMode::exact ? kDefaultNearMergeRelative * covering.island_extents[island]
-                                                       : 0.0);
-  // Each try keeps its own options and statistics: the merger refers to them.
-  struct Try {
-    DecomposeOptions options;
-    CoveringStatistics statistics;
-    std::unique_ptr<detail::PatchMerger> merger;
-    int hulls = 0;
-  };
-  std::unique_ptr<Try> kept;
-  for (int attempt = 0; attempt < options.order_tries; ++attempt) {
-    auto run = std::make_unique<Try>();
-    run->options = options;
-    run->options.dissolve = covering.dissolve;
-    if (attempt > 0) {
-      run->options.order = MergeOrder::random;
-      run->options.seed = options.seed + static_cast<std::uint64_t>(attempt - 1);
-    }
-    run->options.progress = nullptr;
-    if (progress)
-      run->options.progress = [&progress, attempt, &options](double fraction) {
-        progress((attempt + fraction) / options.order_tries);
-      };
-    run->merger = std::make_unique<detail::PatchMerger>(index, run->options, near_merge_distance, cells,
-                                                        cell, run->statistics);
-    run->merger->run();
-    for (const detail::Patch& patch : run->merger->patches()) run->hulls += patch.alive;
-    if (!kept || run->hulls < kept->hulls) {
-      run->statistics.kept_try = attempt;
-      kept = std::move(run);
-    }
-  }
-  CellResult result;
-  result.statistics = kept->statistics;
-  for (const detail::Patch& patch : kept->merger->patches())
-    if (patch.alive) result.patches.push_back(patch);
-  return result;
-}
-
 // The hull of one patch of the final merger.
 CoveringHull make_hull(const SceneIndex& index, const detail::PatchMerger& merger, int id, double prism_cap,
                        ConvexHullBuilder& builder, CoveringStatistics& stats, std::vector<int>& scratch) {
@@ -158,78 +103,6 @@ CoveringHull make_hull(const SceneIndex& index, const detail::PatchMerger& merge
   return hull;
 }
 
-// Runs `job(i)` for i in [0, count) on `threads` threads, taking the i in
-// the given order; the first exception a job throws is rethrown here, after
-// every thread has stopped (the others stop after their current job).
-void run_in_parallel(int count, int threads, const std::vector<int>& order, const std::function<void(int)>& job) {
-  std::atomic<int> next{0};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
-  const auto work = [&] {
-    for (int i = next++; i < count; i = next++) {
-      try {
-        job(order.empty() ? i : order[i]);
-      } catch (...) {
-        const std::lock_guard<std::mutex> lock(failure_mutex);
-        if (!failure) failure = std::current_exception();
-        next = count;
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < std::min(threads, count); ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& thread : pool) thread.join();
-  if (failure) std::rethrow_exception(failure);
-}
-
-// Adds a cell's counts to the scene's (timings are measured for the whole).
-void add_counts(CoveringStatistics& total, const CoveringStatistics& cell) {
-  total.zero_area_faces_skipped += cell.zero_area_faces_skipped;
-  total.merges += cell.merges;
-  total.near_merges += cell.near_merges;
-  total.dissolved_patches += cell.dissolved_patches;
-  total.candidates_tested += cell.candidates_tested;
-  for (size_t i = 0; i < total.rejections.size(); ++i) total.rejections[i] += cell.rejections[i];
-  total.qhull_calls += cell.qhull_calls;
-  total.incremental_hulls += cell.incremental_hulls;
-  total.prisms_made_flat += cell.prisms_made_flat;
-  total.solids_kept_as_grown += cell.solids_kept_as_grown;
-}
-
-// Merges every cell with `threads` threads, largest cells first (so the
-// last to finish is a small one). Results are kept per cell: which thread
-// ran a cell changes nothing in them.
-std::vector<CellResult> merge_cells(const SceneIndex& index, const Covering& covering, const CellLayout& cells,
-                                    int threads) {
-  const int cell_count = static_cast<int>(cells.faces_of_cell.size());
-  std::vector<int> order(cell_count);
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-    return cells.faces_of_cell[a].size() > cells.faces_of_cell[b].size();
-  });
-  // Progress: each cell's fraction, weighted by its faces; reported one
-  // call at a time.
-  std::mutex progress_mutex;
-  std::vector<double> done(cell_count, 0.0);
-  double done_faces = 0.0;
-  const double total_faces = std::max<double>(1.0, static_cast<double>(index.mesh().triangles.size()));
-  const auto report = [&](int cell, double fraction) {
-    const std::lock_guard<std::mutex> lock(progress_mutex);
-    done_faces += (fraction - done[cell]) * static_cast<double>(cells.faces_of_cell[cell].size());
-    done[cell] = fraction;
-    covering.options.progress(std::min(1.0, done_faces / total_faces));
-  };
-  std::vector<CellResult> results(cell_count);
-  run_in_parallel(cell_count, threads, order, [&](int cell) {
-    std::function<void(double)> progress;
-    if (covering.options.progress) progress = [&report, cell](double fraction) { report(cell, fraction); };
-    results[cell] = merge_cell(index, covering, cells, cell, progress);
-    if (progress) progress(1.0);
-  });
-  return results;
-}
-
 // The prism cap of a patch: the user's, or its island's own (the largest
 // island's among its faces').
 double prism_cap_of(const Covering& covering, const MeshIslands& islands, const detail::Patch& patch) {
@@ -239,29 +112,15 @@ double prism_cap_of(const Covering& covering, const MeshIslands& islands, const 
   return kDefaultPrismCapRelative * extent;
 }
 
-int threads_to_use(int requested) {
-  if (requested > 0) return requested;
-  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-}
-
-Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const DecomposeOptions& options);
-
 } // namespace
 
-Result<Covering> decompose(const PreparedMesh& prepared, const DecomposeOptions& options) {
-  // No exception may leave the library (a game server links it): out of
-  // memory, or a bug, comes back as a status.
-  try {
-    return decompose_unchecked(prepared, options);
-  } catch (const std::exception& e) {
-    return Status{StatusCode::internal_error, std::string("decomposition failed: ") + e.what()};
-  }
-}
+namespace detail {
 
-namespace {
-Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const DecomposeOptions& options) {
+Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& prepared,
+                                                            const DecomposeOptions& options) {
   if (Status s = check_options(options); !s.ok()) return s;
-  Covering covering;
+  auto stages = std::make_unique<DecompositionStages>(prepared);
+  Covering& covering = stages->covering;
   covering.options = options;
   covering.tolerance = prepared.tolerance;
   // Default lengths scale with islands, not the whole world: each island's
@@ -283,18 +142,18 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
   CoveringStatistics& stats = covering.statistics;
   stats.faces = static_cast<int>(prepared.mesh.triangles.size());
 
-  Clock::time_point start = Clock::now();
-  const MeshIslands islands = find_mesh_islands(prepared.mesh);
-  const CellLayout cells = lay_out_cells(prepared, islands, options.cell_size);
+  const Clock::time_point start = Clock::now();
+  stages->islands = find_mesh_islands(prepared.mesh);
+  stages->cells = lay_out_cells(prepared, stages->islands, options.cell_size);
   covering.island_extents.clear();
-  for (const Aabb& box : islands.boxes)
+  for (const Aabb& box : stages->islands.boxes)
     covering.island_extents.push_back(box.diagonal() > 0.0 ? box.diagonal() : prepared.tolerance.local_extent);
   // Patches never span islands unless the whole scene is one cell, so every
   // hull lies in its island's box grown by the prism cap: the sweeps need be
   // indexed only there.
   std::vector<Aabb> hull_zones;
   if (!(options.cell_size && *options.cell_size == 0.0))
-    for (const Aabb& box : islands.boxes) hull_zones.push_back(grown(box, hull_margin));
+    for (const Aabb& box : stages->islands.boxes) hull_zones.push_back(grown(box, hull_margin));
   BarOptions bars;
   bars.half_length = covering.bar_half_length;
   bars.material_boundaries = options.keep_materials_apart;
@@ -304,29 +163,37 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
   bars.agent_radius = options.agent_radius.value_or(0.0);
   bars.max_deviation = options.max_deviation.value_or(0.0);
   bars.hull_zones = std::move(hull_zones);
-  const SceneIndex index = build_scene_index(prepared, bars);
-  covering.cell_sizes = cells.island_cell_size;
-  stats.islands = static_cast<int>(islands.boxes.size());
-  stats.cells = static_cast<int>(cells.faces_of_cell.size());
+  stages->index = build_scene_index(prepared, bars);
+  covering.cell_sizes = stages->cells.island_cell_size;
+  stats.islands = static_cast<int>(stages->islands.boxes.size());
+  stats.cells = static_cast<int>(stages->cells.faces_of_cell.size());
   stats.seconds_index = seconds_since(start);
+  return Result<std::unique_ptr<DecompositionStages>>(std::move(stages));
+}
 
-  start = Clock::now();
+Covering finish_stages(const DecompositionStages& stages, std::vector<CellResult> results, double seconds_cells) {
+  const PreparedMesh& prepared = stages.prepared;
+  const SceneIndex& index = stages.index;
+  const CellLayout& cells = stages.cells;
+  const DecomposeOptions& options = stages.covering.options;
+  Covering covering = stages.covering;
+  CoveringStatistics& stats = covering.statistics;
   const int threads = threads_to_use(options.threads);
-  std::vector<CellResult> results = merge_cells(index, covering, cells, threads);
   // Kept try: the largest cell's (the one that weighs most in the count).
   int largest = 0;
   // The seam pass runs per island (no edge joins two islands), each island
   // one seam cell (the whole scene one, with --cell-size 0); islands in
   // parallel.
-  const CellLayout seams = options.cell_size && *options.cell_size == 0.0 ? lay_out_cells(prepared, islands, 0.0)
-                                                                         : lay_out_islands(prepared, islands);
+  const CellLayout seams = options.cell_size && *options.cell_size == 0.0
+                               ? lay_out_cells(prepared, stages.islands, 0.0)
+                               : lay_out_islands(prepared, stages.islands);
   const int seam_count = static_cast<int>(seams.faces_of_cell.size());
-  std::vector<std::vector<detail::Patch>> seam_patches(seam_count);
+  std::vector<std::vector<Patch>> seam_patches(seam_count);
   std::vector<std::vector<int>> seam_origins(seam_count);
   for (int c = 0; c < stats.cells; ++c) {
     add_counts(stats, results[c].statistics);
     if (cells.faces_of_cell[c].size() > cells.faces_of_cell[largest].size()) largest = c;
-    for (detail::Patch& patch : results[c].patches) {
+    for (Patch& patch : results[c].patches) {
       const int s = seams.cell_of_face[patch.faces.front()];
       seam_patches[s].push_back(std::move(patch));
       seam_origins[s].push_back(c);
@@ -338,7 +205,7 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
   DecomposeOptions seam_options = options;
   seam_options.progress = nullptr;
   std::vector<CoveringStatistics> seam_stats(seam_count);
-  std::vector<std::unique_ptr<detail::PatchMerger>> seam_mergers(seam_count);
+  std::vector<std::unique_ptr<PatchMerger>> seam_mergers(seam_count);
   std::vector<int> seam_order(seam_count);
   std::iota(seam_order.begin(), seam_order.end(), 0);
   std::stable_sort(seam_order.begin(), seam_order.end(), [&](int a, int b) {
@@ -346,8 +213,8 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
   });
   const Clock::time_point seams_start = Clock::now();
   run_in_parallel(seam_count, threads, seam_order, [&](int s) {
-    seam_mergers[s] = std::make_unique<detail::PatchMerger>(index, seam_options, seams, s, std::move(seam_patches[s]),
-                                                            std::move(seam_origins[s]), seam_stats[s]);
+    seam_mergers[s] = std::make_unique<PatchMerger>(index, seam_options, seams, s, std::move(seam_patches[s]),
+                                                    std::move(seam_origins[s]), seam_stats[s]);
     seam_mergers[s]->run_seams();
   });
   stats.seconds_seams = seconds_since(seams_start);
@@ -355,9 +222,9 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
     stats.seam_merges += s.merges;
     add_counts(stats, s);
   }
-  stats.seconds_merging = seconds_since(start);
+  stats.seconds_merging = seconds_cells + stats.seconds_seams;
 
-  start = Clock::now();
+  const Clock::time_point start = Clock::now();
   // Every surviving patch, as (seam cell, patch id), in seam cell order.
   std::vector<std::pair<int, int>> alive;
   for (int s = 0; s < seam_count; ++s)
@@ -372,10 +239,10 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
     ConvexHullBuilder builder;
     std::vector<int> scratch;
     for (int i = run * kHullsPerRun; i < std::min(hull_count, (run + 1) * kHullsPerRun); ++i) {
-      const detail::PatchMerger& merger = *seam_mergers[alive[i].first];
+      const PatchMerger& merger = *seam_mergers[alive[i].first];
       const int id = alive[i].second;
-      covering.hulls[i] = make_hull(index, merger, id, prism_cap_of(covering, islands, merger.patches()[id]), builder,
-                                    output_stats[i], scratch);
+      covering.hulls[i] = make_hull(index, merger, id, prism_cap_of(covering, stages.islands, merger.patches()[id]),
+                                    builder, output_stats[i], scratch);
     }
   });
   for (const CoveringStatistics& s : output_stats) add_counts(stats, s);
@@ -386,6 +253,21 @@ Result<Covering> decompose_unchecked(const PreparedMesh& prepared, const Decompo
   return covering;
 }
 
-} // namespace
+} // namespace detail
+
+Result<Covering> decompose(const PreparedMesh& prepared, const DecomposeOptions& options) {
+  // No exception may leave the library (a game server links it): out of
+  // memory, or a bug, comes back as a status.
+  try {
+    Result<std::unique_ptr<detail::DecompositionStages>> stages = detail::prepare_stages(prepared, options);
+    if (!stages.ok()) return stages.status();
+    const Clock::time_point start = Clock::now();
+    std::vector<detail::CellResult> results =
+        detail::merge_cells(*stages.value(), detail::threads_to_use(options.threads));
+    return detail::finish_stages(*stages.value(), std::move(results), seconds_since(start));
+  } catch (const std::exception& e) {
+    return Status{StatusCode::internal_error, std::string("decomposition failed: ") + e.what()};
+  }
+}
 
 } // namespace hullcover

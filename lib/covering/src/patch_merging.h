@@ -86,6 +86,15 @@ public:
   /// The seam pass (see the constructor above).
   void run_seams();
 
+  /// Whether every patch loaded by the constructor above (a cell's result
+  /// from an earlier bake, its faces unchanged) still passes the checks its
+  /// last merge passed, against THIS scene: an edit elsewhere can put a face
+  /// inside a kept hull, or open space a kept hull now takes. The polygon
+  /// of a planar patch must be covered by faces on its own (stricter than
+  /// the merge, which leaned on its two parts). Single faces need no check.
+  /// Returns the first failure found, else `valid`.
+  Validity recheck_patches();
+
   /// Merges until no mergeable pair is left: the paper's pass, then near
   /// merges (near_patch_merging.cpp) and dissolving (patch_dissolving.cpp),
   /// and the paper's pass again, while they change anything.

@@ -1,0 +1,86 @@
+#pragma once
+/// \file staged_decomposition.h
+/// decompose() in three stages, for bakes that run cells elsewhere (a Dask
+/// cluster: `python3 -m hullcover.bake`) or take cells from an earlier bake
+/// (the cell cache: `hullcover decompose --cell-cache DIR`):
+///
+///  1. prepare(): islands, cells and the scene index. Deterministic: every
+///     process that prepares the same mesh with the same options gets the
+///     same cells, numbered alike.
+///  2. merge_cell(c) for every cell, in any order, on any thread or process:
+///     bytes that hold the patches cell c kept (cells merge apart,
+///     merge_cells.h).
+///  3. finish(): the seam pass and the hulls, from every cell's bytes.
+///
+/// finish() on bytes from merge_cell() gives exactly what decompose() gives
+/// for the same mesh and options: the same hulls in the same order, the same
+/// statistics apart from timings. Bytes from an earlier bake of an edited
+/// scene may stand in for a cell whose key is unchanged and which
+/// still_valid() accepts: the covering is then valid (every kept hull was
+/// re-checked against the new scene), though a full bake may merge more.
+
+#include "hullcover/covering/covering.h"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace hullcover {
+
+namespace detail {
+struct DecompositionStages;
+}
+
+/// The stages of one decomposition. merge_cell(), still_valid() and the
+/// accessors are const and safe to call from many threads at once.
+class StagedDecomposition {
+public:
+  /// Stage 1 on a prepared mesh, which is kept (moved in). Fails with
+  /// `invalid_argument` for options out of range (as decompose() does), or
+  /// `internal_error` (out of memory).
+  [[nodiscard]] static Result<std::unique_ptr<StagedDecomposition>> prepare(PreparedMesh prepared,
+                                                                          const DecomposeOptions& options);
+  ~StagedDecomposition();
+  StagedDecomposition(const StagedDecomposition&) = delete;
+  StagedDecomposition& operator=(const StagedDecomposition&) = delete;
+
+  /// How many cells the scene has (numbered 0 .. count - 1).
+  int cell_count() const;
+  /// The faces of cell `cell`, ascending (mesh face ids).
+  const std::vector<int>& cell_faces(int cell) const;
+  /// What decides the cell's merging, hashed: its faces and their positions'
+  /// exact bits, materials, the tolerance and every option the merging
+  /// reads. The same key in two bakes means the same faces merged alike.
+  std::uint64_t cell_key(int cell) const;
+
+  /// Stage 2 for one cell: its patches as bytes (a versioned binary form,
+  /// lib/covering/src/cell_result_bytes.h). Progress is not reported.
+  /// Fails with `invalid_argument` for a cell out of range, or
+  /// `internal_error`.
+  [[nodiscard]] Result<std::string> merge_cell(int cell) const;
+
+  /// Whether `bytes` (from a bake of this or an earlier version of the
+  /// scene) can stand in for cell `cell`: they read back (checksum, ranges),
+  /// carry this cell's key, and every hull they keep still passes the
+  /// validity conditions against THIS scene (an edit elsewhere can put a
+  /// face inside a kept hull, or open space it takes). False, never an
+  /// error, for bytes that do not qualify; `why` (optional) says why.
+  bool still_valid(int cell, const std::string& bytes, std::string* why = nullptr) const;
+
+  /// Stage 3: the seam pass and the hulls, from one entry per cell (index =
+  /// cell). Fails with `invalid_argument` for a wrong count, `unknown_format`
+  /// or `unreadable_file` for bytes that do not read back for their cell
+  /// (cell_result_bytes.h), or `internal_error`.
+  [[nodiscard]] Result<Covering> finish(const std::vector<std::string>& cells) const;
+
+  /// The mesh the stages work on.
+  const PreparedMesh& prepared() const { return *prepared_; }
+
+private:
+  StagedDecomposition() = default;
+  std::unique_ptr<PreparedMesh> prepared_;
+  std::unique_ptr<detail::DecompositionStages> stages_;
+};
+
+} // namespace hullcover

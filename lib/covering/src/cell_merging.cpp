@@ -1,0 +1,137 @@
+// One cell's merging, and every cell's on a pool of threads (merge_cells.h:
+// cells share only the read-only scene index, so they run apart).
+
+#include "cell_merging.h"
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <numeric>
+#include <thread>
+
+namespace hullcover::detail {
+
+void run_in_parallel(int count, int threads, const std::vector<int>& order, const std::function<void(int)>& job) {
+  std::atomic<int> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  const auto work = [&] {
+    for (int i = next++; i < count; i = next++) {
+      try {
+        job(order.empty() ? i : order[i]);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(failure_mutex);
+        if (!failure) failure = std::current_exception();
+        next = count;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::min(threads, count); ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& thread : pool) thread.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+int threads_to_use(int requested) {
+  if (requested > 0) return requested;
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
+void add_counts(CoveringStatistics& total, const CoveringStatistics& cell) {
+  total.zero_area_faces_skipped += cell.zero_area_faces_skipped;
+  total.merges += cell.merges;
+  total.near_merges += cell.near_merges;
+  total.dissolved_patches += cell.dissolved_patches;
+  total.candidates_tested += cell.candidates_tested;
+  for (size_t i = 0; i < total.rejections.size(); ++i) total.rejections[i] += cell.rejections[i];
+  total.qhull_calls += cell.qhull_calls;
+  total.incremental_hulls += cell.incremental_hulls;
+  total.prisms_made_flat += cell.prisms_made_flat;
+  total.solids_kept_as_grown += cell.solids_kept_as_grown;
+}
+
+double cell_near_merge_distance(const DecompositionStages& stages, int cell) {
+  const Covering& covering = stages.covering;
+  const DecomposeOptions& options = covering.options;
+  const int island = stages.cells.island_of_cell[cell];
+  if (options.near_merge_distance || island < 0) return covering.near_merge_distance;
+  return options.conditions == ValidityMode::exact ? kDefaultNearMergeRelative * covering.island_extents[island]
+                                                   : 0.0;
+}
+
+CellResult merge_cell(const DecompositionStages& stages, int cell, const std::function<void(double)>& progress) {
+  const Covering& covering = stages.covering;
+  const DecomposeOptions& options = covering.options;
+  const double near_merge_distance = cell_near_merge_distance(stages, cell);
+  // Each try keeps its own options and statistics: the merger refers to them.
+  struct Try {
+    DecomposeOptions options;
+    CoveringStatistics statistics;
+    std::unique_ptr<PatchMerger> merger;
+    int hulls = 0;
+  };
+  std::unique_ptr<Try> kept;
+  for (int attempt = 0; attempt < options.order_tries; ++attempt) {
+    auto run = std::make_unique<Try>();
+    run->options = options;
+    run->options.dissolve = covering.dissolve;
+    if (attempt > 0) {
+      run->options.order = MergeOrder::random;
+      run->options.seed = options.seed + static_cast<std::uint64_t>(attempt - 1);
+    }
+    run->options.progress = nullptr;
+    if (progress)
+      run->options.progress = [&progress, attempt, &options](double fraction) {
+        progress((attempt + fraction) / options.order_tries);
+      };
+    run->merger = std::make_unique<PatchMerger>(stages.index, run->options, near_merge_distance, stages.cells, cell,
+                                                run->statistics);
+    run->merger->run();
+    for (const Patch& patch : run->merger->patches()) run->hulls += patch.alive;
+    if (!kept || run->hulls < kept->hulls) {
+      run->statistics.kept_try = attempt;
+      kept = std::move(run);
+    }
+  }
+  CellResult result;
+  result.statistics = kept->statistics;
+  for (const Patch& patch : kept->merger->patches())
+    if (patch.alive) result.patches.push_back(patch);
+  return result;
+}
+
+std::vector<CellResult> merge_cells(const DecompositionStages& stages, int threads) {
+  const CellLayout& cells = stages.cells;
+  const DecomposeOptions& options = stages.covering.options;
+  const int cell_count = static_cast<int>(cells.faces_of_cell.size());
+  // Largest cells first, so the last to finish is a small one.
+  std::vector<int> order(cell_count);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return cells.faces_of_cell[a].size() > cells.faces_of_cell[b].size();
+  });
+  // Progress: each cell's fraction, weighted by its faces; reported one
+  // call at a time.
+  std::mutex progress_mutex;
+  std::vector<double> done(cell_count, 0.0);
+  double done_faces = 0.0;
+  const double total_faces = std::max<double>(1.0, static_cast<double>(stages.index.mesh().triangles.size()));
+  const auto report = [&](int cell, double fraction) {
+    const std::lock_guard<std::mutex> lock(progress_mutex);
+    done_faces += (fraction - done[cell]) * static_cast<double>(cells.faces_of_cell[cell].size());
+    done[cell] = fraction;
+    options.progress(std::min(1.0, done_faces / total_faces));
+  };
+  std::vector<CellResult> results(cell_count);
+  run_in_parallel(cell_count, threads, order, [&](int cell) {
+    std::function<void(double)> progress;
+    if (options.progress) progress = [&report, cell](double fraction) { report(cell, fraction); };
+    results[cell] = merge_cell(stages, cell, progress);
+    if (progress) progress(1.0);
+  });
+  return results;
+}
+
+} // namespace hullcover::detail

@@ -1,0 +1,72 @@
+#pragma once
+// The decomposition's stages, internal to the decomposer: what every cell
+// shares (resolved lengths, islands, cells, the scene index), one cell's
+// merging, and the finish (seam pass and hulls). decompose() runs them in one
+// process; StagedDecomposition (staged_decomposition.h) lets cells run
+// elsewhere, or come from an earlier bake.
+
+#include "hullcover/covering/covering.h"
+#include "hullcover/covering/merge_cells.h"
+#include "hullcover/mesh/mesh_islands.h"
+
+#include "patch_merging.h"
+#include "scene_index.h"
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace hullcover::detail {
+
+/// What the cells share. Holds a reference to `prepared`, which must
+/// outlive it.
+struct DecompositionStages {
+  explicit DecompositionStages(const PreparedMesh& mesh) : prepared(mesh) {}
+  const PreparedMesh& prepared;
+  /// Options and resolved lengths; no hulls yet. Statistics: faces, index
+  /// time, islands, cells.
+  Covering covering;
+  MeshIslands islands;
+  CellLayout cells;
+  SceneIndex index;
+};
+
+/// What one cell gave: the patches it kept and its counts.
+struct CellResult {
+  std::vector<Patch> patches;  ///< alive ones only
+  CoveringStatistics statistics;
+};
+
+/// Checks the options, resolves lengths, finds islands and cells and builds
+/// the scene index. Fails with `invalid_argument` for options out of range.
+Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& prepared,
+                                                            const DecomposeOptions& options);
+
+/// The near-merge distance cell `cell` merges with: the user's, else its
+/// island's own (the largest island's for the one cell of --cell-size 0).
+double cell_near_merge_distance(const DecompositionStages& stages, int cell);
+
+/// Merges one cell (every order try; the try with the fewest hulls is
+/// kept). `progress(fraction)`, when set, reports the cell's own share.
+CellResult merge_cell(const DecompositionStages& stages, int cell, const std::function<void(double)>& progress);
+
+/// Merges every cell on `threads` threads, largest cells first; results per
+/// cell, whichever thread ran it. Reports DecomposeOptions::progress.
+std::vector<CellResult> merge_cells(const DecompositionStages& stages, int threads);
+
+/// The seam pass and the hulls, from every cell's result (index = cell).
+/// `seconds_cells`: the cells' merging time, for the statistics.
+Covering finish_stages(const DecompositionStages& stages, std::vector<CellResult> results, double seconds_cells);
+
+/// Runs `job(i)` for i in [0, count) on `threads` threads, taking the i in
+/// the given order (empty: ascending); the first exception a job throws is
+/// rethrown here, after every thread has stopped.
+void run_in_parallel(int count, int threads, const std::vector<int>& order, const std::function<void(int)>& job);
+
+/// `requested` threads, or every core for 0.
+int threads_to_use(int requested);
+
+/// Adds a cell's counts to the scene's (timings are measured for the whole).
+void add_counts(CoveringStatistics& total, const CoveringStatistics& cell);
+
+} // namespace hullcover::detail

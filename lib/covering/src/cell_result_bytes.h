@@ -1,0 +1,42 @@
+#pragma once
+// A cell's result as bytes (StagedDecomposition): to move it between
+// processes (a distributed bake) and to keep it for a later bake (the cell
+// cache). Faces are written by their slot in the cell and vertices by their
+// first use in the cell's faces, so the bytes still mean the same patches
+// in an edited scene whose faces of this cell are the same (same key).
+//
+// Layout (integers little-endian, reals IEEE-754 binary64 little-endian):
+//   magic "HCCELL\0\0", u32 version, u64 cell key, u32 cell faces,
+//   u32 cell vertices, statistics (u32 count, that many i64), u32 patches,
+//   per patch: u32 n + n u32 face slots, u32 n + n u32 hull vertices,
+//   u32 n + n x 4 f64 face planes, 5 f64 (area, boundary length, area
+//   vector), u8 planar, i32 material, i32 version, u8 has solid, and the
+//   solid: u32 V + V x 3 f64, u32 F + per facet u32 n + n u32 corners,
+//   u32 P + P x 4 f64 planes, u32 (0 or V) + i32 vertex ids (-1: none);
+//   u64 FNV-1a-64 of everything before it.
+
+#include "cell_merging.h"
+
+#include <cstdint>
+#include <string>
+
+namespace hullcover::detail {
+
+/// What decides cell `cell`'s merging, hashed (FNV-1a-64): its faces (slot
+/// order, corners by first use, materials), their positions' exact bits,
+/// the tolerance, and every option and resolved length the merging reads.
+/// Two scenes whose cell has the same key merge it alike, up to the
+/// validity checks against the rest of the scene (PatchMerger::recheck_patches).
+std::uint64_t cell_key(const DecompositionStages& stages, int cell);
+
+/// `result` of cell `cell`, as bytes.
+std::string cell_result_bytes(const DecompositionStages& stages, int cell, const CellResult& result);
+
+/// Reads bytes written by cell_result_bytes for a cell of the same key.
+/// Fails with `unknown_format` (not a cell result, another version) or
+/// `unreadable_file` (truncated, checksum, another key, an index out of
+/// range, a face in two patches or a face of non-zero area in none, a
+/// non-finite value): bytes from a cache are never trusted.
+Result<CellResult> cell_result_from_bytes(const DecompositionStages& stages, int cell, const std::string& bytes);
+
+} // namespace hullcover::detail
