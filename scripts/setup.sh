@@ -28,6 +28,7 @@ packages=(
   chromium  # tests/apps/test_audit_html.cpp opens the audit's HTML report headless (skipped without it)
   clang libclang-rt-14-dev
   python3-dev python3-pybind11 python3-numpy python3-pytest  # the Python module (apps/python) and its tests
+  python3-distributed  # the distributed bake (python3 -m hullcover.bake) on Dask
 )
 
 missing=()

@@ -7,6 +7,7 @@
 
 #include "hullcover/bvh/covering_hulls.h"
 #include "hullcover/bvh/runtime_file.h"
+#include "hullcover/covering/cell_cache.h"
 #include "hullcover/covering/covering_export.h"
 
 #include <algorithm>
@@ -25,6 +26,7 @@ struct DecomposeCommandOptions {
   std::string obj_path;
   std::string json_path;
   std::string world_path;
+  std::string cell_cache;
   std::optional<double> tolerance;
   ImportLimits limits;
   std::string order = "compact";
@@ -44,7 +46,10 @@ int run_decompose(DecomposeCommandOptions& o) {
   if (!o.dissolve.empty()) o.decompose.dissolve = o.dissolve == "on";
   TerminalProgress bar("decomposing (merges at most)", o.quiet);
   if (bar.enabled()) o.decompose.progress = [&bar](double fraction) { bar.update(fraction); };
-  const Result<Covering> covering = decompose(scene->prepared, o.decompose);
+  CellCacheReport cache;
+  const Result<Covering> covering =
+      o.cell_cache.empty() ? decompose(scene->prepared, o.decompose)
+                           : decompose_with_cell_cache(scene->prepared, o.decompose, o.cell_cache, cache);
   bar.finish();
   if (!covering.ok()) {
     std::fprintf(stderr, "hullcover: error: %s\n", covering.status().message().c_str());
@@ -105,6 +110,11 @@ int run_decompose(DecomposeCommandOptions& o) {
                 c.statistics.near_merges, c.statistics.merges);
   if (c.dissolve)
     std::printf("  dissolved patches (emptied into their neighbours): %d\n", c.statistics.dissolved_patches);
+  if (!o.cell_cache.empty())
+    std::printf("  cell cache %s: %d cells, %d reused (re-checked against this scene, %.3f s), %d stale, %d merged "
+                "(%.3f s)\n",
+                o.cell_cache.c_str(), cache.cells, cache.reused, cache.seconds_checking, cache.stale, cache.merged,
+                cache.seconds_merging);
   if (!exported.empty()) std::printf("  %s\n", exported.c_str());
   std::printf("  wrote %s%s%s%s%s\n", o.obj_path.c_str(), o.json_path.empty() ? "" : ", ", o.json_path.c_str(),
               o.world_path.empty() ? "" : ", ", o.world_path.c_str());
@@ -134,6 +144,10 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
                   "automatic, one cell per island of up to 8192 faces, a centred grid over larger ones; 0: one cell "
                   "for the whole scene")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--cell-cache", o->cell_cache,
+                  "Re-bake only what changed: keep each cell's result in this folder under a hash of its faces and "
+                  "the options; a later bake reuses a cell whose hash is unchanged once every hull it keeps passes "
+                  "the validity checks against the scene as it is now, and merges the rest (created if absent)");
   cmd->add_option("--order", o->order, "Merge order: compact (the paper's) or random")
       ->check(CLI::IsMember({"compact", "random"}))
       ->capture_default_str();

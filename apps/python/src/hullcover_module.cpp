@@ -5,6 +5,7 @@
 // ValueError (bad input) or RuntimeError (anything else), with its message.
 
 #include "audit_report_json.h"
+#include "python_binding.h"
 
 #include "hullcover/bvh/covering_hulls.h"
 #include "hullcover/bvh/hull_world.h"
@@ -30,13 +31,6 @@ namespace py = pybind11;
 namespace hullcover::python {
 namespace {
 
-using Points = py::array_t<double, py::array::c_style | py::array::forcecast>;
-using Indices = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
-
-[[noreturn]] void raise(const Status& status) {
-  if (status.code() == StatusCode::internal_error) throw std::runtime_error(status.message());
-  throw py::value_error(status.message());
-}
 
 // An (n, 3) array's rows, checked.
 std::vector<Eigen::Vector3d> rows_of(const Points& a, const char* what) {
@@ -82,12 +76,6 @@ PreparedMesh prepared_of(const Points& vertices, const Indices& faces, std::opti
   if (!prepared.ok()) raise(prepared.status());
   return std::move(prepared).value();
 }
-
-// A decomposition: the covering, with the prepared mesh it refers to.
-struct Decomposition {
-  PreparedMesh prepared;
-  Covering covering;
-};
 
 py::list hull_arrays(const Decomposition& d) {
   py::list out;
@@ -275,13 +263,18 @@ PYBIND11_MODULE(_hullcover, m) {
       .def("report_json",
            [](const Decomposition& d) { return covering_json(d.covering).dump(); })
       .def("tolerance", [](const Decomposition& d) { return d.covering.tolerance.length; })
+      .def("hull_count", [](const Decomposition& d) { return d.covering.hulls.size(); })
       .def("world", [](const Decomposition& d) { return world_of(bvh::runtime_hulls(d.covering)); })
       .def("write_obj",
            [](const Decomposition& d, const std::string& path) {
              if (Status s = write_covering_obj(d.covering, path); !s.ok()) raise(s);
            })
-      .def("write_world", [](const Decomposition& d, const std::string& path) {
-        if (Status s = bvh::write_runtime_file(bvh::runtime_hulls(d.covering), path); !s.ok()) raise(s);
+      .def("write_world",
+           [](const Decomposition& d, const std::string& path) {
+             if (Status s = bvh::write_runtime_file(bvh::runtime_hulls(d.covering), path); !s.ok()) raise(s);
+           })
+      .def("write_json", [](const Decomposition& d, const std::string& path, const std::string& extra) {
+        if (Status s = write_covering_json(d.covering, nlohmann::json::parse(extra), path); !s.ok()) raise(s);
       });
 
   m.def(
@@ -289,15 +282,9 @@ PYBIND11_MODULE(_hullcover, m) {
       [](const Points& vertices, const Indices& faces, std::optional<double> tol, int threads,
          std::optional<double> cell_size, std::optional<double> agent_radius, std::optional<double> max_deviation,
          std::optional<double> near_merge_distance, int max_hull_vertices, std::optional<int> max_hull_triangles) {
-        DecomposeOptions options;
-        options.threads = threads;
-        options.cell_size = cell_size;
-        options.agent_radius = agent_radius;
-        options.max_deviation = max_deviation;
-        options.near_merge_distance = near_merge_distance;
-        options.max_hull_vertices = max_hull_vertices;
-        options.max_hull_triangles = max_hull_triangles;
-        return run_decompose(vertices, faces, tol, options);
+        return run_decompose(vertices, faces, tol,
+                             options_of(threads, cell_size, agent_radius, max_deviation, near_merge_distance,
+                                        max_hull_vertices, max_hull_triangles));
       },
       py::arg("vertices"), py::arg("faces"), py::arg("tol") = py::none(), py::arg("threads") = 0,
       py::arg("cell_size") = py::none(), py::arg("agent_radius") = py::none(), py::arg("max_deviation") = py::none(),
@@ -335,4 +322,6 @@ PYBIND11_MODULE(_hullcover, m) {
       py::arg("vertices"), py::arg("faces"), py::arg("hulls"), py::arg("tol") = py::none(),
       py::arg("agent_radius") = py::none(), py::arg("max_deviation") = py::none(), py::arg("proxies") = 3000,
       py::arg("seed") = 1);
+
+  bind_staged_bake(m);
 }

@@ -12,6 +12,9 @@ namespace {
 
 constexpr char kMagic[8] = {'H', 'C', 'C', 'E', 'L', 'L', '\0', '\0'};
 constexpr std::uint32_t kVersion = 1;
+// Part of every cell key: raise it whenever a change to the merging makes a
+// cell keep other patches, so caches filled by older builds are not reused.
+constexpr std::uint32_t kMergingRevision = 1;
 // Nothing in a cell result may need more entries than this per list: a
 // bound that keeps a hostile count from asking for unbounded memory before
 // the bytes run out (each entry takes at least 4 bytes anyway).
@@ -147,6 +150,7 @@ std::uint64_t cell_key(const DecompositionStages& stages, int cell) {
   LittleEndianWriter key;
   key.bytes.assign(kMagic, sizeof kMagic);
   key.u32(kVersion);
+  key.u32(kMergingRevision);
   key.f64(covering.tolerance.length);
   key.f64(cell_near_merge_distance(stages, cell));
   key.f64(covering.bar_half_length);

@@ -32,7 +32,8 @@ std::vector<Polygon2d> subtract_from_all(const std::vector<Polygon2d>& pieces, c
 
 Validity check_polygon_covered(const SceneIndex& index, const FlatPolygon& merged,
                                const std::vector<Eigen::Vector3d>& corners_a,
-                               const std::vector<Eigen::Vector3d>& corners_b, std::vector<int>& scratch) {
+                               const std::vector<Eigen::Vector3d>& corners_b, std::vector<int>& scratch,
+                               double slab_in_tolerances) {
   if (merged.corners.size() < 3) return Validity::valid;
   const double tol = index.tol();
   const PlaneFrame frame = PlaneFrame::from_normal(merged.corners.front(), merged.plane.normal);
@@ -43,7 +44,7 @@ Validity check_polygon_covered(const SceneIndex& index, const FlatPolygon& merge
 
   // Other faces in the slab may cover the rest (a near merge across a tile
   // of another patch; a merge that reaches over faces merged later).
-  const double slab = kPlanarSlabInTolerances * tol;
+  const double slab = slab_in_tolerances * tol;
   Aabb box;
   for (const Polygon2d& piece : uncovered)
     for (const Eigen::Vector2d& q : piece) box.extend(frame.origin + q.x() * frame.u + q.y() * frame.v);

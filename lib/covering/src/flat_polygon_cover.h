@@ -27,9 +27,12 @@ inline constexpr int kMaxUncoveredPieces = 256;
 /// Decided exactly with convex pieces in the plane: the merged polygon less
 /// both parts, less every face that reaches the rest; pieces no wider than
 /// about 2 tol (area <= tol x perimeter) are dropped. Also
-/// `polygon_spans_gap` past kMaxUncoveredPieces pieces.
+/// `polygon_spans_gap` past kMaxUncoveredPieces pieces. `slab_in_tolerances`
+/// widens the slab for a re-check of a finished patch
+/// (kRecheckSlabInTolerances).
 Validity check_polygon_covered(const SceneIndex& index, const FlatPolygon& merged,
                                const std::vector<Eigen::Vector3d>& corners_a,
-                               const std::vector<Eigen::Vector3d>& corners_b, std::vector<int>& scratch);
+                               const std::vector<Eigen::Vector3d>& corners_b, std::vector<int>& scratch,
+                               double slab_in_tolerances = kPlanarSlabInTolerances);
 
 } // namespace hullcover

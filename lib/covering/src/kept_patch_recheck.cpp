@@ -6,6 +6,7 @@
 #include "patch_merging.h"
 
 #include "hullcover/geometry/planar_hull.h"
+#include "hullcover/geometry/tolerances.h"
 
 namespace hullcover::detail {
 namespace {
@@ -33,7 +34,8 @@ Validity PatchMerger::recheck_patches() {
       // by themselves; the rest must be covered by faces of this scene.
       if (index_.mode == ValidityMode::exact)
         validity = check_polygon_covered(index_, polygon, face_corners(mesh, patch.faces[0]),
-                                         face_corners(mesh, patch.faces[1]), scratch_);
+                                         face_corners(mesh, patch.faces[1]), scratch_,
+                                         kRecheckSlabInTolerances);
       if (validity == Validity::valid) validity = check_flat_polygon(index_, polygon, in_patch, scratch_);
     } else if (!patch.solid) {
       validity = Validity::hull_failed;

@@ -23,8 +23,11 @@ std::vector<Eigen::Vector2d> clip_to_side(const std::vector<Eigen::Vector2d>& in
 } // namespace
 
 double polygon_area(const std::vector<Eigen::Vector2d>& corners) {
+  // Measured from the first corner: products of coordinates far from the
+  // origin would cancel to rounding dust larger than a small piece's area.
   double twice = 0.0;
-  for (size_t i = 0, n = corners.size(); n >= 3 && i < n; ++i) twice += cross(corners[i], corners[(i + 1) % n]);
+  for (size_t i = 1, n = corners.size(); n >= 3 && i + 1 < n; ++i)
+    twice += cross(corners[i] - corners[0], corners[i + 1] - corners[0]);
   return 0.5 * twice;
 }
 

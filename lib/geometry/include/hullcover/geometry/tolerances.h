@@ -48,6 +48,13 @@ inline constexpr double kRayStandOffInTolerances = 2.0;
 /// hull's surface: coverage (within tol, DESIGN.md) holds with room to
 /// spare for a reader of rounded output.
 inline constexpr double kPlanarSlabInTolerances = 1.0;
+/// A finished planar patch re-checked against an edited scene (a cached
+/// cell, cell_cache.h) counts faces within this many tol of its final plane
+/// as covering it: each merge that built it counted faces within
+/// kPlanarSlabInTolerances of its own plane, and each such plane, fitting a
+/// subset of the patch's points within a slab, parts from the final plane
+/// by at most two slabs more over that subset.
+inline constexpr double kRecheckSlabInTolerances = 3.0 * kPlanarSlabInTolerances;
 
 /// A solid hull whose interior shrunk by tol is empty (inradius <= tol) has
 /// no inside for rays to meet; it is then at most 4 inradii wide across one
