@@ -222,6 +222,10 @@ void register_audit_command(CLI::App& app, int& exit_status) {
                   "the farthest point any hull takes from a probe ray is found (within the tolerance) and must\n"
                   "lie no farther. With --agent-radius, both are judged.")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--threads", o->audit.threads,
+                  "Threads re-checking hulls and tracing rays at once (default 0: every core); the verdict,\n"
+                  "the figures and the located places are the same for any count")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--json", o->json_path, "Write the figures as JSON");
   cmd->add_option("--html", o->html_path,
                   "Write a self-contained HTML report (pictures embedded): the verdict in a green or red banner,\n"
