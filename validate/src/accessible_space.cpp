@@ -243,7 +243,7 @@ constexpr double kFrontRayShareOfProbe = 0.8;
 // Faces or edges traced between two additions to the report: their
 // findings are kept until then (memory bounded by a batch), and a batch is
 // long enough that its threads seldom wait for one another at its end.
-constexpr int kItemsPerBatch = 1024;
+constexpr int kItemsPerBatch = 4096;
 
 Result<ProbeReport> probe_accessible_space(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles,
                                            const bvh::HullWorld& hulls, const ProbeOptions& options, int threads) {
