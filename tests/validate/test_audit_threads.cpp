@@ -7,12 +7,15 @@
 #include "covering_fixture.h"
 
 #include "hullcover/bvh/covering_hulls.h"
+#include "hullcover/geometry/parallel_for.h"
 #include "hullcover/mesh/scene_builder.h"
 #include "hullcover/validate/audit.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <stdexcept>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -216,6 +219,32 @@ TEST(AuditThreads, ANegativeThreadCountIsRefused) {
   EXPECT_NE(refused.status().message().find("thread"), std::string::npos) << refused.status().message();
   options.threads = -8;
   EXPECT_EQ(run_audit(d->prepared, set, options).status().code(), StatusCode::invalid_argument);
+}
+
+// What the audit's split rests on: every job runs once, commits come on the
+// caller's thread in index order batch by batch, and a job's exception comes
+// back to the caller after the threads stop.
+TEST(AuditThreads, ParallelForOrderedCommitsEveryIndexInOrderOnTheCaller) {
+  constexpr int kCount = 1000, kBatch = 64;
+  std::vector<std::atomic<int>> runs(kCount);
+  std::vector<int> committed;
+  bool on_caller = true;
+  const std::thread::id caller = std::this_thread::get_id();
+  parallel_for_ordered(
+      kCount, 4, kBatch, [&](int i) { ++runs[i]; },
+      [&](int i) {
+        EXPECT_EQ(runs[i].load(), 1) << i;  // its batch is done before it is committed
+        committed.push_back(i);
+        on_caller = on_caller && std::this_thread::get_id() == caller;
+      });
+  std::vector<int> expected(kCount);
+  for (int i = 0; i < kCount; ++i) expected[i] = i;
+  EXPECT_EQ(committed, expected);
+  EXPECT_TRUE(on_caller);
+  EXPECT_THROW(parallel_for(kCount, 4, [](int i) { if (i == 500) throw std::runtime_error("job 500"); }),
+               std::runtime_error);
+  EXPECT_EQ(threads_to_use(3), 3);
+  EXPECT_GE(threads_to_use(0), 1);
 }
 
 } // namespace
