@@ -227,7 +227,8 @@ TEST(CommandLine, AuditPrintsAndWritesTheSameOnAnyThreadCount) {
   }
   const CommandRun negative = run(dir, "audit " + scene + " " + spoiled + " --threads -1");
   EXPECT_EQ(negative.status, 2);
-  EXPECT_NE(negative.err.find("--threads"), std::string::npos) << negative.err;
+  EXPECT_NE(negative.err.find("--threads: the thread count must be 0 (every core)"), std::string::npos) << negative.err;
+  EXPECT_EQ(run(dir, "audit " + scene + " " + spoiled + " --threads two").status, 2);
   const CommandRun help = run(dir, "audit --help");
   EXPECT_NE(help.out.find("--threads"), std::string::npos) << help.out;
 }
