@@ -167,6 +167,9 @@ TEST(AuditThreads, AnAllowanceAuditGivesTheSameReportOnAnyThreadCount) {
   set.hulls = bvh::runtime_hulls(d->covering);
   AuditOptions options;
   options.probe.allowance = {4.0 * test::kGrooveDepth, 0.25 * test::kGrooveDepth};
+  // Rays 0.04 apart, not the default 0.006: the groove (0.2 wide) still
+  // holds several, and the sanitizer builds stay quick.
+  options.probe.resolution = 0.04;
   options.behaviour.proxies = 300;
   const AuditReport one = audit_on(*d, set, options, 1);
   EXPECT_GT(one.probe.allowance.beyond_deviation, 0);
