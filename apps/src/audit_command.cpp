@@ -14,6 +14,8 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
+#include <exception>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -33,6 +35,25 @@ struct AuditCommandOptions {
   validate::AuditOptions audit;
   bool quiet = false;
 };
+
+// `--threads N`: a whole number, 0 (every core) or more, refused otherwise
+// with a message that says so (bad usage: exit 2).
+CLI::Validator thread_count_check() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        size_t used = 0;
+        long count = -1;
+        try {
+          count = std::stol(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used == 0 || used != text.size() || count < 0 || count > std::numeric_limits<int>::max())
+          return "the thread count must be 0 (every core) or a positive whole number, not '" + text + "'";
+        return {};
+      },
+      "N>=0");
+}
 
 double percent(long part, long whole) { return whole > 0 ? 100.0 * static_cast<double>(part) / whole : 0.0; }
 
@@ -222,6 +243,10 @@ void register_audit_command(CLI::App& app, int& exit_status) {
                   "the farthest point any hull takes from a probe ray is found (within the tolerance) and must\n"
                   "lie no farther. With --agent-radius, both are judged.")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--threads", o->audit.threads,
+                  "Threads re-checking hulls and tracing rays at once (default 0: every core); the verdict,\n"
+                  "the figures and the located places are the same for any count")
+      ->check(thread_count_check());
   cmd->add_option("--json", o->json_path, "Write the figures as JSON");
   cmd->add_option("--html", o->html_path,
                   "Write a self-contained HTML report (pictures embedded): the verdict in a green or red banner,\n"

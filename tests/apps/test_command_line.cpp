@@ -192,4 +192,45 @@ TEST(CommandLine, AuditExitsZeroWhenCleanOneWhenSpaceIsLostTwoWhenUnreadable) {
   EXPECT_EQ(run(dir, "audit " + dir.path("missing.obj") + " " + blob).status, 2);
 }
 
+// `audit --threads N`: what it prints and the JSON it writes are the same
+// bytes for any N, on hulls that lose space (located places included); a
+// negative count is bad usage.
+TEST(CommandLine, AuditPrintsAndWritesTheSameOnAnyThreadCount) {
+  TempDir dir;
+  ASSERT_EQ(run(dir, "demo --out " + dir.path("demo")).status, 0);
+  const std::string scene = dir.path("demo/demo-scene.obj");
+  // The decomposer's hulls (clean), and hulls that lose space in many
+  // places: one over the back half of the building, one closing the doorway.
+  ASSERT_EQ(run(dir, "decompose " + scene + " -o " + dir.path("h.obj") + " -q").status, 0);
+  const std::string spoiled = dir.write("spoiled.obj", "o back\nv -5 0 -4\nv 5 0 -4\nv 5 3.2 -4\nv -5 3.2 -4\n"
+                                                       "v -5 0 0\nv 5 0 0\nv 5 3.2 0\nv -5 3.2 0\n"
+                                                       "f 1 2 3 4\nf 5 6 7 8\n"
+                                                       "o door\nv -0.6 0 3.8\nv 0.6 0 3.8\nv 0.6 2.1 3.8\nv -0.6 2.1 3.8\n"
+                                                       "v -0.6 0 4\nv 0.6 0 4\nv 0.6 2.1 4\nv -0.6 2.1 4\n"
+                                                       "f 9 10 11 12\nf 13 14 15 16\n");
+  for (const std::string& hulls : {dir.path("h.obj"), spoiled}) {
+    const std::string common = "audit " + scene + " " + hulls + " --resolution 0.15 --proxies 600 -q --json ";
+    const CommandRun one = run(dir, common + dir.path("t1.json") + " --threads 1");
+    ASSERT_TRUE(one.status == 0 || one.status == 1) << one.err;
+    const std::string json = slurp(dir.path("t1.json"));
+    for (const char* threads : {"2", "3", "8", "0"}) {
+      const std::string path = dir.path(std::string("t") + threads + ".json");
+      const CommandRun many = run(dir, common + path + " --threads " + threads);
+      EXPECT_EQ(many.status, one.status) << threads << " threads: " << many.err;
+      EXPECT_EQ(many.out, one.out) << threads << " threads";
+      EXPECT_EQ(slurp(path), json) << threads << " threads";
+    }
+    if (hulls == spoiled) {
+      EXPECT_EQ(one.status, 1);
+      EXPECT_GE(nlohmann::json::parse(json)["worst"].size(), 2u);
+    }
+  }
+  const CommandRun negative = run(dir, "audit " + scene + " " + spoiled + " --threads -1");
+  EXPECT_EQ(negative.status, 2);
+  EXPECT_NE(negative.err.find("--threads: the thread count must be 0 (every core)"), std::string::npos) << negative.err;
+  EXPECT_EQ(run(dir, "audit " + scene + " " + spoiled + " --threads two").status, 2);
+  const CommandRun help = run(dir, "audit --help");
+  EXPECT_NE(help.out.find("--threads"), std::string::npos) << help.out;
+}
+
 } // namespace

@@ -5,6 +5,7 @@
 #include "segment_in_hull.h"
 
 #include "hullcover/geometry/aabb_tree.h"
+#include "hullcover/geometry/parallel_for.h"
 #include "hullcover/geometry/tolerances.h"
 
 #include <octomap/OcTree.h>
@@ -38,20 +39,40 @@ double exit_distance(const Aabb& box, const Eigen::Vector3d& start, const Eigen:
   return enter <= leave ? leave : 0.0;
 }
 
-class Prober {
+// A ray's parts deeper than tol inside hulls, with their hull (distances
+// along the ray).
+using Stretches = std::vector<std::pair<std::pair<double, double>, int>>;
+
+// One open ray that loses space, as the report needs it.
+struct LostRay {
+  LostPlace deepest;  // its deepest point inside a hull
+  int pieces = 0;     // how many of ItemRays::pieces are its own (in order)
+};
+
+// What one work item's rays found: one face's front rays, or one open
+// edge's. Items are traced on many threads, each into its own ItemRays, and
+// added to the report in item order by FindingsCollector.
+struct ItemRays {
+  long rays = 0, enclosed = 0;
+  std::vector<LostRay> lost;
+  // The lost rays' new lengths, stretch by stretch: added to the tally one
+  // by one, the sum is that of one thread tracing every ray in order.
+  std::vector<double> pieces;
+  AllowanceReport allowance;  // the allowance's figures of these rays alone (options unset)
+};
+
+// Traces rays and decides them against the hulls. Const: one tracer serves
+// every thread, each passing its own ItemRays and scratch stretches.
+class RayTracer {
 public:
-  Prober(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles, const bvh::HullWorld& hulls,
-         std::optional<double> cap, const AllowanceOptions& allowance, ProbeReport& report)
-      : prepared_(prepared), triangles_(triangles), hulls_(hulls.hulls()), cap_(cap), report_(report),
-        tol_(prepared.tolerance.length), stand_off_(kRayStandOffInTolerances * prepared.tolerance.length),
-        tree_(report.resolution) {
-    const Aabb scene = referenced_bounding_box(prepared.mesh);
-    centre_ = 0.5 * (scene.min + scene.max);
-    report.octree_origin = centre_;
+  RayTracer(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles, const bvh::HullWorld& hulls,
+            std::optional<double> cap, const AllowanceOptions& allowance)
+      : prepared_(prepared), triangles_(triangles), hulls_(hulls.hulls()), cap_(cap), tol_(prepared.tolerance.length),
+        stand_off_(kRayStandOffInTolerances * prepared.tolerance.length) {
     // Past this box no hull exists, so a ray that meets nothing is decided
     // once it leaves it (grown by the stand-off: a ray starting on the
     // scene's outermost face starts inside).
-    world_ = scene;
+    world_ = referenced_bounding_box(prepared.mesh);
     std::vector<Aabb> boxes;
     for (const bvh::RuntimeHull& h : hulls_) {
       boxes.push_back(h.box);
@@ -63,13 +84,11 @@ public:
     // strict probe's verdict is the same).
     world_ = grown(world_, stand_off_ + allowance.agent_radius.value_or(0.0));
     hull_tree_ = AabbTree(boxes);
-    report.allowance.options = allowance;
-    if (allowance.any()) judge_ = std::make_unique<probe::AllowanceJudge>(prepared, triangles, hulls, report.allowance);
+    if (allowance.any()) judge_ = std::make_unique<const probe::AllowanceJudge>(prepared, triangles, hulls, allowance);
   }
 
-  void trace(const probe::ProbeRay& ray) {
-    RayTally& tally = ray.opening ? report_.opening : report_.front;
-    ++tally.rays;
+  void trace(const probe::ProbeRay& ray, ItemRays& out, Stretches& stretches) const {
+    ++out.rays;
     // Off the surface it leaves, and as far short of the one it hits: the
     // surfaces themselves are not free (the decomposer's witness rays too).
     const Eigen::Vector3d start = ray.origin + ray.direction * stand_off_;
@@ -79,15 +98,91 @@ public:
     bvh::RayResult hit;
     if (triangles_.ray_cast({start, ray.direction, out_of_world}, hit).ok() && hit.hit) {
       if (enclosed(start, ray.direction, hit.first.t)) {
-        ++tally.enclosed;
+        ++out.enclosed;
         return;
       }
       length = hit.first.t - stand_off_;
     }
     if (cap_) length = std::min(length, *cap_);
     if (length <= 0.0) return;
-    decide(ray, start, length, tally);
-    if (judge_) judge_->judge(ray, start, length, stand_off_, stretches_);
+    decide(ray, start, length, out, stretches);
+    if (judge_) judge_->judge(ray, start, length, stand_off_, stretches, out.allowance);
+  }
+
+private:
+  // The same "within tol" as the decomposer's first_mesh_hit: a front a
+  // little further on is not at the first hit.
+  bool enclosed(const Eigen::Vector3d& start, const Eigen::Vector3d& dir, double first_hit) const {
+    return probe::ends_on_backs(triangles_, prepared_.mesh, start, dir, first_hit, tol_);
+  }
+
+  // Clips the free segment against every hull whose box it meets; the
+  // union of the stretches inside is the ray's lost length. Leaves the
+  // stretches in `stretches`, sorted, for the allowance judge.
+  void decide(const probe::ProbeRay& ray, const Eigen::Vector3d& start, double length, ItemRays& out,
+              Stretches& stretches) const {
+    stretches.clear();
+    LostPlace deepest;
+    const Eigen::Vector3d end = start + length * ray.direction;
+    hull_tree_.nearest_along_segment(start, end, 0.0, 0.0, [&](int h) {
+      const std::optional<probe::InsideStretch> inside =
+          probe::stretch_inside(hulls_[h].shape.planes, start, ray.direction, length, tol_);
+      if (inside) {
+        stretches.push_back({{inside->from, inside->to}, h});
+        if (inside->depth > deepest.depth)
+          deepest = {start + inside->deepest_at * ray.direction, ray.face, h, inside->depth, ray.opening};
+      }
+      return std::numeric_limits<double>::infinity();  // visit every hull along the segment, not the nearest
+    });
+    if (stretches.empty()) return;
+    std::sort(stretches.begin(), stretches.end());
+    LostRay lost{deepest, 0};
+    double reached = stretches.front().first.first;
+    for (const auto& [stretch, hull] : stretches) {
+      const auto& [from, to] = stretch;
+      const double begin = std::max(from, reached);
+      if (to > begin) {
+        out.pieces.push_back(to - begin);
+        ++lost.pieces;
+      }
+      reached = std::max(reached, to);
+    }
+    out.lost.push_back(lost);
+  }
+
+  const PreparedMesh& prepared_;
+  const bvh::TriangleWorld& triangles_;
+  const std::vector<bvh::RuntimeHull>& hulls_;
+  std::optional<double> cap_;
+  double tol_, stand_off_;
+  Aabb world_;
+  AabbTree hull_tree_;
+  std::unique_ptr<const probe::AllowanceJudge> judge_;  // with an allowance only
+};
+
+// Adds the items' findings to the report, one item after another in item
+// order on one thread: the tallies, the deepest places, the octree's cells.
+class FindingsCollector {
+public:
+  // The octree's origin is the scene's box centre (ProbeReport::octree_origin).
+  FindingsCollector(const PreparedMesh& prepared, ProbeReport& report) : report_(report), tree_(report.resolution) {
+    const Aabb scene = referenced_bounding_box(prepared.mesh);
+    centre_ = 0.5 * (scene.min + scene.max);
+    report.octree_origin = centre_;
+  }
+
+  void add(const ItemRays& item, RayTally& tally) {
+    tally.rays += item.rays;
+    tally.enclosed += item.enclosed;
+    size_t piece = 0;
+    for (const LostRay& ray : item.lost) {
+      ++tally.lost;
+      for (int k = 0; k < ray.pieces; ++k) tally.lost_length += item.pieces[piece++];
+      if (ray.deepest.depth > tally.deepest.depth) tally.deepest = ray.deepest;
+      mark_cell(ray.deepest.point);
+      note(ray.deepest);
+    }
+    probe::add_allowance_figures(report_.allowance, item.allowance);
   }
 
   // The octree cells of the lost rays' deepest points, and their count.
@@ -100,43 +195,6 @@ public:
   octomap::OcTree& tree() { return tree_; }
 
 private:
-  // The same "within tol" as the decomposer's first_mesh_hit: a front a
-  // little further on is not at the first hit.
-  bool enclosed(const Eigen::Vector3d& start, const Eigen::Vector3d& dir, double first_hit) const {
-    return probe::ends_on_backs(triangles_, prepared_.mesh, start, dir, first_hit, tol_);
-  }
-
-  // Clips the free segment against every hull whose box it meets; the
-  // union of the stretches inside is the ray's lost length.
-  void decide(const probe::ProbeRay& ray, const Eigen::Vector3d& start, double length, RayTally& tally) {
-    stretches_.clear();
-    LostPlace deepest;
-    const Eigen::Vector3d end = start + length * ray.direction;
-    hull_tree_.nearest_along_segment(start, end, 0.0, 0.0, [&](int h) {
-      const std::optional<probe::InsideStretch> inside =
-          probe::stretch_inside(hulls_[h].shape.planes, start, ray.direction, length, tol_);
-      if (inside) {
-        stretches_.push_back({{inside->from, inside->to}, h});
-        if (inside->depth > deepest.depth)
-          deepest = {start + inside->deepest_at * ray.direction, ray.face, h, inside->depth, ray.opening};
-      }
-      return std::numeric_limits<double>::infinity();  // visit every hull along the segment, not the nearest
-    });
-    if (stretches_.empty()) return;
-    ++tally.lost;
-    std::sort(stretches_.begin(), stretches_.end());
-    double reached = stretches_.front().first.first;
-    for (const auto& [stretch, hull] : stretches_) {
-      const auto& [from, to] = stretch;
-      const double begin = std::max(from, reached);
-      if (to > begin) tally.lost_length += to - begin;
-      reached = std::max(reached, to);
-    }
-    if (deepest.depth > tally.deepest.depth) tally.deepest = deepest;
-    mark_cell(deepest.point);
-    note(deepest);
-  }
-
   // OctoMap's keys are 16 bits: 2^15 cells each side of the centre.
   static constexpr double kOctreeKeysEachSide = 32768.0;
 
@@ -171,18 +229,9 @@ private:
     if (worst.size() > kWorstPlaces) worst.pop_back();
   }
 
-  const PreparedMesh& prepared_;
-  const bvh::TriangleWorld& triangles_;
-  const std::vector<bvh::RuntimeHull>& hulls_;
-  std::optional<double> cap_;
   ProbeReport& report_;
-  double tol_, stand_off_;
   octomap::OcTree tree_;
   Eigen::Vector3d centre_;
-  Aabb world_;
-  AabbTree hull_tree_;
-  std::vector<std::pair<std::pair<double, double>, int>> stretches_;  // of the ray being decided, with their hull
-  std::unique_ptr<probe::AllowanceJudge> judge_;  // with an allowance only
   std::unordered_set<octomap::OcTreeKey, octomap::OcTreeKey::KeyHash> lost_keys_;
 };
 
@@ -191,9 +240,13 @@ private:
 // The part of the probe's progress its front rays stand for (they
 // outnumber the openings' rays several times on real scenes).
 constexpr double kFrontRayShareOfProbe = 0.8;
+// Faces or edges traced between two additions to the report: their
+// findings are kept until then (memory bounded by a batch), and a batch is
+// long enough that its threads seldom wait for one another at its end.
+constexpr int kItemsPerBatch = 4096;
 
 Result<ProbeReport> probe_accessible_space(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles,
-                                           const bvh::HullWorld& hulls, const ProbeOptions& options) {
+                                           const bvh::HullWorld& hulls, const ProbeOptions& options, int threads) {
   ProbeReport report;
   const double diagonal = prepared.tolerance.diagonal;
   report.probe_distance = options.probe_distance;
@@ -209,23 +262,43 @@ Result<ProbeReport> probe_accessible_space(const PreparedMesh& prepared, const b
                   "the agent radius must be a finite length above twice the tolerance, the max deviation a positive length"};
   if (0.5 * diagonal / report.resolution > kMaxCellsPerAxis)
     return Status{StatusCode::invalid_argument, "resolution too fine: the octree has 16 levels (32768 cells a side)"};
+  if (threads < 0)
+    return Status{StatusCode::invalid_argument, "the thread count must be 0 (every core) or more"};
+  threads = threads_to_use(threads);
   try {
-    Prober prober(prepared, triangles, hulls, options.probe_distance, options.allowance, report);
-    // Progress by face: rays go face by face, front rays (most of the work)
-    // then openings.
-    const double faces = std::max<double>(1.0, static_cast<double>(prepared.mesh.triangles.size()));
-    double share = kFrontRayShareOfProbe, start = 0.0;
-    const auto trace = [&](const probe::ProbeRay& ray) {
-      prober.trace(ray);
-      if (options.progress) options.progress(start + share * ray.face / faces);
+    report.allowance.options = allowance;
+    const RayTracer tracer(prepared, triangles, hulls, options.probe_distance, allowance);
+    FindingsCollector collector(prepared, report);
+    std::vector<ItemRays> items(kItemsPerBatch);
+    // Traces every item of one kind (faces' front rays, or edges' opening
+    // rays) on the threads, adding them to `tally` in item order; progress
+    // goes from `start` to `start + share` as items are added.
+    const auto trace_items = [&](int count, const auto& rays_of_item, RayTally& tally, double start, double share) {
+      const auto trace_item = [&](int i) {
+        ItemRays& item = items[i % kItemsPerBatch];
+        Stretches stretches;
+        rays_of_item(i, [&](const probe::ProbeRay& ray) { tracer.trace(ray, item, stretches); });
+      };
+      const auto add_item = [&](int i) {
+        ItemRays& item = items[i % kItemsPerBatch];
+        collector.add(item, tally);
+        item = ItemRays{};
+        if (options.progress) options.progress(start + share * (i + 1.0) / count);
+      };
+      parallel_for_ordered(count, threads, kItemsPerBatch, trace_item, add_item);
     };
-    probe::for_each_front_ray(prepared, report.resolution, trace);
-    start = kFrontRayShareOfProbe;
-    share = 1.0 - kFrontRayShareOfProbe;
-    probe::for_each_opening_ray(prepared, report.resolution, trace);
+    const auto front_rays = [&](int face, const std::function<void(const probe::ProbeRay&)>& trace) {
+      probe::front_rays_of_face(prepared, report.resolution, face, trace);
+    };
+    const auto opening_rays = [&](int edge, const std::function<void(const probe::ProbeRay&)>& trace) {
+      probe::opening_rays_of_edge(prepared, report.resolution, edge, trace);
+    };
+    trace_items(static_cast<int>(prepared.mesh.triangles.size()), front_rays, report.front, 0.0, kFrontRayShareOfProbe);
+    trace_items(static_cast<int>(prepared.connectivity.edges.size()), opening_rays, report.opening,
+                kFrontRayShareOfProbe, 1.0 - kFrontRayShareOfProbe);
     if (options.progress) options.progress(1.0);
-    prober.fill_octree();
-    if (!options.octree_path.empty() && !prober.tree().writeBinary(options.octree_path))
+    collector.fill_octree();
+    if (!options.octree_path.empty() && !collector.tree().writeBinary(options.octree_path))
       return Status{StatusCode::unwritable_file, options.octree_path + ": cannot write the octree"};
     return report;
   } catch (const std::exception& e) {

@@ -89,8 +89,8 @@ Eigen::Vector3d nearest_interior_point(const HullInterior& interior, const Eigen
 } // namespace
 
 AllowanceJudge::AllowanceJudge(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles,
-                               const bvh::HullWorld& hulls, AllowanceReport& report)
-    : prepared_(prepared), triangles_(triangles), hulls_(hulls), hull_tree_(hull_boxes(hulls)), report_(report),
+                               const bvh::HullWorld& hulls, const AllowanceOptions& options)
+    : prepared_(prepared), triangles_(triangles), hulls_(hulls), hull_tree_(hull_boxes(hulls)), options_(options),
       tol_(prepared.tolerance.length) {
   const Mesh& mesh = prepared.mesh;
   std::vector<bvh::RuntimeHull> faces;
@@ -118,7 +118,7 @@ AllowanceJudge::AllowanceJudge(const PreparedMesh& prepared, const bvh::Triangle
   mesh_ = std::move(world).value();
   // What a ball must reach into to take space: each hull shrunk by the
   // probe's stand-off and the tolerance (the margin balls_over allows).
-  if (report_.options.agent_radius)
+  if (options_.agent_radius)
     for (const bvh::RuntimeHull& h : hulls.hulls())
       interiors_.push_back(hull_interior(h.shape, (kRayStandOffInTolerances + 1.0) * tol_));
 }
@@ -137,24 +137,25 @@ DistanceBounds AllowanceJudge::to_hulls(const Eigen::Vector3d& p, int& hull, Eig
 }
 
 void AllowanceJudge::judge(const ProbeRay& ray, const Eigen::Vector3d& start, double length, double stand_off,
-                           const std::vector<std::pair<std::pair<double, double>, int>>& stretches) {
-  for (const auto& [stretch, hull] : stretches) farthest_lost(ray, start, stretch.first, stretch.second, hull);
-  if (const std::optional<double> r = report_.options.agent_radius) {
+                           const std::vector<std::pair<std::pair<double, double>, int>>& stretches,
+                           AllowanceReport& out) const {
+  for (const auto& [stretch, hull] : stretches) farthest_lost(ray, start, stretch.first, stretch.second, hull, out);
+  if (const std::optional<double> r = options_.agent_radius) {
     // Nearer than r - stand-off to its own face, no point of the ray has
     // clearance r.
     const double from = std::max(0.0, *r - stand_off);
-    if (from < length) reachable_balls(ray, start, from, length);
+    if (from < length) reachable_balls(ray, start, from, length, out);
   }
 }
 
 // The farthest point of stretch [from, to] from the mesh, within tol; with
 // E, also whether some point lies farther than E + tol.
 void AllowanceJudge::farthest_lost(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to,
-                                   int hull) {
-  ++report_.lost_stretches;
+                                   int hull, AllowanceReport& out) const {
+  ++out.lost_stretches;
   // With E the stretch is judged against E + tol; with r alone only
   // measured (an infinite limit is never broken).
-  const double limit = report_.options.max_deviation ? *report_.options.max_deviation + tol_
+  const double limit = options_.max_deviation ? *options_.max_deviation + tol_
                                                      : std::numeric_limits<double>::infinity();
   const auto sample = [&](double t) {
     Sample s;
@@ -192,13 +193,13 @@ void AllowanceJudge::farthest_lost(const ProbeRay& ray, const Eigen::Vector3d& s
   }
   // Out of evaluations matters only where the stretch is judged; measured
   // alone, the figure is a lower bound then.
-  if (undecided && std::isfinite(limit)) ++report_.undecided;
-  if (best > limit) ++report_.beyond_deviation;
-  if (best > report_.max_lost_deviation) {
-    report_.max_lost_deviation = best;
-    report_.farthest_point = start + best_sample.t * ray.direction;
-    report_.farthest_face = ray.face;
-    report_.farthest_hull = hull;
+  if (undecided && std::isfinite(limit)) ++out.undecided;
+  if (best > limit) ++out.beyond_deviation;
+  if (best > out.max_lost_deviation) {
+    out.max_lost_deviation = best;
+    out.farthest_point = start + best_sample.t * ray.direction;
+    out.farthest_face = ray.face;
+    out.farthest_hull = hull;
   }
 }
 
@@ -207,7 +208,7 @@ void AllowanceJudge::farthest_lost(const ProbeRay& ray, const Eigen::Vector3d& s
 std::vector<std::pair<double, double>> AllowanceJudge::near_hulls(const Eigen::Vector3d& start,
                                                                   const Eigen::Vector3d& dir, double from,
                                                                   double to) const {
-  const double grow = *report_.options.agent_radius;
+  const double grow = *options_.agent_radius;
   std::vector<std::pair<double, double>> near;
   hull_tree_.nearest_along_segment(start + from * dir, start + to * dir, grow, 0.0, [&](int h) {
     const auto stretch = within_grown_planes(hulls_.hulls()[h].shape.planes, start, dir, from, to, grow);
@@ -300,19 +301,20 @@ double AllowanceJudge::most_clear_between(const Eigen::Vector3d& start, const Ei
 // Every centre on [from, to] with clearance >= r must lie at least r - tol
 // from every hull (unless the ball reaches in only where the strict
 // definition's space is enclosed). The first centre that breaks it ends the ray.
-void AllowanceJudge::reachable_balls(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to) {
-  ++report_.centre_rays;
+void AllowanceJudge::reachable_balls(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to,
+                                     AllowanceReport& out) const {
+  ++out.centre_rays;
   int evaluations = 0;
   for (const auto& [a, b] : near_hulls(start, ray.direction, from, to)) {
-    const long lost = report_.reach_lost, undecided = report_.undecided;
-    balls_over(ray, start, a, b, evaluations);
-    if (report_.reach_lost != lost || report_.undecided != undecided) return;
+    const long lost = out.reach_lost, undecided = out.undecided;
+    balls_over(ray, start, a, b, evaluations, out);
+    if (out.reach_lost != lost || out.undecided != undecided) return;
   }
 }
 
 void AllowanceJudge::balls_over(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to,
-                                int& evaluations) {
-  const double r = *report_.options.agent_radius;
+                                int& evaluations, AllowanceReport& out) const {
+  const double r = *options_.agent_radius;
   // A centre nearer any hull than this puts its ball deeper than tol into it
   // beyond the probe's stand-off: the strict definition's rays start that
   // far off a face, so a ball resting on the face may meet a hull that
@@ -334,13 +336,12 @@ void AllowanceJudge::balls_over(const ProbeRay& ray, const Eigen::Vector3d& star
     const Eigen::Vector3d c = start + s.t * ray.direction;
     switch (ball_takes_free_space(c, r)) {
       case BallReach::not_deep: return false;
-      case BallReach::enclosed: ++report_.enclosed_balls; return false;
+      case BallReach::enclosed: ++out.enclosed_balls; return false;
       case BallReach::free: break;
     }
-    ++report_.reach_lost;
+    ++out.reach_lost;
     const double depth = r - s.hulls.high;
-    if (depth > report_.deepest_reach.depth)
-      report_.deepest_reach = {c, ray.face, s.hull, depth, s.mesh.low, ray.opening};
+    if (depth > out.deepest_reach.depth) out.deepest_reach = {c, ray.face, s.hull, depth, s.mesh.low, ray.opening};
     return true;
   };
   std::vector<Interval> open = {{sample(from), sample(to)}};
@@ -355,7 +356,7 @@ void AllowanceJudge::balls_over(const ProbeRay& ray, const Eigen::Vector3d& star
     const bool far_from_hulls = lipschitz_min(i.a.hulls.low, i.b.hulls.low, length) >= needed;
     if (no_clear_centre || far_from_hulls || length <= tol_) continue;
     if (evaluations >= kMaxEvaluationsPerRay) {
-      ++report_.undecided;
+      ++out.undecided;
       return;
     }
     const Sample mid = sample(0.5 * (i.a.t + i.b.t));
@@ -363,6 +364,22 @@ void AllowanceJudge::balls_over(const ProbeRay& ray, const Eigen::Vector3d& star
     open.push_back({i.a, mid});
     open.push_back({mid, i.b});
   }
+}
+
+void add_allowance_figures(AllowanceReport& total, const AllowanceReport& part) {
+  total.lost_stretches += part.lost_stretches;
+  total.beyond_deviation += part.beyond_deviation;
+  total.centre_rays += part.centre_rays;
+  total.reach_lost += part.reach_lost;
+  total.enclosed_balls += part.enclosed_balls;
+  total.undecided += part.undecided;
+  if (part.max_lost_deviation > total.max_lost_deviation) {
+    total.max_lost_deviation = part.max_lost_deviation;
+    total.farthest_point = part.farthest_point;
+    total.farthest_face = part.farthest_face;
+    total.farthest_hull = part.farthest_hull;
+  }
+  if (part.deepest_reach.depth > total.deepest_reach.depth) total.deepest_reach = part.deepest_reach;
 }
 
 } // namespace hullcover::validate::probe

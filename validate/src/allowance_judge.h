@@ -35,6 +35,9 @@ struct Sample {
   Eigen::Vector3d nearest = Eigen::Vector3d::Zero();  ///< on the nearest hull (locates the meeting when touching)
 };
 
+/// Judges open rays against an allowance. Judging is const and writes only
+/// the report it is given: one judge serves many threads, each ray's figures
+/// going to its own report (add_allowance_figures adds them up in order).
 class AllowanceJudge {
 public:
   /// `prepared`, `triangles` and `hulls` must outlive the judge. The mesh's
@@ -42,20 +45,25 @@ public:
   /// distances. Throws std::runtime_error when they cannot be (no face with
   /// a surface).
   AllowanceJudge(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles, const bvh::HullWorld& hulls,
-                 AllowanceReport& report);
+                 const AllowanceOptions& options);
 
   /// Judges one open ray: `start` (off the surface by the stand-off) along
   /// unit `ray.direction` for `length`, with `stretches` the parts of it
-  /// deeper than tol inside hull `second` (distances along the ray).
+  /// deeper than tol inside hull `second` (distances along the ray). Adds
+  /// its figures to `out` (counts added, extremes kept when strictly beyond
+  /// out's), whose options it does not read.
   void judge(const ProbeRay& ray, const Eigen::Vector3d& start, double length, double stand_off,
-             const std::vector<std::pair<std::pair<double, double>, int>>& stretches);
+             const std::vector<std::pair<std::pair<double, double>, int>>& stretches, AllowanceReport& out) const;
 
 private:
   DistanceBounds to_mesh(const Eigen::Vector3d& p, int* face = nullptr) const;
   DistanceBounds to_hulls(const Eigen::Vector3d& p, int& hull, Eigen::Vector3d& nearest) const;
-  void farthest_lost(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to, int hull);
-  void reachable_balls(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to);
-  void balls_over(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to, int& evaluations);
+  void farthest_lost(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to, int hull,
+                     AllowanceReport& out) const;
+  void reachable_balls(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to,
+                       AllowanceReport& out) const;
+  void balls_over(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to, int& evaluations,
+                  AllowanceReport& out) const;
   std::vector<std::pair<double, double>> near_hulls(const Eigen::Vector3d& start, const Eigen::Vector3d& dir,
                                                     double from, double to) const;
   double most_clear_between(const Eigen::Vector3d& start, const Eigen::Vector3d& dir, const Sample& a,
@@ -82,8 +90,14 @@ private:
   };
   std::vector<FrontPrism> prisms_;  // per face with a surface
   std::vector<HullInterior> interiors_;   // per hull, shrunk by the margin a ball may reach in (agent radius only)
-  AllowanceReport& report_;
+  AllowanceOptions options_;
   double tol_;
 };
+
+/// Adds `part` (one ray's or one face's figures) to `total`, as if judged
+/// into it: counts added, the farthest lost point and the deepest ball taken
+/// from `part` only when strictly beyond total's, so adding parts in ray
+/// order gives the figures of judging every ray into one report.
+void add_allowance_figures(AllowanceReport& total, const AllowanceReport& part);
 
 } // namespace hullcover::validate::probe

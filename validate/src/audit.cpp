@@ -1,6 +1,7 @@
 #include "hullcover/validate/audit.h"
 
 #include "hullcover/covering/decompose_options.h"
+#include "hullcover/geometry/parallel_for.h"
 
 #include <cmath>
 #include <exception>
@@ -37,6 +38,9 @@ Result<AuditReport> audit(const PreparedMesh& prepared, const HullSet& set, cons
       options.bar_half_length.value_or(kDefaultBarHalfLengthRelative * prepared.tolerance.largest_island);
   if (!(bar_half_length > 0.0) || std::isinf(bar_half_length))
     return Status{StatusCode::invalid_argument, "the bar half-length must be a positive length"};
+  if (options.threads < 0)
+    return Status{StatusCode::invalid_argument, "the thread count must be 0 (every core) or more"};
+  const int threads = threads_to_use(options.threads);
   const AllowanceOptions& allowance = options.probe.allowance;
   BehaviourOptions behaviour = options.behaviour;
   if (allowance.agent_radius) {
@@ -50,7 +54,8 @@ Result<AuditReport> audit(const PreparedMesh& prepared, const HullSet& set, cons
   const auto progress = [&](double fraction) {
     if (options.progress) options.progress(fraction);
   };
-  report.recheck = recheck_hulls(prepared, hulls_under_check(set.hulls), bar_half_length, allowance.any());
+  report.recheck =
+      recheck_hulls(prepared, hulls_under_check(set.hulls), bar_half_length, allowance.any(), threads);
   progress(kRecheckShareOfAudit);
   const Result<Worlds> worlds = build_worlds(prepared, set);
   if (!worlds.ok()) return worlds.status();
@@ -61,7 +66,7 @@ Result<AuditReport> audit(const PreparedMesh& prepared, const HullSet& set, cons
     probe.progress = [&](double fraction) {
       progress(kRecheckShareOfAudit + (kProxiesStartOfAudit - kRecheckShareOfAudit) * fraction);
     };
-  Result<ProbeReport> probed = probe_accessible_space(prepared, triangles, hulls, probe);
+  Result<ProbeReport> probed = probe_accessible_space(prepared, triangles, hulls, probe, threads);
   if (!probed.ok()) return probed.status();
   report.probe = std::move(probed).value();
   progress(kProxiesStartOfAudit);

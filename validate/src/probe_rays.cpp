@@ -34,51 +34,49 @@ bool is_sheet_rim(const PreparedMesh& prepared, const MeshEdge& edge) {
 
 } // namespace
 
-void for_each_front_ray(const PreparedMesh& prepared, double spacing, const std::function<void(const ProbeRay&)>& trace) {
+void front_rays_of_face(const PreparedMesh& prepared, double spacing, int f,
+                        const std::function<void(const ProbeRay&)>& trace) {
   const Mesh& mesh = prepared.mesh;
-  for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) {
-    if (prepared.connectivity.zero_area[f]) continue;
-    const Eigen::Vector3d area = triangle_area_vector(mesh, f);
-    const Eigen::Vector3d n = area.normalized();
-    const Eigen::Vector3i& t = mesh.triangles[f];
-    const Eigen::Vector3d &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
-    const Eigen::Vector3d centroid = (a + b + c) / 3.0;
-    trace({centroid, n, f, false});
-    for (const Eigen::Vector3d* corner : {&a, &b, &c})
-      trace({*corner + kCornerPullIn * (centroid - *corner), n, f, false});
-    // A grid of m(m + 1) / 2 points, about one per spacing^2 of area (the
-    // area vector's length is twice the area); m = 1 would be the centroid.
-    const int m = static_cast<int>(std::ceil(std::sqrt(area.norm()) / spacing));
-    if (m < 2) continue;
-    for (int i = 0; i < m; ++i)
-      for (int j = 0; i + j < m; ++j)
-        trace({a + (i + 1.0 / 3.0) / m * (b - a) + (j + 1.0 / 3.0) / m * (c - a), n, f, false});
-  }
+  if (prepared.connectivity.zero_area[f]) return;
+  const Eigen::Vector3d area = triangle_area_vector(mesh, f);
+  const Eigen::Vector3d n = area.normalized();
+  const Eigen::Vector3i& t = mesh.triangles[f];
+  const Eigen::Vector3d &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+  const Eigen::Vector3d centroid = (a + b + c) / 3.0;
+  trace({centroid, n, f, false});
+  for (const Eigen::Vector3d* corner : {&a, &b, &c})
+    trace({*corner + kCornerPullIn * (centroid - *corner), n, f, false});
+  // A grid of m(m + 1) / 2 points, about one per spacing^2 of area (the
+  // area vector's length is twice the area); m = 1 would be the centroid.
+  const int m = static_cast<int>(std::ceil(std::sqrt(area.norm()) / spacing));
+  if (m < 2) return;
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; i + j < m; ++j)
+      trace({a + (i + 1.0 / 3.0) / m * (b - a) + (j + 1.0 / 3.0) / m * (c - a), n, f, false});
 }
 
-void for_each_opening_ray(const PreparedMesh& prepared, double spacing,
+void opening_rays_of_edge(const PreparedMesh& prepared, double spacing, int edge,
                           const std::function<void(const ProbeRay&)>& trace) {
   const Mesh& mesh = prepared.mesh;
   const MeshConnectivity& con = prepared.connectivity;
   const double tilt = kOpeningTiltSine, level = std::sqrt(1.0 - tilt * tilt);
-  for (const MeshEdge& e : con.edges) {
-    if (!(e.kind == EdgeKind::boundary || is_sheet_rim(prepared, e))) continue;
-    const EdgeUse& use = con.edge_uses[e.first_use];
-    if (con.zero_area[use.face]) continue;
-    const Eigen::Vector3i& t = mesh.triangles[use.face];
-    const Eigen::Vector3d& p0 = mesh.positions[t[use.corner]];
-    const Eigen::Vector3d& p1 = mesh.positions[t[(use.corner + 1) % 3]];
-    const Eigen::Vector3d& other = mesh.positions[t[(use.corner + 2) % 3]];
-    const Eigen::Vector3d n = triangle_area_vector(mesh, use.face).normalized();
-    Eigen::Vector3d out = (p1 - p0).cross(n).normalized();
-    if (out.dot(other - p0) > 0.0) out = -out;
-    const Eigen::Vector3d directions[3] = {out, level * out + tilt * n, level * out - tilt * n};
-    const int m = std::max(1, static_cast<int>(std::ceil((p1 - p0).norm() / spacing)));
-    std::vector<double> along = {kCornerPullIn, 1.0 - kCornerPullIn};
-    for (int k = 0; k < m; ++k) along.push_back((k + 0.5) / m);
-    for (double s : along)
-      for (const Eigen::Vector3d& d : directions) trace({p0 + s * (p1 - p0), d, use.face, true});
-  }
+  const MeshEdge& e = con.edges[edge];
+  if (!(e.kind == EdgeKind::boundary || is_sheet_rim(prepared, e))) return;
+  const EdgeUse& use = con.edge_uses[e.first_use];
+  if (con.zero_area[use.face]) return;
+  const Eigen::Vector3i& t = mesh.triangles[use.face];
+  const Eigen::Vector3d& p0 = mesh.positions[t[use.corner]];
+  const Eigen::Vector3d& p1 = mesh.positions[t[(use.corner + 1) % 3]];
+  const Eigen::Vector3d& other = mesh.positions[t[(use.corner + 2) % 3]];
+  const Eigen::Vector3d n = triangle_area_vector(mesh, use.face).normalized();
+  Eigen::Vector3d out = (p1 - p0).cross(n).normalized();
+  if (out.dot(other - p0) > 0.0) out = -out;
+  const Eigen::Vector3d directions[3] = {out, level * out + tilt * n, level * out - tilt * n};
+  const int m = std::max(1, static_cast<int>(std::ceil((p1 - p0).norm() / spacing)));
+  std::vector<double> along = {kCornerPullIn, 1.0 - kCornerPullIn};
+  for (int k = 0; k < m; ++k) along.push_back((k + 0.5) / m);
+  for (double s : along)
+    for (const Eigen::Vector3d& d : directions) trace({p0 + s * (p1 - p0), d, use.face, true});
 }
 
 bool ends_on_backs(const bvh::TriangleWorld& triangles, const Mesh& mesh, const Eigen::Vector3d& start,

@@ -21,16 +21,21 @@ struct ProbeRay {
   bool opening = false;  ///< beyond an open edge rather than in front of a face
 };
 
-/// Every front ray: from each face with a surface, its centroid and a point
-/// near each corner, plus a triangular grid of about area / spacing^2 points
-/// (spacing in scene units, > 0), all along the face's unit normal.
-void for_each_front_ray(const PreparedMesh& prepared, double spacing, const std::function<void(const ProbeRay&)>& trace);
+/// The front rays of mesh face `face` (none when it has no surface): its
+/// centroid and a point near each corner, plus a triangular grid of about
+/// area / spacing^2 points (spacing in scene units, > 0), all along the
+/// face's unit normal. Every face's rays, face by face, are the probe's front
+/// rays; faces are independent of one another.
+void front_rays_of_face(const PreparedMesh& prepared, double spacing, int face,
+                        const std::function<void(const ProbeRay&)>& trace);
 
-/// Every opening ray: from points along each open edge (a boundary edge, or
-/// the rim of a double-sided sheet: two faces back to back), one near each
-/// end and one per `spacing` between, outward in the face's plane and
-/// tilted by kOpeningTiltSine to either side.
-void for_each_opening_ray(const PreparedMesh& prepared, double spacing,
+/// The opening rays of `prepared.connectivity.edges[edge]` (none unless it
+/// is open: a boundary edge, or the rim of a double-sided sheet, two faces
+/// back to back): from points along it, one near each end and one per
+/// `spacing` between, outward in the face's plane and tilted by
+/// kOpeningTiltSine to either side. Every edge's, edge by edge, are the
+/// probe's opening rays.
+void opening_rays_of_edge(const PreparedMesh& prepared, double spacing, int edge,
                           const std::function<void(const ProbeRay&)>& trace);
 
 /// Whether a ray from `start` along unit `dir` whose first mesh hit lies

@@ -3,6 +3,7 @@
 #include "recheck_geometry.h"
 #include "recheck_mesh.h"
 
+#include "hullcover/geometry/parallel_for.h"
 #include "hullcover/geometry/tolerances.h"
 
 #include <Eigen/Geometry>
@@ -21,6 +22,10 @@ using recheck::HalfSpace;
 
 // Findings kept as examples: enough to start debugging from.
 constexpr size_t kExamplesKept = 8;
+// Hulls or faces checked between two additions to the report: their parts
+// are kept until then, so memory stays bounded on million-face scenes, and
+// a batch is long enough that its threads seldom wait for one another.
+constexpr int kPartsPerBatch = 4096;
 // Condition 4 samples each chord between two points where a face meets a
 // flat hull's plane at this many intervals.
 constexpr int kChordSamples = 16;
@@ -95,87 +100,105 @@ bool reaches_below_polygon(const Mesh& mesh, const Eigen::Vector3i& t, const Che
   return false;
 }
 
-// Re-checks hulls one by one against the mesh, then the faces no hull claims.
+// Adds `part` (one hull's or one face's findings) to `total`: counts
+// summed, examples appended while there is room. Parts are added in hull,
+// then face order, so the report is the same whichever thread found what.
+void add_findings(CheckReport& total, const CheckReport& part) {
+  total.vertices_inside += part.vertices_inside;
+  total.edges_inside += part.edges_inside;
+  total.faces_off_hull += part.faces_off_hull;
+  total.bars_inside += part.bars_inside;
+  total.faces_below_polygon += part.faces_below_polygon;
+  total.faces_uncovered += part.faces_uncovered;
+  total.faces_inside += part.faces_inside;
+  total.uncovered_area += part.uncovered_area;
+  total.total_area += part.total_area;
+  total.hulls_not_convex += part.hulls_not_convex;
+  for (const std::string& e : part.examples)
+    if (total.examples.size() < kExamplesKept) total.examples.push_back(e);
+}
+
+// Re-checks hulls one by one against the mesh, then the faces no hull
+// claims. Every check is const and writes only the part it is given: hulls
+// and faces are checked on many threads, each into its own part.
 class Rechecker {
 public:
-  Rechecker(const PreparedMesh& prepared, double bar_half_length, CheckReport& report)
-      : inside_allowed_(report.inside_allowed), mesh_(prepared.mesh), tol_(prepared.tolerance.length), on_hull_(kOnHullInTolerances * tol_),
-        report_(report), facts_(recheck::read_mesh_facts(mesh_, tol_, bar_half_length)),
+  Rechecker(const PreparedMesh& prepared, double bar_half_length, bool inside_allowed)
+      : inside_allowed_(inside_allowed), mesh_(prepared.mesh), tol_(prepared.tolerance.length), on_hull_(kOnHullInTolerances * tol_),
+        facts_(recheck::read_mesh_facts(mesh_, tol_, bar_half_length)),
         scene_(referenced_bounding_box(mesh_)),
         cell_(std::max(facts_.longest_edge, scene_.diagonal() / recheck::kMaxCellsAlongDiagonal)),
-        grids_(recheck::build_candidate_grids(mesh_, facts_, cell_, scene_.min)),
-        covered_(mesh_.triangles.size(), 0) {}
+        grids_(recheck::build_candidate_grids(mesh_, facts_, cell_, scene_.min)) {}
 
   // An empty grid on the same cells as the mesh's.
   CandidateGrid empty_grid() const { return {cell_, scene_.min, {}}; }
 
-  void check_hull(size_t h, const HullUnderCheck& hull, const CheckedHull& c) {
+  int face_count() const { return static_cast<int>(mesh_.triangles.size()); }
+
+  // Hull h's findings, into `out`.
+  void check_hull(size_t h, const HullUnderCheck& hull, const CheckedHull& c, CheckReport& out) const {
     const std::string where = "hull " + std::to_string(h) + " (" + std::to_string(hull.faces.size()) + " faces" +
                               (hull.flat ? ", flat" : "") + "): ";
-    check_convex(where, hull, c);
-    check_claimed_faces(where, hull, c);
+    check_convex(where, hull, c, out);
+    check_claimed_faces(where, hull, c, out);
     if (is_single_face(hull)) return;
     // Candidates: whatever lies on the hull or in it is in its box grown by
     // the on-hull distance.
     const Eigen::Vector3d lo = c.lo.array() - on_hull_, hi = c.hi.array() + on_hull_;
     if (c.flat) {
-      check_bars_across_flat(where, c, lo, hi);
-      check_faces_below_flat(where, hull, c, lo, hi);
+      check_bars_across_flat(where, c, lo, hi, out);
+      check_faces_below_flat(where, hull, c, lo, hi, out);
     } else {
-      check_solid(where, c, lo, hi);
+      check_solid(where, c, lo, hi, out);
     }
   }
 
-  // Coverage: a face no hull claims is covered when it lies on some hull's
-  // boundary with its normal out.
-  void check_unclaimed_faces(const std::vector<HullUnderCheck>& hulls, const std::vector<CheckedHull>& checked,
-                             const CandidateGrid& hull_grid) {
-    for (int f = 0; f < static_cast<int>(mesh_.triangles.size()); ++f) {
-      if (!facts_.has_surface[f]) continue;
-      const Eigen::Vector3i& t = mesh_.triangles[f];
-      const Eigen::Vector3d &a = mesh_.positions[t[0]], &b = mesh_.positions[t[1]], &c = mesh_.positions[t[2]];
-      const double area = 0.5 * (b - a).cross(c - a).norm();
-      report_.total_area += area;
-      if (covered_[f]) continue;
-      const Eigen::Vector3d lo = a.cwiseMin(b).cwiseMin(c).array() - on_hull_;
-      const Eigen::Vector3d hi = a.cwiseMax(b).cwiseMax(c).array() + on_hull_;
-      // A flat hull has a facet either way: a face on it is on its boundary
-      // whichever way it faces (a double-sided sheet's two faces).
-      for (int h : hull_grid.query(lo, hi))
-        if (face_covered(facts_.normal[f], t, hulls[h], checked[h])) {
-          covered_[f] = 1;
-          break;
-        }
-      if (!covered_[f]) {
-        ++report_.faces_uncovered;
-        report_.uncovered_area += area;
-        note("face " + std::to_string(f) + " is on no hull");
-      }
-    }
+  // Coverage of face f (its area counted, when it has a surface, into
+  // `out`): claimed by some hull (`claimed`), or, claimed by none, lying on
+  // some hull's boundary with its normal out.
+  void check_face_coverage(int f, bool claimed, const std::vector<HullUnderCheck>& hulls,
+                           const std::vector<CheckedHull>& checked, const CandidateGrid& hull_grid,
+                           CheckReport& out) const {
+    if (!facts_.has_surface[f]) return;
+    const Eigen::Vector3i& t = mesh_.triangles[f];
+    const Eigen::Vector3d &a = mesh_.positions[t[0]], &b = mesh_.positions[t[1]], &c = mesh_.positions[t[2]];
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    out.total_area += area;
+    if (claimed) return;
+    const Eigen::Vector3d lo = a.cwiseMin(b).cwiseMin(c).array() - on_hull_;
+    const Eigen::Vector3d hi = a.cwiseMax(b).cwiseMax(c).array() + on_hull_;
+    // A flat hull has a facet either way: a face on it is on its boundary
+    // whichever way it faces (a double-sided sheet's two faces).
+    for (int h : hull_grid.query(lo, hi))
+      if (face_covered(facts_.normal[f], t, hulls[h], checked[h], out)) return;
+    ++out.faces_uncovered;
+    out.uncovered_area += area;
+    note(out, "face " + std::to_string(f) + " is on no hull");
   }
 
 private:
-  void note(const std::string& what) {
-    if (report_.examples.size() < kExamplesKept) report_.examples.push_back(what);
+  static void note(CheckReport& out, const std::string& what) {
+    if (out.examples.size() < kExamplesKept) out.examples.push_back(what);
   }
 
   // On the hull; with an allowance, or inside it (counted apart).
   bool face_covered(const Eigen::Vector3d& normal, const Eigen::Vector3i& t, const HullUnderCheck& hull,
-                    const CheckedHull& c) {
+                    const CheckedHull& c, CheckReport& out) const {
     const FaceOffHull off = face_off_hull(mesh_, normal, t, hull, c);
     if (off.on_hull(on_hull_)) return true;
     if (!inside_allowed_ || !off.on_or_inside(on_hull_, c.flat)) return false;
-    ++report_.faces_inside;
+    ++out.faces_inside;
     return true;
   }
 
   // A hull vertex in front of one of the hull's own facets; one finding per hull.
-  void check_convex(const std::string& where, const HullUnderCheck& hull, const CheckedHull& c) {
+  void check_convex(const std::string& where, const HullUnderCheck& hull, const CheckedHull& c,
+                    CheckReport& out) const {
     for (const auto& p : hull.shape->vertices)
       for (size_t fi = 0; fi < hull.shape->facets.size(); ++fi)
         if (const HalfSpace& plane = c.facets[fi]; plane.n.dot(p) - plane.d > tol_) {
-          ++report_.hulls_not_convex;
-          note(where + "not convex: a vertex " + std::to_string(plane.n.dot(p) - plane.d) + " in front of a facet of " +
+          ++out.hulls_not_convex;
+          note(out, where + "not convex: a vertex " + std::to_string(plane.n.dot(p) - plane.d) + " in front of a facet of " +
                std::to_string(hull.shape->facets.size()));
           return;
         }
@@ -183,13 +206,13 @@ private:
 
   // Condition 2 and coverage: each claimed face's plane supports the hull
   // (every hull vertex behind it) and its corners lie on the hull.
-  void check_claimed_faces(const std::string& where, const HullUnderCheck& hull, const CheckedHull& c) {
+  void check_claimed_faces(const std::string& where, const HullUnderCheck& hull, const CheckedHull& c,
+                           CheckReport& out) const {
     for (int f : hull.faces) {
-      covered_[f] = 1;
-      if (!face_covered(facts_.normal[f], mesh_.triangles[f], hull, c)) {
+      if (!face_covered(facts_.normal[f], mesh_.triangles[f], hull, c, out)) {
         const FaceOffHull off = face_off_hull(mesh_, facts_.normal[f], mesh_.triangles[f], hull, c);
-        ++report_.faces_off_hull;
-        note(where + "face " + std::to_string(f) + " not on the hull with its normal out (" +
+        ++out.faces_off_hull;
+        note(out, where + "face " + std::to_string(f) + " not on the hull with its normal out (" +
              std::to_string(off.in_front) + " in front, a corner " + std::to_string(off.corner_off) +
              " off its surface)");
       }
@@ -198,18 +221,18 @@ private:
 
   // Condition 3 (flat): no bar crosses the polygon's relative interior.
   void check_bars_across_flat(const std::string& where, const CheckedHull& c, const Eigen::Vector3d& lo,
-                              const Eigen::Vector3d& hi) {
+                              const Eigen::Vector3d& hi, CheckReport& out) const {
     for (int b : grids_.bars.query(lo, hi))
       if (recheck::segment_crosses_flat(c, facts_.bars[b].a, facts_.bars[b].b, tol_)) {
-        ++report_.bars_inside;
-        note(where + "bar " + std::to_string(b) + " crosses the polygon");
+        ++out.bars_inside;
+        note(out, where + "bar " + std::to_string(b) + " crosses the polygon");
       }
   }
 
   // Condition 4: no face outside the hull's patch touches the polygon's
   // interior from below.
   void check_faces_below_flat(const std::string& where, const HullUnderCheck& hull, const CheckedHull& c,
-                              const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+                              const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, CheckReport& out) const {
     for (int f : grids_.faces.query(lo, hi)) {
       if (std::binary_search(hull.faces.begin(), hull.faces.end(), f)) continue;
       const Eigen::Vector3i& t = mesh_.triangles[f];
@@ -220,31 +243,31 @@ private:
         on_polygon &= std::abs(c.front.n.dot(mesh_.positions[t[k]]) - c.front.d) <= on_hull_;
       if (on_polygon) continue;
       if (reaches_below_polygon(mesh_, t, c, tol_, on_hull_)) {
-        ++report_.faces_below_polygon;
-        note(where + "face " + std::to_string(f) + " reaches below the polygon's interior");
+        ++out.faces_below_polygon;
+        note(out, where + "face " + std::to_string(f) + " reaches below the polygon's interior");
       }
     }
   }
 
   // Conditions 1 and 3 (solid): no mesh vertex, edge part or bar strictly inside.
   void check_solid(const std::string& where, const CheckedHull& c, const Eigen::Vector3d& lo,
-                   const Eigen::Vector3d& hi) {
+                   const Eigen::Vector3d& hi, CheckReport& out) const {
     for (int v : grids_.vertices.query(lo, hi))
       if (depth_inside(c.facets, mesh_.positions[v]) > tol_) {
-        ++report_.vertices_inside;
-        note(where + "vertex " + std::to_string(v) + " inside");
+        ++out.vertices_inside;
+        note(out, where + "vertex " + std::to_string(v) + " inside");
       }
     for (int e : grids_.edges.query(lo, hi)) {
       const auto& [p, q] = facts_.edges[e];
       if (recheck::segment_deeper_than(c.facets, mesh_.positions[p], mesh_.positions[q], tol_)) {
-        ++report_.edges_inside;
-        note(where + "edge " + std::to_string(p) + "-" + std::to_string(q) + " inside");
+        ++out.edges_inside;
+        note(out, where + "edge " + std::to_string(p) + "-" + std::to_string(q) + " inside");
       }
     }
     for (int b : grids_.bars.query(lo, hi))
       if (recheck::segment_deeper_than(c.facets, facts_.bars[b].a, facts_.bars[b].b, tol_)) {
-        ++report_.bars_inside;
-        note(where + "bar " + std::to_string(b) + " inside");
+        ++out.bars_inside;
+        note(out, where + "bar " + std::to_string(b) + " inside");
       }
   }
 
@@ -252,12 +275,10 @@ private:
   const Mesh& mesh_;
   const double tol_;
   const double on_hull_;  // a point this close to a hull's surface is on it
-  CheckReport& report_;
   const recheck::MeshFacts facts_;
   const Aabb scene_;
   const double cell_;
   const recheck::CandidateGrids grids_;
-  std::vector<char> covered_;  // per face: claimed by a hull, or found on one
 };
 
 } // namespace
@@ -291,18 +312,36 @@ CheckReport check_covering_independently(const PreparedMesh& prepared, const Cov
 }
 
 CheckReport recheck_hulls(const PreparedMesh& prepared, const std::vector<HullUnderCheck>& hulls,
-                          double bar_half_length, bool inside_allowed) {
+                          double bar_half_length, bool inside_allowed, int threads) {
   CheckReport report;
   report.inside_allowed = inside_allowed;
-  Rechecker rechecker(prepared, bar_half_length, report);
-  std::vector<CheckedHull> checked;
+  threads = threads < 0 ? 1 : threads_to_use(threads);
+  const Rechecker rechecker(prepared, bar_half_length, inside_allowed);
+  const int hull_count = static_cast<int>(hulls.size());
+  std::vector<CheckedHull> checked(hulls.size());
+  parallel_for(hull_count, threads, [&](int h) { checked[h] = recheck::make_checked(hulls[h]); });
   CandidateGrid hull_grid = rechecker.empty_grid();
-  for (size_t h = 0; h < hulls.size(); ++h) {
-    checked.push_back(recheck::make_checked(hulls[h]));
-    hull_grid.insert(static_cast<int>(h), checked.back().lo, checked.back().hi);
-    rechecker.check_hull(h, hulls[h], checked.back());
-  }
-  rechecker.check_unclaimed_faces(hulls, checked, hull_grid);
+  for (int h = 0; h < hull_count; ++h) hull_grid.insert(h, checked[h].lo, checked[h].hi);
+  // Each hull's findings, then each face's, each in a part of its own (a
+  // batch's worth at a time), added to the report in hull and face order.
+  std::vector<CheckReport> parts(kPartsPerBatch);
+  const auto add_part = [&](int i) {
+    CheckReport& part = parts[i % kPartsPerBatch];
+    add_findings(report, part);
+    part = CheckReport{};
+  };
+  parallel_for_ordered(
+      hull_count, threads, kPartsPerBatch,
+      [&](int h) { rechecker.check_hull(h, hulls[h], checked[h], parts[h % kPartsPerBatch]); }, add_part);
+  std::vector<char> claimed(rechecker.face_count(), 0);
+  for (const HullUnderCheck& hull : hulls)
+    for (int f : hull.faces) claimed[f] = 1;
+  parallel_for_ordered(
+      rechecker.face_count(), threads, kPartsPerBatch,
+      [&](int f) {
+        rechecker.check_face_coverage(f, claimed[f] != 0, hulls, checked, hull_grid, parts[f % kPartsPerBatch]);
+      },
+      add_part);
   return report;
 }
 

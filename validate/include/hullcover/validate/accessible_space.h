@@ -55,8 +55,9 @@ struct ProbeOptions {
   std::string octree_path;  ///< write the lost cells' octree here (.bt) when not empty
   /// What the covering was allowed to take (allowance_audit.h); none: exact mode.
   AllowanceOptions allowance;
-  /// Called now and then with the fraction of the rays' faces done (0..1),
-  /// front rays first, then openings; may be empty.
+  /// Called now and then with the fraction of the rays' faces and edges
+  /// done (0..1, never decreasing), front rays first, then openings, from
+  /// one thread at a time; may be empty.
   std::function<void(double)> progress;
 };
 
@@ -101,8 +102,14 @@ inline constexpr size_t kWorstPlaces = 10;
 /// so fine the octree would need more than its 16 levels over the scene,
 /// or an agent radius not above 2 tol or a max deviation not positive;
 /// `unwritable_file` when the octree cannot be written; `internal_error`
-/// when anything else goes wrong.
+/// when anything else goes wrong; `invalid_argument` for a negative thread
+/// count. Faces' front rays, then edges' opening rays, are traced on
+/// `threads` threads (0: every core), each face's or edge's findings added
+/// to the report in face and edge order on the calling thread (which alone
+/// calls options.progress, its fraction never decreasing): the report, to
+/// the last bit, is the same for any thread count.
 Result<ProbeReport> probe_accessible_space(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles,
-                                           const bvh::HullWorld& hulls, const ProbeOptions& options);
+                                           const bvh::HullWorld& hulls, const ProbeOptions& options,
+                                           int threads = 1);
 
 } // namespace hullcover::validate

@@ -33,9 +33,17 @@ struct AuditOptions {
   /// agent radius (probe.allowance) the size defaults to it and may not be
   /// smaller.
   BehaviourOptions behaviour;
-  /// Called now and then with the fraction of the audit done (0..1): the
-  /// re-check, the probe's rays, then the proxies; may be empty.
+  /// Called now and then with the fraction of the audit done (0..1, never
+  /// decreasing): the re-check, the probe's rays, then the proxies; always
+  /// from the thread that called run_audit; may be empty.
   std::function<void(double)> progress;
+  /// Threads re-checking hulls and faces and tracing the probe's rays at
+  /// once; 0: every core (std::thread::hardware_concurrency), negative
+  /// refused. The report is the same, to the last bit, for any count: work
+  /// is split by hull, face and open edge, and what each finds is added up
+  /// in that order. The proxies run on the calling thread (a few percent of
+  /// the time).
+  int threads = 0;
 };
 
 /// One reason the audit is not clean.
@@ -84,7 +92,8 @@ std::vector<AuditFinding> audit_findings(const ProbeReport& probe, const CheckRe
 /// infinite, for no hull or a malformed one (HullWorld::build), for a
 /// mesh with no face with a surface (TriangleWorld::build), or for the
 /// probe's and the proxies' own bad options (probe_accessible_space,
-/// compare_behaviour); `unwritable_file` when the octree cannot be written;
+/// compare_behaviour), or for a negative thread count; `unwritable_file`
+/// when the octree cannot be written;
 /// `internal_error` when anything else goes wrong. Never throws.
 [[nodiscard]] Result<AuditReport> run_audit(const PreparedMesh& prepared, const HullSet& hulls,
                                             const AuditOptions& options);

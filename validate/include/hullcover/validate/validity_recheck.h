@@ -70,9 +70,12 @@ struct CheckReport {
 /// With `inside_allowed`, a face (claimed or not) is also covered when its
 /// corners all lie inside one solid hull (not farther than that distance
 /// outside it), and condition 1 is reported without counting as a
-/// violation (CheckReport::inside_allowed).
+/// violation (CheckReport::inside_allowed). Hulls, then faces, are checked
+/// on `threads` threads (0: every core; negative: one), each into a part of
+/// its own added in hull and face order: the report, examples included, is
+/// the same for any thread count.
 CheckReport recheck_hulls(const PreparedMesh& prepared, const std::vector<HullUnderCheck>& hulls,
-                          double bar_half_length, bool inside_allowed = false);
+                          double bar_half_length, bool inside_allowed = false, int threads = 1);
 
 /// Re-checks a covering (its faces claimed, its own bar length); with
 /// `inside_allowed` as recheck_hulls does, for a covering made with an

@@ -1,0 +1,77 @@
+#pragma once
+/// \file parallel_for.h
+/// Independent jobs on std::thread workers: a shared atomic counter hands
+/// out indices, each job writes only its own result slot, and the caller
+/// combines the slots in index order afterwards, so no figure depends on
+/// which thread ran which job. Header-only; a target that includes it links
+/// Threads::Threads.
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <system_error>
+#include <thread>
+#include <vector>
+
+namespace hullcover {
+
+/// The worker count a `threads` option stands for: itself when positive,
+/// every core (std::thread::hardware_concurrency, at least 1) for 0 or less.
+/// Callers refuse negative counts before asking, where a count is user input.
+inline int threads_to_use(int requested) {
+  if (requested > 0) return requested;
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
+/// Runs `job(i)` for every i in [0, count) on up to `threads` threads (the
+/// calling thread is one of them; no thread is started for one job or one
+/// thread). Indices are handed out in ascending order. The first exception
+/// a job throws is rethrown here once every thread has stopped; the other
+/// threads finish their current job and take no new one.
+inline void parallel_for(int count, int threads, const std::function<void(int)>& job) {
+  std::atomic<int> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  const auto work = [&] {
+    for (int i = next++; i < count; i = next++) {
+      try {
+        job(i);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(failure_mutex);
+        if (!failure) failure = std::current_exception();
+        next = count;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  // A thread that cannot be started leaves its share to the others (the
+  // calling thread always works), as the jobs do not care who runs them.
+  try {
+    for (int t = 1; t < std::min(threads, count); ++t) pool.emplace_back(work);
+  } catch (const std::system_error&) {
+  }
+  work();
+  for (std::thread& thread : pool) thread.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+/// Runs `job(i)` for every i in [0, count) on up to `threads` threads, a
+/// batch of `batch` consecutive indices at a time, and after each batch
+/// calls `commit(i)` for its indices in ascending order on the calling
+/// thread. Results kept per index between the two stay bounded by one batch,
+/// and whatever `commit` does (sums, progress reports) happens on one
+/// thread, in index order, whatever the thread count. A job's exception is
+/// rethrown as parallel_for does, before that batch is committed.
+inline void parallel_for_ordered(int count, int threads, int batch, const std::function<void(int)>& job,
+                                 const std::function<void(int)>& commit) {
+  batch = std::max(1, batch);
+  for (int first = 0; first < count; first += batch) {
+    const int size = std::min(batch, count - first);
+    parallel_for(size, threads, [&](int k) { job(first + k); });
+    for (int k = 0; k < size; ++k) commit(first + k);
+  }
+}
+
+} // namespace hullcover
