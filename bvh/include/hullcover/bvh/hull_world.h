@@ -14,8 +14,8 @@
 #include "hullcover/bvh/runtime_hull.h"
 #include "hullcover/geometry/status.h"
 
-#include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace hullcover::bvh {
@@ -240,17 +240,6 @@ private:
   std::vector<RuntimeHull> hulls_;
   // The broad phase, kept out of this header: fcl headers are slow to compile.
   std::unique_ptr<detail::HullTree> tree_;
-
-  /// ray_cast on a checked ray (unit direction).
-  void cast_checked_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double max_distance,
-                        RayResult& result) const;
-  /// The distance from hull h to `shape` at `pose` (0 when they meet) with
-  /// the closest points, as a function of h; empty for a convex shape
-  /// without a 3D hull.
-  std::function<double(int, Eigen::Vector3d&, Eigen::Vector3d&)> separation_from(const QueryShape& shape,
-                                                                                 const Eigen::Isometry3d& pose) const;
-  /// Hull indices whose tree boxes overlap `box`, ascending.
-  void candidates(const Aabb& box, std::vector<int>& out) const;
 };
 
 } // namespace hullcover::bvh
