@@ -5,7 +5,7 @@
 #include "world_queries.h"
 
 namespace hullcover::bvh {
-namespace {
+namespace detail {
 // HullWorld as a hull source (world_queries.h): one packed tree whose leaf
 // numbers are the hulls' indices.
 struct TreeSource {
@@ -26,7 +26,7 @@ struct TreeSource {
   }
   std::optional<Aabb> bounds() const { return tree.bounds(); }
 };
-} // namespace
+} // namespace detail
 
 HullWorld::~HullWorld() = default;
 
@@ -42,32 +42,8 @@ Result<std::shared_ptr<const HullWorld>> HullWorld::build(std::vector<RuntimeHul
   });
 }
 
-Status HullWorld::touches(const OverlapRequest& request, TouchResult& result) const {
-  return detail::touch_query(TreeSource{*tree_, hulls_}, request, result);
-}
+detail::TreeSource HullWorld::source() const { return {*tree_, hulls_}; }
 
-Status HullWorld::overlap(const OverlapRequest& request, OverlapResult& result) const {
-  return detail::overlap_query(TreeSource{*tree_, hulls_}, request, result);
-}
-
-Status HullWorld::contacts(const ContactRequest& request, ContactResult& result) const {
-  return detail::contact_query(TreeSource{*tree_, hulls_}, request, result);
-}
-
-Status HullWorld::ray_cast(const RayRequest& request, RayResult& result) const {
-  return detail::ray_query(TreeSource{*tree_, hulls_}, request, result);
-}
-
-Status HullWorld::ray_cast_batch(const std::vector<RayRequest>& requests, std::vector<RayResult>& results) const {
-  return detail::ray_batch_query(TreeSource{*tree_, hulls_}, requests, results);
-}
-
-Status HullWorld::distance(const DistanceRequest& request, DistanceResult& result) const {
-  return detail::distance_query(TreeSource{*tree_, hulls_}, request, result);
-}
-
-Status HullWorld::sweep(const SweepRequest& request, SweepResult& result, double touch) const {
-  return detail::sweep_query(TreeSource{*tree_, hulls_}, request, result, touch);
-}
+template class HullQueries<HullWorld>;
 
 } // namespace hullcover::bvh

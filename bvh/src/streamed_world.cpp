@@ -32,12 +32,11 @@ struct StreamSnapshot {
   std::unique_ptr<const HullTree> top;
 };
 
-namespace {
 // A snapshot (or none: nothing loaded yet) as a hull source
 // (world_queries.h) of two levels, section boxes then each section's hulls,
 // answering with global indices.
 struct SnapshotSource {
-  const StreamSnapshot* snapshot;
+  std::shared_ptr<const StreamSnapshot> snapshot;
 
   const HullTree* top() const { return snapshot ? snapshot->top.get() : nullptr; }
 
@@ -73,7 +72,6 @@ struct SnapshotSource {
     return top()->bounds();
   }
 };
-} // namespace
 
 /// The writer's side of a streamed world: FCL's dynamic AABB tree over the
 /// loaded sections' boxes (a leaf inserted or removed per section, as
@@ -111,8 +109,6 @@ Status check_section(const SectionHulls& s) {
 
 StreamedWorld::StreamedWorld() noexcept = default;
 StreamedWorld::~StreamedWorld() = default;
-
-std::shared_ptr<const detail::StreamSnapshot> StreamedWorld::snapshot() const { return std::atomic_load(&current_); }
 
 void StreamedWorld::publish() {
   auto next = std::make_shared<detail::StreamSnapshot>();
@@ -186,48 +182,16 @@ Status StreamedWorld::remove_section(std::uint32_t id) {
 Result<std::vector<std::uint32_t>> StreamedWorld::loaded_sections() const {
   return detail::guarded("listing the loaded sections", [&]() -> Result<std::vector<std::uint32_t>> {
     std::vector<std::uint32_t> ids;
-    if (const auto snap = snapshot())
+    if (const auto snap = std::atomic_load(&current_))
       for (const auto& section : snap->sections) ids.push_back(section->id);
     return ids;
   });
 }
 
-// Each query holds its snapshot for the whole call: a section removed
-// meanwhile stays alive until it returns.
+// The snapshot is held for the whole call: a section removed meanwhile
+// stays alive until the query returns.
+detail::SnapshotSource StreamedWorld::source() const { return {std::atomic_load(&current_)}; }
 
-Status StreamedWorld::touches(const OverlapRequest& request, TouchResult& result) const {
-  const auto snap = snapshot();
-  return detail::touch_query(detail::SnapshotSource{snap.get()}, request, result);
-}
-
-Status StreamedWorld::overlap(const OverlapRequest& request, OverlapResult& result) const {
-  const auto snap = snapshot();
-  return detail::overlap_query(detail::SnapshotSource{snap.get()}, request, result);
-}
-
-Status StreamedWorld::contacts(const ContactRequest& request, ContactResult& result) const {
-  const auto snap = snapshot();
-  return detail::contact_query(detail::SnapshotSource{snap.get()}, request, result);
-}
-
-Status StreamedWorld::ray_cast(const RayRequest& request, RayResult& result) const {
-  const auto snap = snapshot();
-  return detail::ray_query(detail::SnapshotSource{snap.get()}, request, result);
-}
-
-Status StreamedWorld::ray_cast_batch(const std::vector<RayRequest>& requests, std::vector<RayResult>& results) const {
-  const auto snap = snapshot();
-  return detail::ray_batch_query(detail::SnapshotSource{snap.get()}, requests, results);
-}
-
-Status StreamedWorld::distance(const DistanceRequest& request, DistanceResult& result) const {
-  const auto snap = snapshot();
-  return detail::distance_query(detail::SnapshotSource{snap.get()}, request, result);
-}
-
-Status StreamedWorld::sweep(const SweepRequest& request, SweepResult& result, double touch) const {
-  const auto snap = snapshot();
-  return detail::sweep_query(detail::SnapshotSource{snap.get()}, request, result, touch);
-}
+template class HullQueries<StreamedWorld>;
 
 } // namespace hullcover::bvh

@@ -5,6 +5,8 @@
 // world's is a tree of sections, each a packed tree of its own. Both hand
 // each candidate to the query as (index in the answers, the hull), so the
 // narrow phase, the order rules and the numbers are the same code for both.
+// HullQueries' members (hull_world.h), at the end, take the world's source
+// and call these.
 //
 // A source S provides, every visit returning true to stop the walk:
 //   bool in_box(const Aabb&, visit(int, const RuntimeHull&) -> bool)
@@ -256,3 +258,39 @@ Status sweep_query(const Source& source, const SweepRequest& request, SweepResul
 }
 
 } // namespace hullcover::bvh::detail
+
+namespace hullcover::bvh {
+
+// HullQueries' members (hull_world.h), instantiated by each world's source
+// file for its own World: each takes the world's hull source for the call.
+template <typename World>
+Status HullQueries<World>::touches(const OverlapRequest& request, TouchResult& result) const {
+  return detail::touch_query(static_cast<const World&>(*this).source(), request, result);
+}
+template <typename World>
+Status HullQueries<World>::overlap(const OverlapRequest& request, OverlapResult& result) const {
+  return detail::overlap_query(static_cast<const World&>(*this).source(), request, result);
+}
+template <typename World>
+Status HullQueries<World>::contacts(const ContactRequest& request, ContactResult& result) const {
+  return detail::contact_query(static_cast<const World&>(*this).source(), request, result);
+}
+template <typename World>
+Status HullQueries<World>::ray_cast(const RayRequest& request, RayResult& result) const {
+  return detail::ray_query(static_cast<const World&>(*this).source(), request, result);
+}
+template <typename World>
+Status HullQueries<World>::ray_cast_batch(const std::vector<RayRequest>& requests,
+                                          std::vector<RayResult>& results) const {
+  return detail::ray_batch_query(static_cast<const World&>(*this).source(), requests, results);
+}
+template <typename World>
+Status HullQueries<World>::distance(const DistanceRequest& request, DistanceResult& result) const {
+  return detail::distance_query(static_cast<const World&>(*this).source(), request, result);
+}
+template <typename World>
+Status HullQueries<World>::sweep(const SweepRequest& request, SweepResult& result, double touch) const {
+  return detail::sweep_query(static_cast<const World&>(*this).source(), request, result, touch);
+}
+
+} // namespace hullcover::bvh

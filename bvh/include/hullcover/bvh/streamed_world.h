@@ -40,11 +40,25 @@ namespace hullcover::bvh {
 
 namespace detail {
 struct StreamSnapshot;
+struct SnapshotSource;
 class SectionIndex;
 } // namespace detail
 
 /// Sections of one world, loaded and unloaded at run time, queried like a
-/// HullWorld. What a server streaming cells writes:
+/// HullWorld (HullQueries) over the sections loaded when each call starts,
+/// with global hull indices. Where a query's answer reaches beyond them:
+///  - touches: TouchResult::hull may name another touching hull than a
+///    HullWorld's would (the first its trees meet);
+///  - distance: the nearest loaded hull; the search stops four diagonals of
+///    the loaded sections' box out; nothing loaded: `hull` -1, distance
+///    infinite. It equals the whole world's answer when every section within
+///    that answer's distance of the shape is loaded;
+///  - ray_cast, ray_cast_batch: sections are walked nearer boxes first and
+///    pruned at the best hit, as hulls are; a batch answers every ray on one
+///    snapshot;
+///  - sweep: against the loaded hulls whose boxes meet the swept box.
+///
+/// What a server streaming cells writes:
 ///
 ///     using namespace hullcover;
 ///     bvh::StreamedWorld world;  // empty: every query finds nothing
@@ -56,7 +70,7 @@ class SectionIndex;
 ///     if (Status s = world.contacts(request, result); !s.ok()) return fail(s);  // global hull indices
 ///     // ... when the players leave the cell:
 ///     if (Status s = world.remove_section(12); !s.ok()) return fail(s);
-class StreamedWorld {
+class StreamedWorld : public HullQueries<StreamedWorld> {
 public:
   /// An empty world: no section loaded. Allocates nothing.
   StreamedWorld() noexcept;
@@ -81,29 +95,8 @@ public:
   /// The ids of the loaded sections, ascending, as of this call.
   [[nodiscard]] Result<std::vector<std::uint32_t>> loaded_sections() const;
 
-  /// As HullWorld::touches, on the loaded sections. `hull` is a global
-  /// index; which touching hull it names may differ from a HullWorld's.
-  [[nodiscard]] Status touches(const OverlapRequest& request, TouchResult& result) const;
-  /// As HullWorld::overlap: ascending global indices of the loaded hulls
-  /// the shape touches.
-  [[nodiscard]] Status overlap(const OverlapRequest& request, OverlapResult& result) const;
-  /// As HullWorld::contacts (deepest first, equal depths by global index).
-  [[nodiscard]] Status contacts(const ContactRequest& request, ContactResult& result) const;
-  /// As HullWorld::ray_cast: the nearest loaded hull hit (equal t: the lower
-  /// global index). Sections are walked nearer boxes first and pruned at the
-  /// best hit, as hulls are.
-  [[nodiscard]] Status ray_cast(const RayRequest& request, RayResult& result) const;
-  /// As HullWorld::ray_cast_batch; every ray of the batch on one snapshot.
-  [[nodiscard]] Status ray_cast_batch(const std::vector<RayRequest>& requests, std::vector<RayResult>& results) const;
-  /// As HullWorld::distance, over the loaded hulls: the search stops four
-  /// diagonals of the loaded sections' box out. Equal to the whole world's
-  /// answer when every section whose box lies within the answer's distance
-  /// of the shape's box is loaded. Nothing loaded: `hull` -1, distance
-  /// infinite.
-  [[nodiscard]] Status distance(const DistanceRequest& request, DistanceResult& result) const;
-  /// As HullWorld::sweep (`touch` in scene units), against the loaded hulls
-  /// whose boxes meet the swept box.
-  [[nodiscard]] Status sweep(const SweepRequest& request, SweepResult& result, double touch) const;
+  // The queries (touches, overlap, contacts, ray_cast, ray_cast_batch,
+  // distance, sweep) are HullQueries', documented there.
 
 private:
   // Serialises add_section's and remove_section's publishing (and index_).
@@ -115,7 +108,9 @@ private:
   // std::atomic_load / std::atomic_store. Null until the first section.
   std::shared_ptr<const detail::StreamSnapshot> current_;
 
-  std::shared_ptr<const detail::StreamSnapshot> snapshot() const;
+  friend class HullQueries<StreamedWorld>;
+  // The snapshot loaded now, as a hull source for one query (world_queries.h).
+  detail::SnapshotSource source() const;
   // Packs index_ into a new snapshot and swaps it in (writer_ held).
   void publish();
 };
