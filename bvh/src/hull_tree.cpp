@@ -38,9 +38,16 @@ HullTree::HullTree(const std::vector<RuntimeHull>& hulls) {
   constexpr int kMortonBuild = 2;
   tree.init(leaves, kMortonBuild);
   height_ = tree.getMaxHeight();
+  nodes_.reserve(2 * hulls.size());
+  pack(*tree.getRoot());
+}
+
+HullTree::HullTree(const FclTreeNode& root, size_t height) : height_(height) { pack(root); }
+
+void HullTree::pack(const FclTreeNode& root) {
+  using Node = FclTreeNode;
   // Pack it depth first (preorder), iteratively: an inner node's `after` is
   // set once its last descendant is written.
-  nodes_.reserve(2 * hulls.size());
   struct Frame {
     const Node* fcl;
     std::int32_t packed;
@@ -61,7 +68,7 @@ HullTree::HullTree(const std::vector<RuntimeHull>& hulls) {
     else
       frames.push_back({n, at, 0});
   };
-  write(tree.getRoot());
+  write(&root);
   while (!frames.empty()) {
     Frame& top = frames.back();
     if (top.children_done == 2) {

@@ -19,7 +19,19 @@
 #include <memory>
 #include <vector>
 
+namespace fcl {
+template <typename S>
+class AABB;
+namespace detail {
+template <typename BV>
+struct NodeBase;
+} // namespace detail
+} // namespace fcl
+
 namespace hullcover::bvh::detail {
+
+/// A node of FCL's dynamic AABB tree (fcl/broadphase/detail/hierarchy_tree.h).
+using FclTreeNode = fcl::detail::NodeBase<fcl::AABB<double>>;
 
 /// The hulls' boxes in FCL's dynamic AABB tree, packed for direct walks.
 /// Immutable once built: any number of threads may walk it at once.
@@ -27,6 +39,9 @@ class HullTree {
 public:
   /// Builds the tree over `hulls`' boxes (at least one hull).
   explicit HullTree(const std::vector<RuntimeHull>& hulls);
+  /// Packs a tree FCL already holds, of height `height`, whose leaves' data
+  /// point to their numbers (int): what visits are given.
+  HullTree(const FclTreeNode& root, size_t height);
 
   /// Calls `visit(h)` for each hull h whose box meets the closed box `box`,
   /// in tree order, until a call returns true. Returns whether one did.
@@ -84,6 +99,8 @@ private:
   static constexpr size_t kStackOnCaller = 96;
 
   std::vector<PackedNode> nodes_;
+
+  void pack(const FclTreeNode& root);
 
 public:
   /// The float nearest `x` at or below it (at or above it): a box rounded

@@ -85,7 +85,7 @@ void put(std::string& bytes, size_t at, std::uint64_t v, int size) {
   for (int k = 0; k < size; ++k) bytes[at + k] = static_cast<char>((v >> (8 * k)) & 0xff);
 }
 
-// A version 1 file (no surface flags) still loads: the same hulls, every
+// A version 1 file (no surface flags, no sections) still loads: the same hulls, every
 // plane counted as the surface's.
 TEST(RuntimeFile, VersionOneFilesStillLoad) {
   TempDir dir;
@@ -103,7 +103,8 @@ TEST(RuntimeFile, VersionOneFilesStillLoad) {
     at += hull_bytes;
     at += 4 + field(v2, at, 4);  // version 2's surface flags, dropped
   }
-  ASSERT_EQ(at, v2.size());
+  // Version 3's section table, dropped: one section 0 of every hull.
+  ASSERT_EQ(at + 4 + 8 + 4 * hulls.size(), v2.size());
   std::string v1 = v2.substr(0, kHeader) + payload;
   put(v1, 8, 1, 4);                // version
   put(v1, 24, payload.size(), 8);  // payload bytes
@@ -188,6 +189,119 @@ TEST(RuntimeFile, DamagedFilesAreRefusedWithAReason) {
   bad[1].shape.planes[0].normal *= 2.0;
   ASSERT_TRUE(write_runtime_file(bad, dir.path("normal.hcw")).ok());
   EXPECT_EQ(read_runtime_file(dir.path("normal.hcw")).status().code(), StatusCode::unreadable_file);
+}
+
+// A file of `version` around `payload`, its header's sizes and checksum right.
+std::string runtime_file_bytes(std::uint32_t version, std::uint64_t hulls, const std::string& payload) {
+  std::string bytes("HCWORLD\0", 8);
+  bytes.resize(40 + payload.size());
+  put(bytes, 8, version, 4);
+  put(bytes, 12, 0, 4);
+  put(bytes, 16, hulls, 8);
+  put(bytes, 24, payload.size(), 8);
+  std::uint64_t fnv = 0xcbf29ce484222325ull;
+  for (char c : payload) fnv = (fnv ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
+  put(bytes, 32, fnv, 8);
+  bytes.replace(40, payload.size(), payload);
+  return bytes;
+}
+
+// A section table: per section its id and hull indices, as written.
+std::string section_table(const std::vector<std::pair<std::uint32_t, std::vector<std::uint32_t>>>& sections) {
+  std::string t(4, '\0');
+  put(t, 0, sections.size(), 4);
+  for (const auto& [id, hulls] : sections) {
+    std::string s(8 + 4 * hulls.size(), '\0');
+    put(s, 0, id, 4);
+    put(s, 4, hulls.size(), 4);
+    for (size_t k = 0; k < hulls.size(); ++k) put(s, 8 + 4 * k, hulls[k], 4);
+    t += s;
+  }
+  return t;
+}
+
+TEST(RuntimeFile, SectionsRoundTripAndOldFilesAreOneSection) {
+  TempDir dir;
+  const std::vector<RuntimeHull> hulls = demo_hulls();
+  std::vector<std::uint32_t> section_of_hull;
+  for (size_t h = 0; h < hulls.size(); ++h) section_of_hull.push_back(std::vector<std::uint32_t>{7, 3, 42}[h % 3]);
+  ASSERT_TRUE(write_runtime_file(hulls, dir.path("cells.hcw"), &section_of_hull).ok());
+  const Result<std::vector<RuntimeSection>> table = read_runtime_sections(dir.path("cells.hcw"));
+  ASSERT_TRUE(table.ok()) << table.status().message();
+  ASSERT_EQ(table.value().size(), 3u);
+  for (const RuntimeSection& s : table.value()) {
+    std::vector<int> expected;
+    for (size_t h = 0; h < hulls.size(); ++h)
+      if (section_of_hull[h] == s.id) expected.push_back(static_cast<int>(h));
+    EXPECT_EQ(s.hulls, expected) << s.id;
+    const Result<SectionHulls> section = read_runtime_section(dir.path("cells.hcw"), s.id);
+    ASSERT_TRUE(section.ok()) << section.status().message();
+    EXPECT_EQ(section.value().id, s.id);
+    ASSERT_EQ(section.value().indices, expected);
+    ASSERT_EQ(section.value().hulls.size(), expected.size());
+    for (size_t k = 0; k < expected.size(); ++k) {
+      EXPECT_EQ(section.value().hulls[k].shape.vertices, hulls[expected[k]].shape.vertices);
+      EXPECT_EQ(section.value().hulls[k].surface_planes, hulls[expected[k]].surface_planes);
+    }
+  }
+  EXPECT_EQ(table.value()[0].id, 3u) << "ascending ids";
+  const Result<std::vector<RuntimeHull>> whole = read_runtime_file(dir.path("cells.hcw"));
+  ASSERT_TRUE(whole.ok()) << whole.status().message();
+  EXPECT_EQ(whole.value().size(), hulls.size());
+  const Result<SectionHulls> missing = read_runtime_section(dir.path("cells.hcw"), 5);
+  EXPECT_EQ(missing.status().code(), StatusCode::invalid_argument);
+  EXPECT_NE(missing.status().message().find("no section 5"), std::string::npos) << missing.status().message();
+  section_of_hull.pop_back();
+  EXPECT_EQ(write_runtime_file(hulls, dir.path("short.hcw"), &section_of_hull).code(), StatusCode::invalid_argument);
+
+  // Without sections: one section 0. A version 2 file (the same hulls, no
+  // table) reads the same way.
+  ASSERT_TRUE(write_runtime_file(hulls, dir.path("one.hcw")).ok());
+  const std::string one = bytes_of(dir.path("one.hcw"));
+  const std::string v2 = runtime_file_bytes(2, hulls.size(), one.substr(40, one.size() - 40 - (12 + 4 * hulls.size())));
+  for (const std::string& path : {dir.path("one.hcw"), dir.write("v2.hcw", v2)}) {
+    const Result<std::vector<RuntimeSection>> single = read_runtime_sections(path);
+    ASSERT_TRUE(single.ok()) << single.status().message();
+    ASSERT_EQ(single.value().size(), 1u);
+    EXPECT_EQ(single.value()[0].id, 0u);
+    EXPECT_EQ(single.value()[0].hulls.size(), hulls.size());
+    const Result<SectionHulls> all = read_runtime_section(path, 0);
+    ASSERT_TRUE(all.ok()) << all.status().message();
+    EXPECT_EQ(all.value().hulls.size(), hulls.size());
+  }
+}
+
+// A damaged section table (checksum right) is refused by every reader,
+// saying what is wrong.
+TEST(RuntimeFile, DamagedSectionTablesAreRefusedWithAReason) {
+  TempDir dir;
+  std::vector<RuntimeHull> hulls = demo_hulls();
+  hulls.resize(4);
+  ASSERT_TRUE(write_runtime_file(hulls, dir.path("good.hcw")).ok());
+  const std::string good = bytes_of(dir.path("good.hcw"));
+  const std::string hull_bytes = good.substr(40, good.size() - 40 - (12 + 4 * hulls.size()));
+  ASSERT_EQ(runtime_file_bytes(3, 4, hull_bytes + section_table({{0, {0, 1, 2, 3}}})), good);
+  const auto refused = [&](const std::string& name, const std::string& table, const std::string& words) {
+    const std::string path = dir.write(name, runtime_file_bytes(3, 4, hull_bytes + table));
+    for (const Status& s : {read_runtime_file(path).status(), read_runtime_sections(path).status(),
+                            read_runtime_section(path, 0).status()}) {
+      EXPECT_EQ(s.code(), StatusCode::unreadable_file) << name << ": " << s.message();
+      EXPECT_NE(s.message().find(words), std::string::npos) << name << ": " << s.message();
+      EXPECT_EQ(s.message().rfind(path, 0), 0u) << s.message();
+    }
+  };
+  refused("twice.hcw", section_table({{0, {0, 1, 2}}, {1, {2, 3}}}), "hull 2 is in two sections");
+  refused("none.hcw", section_table({{0, {0, 1}}, {1, {3}}}), "hull 2 is in no section");
+  refused("range.hcw", section_table({{0, {0, 1, 2, 3, 4}}}), "hull index 4 out of range");
+  refused("order.hcw", section_table({{0, {0, 2, 1, 3}}}), "not ascending");
+  refused("ids.hcw", section_table({{5, {0, 1}}, {2, {2, 3}}}), "section ids not ascending");
+  refused("empty.hcw", section_table({{0, {0, 1, 2, 3}}, {1, {}}}), "holds no hull");
+  std::string truncated = section_table({{0, {0, 1}}, {1, {2, 3}}});
+  truncated.resize(truncated.size() - 4);
+  refused("truncated.hcw", truncated, "past the end");
+  refused("count.hcw", std::string("\xff\xff\xff\x00", 4), "section count larger");
+  refused("extra.hcw", section_table({{0, {0, 1, 2, 3}}}) + "x", "bytes left after the section table");
+  refused("no-table.hcw", "", "section table truncated");
 }
 
 } // namespace

@@ -1,6 +1,6 @@
-// Fuzz target: the runtime file reader (bvh's read_runtime_file: the `.hcw`
-// a game server loads), then queries on the hulls it accepts: the reader
-// promises hulls checked before use.
+// Fuzz target: the runtime file readers (bvh's read_runtime_file: the `.hcw`
+// a game server loads, and its section readers), then queries on the hulls
+// read_runtime_file accepts: the reader promises hulls checked before use.
 
 #include "fuzz_support.h"
 #include "fuzz_targets.h"
@@ -32,6 +32,9 @@ std::uint64_t fnv1a(const std::uint8_t* data, std::size_t size) {
 void read_and_query(const std::uint8_t* data, std::size_t size) {
   const std::string path = write_scratch_file("world.hcw", data, size);
   Result<std::vector<bvh::RuntimeHull>> hulls = bvh::read_runtime_file(path);
+  // The section readers share the checks but walk the file their own way.
+  if (Result<std::vector<bvh::RuntimeSection>> sections = bvh::read_runtime_sections(path); sections.ok())
+    for (const bvh::RuntimeSection& s : sections.value()) (void)bvh::read_runtime_section(path, s.id);
   remove_scratch_file(path);
   if (hulls.ok()) query_hulls(std::move(hulls.value()));
 }

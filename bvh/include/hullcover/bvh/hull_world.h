@@ -14,15 +14,16 @@
 #include "hullcover/bvh/runtime_hull.h"
 #include "hullcover/geometry/status.h"
 
-#include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace hullcover::bvh {
 
 namespace detail {
 class HullTree;
-}
+struct TreeSource;
+} // namespace detail
 
 /// Which hulls a shape at a pose touches.
 struct OverlapRequest {
@@ -161,41 +162,15 @@ struct SweepResult {
 /// have no 3D hull.
 std::optional<RuntimeHull> placed_convex(const QueryShape& shape, const Eigen::Isometry3d& pose);
 
-/// A covering's hulls, built once, then queried from any number of threads.
-/// What a game server writes (tests/support/runtime_only_example.cpp runs
-/// it):
-///
-///     using namespace hullcover;
-///     Result<std::vector<bvh::RuntimeHull>> hulls = bvh::read_runtime_file("level.hcw");
-///     if (!hulls.ok()) return fail(hulls.status());  // message says what and where
-///     Result<std::shared_ptr<const bvh::HullWorld>> built = bvh::HullWorld::build(std::move(hulls).value());
-///     if (!built.ok()) return fail(built.status());
-///     const std::shared_ptr<const bvh::HullWorld> world = built.value();
-///
-///     // Once per character per tick, from any thread:
-///     bvh::ContactRequest request;
-///     request.shape = bvh::QueryShape::capsule(0.4, 0.5);  // radius, half height (scene units)
-///     request.pose.linear() = up_is_y;                     // the capsule's axis is its local z
-///     request.pose.translation() = position;
-///     bvh::ContactResult result;
-///     if (Status s = world->contacts(request, result); !s.ok()) return fail(s);
-///     if (!result.contacts.empty()) {                      // deepest first
-///       const bvh::Contact& c = result.contacts.front();
-///       position += c.depth * c.normal;                    // out of that hull, to touching
-///     }
-///
-/// Every query leaves its result meaningful only when the Status is ok.
-class HullWorld {
+/// The queries every hull world answers, in the same code for all: a world
+/// class `World` derives from HullQueries<World> and hands them its hulls
+/// (HullWorld its one tree; StreamedWorld, streamed_world.h, the sections
+/// loaded when the call starts, and "the world" below means those). Indices
+/// in results are the world's hull indices. Every query leaves its result
+/// meaningful only when the Status is ok, and never throws.
+template <typename World>
+class HullQueries {
 public:
-  /// Builds from runtime hulls (index i is hull i in every result).
-  /// Fails with `invalid_argument` for an empty list or a hull with no
-  /// facets or non-finite data.
-  static Result<std::shared_ptr<const HullWorld>> build(std::vector<RuntimeHull> hulls);
-
-  ~HullWorld();
-  HullWorld(const HullWorld&) = delete;
-  HullWorld& operator=(const HullWorld&) = delete;
-
   /// Fails with `invalid_argument` for a bad shape or pose
   /// (check_query_shape) or a convex shape whose points have no 3D hull.
   /// Walks the tree and tests hulls only until one touches.
@@ -232,6 +207,46 @@ public:
   /// or max_steps < 1.
   [[nodiscard]] Status sweep(const SweepRequest& request, SweepResult& result, double touch) const;
 
+protected:
+  HullQueries() = default;
+  ~HullQueries() = default;
+};
+
+/// A covering's hulls, built once, then queried from any number of threads.
+/// What a game server writes (tests/support/runtime_only_example.cpp runs
+/// it):
+///
+///     using namespace hullcover;
+///     Result<std::vector<bvh::RuntimeHull>> hulls = bvh::read_runtime_file("level.hcw");
+///     if (!hulls.ok()) return fail(hulls.status());  // message says what and where
+///     Result<std::shared_ptr<const bvh::HullWorld>> built = bvh::HullWorld::build(std::move(hulls).value());
+///     if (!built.ok()) return fail(built.status());
+///     const std::shared_ptr<const bvh::HullWorld> world = built.value();
+///
+///     // Once per character per tick, from any thread:
+///     bvh::ContactRequest request;
+///     request.shape = bvh::QueryShape::capsule(0.4, 0.5);  // radius, half height (scene units)
+///     request.pose.linear() = up_is_y;                     // the capsule's axis is its local z
+///     request.pose.translation() = position;
+///     bvh::ContactResult result;
+///     if (Status s = world->contacts(request, result); !s.ok()) return fail(s);
+///     if (!result.contacts.empty()) {                      // deepest first
+///       const bvh::Contact& c = result.contacts.front();
+///       position += c.depth * c.normal;                    // out of that hull, to touching
+///     }
+///
+/// Every query leaves its result meaningful only when the Status is ok.
+class HullWorld : public HullQueries<HullWorld> {
+public:
+  /// Builds from runtime hulls (index i is hull i in every result).
+  /// Fails with `invalid_argument` for an empty list or a hull with no
+  /// facets or non-finite data.
+  static Result<std::shared_ptr<const HullWorld>> build(std::vector<RuntimeHull> hulls);
+
+  ~HullWorld();
+  HullWorld(const HullWorld&) = delete;
+  HullWorld& operator=(const HullWorld&) = delete;
+
   /// The hulls, in the order given to build (hull i of every result).
   const std::vector<RuntimeHull>& hulls() const { return hulls_; }
 
@@ -241,16 +256,9 @@ private:
   // The broad phase, kept out of this header: fcl headers are slow to compile.
   std::unique_ptr<detail::HullTree> tree_;
 
-  /// ray_cast on a checked ray (unit direction).
-  void cast_checked_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double max_distance,
-                        RayResult& result) const;
-  /// The distance from hull h to `shape` at `pose` (0 when they meet) with
-  /// the closest points, as a function of h; empty for a convex shape
-  /// without a 3D hull.
-  std::function<double(int, Eigen::Vector3d&, Eigen::Vector3d&)> separation_from(const QueryShape& shape,
-                                                                                 const Eigen::Isometry3d& pose) const;
-  /// Hull indices whose tree boxes overlap `box`, ascending.
-  void candidates(const Aabb& box, std::vector<int>& out) const;
+  friend class HullQueries<HullWorld>;
+  // The hulls and tree as a hull source for the queries (world_queries.h).
+  detail::TreeSource source() const;
 };
 
 } // namespace hullcover::bvh
