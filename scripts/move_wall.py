@@ -49,6 +49,9 @@ def main():
     p.add_argument("--up", choices="xyz", default="y")
     p.add_argument("--rank", type=int, default=0)
     p.add_argument("--near", help="X,Y,Z: take the largest wall face within 10 units of this point")
+    p.add_argument("--interior", type=float, default=50.0,
+                   help="Take only walls with scene on both sides within this distance, farther than --by "
+                        "(an inner wall: moving it leaves the scene's outline, so its islands and cells, alone)")
     args = p.parse_args()
     positions, faces = read_obj(args.input)
     up = [0.0, 0.0, 0.0]
@@ -66,6 +69,16 @@ def main():
         def centre(f):
             return [sum(positions[v][i] for v in faces[f]) / 3 for i in range(3)]
         vertical = [f for f in vertical if math.dist(centre(f), near) < 10.0]
+    if args.interior > 0:
+        def inner(f):
+            n, c = normals[f], positions[faces[f][0]]
+            level = dot(n, c)
+            reach = args.interior
+            near_levels = [dot(n, v) for v in positions
+                           if all(abs(v[i] - c[i]) < reach for i in range(3))]
+            return min(near_levels) < level - 2 * abs(args.by) and max(near_levels) > level + 2 * abs(args.by)
+        vertical = sorted(vertical, key=lambda f: -areas[f])[:200]
+        vertical = [f for f in vertical if inner(f)]
     if len(vertical) <= args.rank:
         sys.exit("move_wall.py: no such vertical face")
     seed = sorted(vertical, key=lambda f: -areas[f])[args.rank]

@@ -60,7 +60,7 @@ Result<Covering> decompose_with_cell_cache(PreparedMesh prepared, const Decompos
     const std::lock_guard<std::mutex> lock(mutex);
     options.progress(static_cast<double>(finished) / (count + 1));
   };
-  const int threads = detail::threads_to_use(options.threads);
+  const int threads = threads_to_use(options.threads);
   // First every cached cell, checked; then the rest, merged: the two
   // timings tell what a re-bake costs.
   Clock::time_point start = Clock::now();

@@ -3,40 +3,16 @@
 
 #include "cell_merging.h"
 
+#include "hullcover/geometry/parallel_for.h"
+
 #include <algorithm>
-#include <atomic>
-#include <exception>
 #include <mutex>
 #include <numeric>
-#include <thread>
 
 namespace hullcover::detail {
 
 void run_in_parallel(int count, int threads, const std::vector<int>& order, const std::function<void(int)>& job) {
-  std::atomic<int> next{0};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
-  const auto work = [&] {
-    for (int i = next++; i < count; i = next++) {
-      try {
-        job(order.empty() ? i : order[i]);
-      } catch (...) {
-        const std::lock_guard<std::mutex> lock(failure_mutex);
-        if (!failure) failure = std::current_exception();
-        next = count;
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < std::min(threads, count); ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& thread : pool) thread.join();
-  if (failure) std::rethrow_exception(failure);
-}
-
-int threads_to_use(int requested) {
-  if (requested > 0) return requested;
-  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  parallel_for(count, threads, [&](int i) { job(order.empty() ? i : order[i]); });
 }
 
 void add_counts(CoveringStatistics& total, const CoveringStatistics& cell) {

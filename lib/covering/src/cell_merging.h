@@ -7,6 +7,7 @@
 
 #include "hullcover/covering/covering.h"
 #include "hullcover/covering/merge_cells.h"
+#include "hullcover/geometry/parallel_for.h"
 #include "hullcover/mesh/mesh_islands.h"
 
 #include "patch_merging.h"
@@ -58,13 +59,9 @@ std::vector<CellResult> merge_cells(const DecompositionStages& stages, int threa
 /// `seconds_cells`: the cells' merging time, for the statistics.
 Covering finish_stages(const DecompositionStages& stages, std::vector<CellResult> results, double seconds_cells);
 
-/// Runs `job(i)` for i in [0, count) on `threads` threads, taking the i in
-/// the given order (empty: ascending); the first exception a job throws is
-/// rethrown here, after every thread has stopped.
+/// parallel_for (hullcover/geometry/parallel_for.h) taking the i in the
+/// given order (empty: ascending).
 void run_in_parallel(int count, int threads, const std::vector<int>& order, const std::function<void(int)>& job);
-
-/// `requested` threads, or every core for 0.
-int threads_to_use(int requested);
 
 /// Adds a cell's counts to the scene's (timings are measured for the whole).
 void add_counts(CoveringStatistics& total, const CoveringStatistics& cell);

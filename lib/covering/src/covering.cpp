@@ -263,7 +263,7 @@ Result<Covering> decompose(const PreparedMesh& prepared, const DecomposeOptions&
     if (!stages.ok()) return stages.status();
     const Clock::time_point start = Clock::now();
     std::vector<detail::CellResult> results =
-        detail::merge_cells(*stages.value(), detail::threads_to_use(options.threads));
+        detail::merge_cells(*stages.value(), threads_to_use(options.threads));
     return detail::finish_stages(*stages.value(), std::move(results), seconds_since(start));
   } catch (const std::exception& e) {
     return Status{StatusCode::internal_error, std::string("decomposition failed: ") + e.what()};

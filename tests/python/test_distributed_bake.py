@@ -1,0 +1,169 @@
+"""The distributed bake (python3 -m hullcover.bake) on Dask, on loopback.
+
+The fault test starts a dask-scheduler and two dask-worker processes, starts
+a bake of a many-cell scene, kills one worker with SIGKILL once cells have
+come back, and requires the bake to finish with output byte-identical to the
+scene decomposed in one call on this machine. Run by ctest (python_bake) with
+PYTHONPATH at the build's python/ folder; skipped where Debian's
+python3-distributed is missing.
+"""
+
+import json
+import os
+import signal
+import socket
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+distributed = pytest.importorskip("distributed", reason="python3-distributed (Debian) is not installed")
+
+from hullcover import _hullcover  # noqa: E402
+
+# Cells of this side cut the terrain below into about a hundred cells.
+CELL_SIZE = 4.0
+DEADLINE_SECONDS = 300
+
+
+def write_terrain(path, n=64):
+    """A rolling terrain of 2 n^2 triangles over [-16, 16]^2 (y up): curved
+    everywhere, so every cell has real merging to do."""
+    xs = np.linspace(-16.0, 16.0, n + 1)
+    with open(path, "w") as f:
+        for x in xs:
+            for z in xs:
+                y = 0.6 * np.sin(0.9 * x) * np.cos(0.7 * z) + 0.05 * x
+                f.write("v %.17g %.17g %.17g\n" % (x, y, z))
+        for i in range(n):
+            for j in range(n):
+                a, b = i * (n + 1) + j + 1, (i + 1) * (n + 1) + j + 1
+                f.write(f"f {a} {a + 1} {b + 1}\nf {a} {b + 1} {b}\n")
+
+
+def without_timings(report):
+    """The JSON report less what differs between runs: timings."""
+    if isinstance(report, dict):
+        return {k: without_timings(v) for k, v in report.items() if "seconds" not in k}
+    if isinstance(report, list):
+        return [without_timings(v) for v in report]
+    return report
+
+
+@pytest.fixture(scope="module")
+def scene(tmp_path_factory):
+    """The scene, and the one-machine reference: OBJ, .hcw and JSON bytes."""
+    folder = tmp_path_factory.mktemp("bake")
+    path = str(folder / "terrain.obj")
+    write_terrain(path)
+    reference = _hullcover.decompose_file(path, cell_size=CELL_SIZE)
+    files = {name: str(folder / f"reference.{name}") for name in ("obj", "hcw", "json")}
+    reference.write_obj(files["obj"])
+    reference.write_world(files["hcw"])
+    reference.write_json(files["json"], json.dumps({"input": path}))
+    cells = _hullcover.StagedBake.load(path, cell_size=CELL_SIZE).cell_count()
+    assert cells > 50
+    return path, files, cells
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def wait_for_port(port, process):
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline:
+        if process.poll() is not None:
+            raise RuntimeError("dask-scheduler exited early")
+        try:
+            with socket.create_connection(("127.0.0.1", port), timeout=1):
+                return
+        except OSError:
+            time.sleep(0.2)
+    raise RuntimeError("dask-scheduler did not listen")
+
+
+def bake_command(path, out, *extra):
+    return [sys.executable, "-m", "hullcover.bake", path, "-o", out + ".obj", "--world", out + ".hcw",
+            "--json", out + ".json", "--cell-size", str(CELL_SIZE), *extra]
+
+
+def assert_same_as_reference(out, files):
+    for name in ("obj", "hcw"):
+        with open(out + "." + name, "rb") as a, open(files[name], "rb") as b:
+            assert a.read() == b.read(), f"the bake's .{name} differs from the one-machine decomposition"
+    with open(out + ".json") as a, open(files["json"]) as b:
+        assert without_timings(json.load(a)) == without_timings(json.load(b))
+
+
+def test_the_bake_survives_a_worker_killed_mid_bake(scene, tmp_path):
+    path, files, cells = scene
+    port = free_port()
+    address = f"tcp://127.0.0.1:{port}"
+    processes = []
+    try:
+        scheduler = subprocess.Popen(["dask-scheduler", "--host", "127.0.0.1", "--port", str(port),
+                                      "--no-dashboard"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        processes.append(scheduler)
+        wait_for_port(port, scheduler)
+        workers = [subprocess.Popen(["dask-worker", address, "--nthreads", "1", "--no-nanny", "--no-dashboard",
+                                     "--name", f"worker-{k}"],
+                                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL) for k in range(2)]
+        processes += workers
+        with distributed.Client(address, timeout=60) as client:
+            client.wait_for_workers(2, timeout=60)
+        out = str(tmp_path / "baked")
+        bake = subprocess.Popen(bake_command(path, out, "--scheduler", address, "--report-cells"),
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        processes.append(bake)
+        done_before_kill = done_after_kill = 0
+        total = None
+        killed = False
+        deadline = time.monotonic() + DEADLINE_SECONDS
+        for line in bake.stderr:
+            assert time.monotonic() < deadline, "the bake took too long"
+            if "done (" not in line:
+                continue
+            total = int(line.rsplit(" of ", 1)[1].rstrip(")\n"))
+            if killed:
+                done_after_kill += 1
+                continue
+            done_before_kill += 1
+            if done_before_kill == 3:
+                workers[0].send_signal(signal.SIGKILL)
+                workers[0].wait()
+                killed = True
+        assert bake.wait(timeout=DEADLINE_SECONDS) == 0, bake.stdout.read()
+        assert killed and total == cells
+        # Mid-bake: most cells came back after the kill (the survivor ran
+        # them, and any the dead worker held were run again).
+        assert done_after_kill == total - done_before_kill
+        assert done_after_kill > total // 2
+        assert_same_as_reference(out, files)
+    finally:
+        for p in reversed(processes):
+            if p.poll() is None:
+                p.kill()
+                p.wait()
+
+
+def test_the_default_local_cluster_gives_the_same_covering(scene, tmp_path):
+    path, files, cells = scene
+    out = str(tmp_path / "local")
+    run = subprocess.run(bake_command(path, out, "--workers", "2", "-q"), capture_output=True, text=True,
+                         timeout=DEADLINE_SECONDS)
+    assert run.returncode == 0, run.stderr
+    assert f"{cells} cells on 2 workers" in run.stdout
+    assert_same_as_reference(out, files)
+
+
+def test_bad_input_exits_2_with_a_message(tmp_path):
+    run = subprocess.run([sys.executable, "-m", "hullcover.bake", str(tmp_path / "absent.obj"), "-o",
+                          str(tmp_path / "x.obj")], capture_output=True, text=True, timeout=60)
+    assert run.returncode == 2
+    assert "no such file" in run.stderr
+    assert not os.path.exists(tmp_path / "x.obj")
