@@ -72,7 +72,7 @@ int run_decompose(DecomposeCommandOptions& o) {
     exported = describe_export(report.value(), o.obj_path);
   }
   if (!o.world_path.empty()) {
-    if (Status s = bvh::write_runtime_file(bvh::runtime_hulls(c), o.world_path); !s.ok()) {
+    if (Status s = bvh::write_covering_runtime_file(c, o.world_path); !s.ok()) {
       std::fprintf(stderr, "hullcover: error: %s\n", s.message().c_str());
       return kExitBadInput;
     }

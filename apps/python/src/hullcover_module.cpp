@@ -271,7 +271,7 @@ PYBIND11_MODULE(_hullcover, m) {
            })
       .def("write_world",
            [](const Decomposition& d, const std::string& path) {
-             if (Status s = bvh::write_runtime_file(bvh::runtime_hulls(d.covering), path); !s.ok()) raise(s);
+             if (Status s = bvh::write_covering_runtime_file(d.covering, path); !s.ok()) raise(s);
            })
       .def("write_json", [](const Decomposition& d, const std::string& path, const std::string& extra) {
         if (Status s = write_covering_json(d.covering, nlohmann::json::parse(extra), path); !s.ok()) raise(s);

@@ -9,13 +9,23 @@
 #include "hullcover/bvh/runtime_hull.h"
 #include "hullcover/covering/covering.h"
 
+#include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace hullcover::bvh {
 
 /// The runtime form of every hull of a covering, in its order.
 std::vector<RuntimeHull> runtime_hulls(const Covering& covering);
+
+/// The runtime file's section of each hull: its cell (CoveringHull::cell),
+/// so a server can stream a world cell by cell (streamed_world.h).
+std::vector<std::uint32_t> runtime_sections(const Covering& covering);
+
+/// Writes the covering's runtime file, each hull in its cell's section.
+/// Fails as write_runtime_file does.
+[[nodiscard]] Status write_covering_runtime_file(const Covering& covering, const std::string& path);
 
 /// A HullWorld of a covering's hulls, in its order (hull i of the covering
 /// is hull i in every query result). Fails as HullWorld::build does.

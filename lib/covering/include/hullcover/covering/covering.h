@@ -27,6 +27,9 @@ struct CoveringHull {
   bool planar = false;     ///< from a planar patch (a prism or flat polygon)
   double thickness = 0.0;  ///< prism thickness (planar only; 0 = flat polygon)
   int material = 0;        ///< material id of its faces (the smallest, if they differ)
+  /// The cell of its lowest face (merge_cells.h): the section the runtime
+  /// file puts it in, for a server that streams a world cell by cell.
+  int cell = 0;
   double volume = 0.0;
   /// Per plane of `polytope`: whether a contact there is the surface's own
   /// (a facet on a mesh face; a flat polygon's rim edge where the surface
