@@ -8,9 +8,9 @@ that plane (within 1e-6 of the scene's size) reachable from it through
 shared vertices. Its vertices move along the wall's normal by --by scene
 units; faces sharing those vertices stretch with them. --rank k takes the
 k-th largest vertical face instead; --near picks the largest vertical face
-whose centroid lies within 10 units of a point. Only 'v' and 'f' lines are
-read; the output has the same faces in the same order (so every cell the
-wall does not touch keeps its faces).
+whose centroid lies within 10 units of a point. Only 'v' lines change:
+every other line (faces, materials, groups) is copied as it is, so every
+cell the wall does not touch keeps its faces.
 """
 
 import argparse
@@ -102,13 +102,16 @@ def main():
     moved = {v for f in wall for v in faces[f]}
     for v in moved:
         positions[v] = [positions[v][i] + args.by * normal[i] for i in range(3)]
-    with open(args.output, "w") as out:
+    with open(args.input) as source, open(args.output, "w") as out:
         out.write(f"# {args.input} with one wall ({len(wall)} faces, {len(moved)} vertices) moved by "
                   f"{args.by} along {normal}\n")
-        for v in positions:
-            out.write("v %.17g %.17g %.17g\n" % tuple(v))
-        for f in faces:
-            out.write("f %d %d %d\n" % tuple(v + 1 for v in f))
+        index = 0
+        for line in source:
+            if line.startswith("v "):
+                if index in moved:
+                    line = "v %.17g %.17g %.17g\n" % tuple(positions[index])
+                index += 1
+            out.write(line)
     centre = [sum(positions[v][i] for v in moved) / len(moved) for i in range(3)]
     print(f"moved a wall of {len(wall)} faces ({sum(areas[f] for f in wall):.3g} square units) by {args.by}, "
           f"centred at {centre[0]:.2f},{centre[1]:.2f},{centre[2]:.2f}")

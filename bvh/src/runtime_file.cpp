@@ -1,4 +1,5 @@
 #include "hullcover/bvh/runtime_file.h"
+#include "hullcover/geometry/little_endian_bytes.h"
 
 #include "query_guard.h"
 
@@ -17,11 +18,6 @@ constexpr char kMagic[8] = {'H', 'C', 'W', 'O', 'R', 'L', 'D', '\0'};
 constexpr size_t kHeaderBytes = 8 + 4 + 4 + 8 + 8 + 8;
 constexpr size_t kHullFixedBytes = 5 * 4 + 6 * 8;
 
-std::uint64_t fnv1a(const unsigned char* data, size_t size) {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  for (size_t i = 0; i < size; ++i) h = (h ^ data[i]) * 0x100000001b3ull;
-  return h;
-}
 
 struct Writer {
   std::vector<unsigned char> bytes;
