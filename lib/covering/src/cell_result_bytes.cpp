@@ -259,6 +259,11 @@ Result<CellResult> cell_result_from_bytes(const DecompositionStages& stages, int
       if (!read_solid(in, vertices, *patch.solid)) return unreadable("bad solid hull");
     }
     if (in.failed) return unreadable("truncated");
+    // The smallest material of its faces, as merging keeps it: an id the
+    // exporters can index.
+    int smallest = std::numeric_limits<int>::max();
+    for (int f : patch.faces) smallest = std::min(smallest, stages.prepared.mesh.material_ids[f]);
+    if (patch.material != smallest) return unreadable("a patch's material is not its faces'");
     result.patches.push_back(std::move(patch));
   }
   if (in.failed || in.at != in.size) return unreadable("trailing or missing bytes");

@@ -40,6 +40,13 @@ Validity PatchMerger::recheck_patches() {
     } else if (!patch.solid) {
       validity = Validity::hull_failed;
     } else {
+      // A stored solid must still hold its own faces (within tol): the bytes
+      // say so, this makes sure.
+      for (int f : patch.faces)
+        for (int k = 0; k < 3 && validity == Validity::valid; ++k)
+          if (deepest_signed_distance(patch.solid->planes, mesh.positions[mesh.triangles[f][k]]) > tol)
+            validity = Validity::face_not_on_hull;
+      if (validity != Validity::valid) return validity;
       validity = check_solid_hull(index_, *patch.solid, scratch_);
       if (validity == Validity::valid) validity = check_thin_hull(p, p, *patch.solid, patch.hull_vertices);
     }
