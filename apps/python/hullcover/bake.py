@@ -187,6 +187,10 @@ def main(argv=None):
     except ValueError as e:
         print(f"hullcover.bake: error: {e}", file=sys.stderr)
         return 2
+    except (OSError, TimeoutError) as e:
+        print(f"hullcover.bake: error: {e} (is the scheduler at {args.scheduler or 'the local cluster'} "
+              f"reachable?)", file=sys.stderr)
+        return 1
     print(f"{args.scene}: {figures['cells']} cells on {figures['workers']} workers -> {figures['hulls']} hulls, "
           f"cells {figures['seconds_cells']:.1f} s, finish {figures['seconds_finish']:.1f} s; wrote {args.output}")
     return 0
