@@ -38,9 +38,10 @@ Status make_folder(const std::string& dir) {
 
 } // namespace
 
-Result<Covering> decompose_with_cell_cache(PreparedMesh prepared, const DecomposeOptions& options,
-                                           const std::string& cache_dir, CellCacheReport& report) {
-  report = {};
+namespace {
+
+Result<Covering> decompose_with_cache_unchecked(PreparedMesh prepared, const DecomposeOptions& options,
+                                                const std::string& cache_dir, CellCacheReport& report) {
   if (Status s = make_folder(cache_dir); !s.ok()) return s;
   Result<std::unique_ptr<StagedDecomposition>> prepared_stages =
       StagedDecomposition::prepare(std::move(prepared), options);
@@ -53,12 +54,12 @@ Result<Covering> decompose_with_cell_cache(PreparedMesh prepared, const Decompos
   std::atomic<int> stale{0};
   Status failure = Status::success();
   std::mutex mutex;
-  std::atomic<int> done{0};
+  int done = 0;
+  // Counted under the lock, so the reports never go back.
   const auto progress = [&] {
-    const int finished = ++done;
     if (!options.progress) return;
     const std::lock_guard<std::mutex> lock(mutex);
-    options.progress(static_cast<double>(finished) / (count + 1));
+    options.progress(static_cast<double>(++done) / (count + 1));
   };
   const int threads = threads_to_use(options.threads);
   // First every cached cell, checked; then the rest, merged: the two
@@ -101,6 +102,20 @@ Result<Covering> decompose_with_cell_cache(PreparedMesh prepared, const Decompos
   finished.statistics.seconds_merging += report.seconds_checking + report.seconds_merging;
   if (options.progress) options.progress(1.0);
   return finished;
+}
+
+} // namespace
+
+Result<Covering> decompose_with_cell_cache(PreparedMesh prepared, const DecomposeOptions& options,
+                                           const std::string& cache_dir, CellCacheReport& report) {
+  report = {};
+  // No exception may leave the library: a worker thread's (out of memory)
+  // comes back here.
+  try {
+    return decompose_with_cache_unchecked(std::move(prepared), options, cache_dir, report);
+  } catch (const std::exception& e) {
+    return Status{StatusCode::internal_error, std::string("decomposition failed: ") + e.what()};
+  }
 }
 
 } // namespace hullcover
