@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <sys/wait.h>
@@ -135,6 +136,36 @@ TEST(CommandLine, DecomposeRejectsBadOptionsWithTwo) {
     EXPECT_EQ(run(dir, base + bad).status, 2) << bad;
   EXPECT_EQ(run(dir, "decompose " + dir.path("missing.obj") + " -o " + dir.path("h.obj")).status, 2);
   EXPECT_EQ(run(dir, "decompose " + quad + " -o " + dir.path("no/such/dir/h.obj")).status, 2);
+}
+
+TEST(CommandLine, ACellCacheReusesEveryCellOfAnUnchangedSceneAndRefusesBadEntries) {
+  TempDir dir;
+  ASSERT_EQ(run(dir, "demo --out " + dir.path("demo")).status, 0);
+  const std::string scene = dir.path("demo/demo-scene.obj");
+  const std::string base = "decompose " + scene + " --cell-size 4 -q -o ";
+  ASSERT_EQ(run(dir, base + dir.path("plain.obj")).status, 0);
+  const CommandRun first = run(dir, base + dir.path("first.obj") + " --cell-cache " + dir.path("cache"));
+  ASSERT_EQ(first.status, 0) << first.err;
+  EXPECT_NE(first.out.find(", 0 reused"), std::string::npos) << first.out;
+  const CommandRun second = run(dir, base + dir.path("second.obj") + " --cell-cache " + dir.path("cache"));
+  ASSERT_EQ(second.status, 0) << second.err;
+  EXPECT_NE(second.out.find(", 0 stale, 0 merged"), std::string::npos) << second.out;
+  EXPECT_EQ(slurp(dir.path("first.obj")), slurp(dir.path("plain.obj")));
+  EXPECT_EQ(slurp(dir.path("second.obj")), slurp(dir.path("plain.obj")));
+  // Every entry spoiled: each is refused and merged again, the output unchanged.
+  int spoiled = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path("cache"))) {
+    std::string bytes = slurp(entry.path().string());
+    bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 1);
+    dir.write("cache/" + entry.path().filename().string(), bytes);
+    ++spoiled;
+  }
+  EXPECT_GT(spoiled, 4);
+  const CommandRun third = run(dir, base + dir.path("third.obj") + " --cell-cache " + dir.path("cache"));
+  ASSERT_EQ(third.status, 0) << third.err;
+  EXPECT_NE(third.out.find(" 0 reused"), std::string::npos) << third.out;
+  EXPECT_EQ(slurp(dir.path("third.obj")), slurp(dir.path("plain.obj")));
+  EXPECT_EQ(run(dir, base + dir.path("x.obj") + " --cell-cache " + scene).status, 2);
 }
 
 TEST(CommandLine, QueryAnswersFromTheRuntimeFile) {
