@@ -20,15 +20,22 @@ struct StagedBake {
   std::unique_ptr<StagedDecomposition> staged;
 };
 
+// A scene file imported and prepared (called with the GIL released).
+Result<PreparedMesh> prepared_from_file(const std::string& path, std::optional<double> tol) {
+  Result<ImportedMesh> imported = import_mesh(path);
+  if (!imported.ok()) return imported.status();
+  Result<PreparedMesh> prepared = prepare_mesh(imported.value().mesh, tol);
+  if (!prepared.ok()) return Status{prepared.status().code(), path + ": " + prepared.status().message()};
+  return prepared;
+}
+
 std::shared_ptr<StagedBake> load_staged(const std::string& path, std::optional<double> tol,
                                         const DecomposeOptions& options) {
   auto bake = std::make_shared<StagedBake>();
   Result<std::unique_ptr<StagedDecomposition>> staged = [&]() -> Result<std::unique_ptr<StagedDecomposition>> {
     py::gil_scoped_release unlocked;
-    Result<ImportedMesh> imported = import_mesh(path);
-    if (!imported.ok()) return imported.status();
-    Result<PreparedMesh> prepared = prepare_mesh(imported.value().mesh, tol);
-    if (!prepared.ok()) return Status{prepared.status().code(), path + ": " + prepared.status().message()};
+    Result<PreparedMesh> prepared = prepared_from_file(path, tol);
+    if (!prepared.ok()) return prepared.status();
     return StagedDecomposition::prepare(std::move(prepared).value(), options);
   }();
   if (!staged.ok()) raise(staged.status());
@@ -54,10 +61,8 @@ void bind_staged_bake(py::module_& m) {
         auto d = std::make_shared<Decomposition>();
         Result<Covering> covering = [&]() -> Result<Covering> {
           py::gil_scoped_release unlocked;
-          Result<ImportedMesh> imported = import_mesh(path);
-          if (!imported.ok()) return imported.status();
-          Result<PreparedMesh> prepared = prepare_mesh(imported.value().mesh, tol);
-          if (!prepared.ok()) return Status{prepared.status().code(), path + ": " + prepared.status().message()};
+          Result<PreparedMesh> prepared = prepared_from_file(path, tol);
+          if (!prepared.ok()) return prepared.status();
           d->prepared = std::move(prepared).value();
           return decompose(d->prepared, options_of(threads, cell_size, agent_radius, max_deviation, std::nullopt,
                                                    kDefaultMaxHullVertices, std::nullopt));

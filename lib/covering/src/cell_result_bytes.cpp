@@ -140,13 +140,11 @@ Status unreadable(const std::string& what) {
   return {StatusCode::unreadable_file, "cell result: " + what};
 }
 
-} // namespace
-
-std::uint64_t cell_key(const DecompositionStages& stages, int cell) {
+// cell_key, with the cell's vertices already gathered.
+std::uint64_t key_of_cell(const DecompositionStages& stages, int cell, const CellVertices& vertices) {
   const Covering& covering = stages.covering;
   const DecomposeOptions& options = covering.options;
   const Mesh& mesh = stages.prepared.mesh;
-  const CellVertices vertices = cell_vertices(stages, cell);
   LittleEndianWriter key;
   key.bytes.assign(kMagic, sizeof kMagic);
   key.u32(kVersion);
@@ -174,13 +172,19 @@ std::uint64_t cell_key(const DecompositionStages& stages, int cell) {
   return fnv1a(reinterpret_cast<const unsigned char*>(key.bytes.data()), key.bytes.size());
 }
 
+} // namespace
+
+std::uint64_t cell_key(const DecompositionStages& stages, int cell) {
+  return key_of_cell(stages, cell, cell_vertices(stages, cell));
+}
+
 std::string cell_result_bytes(const DecompositionStages& stages, int cell, const CellResult& result) {
   const CellVertices vertices = cell_vertices(stages, cell);
   const CellLayout& cells = stages.cells;
   LittleEndianWriter out;
   out.bytes.assign(kMagic, sizeof kMagic);
   out.u32(kVersion);
-  out.u64(cell_key(stages, cell));
+  out.u64(key_of_cell(stages, cell, vertices));
   out.u32(static_cast<std::uint32_t>(cells.faces_of_cell[cell].size()));
   out.u32(static_cast<std::uint32_t>(vertices.global.size()));
   write_statistics(out, result.statistics);
@@ -217,9 +221,10 @@ Result<CellResult> cell_result_from_bytes(const DecompositionStages& stages, int
   LittleEndianReader tail{data, bytes.size(), bytes.size() - 8};
   if (tail.u64() != fnv1a(data, bytes.size() - 8)) return unreadable("checksum mismatch");
   LittleEndianReader in{data, bytes.size() - 8, sizeof kMagic + 4};
-  if (in.u64() != cell_key(stages, cell)) return unreadable("made for other faces or options (cell key differs)");
   const std::vector<int>& faces = stages.cells.faces_of_cell[cell];
   const CellVertices vertices = cell_vertices(stages, cell);
+  if (in.u64() != key_of_cell(stages, cell, vertices))
+    return unreadable("made for other faces or options (cell key differs)");
   if (in.u32() != faces.size() || in.u32() != vertices.global.size()) return unreadable("cell size differs");
   CellResult result;
   if (!read_statistics(in, result.statistics)) return unreadable("bad statistics");

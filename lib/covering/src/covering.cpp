@@ -10,13 +10,10 @@
 #include "surface_facets.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <mutex>
 #include <numeric>
-#include <thread>
 
 namespace hullcover {
 namespace {
