@@ -111,8 +111,10 @@ void print_audit(const AuditCommandOptions& o, const PreparedMesh& prepared, con
   std::printf("%s: %s\n", o.hulls.c_str(),
               a.clean() ? (allowance ? "CLEAN: nothing taken beyond the allowance" : "CLEAN: no accessible space lost")
                         : (allowance ? "VIOLATIONS: more taken than the allowance" : "VIOLATIONS: accessible space lost"));
-  std::printf("  %zu hulls against %zu faces; tolerance %.6g, ray spacing %.6g, ", a.hull_count,
-              prepared.mesh.triangles.size(), prepared.tolerance.length, r.resolution);
+  std::printf("  %zu hulls against %zu faces; tolerance %.6g%s, ray spacing %.6g, ", a.hull_count,
+              prepared.mesh.triangles.size(), prepared.tolerance.length,
+              prepared.tolerance.largest_length() > prepared.tolerance.length ? " (smallest; each island its own)" : "",
+              r.resolution);
   if (r.probe_distance)
     std::printf("rays capped at %.6g (not the strict definition)\n", *r.probe_distance);
   else

@@ -90,8 +90,9 @@ int run_decompose(DecomposeCommandOptions& o) {
   std::printf("%s: %d faces -> %zu hulls (%.1f%% fewer, %.3f hulls/face), %.3f s (merging %.3f s)\n",
               o.input.c_str(), faces, c.hulls.size(), 100.0 * reduction,
               faces > 0 ? static_cast<double>(c.hulls.size()) / faces : 0.0, seconds, c.statistics.seconds_merging);
-  std::printf("  tolerance %.6g, bar half-length %.6g, prism cap %.6g, order %s, conditions %s\n",
-              c.tolerance.length, c.bar_half_length, c.prism_thickness_cap, o.order.c_str(), o.conditions.c_str());
+  std::printf("  tolerance %.6g%s, bar half-length %.6g, prism cap %.6g, order %s, conditions %s\n",
+              c.tolerance.length, c.tolerance.largest_length() > c.tolerance.length ? " (the smallest island's)" : "",
+              c.bar_half_length, c.prism_thickness_cap, o.order.c_str(), o.conditions.c_str());
   std::printf("  %d island%s, %d cell%s, threads %d\n", c.statistics.islands, c.statistics.islands == 1 ? "" : "s",
               c.statistics.cells, c.statistics.cells == 1 ? "" : "s",
               o.decompose.threads > 0 ? o.decompose.threads
@@ -133,7 +134,7 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
   cmd->add_option("-o,--output", o->obj_path, "Output: the hull OBJ, or with --format an engine export (glb or obj)")->required();
   cmd->add_option("--json", o->json_path, "Also write per-hull figures, totals, options and timing as JSON");
   cmd->add_option("--world", o->world_path, "Also write the runtime file (.hcw) that 'query' and game servers load");
-  cmd->add_option("--tol", o->tolerance, "Tolerance in scene units (default 1e-5 x bounding-box diagonal)");
+  cmd->add_option("--tol", o->tolerance, "Tolerance in scene units, for every island (default 1e-5 x each island's diagonal)");
   add_import_limit_options(*cmd, o->limits);
   cmd->add_option("--threads", o->decompose.threads,
                   "Threads merging cells at once (default 0: every core); the output is the same for any count")

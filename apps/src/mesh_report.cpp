@@ -29,9 +29,11 @@ std::string describe_tolerance(const Tolerance& t) {
                   t.user_given ? "the given value" : "the default");
   else if (t.user_given)
     std::snprintf(line, sizeof line, "%.6g (given)", t.length);
+  else if (t.islands <= 1)
+    std::snprintf(line, sizeof line, "%.6g (default: 1e-5 x the diagonal %.6g)", t.length, t.local_extent);
   else
-    std::snprintf(line, sizeof line, "%.6g (default: 1e-5 x local extent %.6g, the largest of %d island%s)",
-                  t.length, t.local_extent, t.islands, t.islands == 1 ? "" : "s");
+    std::snprintf(line, sizeof line, "%.6g to %.6g (default: 1e-5 x each of %d islands' diagonals, %.6g to %.6g)",
+                  t.length, t.largest_length(), t.islands, t.local_extent, t.largest_island);
   return line;
 }
 
@@ -82,6 +84,7 @@ nlohmann::json mesh_figures_json(const MeshFigures& f) {
         {"diagonal", f.tolerance.diagonal},
         {"local_extent", f.tolerance.local_extent},
         {"islands", f.tolerance.islands},
+        {"per_island", f.tolerance.island_lengths},
         {"user_given", f.tolerance.user_given},
         {"raised_to_floor", f.tolerance.raised_to_floor}}},
   };

@@ -88,7 +88,7 @@ TEST(CommandLine, InfoTextPrintsTheToleranceUsed) {
   const CommandRun r = run(dir, "info " + quad);
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("tolerance"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("1e-5 x local extent 1.41421, the largest of 1 island"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("1e-5 x the diagonal 1.41421"), std::string::npos) << r.out;
 }
 
 TEST(CommandLine, DemoWritesTheSceneItsFiguresAndItsHulls) {

@@ -116,6 +116,27 @@ TEST(Tolerance, ASmallObjectBesideALargeMapKeepsItsOwnPrecision) {
   for (const CoveringHull& h : d_world->covering.hulls)
     if (h.faces.front() < small_faces) hulls_in_world.insert(h.faces);
   EXPECT_EQ(hulls_in_world, hulls_alone);
+
+  // And the large one keeps ITS tolerance (each island has its own) and
+  // its hulls, face for face; the world audits clean (decompose_and_check's
+  // independent re-check judges each hull at the tolerance of its place).
+  const PreparedMesh& w = in_world.value();
+  for (int f = 0; f < small_faces; ++f) {
+    ASSERT_DOUBLE_EQ(w.face_tolerance(f), alone.value().face_tolerance(f)) << f;
+    ASSERT_DOUBLE_EQ(w.face_tolerance(small_faces + f), large_alone.value().face_tolerance(f)) << f;
+  }
+  EXPECT_GT(w.face_tolerance(small_faces), w.face_tolerance(0));
+  const auto d_large = test::decompose_and_check(building);
+  ASSERT_TRUE(d_large);
+  std::set<std::vector<int>> large_alone_hulls, large_in_world;
+  for (const CoveringHull& h : d_large->covering.hulls) large_alone_hulls.insert(h.faces);
+  for (const CoveringHull& h : d_world->covering.hulls)
+    if (h.faces.front() >= small_faces) {
+      std::vector<int> faces = h.faces;
+      for (int& f : faces) f -= small_faces;
+      large_in_world.insert(faces);
+    }
+  EXPECT_EQ(large_in_world, large_alone_hulls);
 }
 
 // A pillar: four walls facing out, open at top and bottom (its inside is

@@ -14,6 +14,7 @@
 
 #include "covering_fixture.h"
 #include "planar_prism.h"
+#include "indexed_scene.h"
 
 #include "hullcover/mesh/prepared_mesh.h"
 
@@ -79,8 +80,7 @@ void add_parallel_face(Scene& s, double depth, bool facing_polygon) {
 }
 
 struct Prism {
-  std::unique_ptr<PreparedMesh> prepared;
-  SceneIndex index;
+  std::unique_ptr<test::IndexedScene> scene;
   FlatPolygon polygon;
   std::vector<Plane> sides;
   double allowed = 0.0;  // allowed_prism_thickness
@@ -90,17 +90,17 @@ struct Prism {
 
 Prism build_prism(const Scene& s, double cap, ValidityMode mode = ValidityMode::paper, double bar_half_length = 0.2) {
   Prism p;
-  p.prepared = std::make_unique<PreparedMesh>(prepare_mesh(s.mesh, kTol).value());
-  p.index = build_scene_index(*p.prepared, {bar_half_length, false, mode, 0.5});
+  p.scene = std::make_unique<test::IndexedScene>(prepare_mesh(s.mesh, kTol).value(),
+                                                 BarOptions{bar_half_length, false, mode, 0.5});
   std::vector<int> patch_vertices;
   for (int f = 0; f < s.patch_faces; ++f)
-    for (int k = 0; k < 3; ++k) patch_vertices.push_back(p.prepared->mesh.triangles[f][k]);
-  p.polygon = make_flat_polygon(p.prepared->mesh.positions, patch_vertices, s.frame.normal, kTol);
+    for (int k = 0; k < 3; ++k) patch_vertices.push_back(p.scene->prepared.mesh.triangles[f][k]);
+  p.polygon = make_flat_polygon(p.scene->prepared.mesh.positions, patch_vertices, s.frame.normal, kTol);
   const int patch_faces = s.patch_faces;
   const auto in_patch = [patch_faces](int f) { return f < patch_faces; };
   std::vector<int> scratch;
-  p.sides = beveled_side_planes(p.index, p.polygon, in_patch, scratch);
-  p.allowed = allowed_prism_thickness(p.index, p.polygon, p.sides, in_patch, cap, scratch);
+  p.sides = beveled_side_planes(p.scene->index, p.polygon, in_patch, scratch);
+  p.allowed = allowed_prism_thickness(p.scene->index, p.polygon, p.sides, in_patch, cap, scratch);
   p.used = p.allowed;
   ConvexHullBuilder hulls;
   p.polytope = prism_polytope(p.polygon, p.sides, p.used, kTol, hulls);
@@ -194,7 +194,7 @@ TEST(PlanarPrism, SwallowsNothingOnRandomScenes) {
       EXPECT_GE(p.polygon.plane.signed_distance(v), -p.used - 1e-9);
     }
     // Brute force: nothing outside the patch deeper than tol inside.
-    const Mesh& mesh = p.prepared->mesh;
+    const Mesh& mesh = p.scene->prepared.mesh;
     for (int f = s.patch_faces; f < static_cast<int>(mesh.triangles.size()); ++f) {
       const V& a = mesh.positions[mesh.triangles[f][0]];
       const V& b = mesh.positions[mesh.triangles[f][1]];
@@ -205,7 +205,7 @@ TEST(PlanarPrism, SwallowsNothingOnRandomScenes) {
           ASSERT_LE(depth_inside(p.polytope, x), kTol) << "face " << f << " at " << i << "," << j;
         }
     }
-    for (const BoundaryBar& bar : p.index.bars)
+    for (const BoundaryBar& bar : p.scene->index.bars)
       for (int i = 0; i <= 40; ++i)
         for (int j = 0; j <= (bar.is_sheet() ? 10 : 0); ++j) {
           const V x = bar.a + (bar.b - bar.a) * (i / 40.0) + bar.along * (j / 10.0);

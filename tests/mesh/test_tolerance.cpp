@@ -64,5 +64,74 @@ TEST(ChooseTolerance, InputRoundingErrorRaisesTheFloor) {
   EXPECT_TRUE(t.value().raised_to_floor);
 }
 
+// Two boxes' meshes in one.
+Mesh joined(const Mesh& a, const Mesh& b) {
+  Mesh m = a;
+  const int base = static_cast<int>(m.positions.size());
+  m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
+  for (const Eigen::Vector3i& t : b.triangles) m.triangles.push_back(t + Eigen::Vector3i::Constant(base));
+  m.material_ids.insert(m.material_ids.end(), b.material_ids.begin(), b.material_ids.end());
+  return m;
+}
+
+Mesh box_from(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+  Mesh m;
+  add_box(m, lo, hi);
+  return m;
+}
+
+TEST(ChooseTolerance, EachIslandHasItsOwnAndTheSmallestRulesWhereZonesMeet) {
+  // A 1 x 2 x 2 box and one ten times larger far away: each its own default.
+  const Mesh far_apart = joined(box_from({0, 0, 0}, {1, 2, 2}), box_from({100, 0, 0}, {110, 20, 20}));
+  const Result<Tolerance> t = choose_tolerance(far_apart, std::nullopt);
+  ASSERT_TRUE(t.ok());
+  ASSERT_EQ(t.value().island_lengths.size(), 2u);
+  EXPECT_DOUBLE_EQ(t.value().island_lengths[0], 3.0 * kDefaultRelativeTolerance);
+  EXPECT_DOUBLE_EQ(t.value().island_lengths[1], 30.0 * kDefaultRelativeTolerance);
+  EXPECT_DOUBLE_EQ(t.value().length, 3.0 * kDefaultRelativeTolerance);
+  EXPECT_DOUBLE_EQ(t.value().largest_length(), 30.0 * kDefaultRelativeTolerance);
+  // A hull anywhere near the large box is judged at its tolerance; one
+  // spanning both, or out in the open, at the smallest.
+  const PlaceTolerance place(t.value());
+  EXPECT_DOUBLE_EQ(place.at(bounding_box_of({{101, 1, 1}, {102, 2, 2}})), 30.0 * kDefaultRelativeTolerance);
+  EXPECT_DOUBLE_EQ(place.at(bounding_box_of({{0.5, 1, 1}, {102, 2, 2}})), 3.0 * kDefaultRelativeTolerance);
+  EXPECT_DOUBLE_EQ(place.at(bounding_box_of({{50, 50, 50}, {51, 51, 51}})), 3.0 * kDefaultRelativeTolerance);
+
+  // Zones meet where an island of several pieces reaches farther than its
+  // pieces: two 10 x 20 x 20 boxes 0.2 apart are one island (each reaches
+  // 0.3 beyond itself), whose zone reaches 1% of its 34.7 diagonal. The
+  // small box 0.05 beyond the second one's reach is an island of its own,
+  // inside that zone: the large island takes the small one's tolerance.
+  const Mesh pair = joined(box_from({100, 0, 0}, {110, 20, 20}), box_from({110.2, 0, 0}, {120.2, 20, 20}));
+  const Mesh near = joined(box_from({120.55, 0, 0}, {121.55, 2, 2}), pair);
+  const Result<Tolerance> n = choose_tolerance(near, std::nullopt);
+  ASSERT_TRUE(n.ok());
+  ASSERT_EQ(n.value().island_lengths.size(), 2u);
+  EXPECT_DOUBLE_EQ(n.value().island_lengths[0], 3.0 * kDefaultRelativeTolerance);
+  EXPECT_DOUBLE_EQ(n.value().island_lengths[1], 3.0 * kDefaultRelativeTolerance);
+  // Moved farther, the large island keeps its own.
+  const Mesh apart = joined(box_from({121.55, 0, 0}, {122.55, 2, 2}), pair);
+  const Result<Tolerance> a = choose_tolerance(apart, std::nullopt);
+  ASSERT_TRUE(a.ok());
+  ASSERT_EQ(a.value().island_lengths.size(), 2u);
+  EXPECT_GT(a.value().island_lengths[1], 10.0 * kDefaultRelativeTolerance);
+}
+
+TEST(ChooseTolerance, AFloat32IslandFarFromTheOriginGetsTheFloorOfItsOwnMagnitude) {
+  // float32 rounding is relative: the box at the origin keeps its default,
+  // the copy at 1e6 is raised to the rounding of coordinates near 1e6.
+  Mesh m = joined(box_from({0, 0, 0}, {1, 2, 2}), box_from({1e6, 0, 0}, {1e6 + 1, 2, 2}));
+  const double relative = std::numeric_limits<float>::epsilon() / 2.0;
+  m.coordinate_relative_error = relative;
+  m.coordinate_error = relative * (1e6 + 1);
+  const Result<Tolerance> t = choose_tolerance(m, std::nullopt);
+  ASSERT_TRUE(t.ok());
+  ASSERT_EQ(t.value().island_lengths.size(), 2u);
+  EXPECT_DOUBLE_EQ(t.value().island_lengths[0], 3.0 * kDefaultRelativeTolerance);
+  EXPECT_DOUBLE_EQ(t.value().island_lengths[1], kRoundingErrorsPerPlaneTest * relative * (1e6 + 1));
+  EXPECT_DOUBLE_EQ(t.value().floor, kRoundingErrorsPerPlaneTest * relative * (1e6 + 1));
+  EXPECT_TRUE(t.value().raised_to_floor);
+}
+
 } // namespace
 } // namespace hullcover

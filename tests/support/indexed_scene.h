@@ -14,10 +14,14 @@
 
 namespace hullcover::test {
 
-/// The prepared mesh and its index (the index refers to the prepared mesh,
-/// so both live together, behind a pointer that does not move).
+/// The prepared mesh, its index and a view of it at the scene's smallest
+/// tolerance (each refers to the one before, so all live together, behind a
+/// pointer that does not move).
 struct IndexedScene {
+  IndexedScene(PreparedMesh mesh, const BarOptions& bars)
+      : prepared(std::move(mesh)), data(build_scene_index(prepared, bars)), index(data, prepared.tolerance.length, prepared.tolerance.largest_island) {}
   PreparedMesh prepared;
+  SceneIndexData data;
   SceneIndex index;
 };
 
@@ -25,12 +29,9 @@ struct IndexedScene {
 /// `bars`; records a test failure when preparing fails.
 inline std::unique_ptr<IndexedScene> index_scene(const Mesh& mesh, std::optional<double> tolerance,
                                                  const BarOptions& bars) {
-  auto out = std::make_unique<IndexedScene>();
   Result<PreparedMesh> prepared = prepare_mesh(mesh, tolerance);
   EXPECT_TRUE(prepared.ok()) << prepared.status().message();
-  if (prepared.ok()) out->prepared = std::move(prepared).value();
-  out->index = build_scene_index(out->prepared, bars);
-  return out;
+  return std::make_unique<IndexedScene>(prepared.ok() ? std::move(prepared).value() : PreparedMesh{}, bars);
 }
 
 } // namespace hullcover::test

@@ -48,6 +48,7 @@ inline Mesh transformed(const Mesh& mesh, const Eigen::Affine3d& map) {
   if (determinant < 0.0)
     for (Eigen::Vector3i& t : out.triangles) std::swap(t[1], t[2]);
   out.coordinate_error = mesh.coordinate_error * std::cbrt(std::abs(determinant));
+  out.coordinate_relative_error = 0.0;  // it bounded the magnitudes before the move
   return out;
 }
 

@@ -67,8 +67,12 @@ class RayTracer {
 public:
   RayTracer(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles, const bvh::HullWorld& hulls,
             std::optional<double> cap, const AllowanceOptions& allowance)
-      : prepared_(prepared), triangles_(triangles), hulls_(hulls.hulls()), cap_(cap), tol_(prepared.tolerance.length),
-        stand_off_(kRayStandOffInTolerances * prepared.tolerance.length) {
+      : prepared_(prepared), triangles_(triangles), hulls_(hulls.hulls()), cap_(cap) {
+    // Each test at the tolerance of its place (hullcover/mesh/tolerance.h):
+    // a ray leaves its face at the face's island's, and a hull is entered
+    // deeper than the tolerance at the hull's box.
+    const PlaceTolerance place_tolerance(prepared.tolerance);
+    for (const bvh::RuntimeHull& h : hulls_) hull_tol_.push_back(place_tolerance.at(h.box));
     // Past this box no hull exists, so a ray that meets nothing is decided
     // once it leaves it (grown by the stand-off: a ray starting on the
     // scene's outermost face starts inside).
@@ -82,38 +86,41 @@ public:
     // With an agent radius, a ball centred up to r beyond the box reaches
     // into it: rays run that much farther (no hull lies out there, so the
     // strict probe's verdict is the same).
-    world_ = grown(world_, stand_off_ + allowance.agent_radius.value_or(0.0));
+    world_ = grown(world_, kRayStandOffInTolerances * prepared.tolerance.largest_length() +
+                               allowance.agent_radius.value_or(0.0));
     hull_tree_ = AabbTree(boxes);
     if (allowance.any()) judge_ = std::make_unique<const probe::AllowanceJudge>(prepared, triangles, hulls, allowance);
   }
 
   void trace(const probe::ProbeRay& ray, ItemRays& out, Stretches& stretches) const {
     ++out.rays;
+    const double tol = prepared_.face_tolerance(ray.face);
+    const double stand_off = kRayStandOffInTolerances * tol;
     // Off the surface it leaves, and as far short of the one it hits: the
     // surfaces themselves are not free (the decomposer's witness rays too).
-    const Eigen::Vector3d start = ray.origin + ray.direction * stand_off_;
+    const Eigen::Vector3d start = ray.origin + ray.direction * stand_off;
     const double out_of_world = exit_distance(world_, start, ray.direction);
     if (out_of_world <= 0.0) return;
     double length = out_of_world;
     bvh::RayResult hit;
     if (triangles_.ray_cast({start, ray.direction, out_of_world}, hit).ok() && hit.hit) {
-      if (enclosed(start, ray.direction, hit.first.t)) {
+      if (enclosed(start, ray.direction, hit.first.t, tol)) {
         ++out.enclosed;
         return;
       }
-      length = hit.first.t - stand_off_;
+      length = hit.first.t - stand_off;
     }
     if (cap_) length = std::min(length, *cap_);
     if (length <= 0.0) return;
     decide(ray, start, length, out, stretches);
-    if (judge_) judge_->judge(ray, start, length, stand_off_, stretches, out.allowance);
+    if (judge_) judge_->judge(ray, start, length, stand_off, stretches, out.allowance);
   }
 
 private:
   // The same "within tol" as the decomposer's first_mesh_hit: a front a
   // little further on is not at the first hit.
-  bool enclosed(const Eigen::Vector3d& start, const Eigen::Vector3d& dir, double first_hit) const {
-    return probe::ends_on_backs(triangles_, prepared_.mesh, start, dir, first_hit, tol_);
+  bool enclosed(const Eigen::Vector3d& start, const Eigen::Vector3d& dir, double first_hit, double tol) const {
+    return probe::ends_on_backs(triangles_, prepared_.mesh, start, dir, first_hit, tol);
   }
 
   // Clips the free segment against every hull whose box it meets; the
@@ -126,7 +133,7 @@ private:
     const Eigen::Vector3d end = start + length * ray.direction;
     hull_tree_.nearest_along_segment(start, end, 0.0, 0.0, [&](int h) {
       const std::optional<probe::InsideStretch> inside =
-          probe::stretch_inside(hulls_[h].shape.planes, start, ray.direction, length, tol_);
+          probe::stretch_inside(hulls_[h].shape.planes, start, ray.direction, length, hull_tol_[h]);
       if (inside) {
         stretches.push_back({{inside->from, inside->to}, h});
         if (inside->depth > deepest.depth)
@@ -154,7 +161,7 @@ private:
   const bvh::TriangleWorld& triangles_;
   const std::vector<bvh::RuntimeHull>& hulls_;
   std::optional<double> cap_;
-  double tol_, stand_off_;
+  std::vector<double> hull_tol_;  // per hull: the tolerance at its box
   Aabb world_;
   AabbTree hull_tree_;
   std::unique_ptr<const probe::AllowanceJudge> judge_;  // with an allowance only

@@ -63,7 +63,8 @@ Result<BehaviourReport> compare_behaviour(const PreparedMesh& prepared, const bv
       const double lift = s * (2.0 * u(rng) - 0.5);
       pose.translation() = on_face + n * lift;
       pose.linear() = Eigen::Quaterniond(Eigen::Vector4d(g(rng), g(rng), g(rng), g(rng)).normalized()).toRotationMatrix();
-      const double stand_off = kRayStandOffInTolerances * prepared.tolerance.length;
+      const double tol = prepared.face_tolerance(f);  // the place's: the pose sits at face f
+      const double stand_off = kRayStandOffInTolerances * tol;
       double free_to = 0.0;
       if (!accessible(triangles, mesh, on_face + n * stand_off, n, prepared.tolerance.diagonal, free_to)) continue;
       // Its centre on the face's open front ray: a point of accessible space.
@@ -97,7 +98,7 @@ Result<BehaviourReport> compare_behaviour(const PreparedMesh& prepared, const bv
         // A proxy clear of every triangle yet deeper than tol in a hull
         // stands in free space the hull takes (DESIGN.md, "behaviour").
         const bvh::Contact& deepest = on_hulls.contacts[0];
-        if (centre_free && deepest.depth > prepared.tolerance.length) {
+        if (centre_free && deepest.depth > tol) {
           ++report.deep_false_contacts;
           if (shape.kind == bvh::ShapeKind::box) ++report.deep_false_boxes;
           if (deepest.depth > report.deepest_false.depth)

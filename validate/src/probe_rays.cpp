@@ -29,7 +29,7 @@ bool is_sheet_rim(const PreparedMesh& prepared, const MeshEdge& edge) {
   const Eigen::Vector3d n = triangle_area_vector(mesh, first.face).normalized();
   if (n.dot(triangle_area_vector(mesh, second.face)) >= 0.0) return false;
   const Eigen::Vector3d& far = mesh.positions[mesh.triangles[second.face][(second.corner + 2) % 3]];
-  return std::abs(n.dot(far - mesh.positions[edge.v0])) <= prepared.tolerance.length;
+  return std::abs(n.dot(far - mesh.positions[edge.v0])) <= prepared.face_tolerance(first.face);
 }
 
 } // namespace

@@ -29,6 +29,9 @@ struct CheckedHull {
   HalfSpace front;               ///< flat: the polygon's plane
   std::vector<HalfSpace> sides;  ///< flat: in-plane edge half-spaces, outward
   Eigen::Vector3d lo, hi;        ///< the vertices' bounding box
+  /// The tolerance of tests on this hull, scene units: the scene's at its
+  /// box (hullcover/mesh/tolerance.h, PlaceTolerance).
+  double tol = 0.0;
 };
 
 /// The planes of `hull`'s facets, fitted again from their corners; for a

@@ -7,7 +7,8 @@
 
 namespace hullcover::validate::recheck {
 
-MeshFacts read_mesh_facts(const Mesh& mesh, double tol, double bar_half_length) {
+MeshFacts read_mesh_facts(const PreparedMesh& prepared, double bar_half_length) {
+  const Mesh& mesh = prepared.mesh;
   MeshFacts facts;
   const int F = static_cast<int>(mesh.triangles.size());
   facts.normal.assign(F, Eigen::Vector3d::Zero());
@@ -29,7 +30,7 @@ MeshFacts read_mesh_facts(const Mesh& mesh, double tol, double bar_half_length) 
       longest = std::max(longest, (mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]]).norm());
     // Twice the area over the longest edge is the face's height: a face
     // thinner than tol has no reliable normal.
-    if (cr.norm() > tol * longest) {
+    if (cr.norm() > prepared.face_tolerance(f) * longest) {
       facts.has_surface[f] = 1;
       facts.normal[f] = cr.normalized();
     }

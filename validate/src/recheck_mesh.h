@@ -8,6 +8,7 @@
 #include "recheck_geometry.h"
 
 #include "hullcover/geometry/mesh.h"
+#include "hullcover/mesh/prepared_mesh.h"
 
 #include <utility>
 #include <vector>
@@ -28,9 +29,10 @@ struct MeshFacts {
   double longest_edge = 0.0;
 };
 
-/// Reads `mesh`'s faces and edges again; open edges (one face with a
-/// surface) get bars reaching `bar_half_length` either side of the face.
-MeshFacts read_mesh_facts(const Mesh& mesh, double tol, double bar_half_length);
+/// Reads the prepared mesh's faces and edges again, each face at its
+/// island's tolerance; open edges (one face with a surface) get bars
+/// reaching `bar_half_length` either side of the face.
+MeshFacts read_mesh_facts(const PreparedMesh& prepared, double bar_half_length);
 
 /// Uniform grids, one per kind of candidate, on the same cells.
 struct CandidateGrids {

@@ -124,8 +124,9 @@ void add_findings(CheckReport& total, const CheckReport& part) {
 class Rechecker {
 public:
   Rechecker(const PreparedMesh& prepared, double bar_half_length, bool inside_allowed)
-      : inside_allowed_(inside_allowed), mesh_(prepared.mesh), tol_(prepared.tolerance.length), on_hull_(kOnHullInTolerances * tol_),
-        facts_(recheck::read_mesh_facts(mesh_, tol_, bar_half_length)),
+      : inside_allowed_(inside_allowed), mesh_(prepared.mesh),
+        largest_on_hull_(kOnHullInTolerances * prepared.tolerance.largest_length()),
+        facts_(recheck::read_mesh_facts(prepared, bar_half_length)),
         scene_(referenced_bounding_box(mesh_)),
         cell_(std::max(facts_.longest_edge, scene_.diagonal() / recheck::kMaxCellsAlongDiagonal)),
         grids_(recheck::build_candidate_grids(mesh_, facts_, cell_, scene_.min)) {}
@@ -144,7 +145,7 @@ public:
     if (is_single_face(hull)) return;
     // Candidates: whatever lies on the hull or in it is in its box grown by
     // the on-hull distance.
-    const Eigen::Vector3d lo = c.lo.array() - on_hull_, hi = c.hi.array() + on_hull_;
+    const Eigen::Vector3d lo = c.lo.array() - on_hull(c), hi = c.hi.array() + on_hull(c);
     if (c.flat) {
       check_bars_across_flat(where, c, lo, hi, out);
       check_faces_below_flat(where, hull, c, lo, hi, out);
@@ -165,8 +166,10 @@ public:
     const double area = 0.5 * (b - a).cross(c - a).norm();
     out.total_area += area;
     if (claimed) return;
-    const Eigen::Vector3d lo = a.cwiseMin(b).cwiseMin(c).array() - on_hull_;
-    const Eigen::Vector3d hi = a.cwiseMax(b).cwiseMax(c).array() + on_hull_;
+    // Candidates: hulls within the largest on-hull distance; each judged at
+    // its own.
+    const Eigen::Vector3d lo = a.cwiseMin(b).cwiseMin(c).array() - largest_on_hull_;
+    const Eigen::Vector3d hi = a.cwiseMax(b).cwiseMax(c).array() + largest_on_hull_;
     // A flat hull has a facet either way: a face on it is on its boundary
     // whichever way it faces (a double-sided sheet's two faces).
     for (int h : hull_grid.query(lo, hi))
@@ -185,8 +188,8 @@ private:
   bool face_covered(const Eigen::Vector3d& normal, const Eigen::Vector3i& t, const HullUnderCheck& hull,
                     const CheckedHull& c, CheckReport& out) const {
     const FaceOffHull off = face_off_hull(mesh_, normal, t, hull, c);
-    if (off.on_hull(on_hull_)) return true;
-    if (!inside_allowed_ || !off.on_or_inside(on_hull_, c.flat)) return false;
+    if (off.on_hull(on_hull(c))) return true;
+    if (!inside_allowed_ || !off.on_or_inside(on_hull(c), c.flat)) return false;
     ++out.faces_inside;
     return true;
   }
@@ -196,7 +199,7 @@ private:
                     CheckReport& out) const {
     for (const auto& p : hull.shape->vertices)
       for (size_t fi = 0; fi < hull.shape->facets.size(); ++fi)
-        if (const HalfSpace& plane = c.facets[fi]; plane.n.dot(p) - plane.d > tol_) {
+        if (const HalfSpace& plane = c.facets[fi]; plane.n.dot(p) - plane.d > c.tol) {
           ++out.hulls_not_convex;
           note(out, where + "not convex: a vertex " + std::to_string(plane.n.dot(p) - plane.d) + " in front of a facet of " +
                std::to_string(hull.shape->facets.size()));
@@ -223,7 +226,7 @@ private:
   void check_bars_across_flat(const std::string& where, const CheckedHull& c, const Eigen::Vector3d& lo,
                               const Eigen::Vector3d& hi, CheckReport& out) const {
     for (int b : grids_.bars.query(lo, hi))
-      if (recheck::segment_crosses_flat(c, facts_.bars[b].a, facts_.bars[b].b, tol_)) {
+      if (recheck::segment_crosses_flat(c, facts_.bars[b].a, facts_.bars[b].b, c.tol)) {
         ++out.bars_inside;
         note(out, where + "bar " + std::to_string(b) + " crosses the polygon");
       }
@@ -240,9 +243,9 @@ private:
       // the on-hull distance, as coverage counts them) are its own.
       bool on_polygon = hull.faces.empty();
       for (int k = 0; k < 3; ++k)
-        on_polygon &= std::abs(c.front.n.dot(mesh_.positions[t[k]]) - c.front.d) <= on_hull_;
+        on_polygon &= std::abs(c.front.n.dot(mesh_.positions[t[k]]) - c.front.d) <= on_hull(c);
       if (on_polygon) continue;
-      if (reaches_below_polygon(mesh_, t, c, tol_, on_hull_)) {
+      if (reaches_below_polygon(mesh_, t, c, c.tol, on_hull(c))) {
         ++out.faces_below_polygon;
         note(out, where + "face " + std::to_string(f) + " reaches below the polygon's interior");
       }
@@ -253,19 +256,19 @@ private:
   void check_solid(const std::string& where, const CheckedHull& c, const Eigen::Vector3d& lo,
                    const Eigen::Vector3d& hi, CheckReport& out) const {
     for (int v : grids_.vertices.query(lo, hi))
-      if (depth_inside(c.facets, mesh_.positions[v]) > tol_) {
+      if (depth_inside(c.facets, mesh_.positions[v]) > c.tol) {
         ++out.vertices_inside;
         note(out, where + "vertex " + std::to_string(v) + " inside");
       }
     for (int e : grids_.edges.query(lo, hi)) {
       const auto& [p, q] = facts_.edges[e];
-      if (recheck::segment_deeper_than(c.facets, mesh_.positions[p], mesh_.positions[q], tol_)) {
+      if (recheck::segment_deeper_than(c.facets, mesh_.positions[p], mesh_.positions[q], c.tol)) {
         ++out.edges_inside;
         note(out, where + "edge " + std::to_string(p) + "-" + std::to_string(q) + " inside");
       }
     }
     for (int b : grids_.bars.query(lo, hi))
-      if (recheck::segment_deeper_than(c.facets, facts_.bars[b].a, facts_.bars[b].b, tol_)) {
+      if (recheck::segment_deeper_than(c.facets, facts_.bars[b].a, facts_.bars[b].b, c.tol)) {
         ++out.bars_inside;
         note(out, where + "bar " + std::to_string(b) + " inside");
       }
@@ -273,8 +276,9 @@ private:
 
   const bool inside_allowed_;
   const Mesh& mesh_;
-  const double tol_;
-  const double on_hull_;  // a point this close to a hull's surface is on it
+  const double largest_on_hull_;  // the largest island's on-hull distance
+  // A point this close to hull c's surface is on it.
+  static double on_hull(const CheckedHull& c) { return kOnHullInTolerances * c.tol; }
   const recheck::MeshFacts facts_;
   const Aabb scene_;
   const double cell_;
@@ -319,7 +323,14 @@ CheckReport recheck_hulls(const PreparedMesh& prepared, const std::vector<HullUn
   const Rechecker rechecker(prepared, bar_half_length, inside_allowed);
   const int hull_count = static_cast<int>(hulls.size());
   std::vector<CheckedHull> checked(hulls.size());
-  parallel_for(hull_count, threads, [&](int h) { checked[h] = recheck::make_checked(hulls[h]); });
+  const PlaceTolerance place_tolerance(prepared.tolerance);
+  parallel_for(hull_count, threads, [&](int h) {
+    checked[h] = recheck::make_checked(hulls[h]);
+    Aabb box;
+    box.extend(checked[h].lo);
+    box.extend(checked[h].hi);
+    checked[h].tol = place_tolerance.at(box);
+  });
   CandidateGrid hull_grid = rechecker.empty_grid();
   for (int h = 0; h < hull_count; ++h) hull_grid.insert(h, checked[h].lo, checked[h].hi);
   // Each hull's findings, then each face's, each in a part of its own (a

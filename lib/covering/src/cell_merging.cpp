@@ -3,6 +3,8 @@
 
 #include "cell_merging.h"
 
+#include "hullcover/geometry/tolerances.h"
+
 #include "hullcover/geometry/parallel_for.h"
 
 #include <algorithm>
@@ -37,6 +39,14 @@ double cell_near_merge_distance(const DecompositionStages& stages, int cell) {
                                                    : 0.0;
 }
 
+double island_bar_half_length(const DecompositionStages& stages, int island) {
+  const Covering& covering = stages.covering;
+  const DecomposeOptions& options = covering.options;
+  if (options.bar_half_length || options.conditions != ValidityMode::exact) return covering.bar_half_length;
+  return kExactBarHalfLengthInTolerances *
+         (island < 0 ? stages.prepared.tolerance.length : stages.prepared.tolerance.island_lengths[island]);
+}
+
 CellResult merge_cell(const DecompositionStages& stages, int cell, const std::function<void(double)>& progress) {
   const Covering& covering = stages.covering;
   const DecomposeOptions& options = covering.options;
@@ -62,7 +72,7 @@ CellResult merge_cell(const DecompositionStages& stages, int cell, const std::fu
       run->options.progress = [&progress, attempt, &options](double fraction) {
         progress((attempt + fraction) / options.order_tries);
       };
-    run->merger = std::make_unique<PatchMerger>(stages.index, run->options, near_merge_distance, stages.cells, cell,
+    run->merger = std::make_unique<PatchMerger>(stages.index_of_cell(cell), run->options, near_merge_distance, stages.cells, cell,
                                                 run->statistics);
     run->merger->run();
     for (const Patch& patch : run->merger->patches()) run->hulls += patch.alive;
@@ -93,7 +103,7 @@ std::vector<CellResult> merge_cells(const DecompositionStages& stages, int threa
   std::mutex progress_mutex;
   std::vector<double> done(cell_count, 0.0);
   double done_faces = 0.0;
-  const double total_faces = std::max<double>(1.0, static_cast<double>(stages.index.mesh().triangles.size()));
+  const double total_faces = std::max<double>(1.0, static_cast<double>(stages.prepared.mesh.triangles.size()));
   const auto report = [&](int cell, double fraction) {
     const std::lock_guard<std::mutex> lock(progress_mutex);
     done_faces += (fraction - done[cell]) * static_cast<double>(cells.faces_of_cell[cell].size());

@@ -29,7 +29,19 @@ struct DecompositionStages {
   Covering covering;
   MeshIslands islands;
   CellLayout cells;
-  SceneIndex index;
+  /// What every check reads, built once...
+  SceneIndexData index_data;
+  /// ... and its views: per island, at the island's tolerance
+  /// (Tolerance::island_lengths), then the whole scene's at the smallest.
+  std::vector<SceneIndex> island_index;
+
+  /// The view the checks of island `island` use; -1: the whole scene's (the
+  /// one cell of --cell-size 0, which spans every island).
+  const SceneIndex& index_of_island(int island) const {
+    return island < 0 ? island_index.back() : island_index[island];
+  }
+  /// The view cell `cell` merges with.
+  const SceneIndex& index_of_cell(int cell) const { return index_of_island(cells.island_of_cell[cell]); }
 };
 
 /// What one cell gave: the patches it kept and its counts.
@@ -46,6 +58,11 @@ Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& 
 /// The near-merge distance cell `cell` merges with: the user's, else its
 /// island's own (the largest island's for the one cell of --cell-size 0).
 double cell_near_merge_distance(const DecompositionStages& stages, int cell);
+
+/// The half-length of the bars on island `island`'s faces (-1: the whole
+/// scene's): the user's, else exact mode's multiple of the island's own
+/// tolerance, else the paper's (one for the scene).
+double island_bar_half_length(const DecompositionStages& stages, int island);
 
 /// Merges one cell (every order try; the try with the fewest hulls is
 /// kept). `progress(fraction)`, when set, reports the cell's own share.

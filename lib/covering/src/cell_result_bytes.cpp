@@ -149,9 +149,10 @@ std::uint64_t key_of_cell(const DecompositionStages& stages, int cell, const Cel
   key.bytes.assign(kMagic, sizeof kMagic);
   key.u32(kVersion);
   key.u32(kMergingRevision);
-  key.f64(covering.tolerance.length);
+  const SceneIndex& index = stages.index_of_cell(cell);
+  key.f64(index.tol());
   key.f64(cell_near_merge_distance(stages, cell));
-  key.f64(covering.bar_half_length);
+  key.f64(island_bar_half_length(stages, stages.cells.island_of_cell[cell]));
   key.u8(static_cast<std::uint8_t>(options.conditions));
   key.u8(static_cast<std::uint8_t>(options.order));
   key.u64(options.seed);
@@ -273,7 +274,7 @@ Result<CellResult> cell_result_from_bytes(const DecompositionStages& stages, int
   }
   if (in.failed || in.at != in.size) return unreadable("trailing or missing bytes");
   for (size_t slot = 0; slot < faces.size(); ++slot)
-    if (!used[slot] && stages.index.face_normals[faces[slot]] != Eigen::Vector3d::Zero())
+    if (!used[slot] && stages.index_data.face_normals[faces[slot]] != Eigen::Vector3d::Zero())
       return unreadable("a face of non-zero area is in no patch");
   return result;
 }

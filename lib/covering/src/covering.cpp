@@ -140,7 +140,7 @@ Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& 
   stats.faces = static_cast<int>(prepared.mesh.triangles.size());
 
   const Clock::time_point start = Clock::now();
-  stages->islands = find_mesh_islands(prepared.mesh);
+  stages->islands = prepared.islands;
   stages->cells = lay_out_cells(prepared, stages->islands, options.cell_size);
   covering.island_extents.clear();
   for (const Aabb& box : stages->islands.boxes)
@@ -160,7 +160,13 @@ Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& 
   bars.agent_radius = options.agent_radius.value_or(0.0);
   bars.max_deviation = options.max_deviation.value_or(0.0);
   bars.hull_zones = std::move(hull_zones);
-  stages->index = build_scene_index(prepared, bars);
+  for (int island = 0; island < static_cast<int>(stages->islands.boxes.size()); ++island)
+    bars.half_length_of_island.push_back(island_bar_half_length(*stages, island));
+  stages->index_data = build_scene_index(prepared, bars);
+  for (int island = 0; island < static_cast<int>(stages->islands.boxes.size()); ++island)
+    stages->island_index.emplace_back(stages->index_data, prepared.tolerance.island_lengths[island],
+                                      covering.island_extents[island]);
+  stages->island_index.emplace_back(stages->index_data, prepared.tolerance.length, prepared.tolerance.largest_island);
   covering.cell_sizes = stages->cells.island_cell_size;
   stats.islands = static_cast<int>(stages->islands.boxes.size());
   stats.cells = static_cast<int>(stages->cells.faces_of_cell.size());
@@ -170,7 +176,6 @@ Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& 
 
 Covering finish_stages(const DecompositionStages& stages, std::vector<CellResult> results, double seconds_cells) {
   const PreparedMesh& prepared = stages.prepared;
-  const SceneIndex& index = stages.index;
   const CellLayout& cells = stages.cells;
   const DecomposeOptions& options = stages.covering.options;
   Covering covering = stages.covering;
@@ -210,7 +215,7 @@ Covering finish_stages(const DecompositionStages& stages, std::vector<CellResult
   });
   const Clock::time_point seams_start = Clock::now();
   run_in_parallel(seam_count, threads, seam_order, [&](int s) {
-    seam_mergers[s] = std::make_unique<PatchMerger>(index, seam_options, seams, s, std::move(seam_patches[s]),
+    seam_mergers[s] = std::make_unique<PatchMerger>(stages.index_of_island(seams.island_of_cell[s]), seam_options, seams, s, std::move(seam_patches[s]),
                                                     std::move(seam_origins[s]), seam_stats[s]);
     seam_mergers[s]->run_seams();
   });
@@ -238,6 +243,7 @@ Covering finish_stages(const DecompositionStages& stages, std::vector<CellResult
     for (int i = run * kHullsPerRun; i < std::min(hull_count, (run + 1) * kHullsPerRun); ++i) {
       const PatchMerger& merger = *seam_mergers[alive[i].first];
       const int id = alive[i].second;
+      const SceneIndex& index = stages.index_of_island(seams.island_of_cell[alive[i].first]);
       covering.hulls[i] = make_hull(index, merger, id, prism_cap_of(covering, stages.islands, merger.patches()[id]),
                                     builder, output_stats[i], scratch);
     }

@@ -86,6 +86,7 @@ nlohmann::json covering_json(const Covering& covering) {
         {"max_hull_vertices", o.max_hull_vertices},
         {"max_hull_triangles", o.max_hull_triangles ? nlohmann::json(*o.max_hull_triangles) : nlohmann::json()},
         {"local_extent", covering.tolerance.local_extent},
+        {"tolerance_per_island", covering.tolerance.island_lengths},
         {"cell_size", o.cell_size ? nlohmann::json(*o.cell_size) : nlohmann::json("automatic")},
         {"cell_size_per_island", covering.cell_sizes}}},
       {"merging",

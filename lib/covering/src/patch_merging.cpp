@@ -25,10 +25,10 @@ double pseudo_random_cost(std::uint64_t seed, int a, int b, int va, int vb) {
 
 } // namespace
 
-// Face planes within tolerances.h's same-plane gap across the scene are kept
-// once: a patch's faces can lie anywhere in it.
+// Face planes within tolerances.h's same-plane gap across a patch's extent
+// are kept once: a patch's faces can lie anywhere in its island.
 double scene_same_plane_gap(const SceneIndex& index) {
-  return same_plane_cosine_gap(index.tol(), index.prepared->tolerance.largest_island);
+  return same_plane_cosine_gap(index.tol(), index.patch_extent());
 }
 
 void add_plane(std::vector<Plane>& planes, const Plane& p, double cosine_gap, double tol) {

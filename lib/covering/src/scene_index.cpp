@@ -17,10 +17,10 @@ Aabb box_of(std::initializer_list<Eigen::Vector3d> points) {
   return box;
 }
 
-void add_bar(SceneIndex& index, int edge, int face, double half_length) {
+void add_bar(SceneIndexData& index, int edge, int face, double half_length) {
   const MeshEdge& e = index.prepared->connectivity.edges[edge];
-  const Eigen::Vector3d& p0 = index.mesh().positions[e.v0];
-  const Eigen::Vector3d& p1 = index.mesh().positions[e.v1];
+  const Eigen::Vector3d& p0 = index.prepared->mesh.positions[e.v0];
+  const Eigen::Vector3d& p1 = index.prepared->mesh.positions[e.v1];
   const Eigen::Vector3d offset = half_length * index.face_normals[face];
   if (index.mode == ValidityMode::exact) {
     index.bars.push_back({p0 - offset, p0 + offset, p1 - p0, edge, face});
@@ -87,14 +87,16 @@ void add_sweep_boxes(const FreeSpaceSweep& sweep, int item, const std::vector<Aa
 // How far every face's front sweep and every open edge's fans run, and
 // their boxes, per hull zone they cross: the trees the exact conditions
 // look up.
-void index_sweeps(SceneIndex& index, double hull_margin, const std::vector<Aabb>& hull_zones) {
-  const Mesh& mesh = index.mesh();
-  const MeshConnectivity& c = index.prepared->connectivity;
+// Each face's (each open edge's) sweeps at the tolerance of its island.
+void index_sweeps(SceneIndexData& index, double hull_margin, const std::vector<Aabb>& hull_zones) {
+  const PreparedMesh& prepared = *index.prepared;
+  const Mesh& mesh = prepared.mesh;
+  const MeshConnectivity& c = prepared.connectivity;
   const double reach = index.free_space_reach;
-  const double tol = index.tol();
+  const double largest_tol = prepared.tolerance.largest_length();
   std::vector<Aabb> zones;
-  for (const Aabb& zone : hull_zones) zones.push_back(grown(zone, tol));
-  if (zones.empty()) zones.push_back(grown(referenced_bounding_box(mesh), hull_margin + tol));
+  for (const Aabb& zone : hull_zones) zones.push_back(grown(zone, largest_tol));
+  if (zones.empty()) zones.push_back(grown(referenced_bounding_box(mesh), hull_margin + largest_tol));
   const AabbTree zone_tree(zones);
   std::vector<int> near;
   std::vector<int> scratch;
@@ -103,9 +105,11 @@ void index_sweeps(SceneIndex& index, double hull_margin, const std::vector<Aabb>
   index.front_reach.assign(mesh.triangles.size(), 0.0);
   for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) {
     if (c.zero_area[f]) continue;
+    const double tol = prepared.face_tolerance(f);
+    const SceneIndex at_face(index, tol, prepared.tolerance.largest_island);
     triangle_corners(mesh, f, triangle);
     const FreeSpaceSweep full = front_space_sweep(triangle, index.face_normals[f], reach, tol);
-    index.front_reach[f] = std::min(reach, detail::first_hit_bound(index, full, scratch));
+    index.front_reach[f] = std::min(reach, detail::first_hit_bound(at_face, full, scratch));
     const FreeSpaceSweep sweep = front_space_sweep(triangle, index.face_normals[f], index.front_reach[f], tol);
     add_sweep_boxes(sweep, f, zones, zone_tree, tol, near, boxes, index.front_sweep_face);
   }
@@ -115,6 +119,8 @@ void index_sweeps(SceneIndex& index, double hull_margin, const std::vector<Aabb>
   for (int e = 0; e < static_cast<int>(c.edges.size()); ++e) {
     if (index.open_edge_use[e] < 0) continue;
     const EdgeUse& use = c.edge_uses[index.open_edge_use[e]];
+    const double tol = prepared.face_tolerance(use.face);
+    const SceneIndex at_edge(index, tol, prepared.tolerance.largest_island);
     const Eigen::Vector3i& t = mesh.triangles[use.face];
     const Eigen::Vector3d& p0 = mesh.positions[t[use.corner]];
     const Eigen::Vector3d& p1 = mesh.positions[t[(use.corner + 1) % 3]];
@@ -126,7 +132,7 @@ void index_sweeps(SceneIndex& index, double hull_margin, const std::vector<Aabb>
     for (int fan = 0; fan < kOpeningFans; ++fan) {
       const Eigen::Vector3d& n = index.face_normals[use.face];
       const FreeSpaceSweep full = opening_fan(p0, p1, inner, n, fan, reach, tol);
-      index.opening_reach[e][fan] = std::min(reach, detail::first_hit_bound(index, full, scratch));
+      index.opening_reach[e][fan] = std::min(reach, detail::first_hit_bound(at_edge, full, scratch));
       const FreeSpaceSweep sweep = opening_fan(p0, p1, inner, n, fan, index.opening_reach[e][fan], tol);
       add_sweep_boxes(sweep, e, zones, zone_tree, tol, near, fan_boxes, fan_items);
     }
@@ -152,7 +158,7 @@ void index_sweeps(SceneIndex& index, double hull_margin, const std::vector<Aabb>
 
 double uncapped_free_space_reach(const PreparedMesh& prepared, double hull_margin) {
   // The box grown by the margin has a diagonal of at most D + 2 sqrt(3) m.
-  return prepared.tolerance.diagonal + 4.0 * (hull_margin + prepared.tolerance.length);
+  return prepared.tolerance.diagonal + 4.0 * (hull_margin + prepared.tolerance.largest_length());
 }
 
 std::vector<Eigen::Vector3d> BoundaryBar::outline() const {
@@ -173,11 +179,21 @@ bool is_fold_edge(const PreparedMesh& prepared, int edge) {
   if (n0.dot(n1) >= 0.0) return false;
   const Eigen::Vector3d& far_corner = mesh.positions[mesh.triangles[u1.face][(u1.corner + 2) % 3]];
   const Eigen::Vector3d& on_edge = mesh.positions[e.v0];
-  return std::abs(n0.dot(far_corner - on_edge)) <= prepared.tolerance.length;
+  return std::abs(n0.dot(far_corner - on_edge)) <= prepared.face_tolerance(u0.face);
 }
 
-SceneIndex build_scene_index(const PreparedMesh& prepared, const BarOptions& options) {
-  SceneIndex index;
+SceneIndex::SceneIndex(const SceneIndexData& data, double tolerance, double patch_extent)
+    : prepared(data.prepared), mode(data.mode), free_space_reach(data.free_space_reach),
+      agent_radius(data.agent_radius), max_deviation(data.max_deviation), open_edge_use(data.open_edge_use),
+      face_normals(data.face_normals), face_areas(data.face_areas), bars(data.bars), vertex_tree(data.vertex_tree),
+      edge_tree(data.edge_tree), face_tree(data.face_tree), bar_tree(data.bar_tree),
+      front_sweep_tree(data.front_sweep_tree), front_sweep_face(data.front_sweep_face), front_reach(data.front_reach),
+      opening_sweep_tree(data.opening_sweep_tree), opening_sweep_edge(data.opening_sweep_edge),
+      opening_reach(data.opening_reach), bar_of_piece(data.bar_of_piece), tolerance_(tolerance),
+      patch_extent_(patch_extent) {}
+
+SceneIndexData build_scene_index(const PreparedMesh& prepared, const BarOptions& options) {
+  SceneIndexData index;
   index.prepared = &prepared;
   index.mode = options.mode;
   index.free_space_reach = options.free_space_reach;
@@ -187,6 +203,11 @@ SceneIndex build_scene_index(const PreparedMesh& prepared, const BarOptions& opt
   const Mesh& mesh = prepared.mesh;
   const MeshConnectivity& c = prepared.connectivity;
   const int face_count = static_cast<int>(mesh.triangles.size());
+  const auto half_length = [&](int face) {
+    return options.half_length_of_island.empty()
+               ? options.half_length
+               : options.half_length_of_island[prepared.islands.island_of_face[face]];
+  };
 
   index.face_normals.resize(face_count, Eigen::Vector3d::Zero());
   index.face_areas.resize(face_count, 0.0);
@@ -201,16 +222,16 @@ SceneIndex build_scene_index(const PreparedMesh& prepared, const BarOptions& opt
     if (edge.kind == EdgeKind::boundary) {
       const int face = c.edge_uses[edge.first_use].face;
       if (c.zero_area[face]) continue;
-      add_bar(index, e, face, options.half_length);
+      add_bar(index, e, face, half_length(face));
       index.open_edge_use[e] = edge.first_use;
     } else if (options.mode == ValidityMode::exact && is_fold_edge(prepared, e)) {
-      add_bar(index, e, c.edge_uses[edge.first_use].face, options.half_length);
+      add_bar(index, e, c.edge_uses[edge.first_use].face, half_length(c.edge_uses[edge.first_use].face));
       index.open_edge_use[e] = edge.first_use;
     } else if (options.material_boundaries && edge.kind == EdgeKind::manifold) {
       const int f0 = c.edge_uses[edge.first_use].face, f1 = c.edge_uses[edge.first_use + 1].face;
       if (mesh.material_ids[f0] == mesh.material_ids[f1]) continue;
       for (int face : {f0, f1})
-        if (!c.zero_area[face]) add_bar(index, e, face, options.half_length);
+        if (!c.zero_area[face]) add_bar(index, e, face, half_length(face));
     }
   }
 

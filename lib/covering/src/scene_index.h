@@ -34,7 +34,8 @@ struct BoundaryBar {
 
 /// What bars guard.
 struct BarOptions {
-  /// Half-length of each bar, scene units (> 0).
+  /// Half-length of each bar, scene units (> 0), unless
+  /// `half_length_of_island` is given.
   double half_length = 1.0;
   /// Also put bars on edges between faces of different materials (one per
   /// face), so hulls keep materials apart (paper 4.3).
@@ -63,11 +64,15 @@ struct BarOptions {
   /// world of far-apart maps is not met by every hull check on its way.
   /// Empty: the scene's box grown by `hull_margin`.
   std::vector<Aabb> hull_zones = {};
+  /// When not empty, per island (mesh_islands.h numbering): the half-length
+  /// of its faces' bars (exact mode's default: a multiple of each island's
+  /// own tolerance), in place of `half_length`.
+  std::vector<double> half_length_of_island = {};
 };
 
-/// The mesh as the validity checks see it. Holds a reference to `prepared`,
-/// which must outlive it.
-struct SceneIndex {
+/// What build_scene_index computes once per scene, for every view of it
+/// (SceneIndex). Holds a reference to `prepared`, which must outlive it.
+struct SceneIndexData {
   const PreparedMesh* prepared = nullptr;
   ValidityMode mode = ValidityMode::paper;
   double free_space_reach = 0.0;  ///< exact mode, scene units
@@ -106,6 +111,39 @@ struct SceneIndex {
   std::vector<std::array<double, kOpeningFans>> opening_reach;
   std::vector<int> bar_of_piece;  ///< bar index of each piece in bar_tree
 
+};
+
+/// The mesh as the validity checks see it, at one tolerance: a view of a
+/// SceneIndexData (which must outlive it; fields as there). Every island
+/// has its own tolerance (hullcover/mesh/tolerance.h), so the checks of one
+/// island's patches run on a view at that island's; the data is shared.
+struct SceneIndex {
+  /// A view of `data` whose tests use `tolerance` (scene units, > 0), for
+  /// patches no wider than `patch_extent` (scene units: an island's
+  /// diagonal, or the largest island's for the whole scene).
+  SceneIndex(const SceneIndexData& data, double tolerance, double patch_extent);
+
+  const PreparedMesh* prepared;
+  ValidityMode mode;
+  double free_space_reach;
+  double agent_radius;
+  double max_deviation;
+  const std::vector<int>& open_edge_use;
+  const std::vector<Eigen::Vector3d>& face_normals;
+  const std::vector<double>& face_areas;
+  const std::vector<BoundaryBar>& bars;
+  const AabbTree& vertex_tree;
+  const AabbTree& edge_tree;
+  const AabbTree& face_tree;
+  const AabbTree& bar_tree;
+  const AabbTree& front_sweep_tree;
+  const std::vector<int>& front_sweep_face;
+  const std::vector<double>& front_reach;
+  const AabbTree& opening_sweep_tree;
+  const std::vector<int>& opening_sweep_edge;
+  const std::vector<std::array<double, kOpeningFans>>& opening_reach;
+  const std::vector<int>& bar_of_piece;
+
   /// Appends, once each and ascending, the bars with a piece overlapping `box`.
   void bars_overlapping(const Aabb& box, std::vector<int>& out) const;
 
@@ -114,7 +152,14 @@ struct SceneIndex {
   /// max deviation set): the paper's conditions 1 and 2 then give way to
   /// the exact conditions' proofs (loss_allowance.h).
   bool has_allowance() const { return agent_radius > 0.0 || max_deviation > 0.0; }
-  double tol() const { return prepared->tolerance.length; }
+  /// The tolerance of this view's tests, scene units.
+  double tol() const { return tolerance_; }
+  /// How far apart two faces of one patch can lie, scene units.
+  double patch_extent() const { return patch_extent_; }
+
+private:
+  double tolerance_;
+  double patch_extent_;
 };
 
 /// Bars are indexed in pieces no longer than the diagonal / this: a bar
@@ -128,13 +173,15 @@ inline constexpr double kBarPiecesPerDiagonal = 64.0;
 double uncapped_free_space_reach(const PreparedMesh& prepared, double hull_margin);
 
 /// True for a fold edge: a manifold edge whose second face folds back onto
-/// the first (its far corner within `tol` of the first face's plane, normals
-/// opposite): the rim of a double-sided sheet, as open as a boundary edge.
+/// the first (its far corner within tol (the first face's island's) of the
+/// first face's plane, normals opposite): the rim of a double-sided sheet,
+/// as open as a boundary edge.
 bool is_fold_edge(const PreparedMesh& prepared, int edge);
 
 /// Builds the index: face normals and areas, bars on every boundary edge
 /// (exact mode: sheets on every boundary and fold edge; and material
-/// boundaries when asked), and the four trees. O(n log n).
-SceneIndex build_scene_index(const PreparedMesh& prepared, const BarOptions& bars);
+/// boundaries when asked), and the four trees; each face's sweeps at its
+/// island's tolerance. O(n log n).
+SceneIndexData build_scene_index(const PreparedMesh& prepared, const BarOptions& bars);
 
 } // namespace hullcover

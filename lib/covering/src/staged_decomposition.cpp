@@ -63,7 +63,7 @@ bool StagedDecomposition::still_valid(int cell, const std::string& bytes, std::s
     CoveringStatistics statistics;
     std::vector<detail::Patch> patches = std::move(result).value().patches;
     std::vector<int> origins(patches.size(), cell);
-    detail::PatchMerger merger(stages_->index, stages_->covering.options, stages_->cells, cell, std::move(patches),
+    detail::PatchMerger merger(stages_->index_of_cell(cell), stages_->covering.options, stages_->cells, cell, std::move(patches),
                                std::move(origins), statistics);
     const Validity validity = merger.recheck_patches();
     if (validity != Validity::valid)

@@ -44,6 +44,10 @@ EdgeKind classify(const Mesh& mesh, const std::vector<EdgeUse>& uses, int first,
 } // namespace
 
 MeshConnectivity build_connectivity(const Mesh& mesh, double tolerance) {
+  return build_connectivity(mesh, std::vector<double>(mesh.triangles.size(), tolerance));
+}
+
+MeshConnectivity build_connectivity(const Mesh& mesh, const std::vector<double>& tolerance_of_face) {
   const int face_count = static_cast<int>(mesh.triangles.size());
   MeshConnectivity c;
   c.face_edges.assign(face_count, Eigen::Vector3i::Constant(-1));
@@ -53,7 +57,7 @@ MeshConnectivity build_connectivity(const Mesh& mesh, double tolerance) {
   std::vector<DirectedEdge> directed;
   directed.reserve(3 * static_cast<size_t>(face_count));
   for (int f = 0; f < face_count; ++f) {
-    c.zero_area[f] = is_zero_area(mesh, f, tolerance) ? 1 : 0;
+    c.zero_area[f] = is_zero_area(mesh, f, tolerance_of_face[f]) ? 1 : 0;
     if (triangle_has_repeated_vertex(mesh, f)) continue;
     const Eigen::Vector3i& tri = mesh.triangles[f];
     for (int k = 0; k < 3; ++k) {

@@ -157,6 +157,7 @@ Result<ImportedMesh> import_with_assimp(const std::string& path, const ImportLim
   // Half a float32 unit in the last place, relative to the magnitude.
   constexpr double kFloat32RelativeRounding = std::numeric_limits<float>::epsilon() / 2.0;
   out.mesh.coordinate_error = kFloat32RelativeRounding * largest_coordinate_magnitude(out.mesh);
+  out.mesh.coordinate_relative_error = kFloat32RelativeRounding;
   return out;
 }
 

@@ -7,16 +7,23 @@ namespace hullcover {
 namespace {
 Result<PreparedMesh> prepare_unchecked(const Mesh& raw, std::optional<double> user_tolerance) {
   if (Status valid = validate_mesh(raw); !valid.ok()) return valid;
-  Result<Tolerance> tolerance = choose_tolerance(raw, user_tolerance);
-  if (!tolerance.ok()) return tolerance.status();
-
   PreparedMesh prepared;
+  prepared.islands = find_mesh_islands(raw);
+  Result<Tolerance> tolerance = choose_tolerance(raw, prepared.islands, user_tolerance);
+  if (!tolerance.ok()) return tolerance.status();
   prepared.tolerance = tolerance.value();
   prepared.vertices_before_weld = static_cast<int>(raw.positions.size());
-  WeldResult welded = weld_vertices(raw, prepared.tolerance.length);
+  // A vertex belongs to the island of the faces using it (faces sharing a
+  // vertex are one island).
+  std::vector<int> island_of_vertex(raw.positions.size(), 0);
+  for (size_t f = 0; f < raw.triangles.size(); ++f)
+    for (int k = 0; k < 3; ++k) island_of_vertex[raw.triangles[f][k]] = prepared.islands.island_of_face[f];
+  WeldResult welded = weld_vertices(raw, island_of_vertex, prepared.tolerance.island_lengths);
   prepared.unreferenced_dropped = welded.unreferenced_dropped;
   prepared.mesh = std::move(welded.mesh);
-  prepared.connectivity = build_connectivity(prepared.mesh, prepared.tolerance.length);
+  std::vector<double> face_tolerance(raw.triangles.size());
+  for (size_t f = 0; f < face_tolerance.size(); ++f) face_tolerance[f] = prepared.face_tolerance(static_cast<int>(f));
+  prepared.connectivity = build_connectivity(prepared.mesh, face_tolerance);
   return prepared;
 }
 

@@ -1,13 +1,48 @@
 #include "hullcover/mesh/tolerance.h"
 
-#include "hullcover/mesh/mesh_islands.h"
-
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace hullcover {
+namespace {
+
+// Rounding error the coordinates within `box` may carry: the mesh's bound,
+// or its relative bound at the box's own magnitude when it gives one (a
+// float32 import rounds each coordinate at its own magnitude).
+double coordinate_error_in(const Mesh& mesh, const Aabb& box) {
+  const double magnitude = std::max(box.min.cwiseAbs().maxCoeff(), box.max.cwiseAbs().maxCoeff());
+  const double input_error = mesh.coordinate_relative_error > 0.0
+                                 ? std::min(mesh.coordinate_error, mesh.coordinate_relative_error * magnitude)
+                                 : mesh.coordinate_error;
+  const double arithmetic_error = magnitude * std::numeric_limits<double>::epsilon();
+  return std::max(input_error, arithmetic_error);
+}
+
+} // namespace
+
+PlaceTolerance::PlaceTolerance(const Tolerance& tolerance)
+    : tolerance_(&tolerance), zones_(tolerance.island_zones) {}
+
+double PlaceTolerance::at(const Aabb& box) const {
+  std::vector<int> met;
+  zones_.overlapping(box, met);
+  double smallest = std::numeric_limits<double>::infinity();
+  for (int i : met) smallest = std::min(smallest, tolerance_->island_lengths[i]);
+  return std::isfinite(smallest) ? smallest : tolerance_->length;
+}
+
+double Tolerance::largest_length() const {
+  double largest = length;
+  for (double l : island_lengths) largest = std::max(largest, l);
+  return largest;
+}
 
 Result<Tolerance> choose_tolerance(const Mesh& mesh, std::optional<double> user_length) {
+  return choose_tolerance(mesh, find_mesh_islands(mesh), user_length);
+}
+
+Result<Tolerance> choose_tolerance(const Mesh& mesh, const MeshIslands& islands, std::optional<double> user_length) {
   if (user_length && !(std::isfinite(*user_length) && *user_length > 0.0))
     return Status{StatusCode::invalid_argument,
                   "tolerance must be a positive finite length, got " + std::to_string(*user_length)};
@@ -17,7 +52,6 @@ Result<Tolerance> choose_tolerance(const Mesh& mesh, std::optional<double> user_
   if (!(tol.diagonal > 0.0))
     return Status{StatusCode::degenerate_scene, "all vertices coincide: the scene has no extent"};
 
-  const MeshIslands islands = find_mesh_islands(mesh);
   tol.islands = static_cast<int>(islands.boxes.size());
   tol.local_extent = islands.smallest_diagonal();
   tol.largest_island = islands.largest_diagonal();
@@ -25,14 +59,31 @@ Result<Tolerance> choose_tolerance(const Mesh& mesh, std::optional<double> user_
   // with extent leaves the whole scene.
   if (!(tol.local_extent > 0.0)) tol.local_extent = tol.diagonal;
   if (!(tol.largest_island > 0.0)) tol.largest_island = tol.diagonal;
-
-  const double arithmetic_error = largest_coordinate_magnitude(mesh) * std::numeric_limits<double>::epsilon();
-  tol.floor = kRoundingErrorsPerPlaneTest * std::max(mesh.coordinate_error, arithmetic_error);
-
   tol.user_given = user_length.has_value();
-  const double requested = user_length ? *user_length : kDefaultRelativeTolerance * tol.local_extent;
-  tol.raised_to_floor = requested < tol.floor;
-  tol.length = std::max(requested, tol.floor);
+
+  // Each island's own: the user's length or its default, raised to its floor.
+  std::vector<double> own;
+  for (const Aabb& box : islands.boxes) {
+    const double extent = box.diagonal() > 0.0 ? box.diagonal() : tol.local_extent;
+    const double floor = kRoundingErrorsPerPlaneTest * coordinate_error_in(mesh, box);
+    const double requested = user_length ? *user_length : kDefaultRelativeTolerance * extent;
+    tol.floor = std::max(tol.floor, floor);
+    tol.raised_to_floor = tol.raised_to_floor || requested < floor;
+    own.push_back(std::max(requested, floor));
+    tol.island_zones.push_back(grown(box, kIslandGapRelative * box.diagonal()));
+  }
+  // Where zones meet, both islands take the smaller.
+  const AabbTree zones(tol.island_zones);
+  std::vector<int> near;
+  for (size_t i = 0; i < own.size(); ++i) {
+    near.clear();
+    zones.overlapping(tol.island_zones[i], near);
+    double in_force = own[i];
+    for (int j : near) in_force = std::min(in_force, own[j]);
+    tol.island_lengths.push_back(in_force);
+  }
+  tol.length = tol.island_lengths.empty() ? kDefaultRelativeTolerance * tol.diagonal
+                                          : *std::min_element(tol.island_lengths.begin(), tol.island_lengths.end());
   return tol;
 }
 

@@ -9,28 +9,35 @@
 namespace hullcover {
 namespace {
 
-using Cell = std::array<std::int64_t, 3>;
+// Grid cell coordinates and the group (island) the cell's grid belongs to.
+using Cell = std::array<std::int64_t, 4>;
 
 struct CellHash {
   size_t operator()(const Cell& c) const {
     // Large odd multipliers spread neighbouring cells over the table.
     const auto h = static_cast<std::uint64_t>(c[0]) * 0x9E3779B97F4A7C15ull ^
                    static_cast<std::uint64_t>(c[1]) * 0xC2B2AE3D27D4EB4Full ^
-                   static_cast<std::uint64_t>(c[2]) * 0x165667B19E3779F9ull;
+                   static_cast<std::uint64_t>(c[2]) * 0x165667B19E3779F9ull ^
+                   static_cast<std::uint64_t>(c[3]) * 0xD6E8FEB86659FD93ull;
     return static_cast<size_t>(h ^ (h >> 29));
   }
 };
 
-Cell cell_of(const Eigen::Vector3d& p, double cell_size) {
+Cell cell_of(const Eigen::Vector3d& p, double cell_size, int group) {
   return {static_cast<std::int64_t>(std::floor(p.x() / cell_size)),
           static_cast<std::int64_t>(std::floor(p.y() / cell_size)),
-          static_cast<std::int64_t>(std::floor(p.z() / cell_size))};
+          static_cast<std::int64_t>(std::floor(p.z() / cell_size)), group};
 }
 
 } // namespace
 
 WeldResult weld_vertices(const Mesh& mesh, double radius) {
-  assert(radius > 0.0);
+  return weld_vertices(mesh, std::vector<int>(mesh.positions.size(), 0), {radius});
+}
+
+WeldResult weld_vertices(const Mesh& mesh, const std::vector<int>& group_of_vertex,
+                         const std::vector<double>& radius_of_group) {
+  assert(group_of_vertex.size() == mesh.positions.size());
   const int input_count = static_cast<int>(mesh.positions.size());
 
   std::vector<char> referenced(input_count, 0);
@@ -43,8 +50,8 @@ WeldResult weld_vertices(const Mesh& mesh, double radius) {
   out.material_ids = mesh.material_ids;
   out.material_names = mesh.material_names;
   out.coordinate_error = mesh.coordinate_error;
+  out.coordinate_relative_error = mesh.coordinate_relative_error;
 
-  const double radius_squared = radius * radius;
   std::unordered_map<Cell, std::vector<int>, CellHash> kept_in_cell;
   kept_in_cell.reserve(mesh.positions.size());
 
@@ -54,13 +61,17 @@ WeldResult weld_vertices(const Mesh& mesh, double radius) {
       continue;
     }
     const Eigen::Vector3d& p = mesh.positions[v];
-    const Cell home = cell_of(p, radius);
+    const int group = group_of_vertex[v];
+    const double radius = radius_of_group[group];
+    assert(radius > 0.0);
+    const double radius_squared = radius * radius;
+    const Cell home = cell_of(p, radius, group);
     int best = -1;
     double best_distance_squared = 0.0;
     for (std::int64_t dx = -1; dx <= 1; ++dx)
       for (std::int64_t dy = -1; dy <= 1; ++dy)
         for (std::int64_t dz = -1; dz <= 1; ++dz) {
-          const auto found = kept_in_cell.find({home[0] + dx, home[1] + dy, home[2] + dz});
+          const auto found = kept_in_cell.find({home[0] + dx, home[1] + dy, home[2] + dz, group});
           if (found == kept_in_cell.end()) continue;
           for (int candidate : found->second) {
             const double d2 = (out.positions[candidate] - p).squaredNorm();

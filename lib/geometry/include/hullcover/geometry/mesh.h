@@ -33,6 +33,13 @@ struct Mesh {
   /// property of the data, separate from the user's tolerance, and sets that
   /// tolerance's floor (see hullcover/mesh/tolerance.h). 0 for exact input.
   double coordinate_error = 0.0;
+  /// Optional tighter bound, relative: each coordinate x carried at most
+  /// |x| times this (a float32 importer: half a unit in the last place), so
+  /// a world's far-apart pieces each get the floor of their own magnitude
+  /// (hullcover/mesh/tolerance.h). 0: none; `coordinate_error` bounds all.
+  /// A transform that moves coordinates must reset it (it bounds the
+  /// magnitudes the rounding happened at).
+  double coordinate_relative_error = 0.0;
 };
 
 /// Box around the vertices that triangles reference (unreferenced vertices

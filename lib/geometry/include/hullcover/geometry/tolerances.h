@@ -3,11 +3,11 @@
 /// Every tolerance hullcover uses, in one place (as Box2D's constants.h and
 /// Jolt's PhysicsSettings.h do). Read this before adding a threshold.
 ///
-/// The base: ONE length per scene, `tol` (hullcover/mesh/tolerance.h chooses
-/// it: `kDefaultRelativeTolerance` x the scene's local extent, the diagonal of
-/// its smallest island (hullcover/mesh/mesh_islands.h), never below the
-/// data's own rounding floor; printed by every command; overridable with
-/// --tol). Every sidedness and containment test uses it: "strictly inside"
+/// The base: ONE length per place, `tol` (hullcover/mesh/tolerance.h chooses
+/// it: `kDefaultRelativeTolerance` x the diagonal of the island a test
+/// happens in (hullcover/mesh/mesh_islands.h), never below the data's own
+/// rounding floor there; printed by every command; overridable with --tol,
+/// one length for all). Every sidedness and containment test uses it: "strictly inside"
 /// means deeper than tol, "coincident" closer than tol. Every other length
 /// threshold of the decomposer and the audit is a named multiple of tol
 /// below. Directions have their own, dimensionless tolerances
@@ -22,11 +22,10 @@ namespace hullcover {
 
 // ---- The scene tolerance ---------------------------------------------------
 
-/// Default tolerance as a fraction of the scene's local extent (the diagonal
-/// of its smallest island; of its bounding box for a scene of one island).
-/// The near-merge distance and the prism cap are fractions of each island's
-/// own diagonal: a map keeps its defaults, and so its hulls, when laid beside
-/// others no smaller than itself in a world.
+/// Default tolerance as a fraction of each island's diagonal (of the
+/// bounding box for a scene of one island). The near-merge distance and the
+/// prism cap are fractions of it too: a map keeps its defaults, and so its
+/// hulls, in any world.
 inline constexpr double kDefaultRelativeTolerance = 1e-5;
 
 /// How many units of rounding error one sidedness test (a plane through three

@@ -63,6 +63,10 @@ struct MeshConnectivity {
 /// passes `validate_mesh`.
 MeshConnectivity build_connectivity(const Mesh& mesh, double tolerance);
 
+/// The same with a tolerance per face (scene units, > 0; one per triangle):
+/// each island's own (hullcover/mesh/prepared_mesh.h).
+MeshConnectivity build_connectivity(const Mesh& mesh, const std::vector<double>& tolerance_of_face);
+
 /// Number of edges of the given kind.
 int count_edges(const MeshConnectivity& connectivity, EdgeKind kind);
 

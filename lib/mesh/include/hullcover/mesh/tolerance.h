@@ -8,40 +8,58 @@
 /// lengths as named multiples of it, directions and the runtime's as
 /// dimensionless numbers. See ../shared/DESIGN.md, "tolerance".
 ///
-/// Default: `kDefaultRelativeTolerance` x the scene's local extent: the
-/// diagonal of its SMALLEST island (mesh_islands.h), not of the whole world.
-/// A map laid beside others no smaller than itself keeps the tolerance it has
-/// alone; beside a smaller one it is judged at the smaller one's precision,
-/// never coarser than alone (conservative: a tolerance derived from a larger
-/// neighbour would let a small object's hulls take space, or weld its
-/// vertices, at the neighbour's scale).
+/// Default, per island (mesh_islands.h: a map, as opposed to a world of
+/// maps): `kDefaultRelativeTolerance` x the island's diagonal, never below
+/// the floor of its own coordinates. A map laid in a world of others keeps
+/// the tolerance it has alone, and so its hulls. A test is judged at the
+/// tolerance of the place it happens: `island_lengths[i]` inside island i's
+/// zone (its box grown by `kIslandGapRelative` of its diagonal), the
+/// smallest of the zones a test's box meets (PlaceTolerance), and `length`, the
+/// smallest of all, where no place is known: never coarser than alone, and
+/// conservative where two islands come near (a larger neighbour's tolerance
+/// would let a small object's hulls take space at the neighbour's scale).
 /// A user may override it with an absolute length, but never below the floor
 /// the data itself imposes (its own rounding error, as Jolt and Manifold do):
 /// a tolerance under the noise of the coordinates would turn rounding into
 /// geometry.
 
+#include "hullcover/geometry/aabb_tree.h"
 #include "hullcover/geometry/mesh.h"
 #include "hullcover/geometry/status.h"
 #include "hullcover/geometry/tolerances.h"
+#include "hullcover/mesh/mesh_islands.h"
 
 #include <optional>
+#include <vector>
 
 namespace hullcover {
 
 /// The tolerance in force and where it came from.
 struct Tolerance {
-  /// The tolerance, an absolute length in scene units (> 0).
+  /// The smallest tolerance of any island, an absolute length in scene units
+  /// (> 0): the one in force where no place is known. Equal to every
+  /// island's for a scene of one island or a user-given length.
   double length = 0.0;
+  /// Per island (mesh_islands.h numbering), scene units (> 0): the
+  /// tolerance of tests in its zone: its own (the user's length, or the
+  /// default from its diagonal, raised to its floor), lowered to that of any
+  /// island whose zone meets its zone.
+  std::vector<double> island_lengths;
+  /// Per island: its zone, where its tolerance holds: its box grown by
+  /// `kIslandGapRelative` x its diagonal. Zones of islands far apart do not
+  /// meet.
+  std::vector<Aabb> island_zones;
   /// Smallest length the data can support: rounding error of its coordinates
   /// (input error plus double-precision arithmetic at its magnitude), times
-  /// `kRoundingErrorsPerPlaneTest`.
+  /// `kRoundingErrorsPerPlaneTest`; the largest of the islands' floors (each
+  /// island's is that of its own coordinates' magnitude).
   double floor = 0.0;
   /// The whole scene's bounding-box diagonal: how far a ray may have to run
   /// to cross it.
   double diagonal = 0.0;
-  /// The diagonal of the scene's smallest island (mesh_islands.h): what the
-  /// default tolerance is derived from. Equal to `diagonal` for a scene of
-  /// one island.
+  /// The diagonal of the scene's smallest island (mesh_islands.h), whose
+  /// default tolerance is `length` unless a floor raised it. Equal to
+  /// `diagonal` for a scene of one island.
   double local_extent = 0.0;
   /// The diagonal of the scene's largest island: the farthest a patch (and
   /// so a hull made of one) can span. Equal to `diagonal` for one island.
@@ -50,9 +68,27 @@ struct Tolerance {
   int islands = 0;
   /// True when the user gave the length.
   bool user_given = false;
-  /// True when the requested (or default) length was below `floor` and was
-  /// raised to it.
+  /// True when the requested (or default) length of some island was below
+  /// its floor and was raised to it.
   bool raised_to_floor = false;
+
+  /// The largest tolerance of any island (`length` when there are none).
+  double largest_length() const;
+};
+
+/// The tolerance of a test confined to a box: the smallest of the islands'
+/// whose zones the box meets; `Tolerance::length` where it meets none (the
+/// rule of tolerance.h's header; what an audit judges a hull from any source
+/// by). Refers to the Tolerance given, which must outlive it.
+class PlaceTolerance {
+public:
+  explicit PlaceTolerance(const Tolerance& tolerance);
+  /// Scene units (> 0). O(log islands + zones met); thread-safe.
+  double at(const Aabb& box) const;
+
+private:
+  const Tolerance* tolerance_;
+  AabbTree zones_;
 };
 
 /// Chooses the tolerance for a mesh.
@@ -63,5 +99,8 @@ struct Tolerance {
 /// referenced vertices coincide), since then no relative default exists.
 /// The mesh must already pass `validate_mesh`.
 Result<Tolerance> choose_tolerance(const Mesh& mesh, std::optional<double> user_length);
+
+/// The same, with the mesh's islands already found (`find_mesh_islands(mesh)`).
+Result<Tolerance> choose_tolerance(const Mesh& mesh, const MeshIslands& islands, std::optional<double> user_length);
 
 } // namespace hullcover

@@ -35,4 +35,11 @@ struct WeldResult {
 /// Preconditions: `validate_mesh(mesh)` passes and `radius` > 0.
 WeldResult weld_vertices(const Mesh& mesh, double radius);
 
+/// The same per group: a vertex merges only into a vertex of its own group
+/// (`group_of_vertex`, one per input vertex, 0 .. radius_of_group.size() - 1)
+/// within that group's radius (> 0). The decomposer's groups are islands
+/// (mesh_islands.h), each welded at its own tolerance.
+WeldResult weld_vertices(const Mesh& mesh, const std::vector<int>& group_of_vertex,
+                         const std::vector<double>& radius_of_group);
+
 } // namespace hullcover
