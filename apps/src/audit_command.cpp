@@ -212,7 +212,7 @@ void register_audit_command(CLI::App& app, int& exit_status) {
                   "Hulls: a runtime file (.hcw) or an OBJ with one o/g group per hull (each hull the convex\n"
                   "hull of its group's vertices; a group in one plane is a flat polygon)")
       ->required();
-  cmd->add_option("--tol", o->tolerance, "Tolerance in scene units (default 1e-5 x bounding-box diagonal)");
+  cmd->add_option("--tol", o->tolerance, "Tolerance in scene units, for every island (default 1e-5 x each island's diagonal)");
   add_import_limit_options(*cmd, o->limits);
   cmd->add_option("--probe", o->audit.probe.probe_distance,
                   "Optional cap on every ray's length in scene units (default none: the strict definition;\n"

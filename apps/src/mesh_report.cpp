@@ -23,17 +23,23 @@ MeshFigures measure_mesh(const PreparedMesh& prepared) {
 }
 
 std::string describe_tolerance(const Tolerance& t) {
-  char line[256];
-  if (t.raised_to_floor)
-    std::snprintf(line, sizeof line, "%.6g (raised to the data's rounding floor; %s was below it)", t.length,
-                  t.user_given ? "the given value" : "the default");
-  else if (t.user_given)
-    std::snprintf(line, sizeof line, "%.6g (given)", t.length);
-  else if (t.islands <= 1)
-    std::snprintf(line, sizeof line, "%.6g (default: 1e-5 x the diagonal %.6g)", t.length, t.local_extent);
+  char line[320];
+  char lengths[96];
+  if (t.largest_length() > t.length)
+    std::snprintf(lengths, sizeof lengths, "%.6g to %.6g (each of %d islands its own)", t.length, t.largest_length(),
+                  t.islands);
   else
-    std::snprintf(line, sizeof line, "%.6g to %.6g (default: 1e-5 x each of %d islands' diagonals, %.6g to %.6g)",
-                  t.length, t.largest_length(), t.islands, t.local_extent, t.largest_island);
+    std::snprintf(lengths, sizeof lengths, "%.6g", t.length);
+  if (t.raised_to_floor)
+    std::snprintf(line, sizeof line, "%s (raised to the data's rounding floor; %s was below it%s)", lengths,
+                  t.user_given ? "the given value" : "the default", t.islands > 1 ? " on some island" : "");
+  else if (t.user_given)
+    std::snprintf(line, sizeof line, "%s (given)", lengths);
+  else if (t.islands <= 1)
+    std::snprintf(line, sizeof line, "%s (default: 1e-5 x the diagonal %.6g)", lengths, t.local_extent);
+  else
+    std::snprintf(line, sizeof line, "%s (default: 1e-5 x each island's diagonal, %.6g to %.6g)", lengths,
+                  t.local_extent, t.largest_island);
   return line;
 }
 

@@ -50,10 +50,13 @@ QueryShape inflated(QueryShape s, double by) {
 }
 } // namespace
 
-Result<std::shared_ptr<const TriangleWorld>> TriangleWorld::build(const Mesh& mesh, double tol) {
+Result<std::shared_ptr<const TriangleWorld>> TriangleWorld::build(const Mesh& mesh, double tol,
+                                                                  const std::vector<char>& no_surface) {
   using Built = Result<std::shared_ptr<const TriangleWorld>>;
   return detail::guarded("building the triangle world", [&]() -> Built {
     if (Status s = validate_mesh(mesh); !s.ok()) return Status{StatusCode::invalid_argument, s.message()};
+    if (!no_surface.empty() && no_surface.size() != mesh.triangles.size())
+      return Status{StatusCode::invalid_argument, "one no-surface flag per triangle expected"};
     std::shared_ptr<TriangleWorld> world(new TriangleWorld());
     world->margin_ = kTriangleMarginInTolerances * tol;
     world->tol_ = tol;
@@ -62,7 +65,7 @@ Result<std::shared_ptr<const TriangleWorld>> TriangleWorld::build(const Mesh& me
       const Eigen::Vector3i& t = mesh.triangles[f];
       const Eigen::Vector3d &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
       const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-      if ((b - a).cross(c - a).norm() <= tol * longest) continue;
+      if ((b - a).cross(c - a).norm() <= tol * longest || (!no_surface.empty() && no_surface[f])) continue;
       world->triangles_.push_back(flat_triangle_hull(a, b, c));
       world->face_of_.push_back(f);
       tris.emplace_back(t[0], t[1], t[2]);

@@ -117,6 +117,27 @@ TEST(ChooseTolerance, EachIslandHasItsOwnAndTheSmallestRulesWhereZonesMeet) {
   EXPECT_GT(a.value().island_lengths[1], 10.0 * kDefaultRelativeTolerance);
 }
 
+TEST(ChooseTolerance, ZonesMeetingAlongAChainShareTheirSmallest) {
+  // Islands A and B (pairs of 10 x 20 x 20 boxes, as above) 0.65 apart:
+  // apart as pieces, their zones meet. C, a small box just beyond B's
+  // pieces' reach, meets B's zone but not A's. A takes C's tolerance through
+  // B: a hull of A reaching B's zone is judged there at C's.
+  const auto pair_at = [](double x) {
+    return joined(box_from({x, 0, 0}, {x + 10, 20, 20}), box_from({x + 10.2, 0, 0}, {x + 20.2, 20, 20}));
+  };
+  const Mesh a_and_b = joined(pair_at(100.0), pair_at(120.85));
+  const Mesh chain = joined(a_and_b, box_from({141.4, 0, 0}, {142.4, 2, 2}));
+  const Result<Tolerance> t = choose_tolerance(chain, std::nullopt);
+  ASSERT_TRUE(t.ok());
+  ASSERT_EQ(t.value().island_lengths.size(), 3u);
+  for (int i = 0; i < 3; ++i) EXPECT_DOUBLE_EQ(t.value().island_lengths[i], 3.0 * kDefaultRelativeTolerance) << i;
+  // Without C, A and B keep their own.
+  const Result<Tolerance> two = choose_tolerance(a_and_b, std::nullopt);
+  ASSERT_TRUE(two.ok());
+  ASSERT_EQ(two.value().island_lengths.size(), 2u);
+  EXPECT_GT(two.value().island_lengths[0], 30.0 * kDefaultRelativeTolerance);
+}
+
 TEST(ChooseTolerance, AFloat32IslandFarFromTheOriginGetsTheFloorOfItsOwnMagnitude) {
   // float32 rounding is relative: the box at the origin keeps its default,
   // the copy at 1e6 is raised to the rounding of coordinates near 1e6.

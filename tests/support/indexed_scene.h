@@ -19,7 +19,10 @@ namespace hullcover::test {
 /// pointer that does not move).
 struct IndexedScene {
   IndexedScene(PreparedMesh mesh, const BarOptions& bars)
-      : prepared(std::move(mesh)), data(build_scene_index(prepared, bars)), index(data, prepared.tolerance.length, prepared.tolerance.largest_island) {}
+      : prepared(std::move(mesh)), data(build_scene_index(prepared, bars)),
+        index(data, prepared.tolerance.length, prepared.tolerance.largest_island) {}
+  IndexedScene(const IndexedScene&) = delete;  // `index` refers to `data`, `data` to `prepared`
+  IndexedScene& operator=(const IndexedScene&) = delete;
   PreparedMesh prepared;
   SceneIndexData data;
   SceneIndex index;

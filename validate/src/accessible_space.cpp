@@ -262,7 +262,7 @@ Result<ProbeReport> probe_accessible_space(const PreparedMesh& prepared, const b
   if ((options.probe_distance && !positive_length(*options.probe_distance)) || !positive_length(report.resolution))
     return Status{StatusCode::invalid_argument, "probe distance and resolution must be positive lengths"};
   const AllowanceOptions& allowance = options.allowance;
-  if ((allowance.agent_radius && !(*allowance.agent_radius > 2.0 * prepared.tolerance.length &&
+  if ((allowance.agent_radius && !(*allowance.agent_radius > 2.0 * prepared.tolerance.largest_length() &&
                                    std::isfinite(*allowance.agent_radius))) ||
       (allowance.max_deviation && !positive_length(*allowance.max_deviation)))
     return Status{StatusCode::invalid_argument,

@@ -22,7 +22,7 @@ struct Worlds {
 Result<Worlds> build_worlds(const PreparedMesh& prepared, const HullSet& set) {
   Result<std::shared_ptr<const bvh::HullWorld>> hulls = bvh::HullWorld::build(set.hulls);
   Result<std::shared_ptr<const bvh::TriangleWorld>> triangles =
-      bvh::TriangleWorld::build(prepared.mesh, prepared.tolerance.length);
+      bvh::TriangleWorld::build(prepared.mesh, prepared.tolerance.length, prepared.connectivity.zero_area);
   for (const Status& s : {hulls.status(), triangles.status()})
     if (!s.ok()) return s;
   return Worlds{std::move(hulls).value(), std::move(triangles).value()};

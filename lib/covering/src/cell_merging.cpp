@@ -44,7 +44,7 @@ double island_bar_half_length(const DecompositionStages& stages, int island) {
   const DecomposeOptions& options = covering.options;
   if (options.bar_half_length || options.conditions != ValidityMode::exact) return covering.bar_half_length;
   return kExactBarHalfLengthInTolerances *
-         (island < 0 ? stages.prepared.tolerance.length : stages.prepared.tolerance.island_lengths[island]);
+         (island < 0 ? stages.prepared.tolerance.length : stages.island_tolerance[island]);
 }
 
 CellResult merge_cell(const DecompositionStages& stages, int cell, const std::function<void(double)>& progress) {

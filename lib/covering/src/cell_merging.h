@@ -23,12 +23,19 @@ namespace hullcover::detail {
 /// outlive it.
 struct DecompositionStages {
   explicit DecompositionStages(const PreparedMesh& mesh) : prepared(mesh) {}
+  // The views in `island_index` refer to `index_data`: never copied or moved.
+  DecompositionStages(const DecompositionStages&) = delete;
+  DecompositionStages& operator=(const DecompositionStages&) = delete;
   const PreparedMesh& prepared;
   /// Options and resolved lengths; no hulls yet. Statistics: faces, index
   /// time, islands, cells.
   Covering covering;
   MeshIslands islands;
   CellLayout cells;
+  /// Per island: the tolerance its cells, seam pass and hulls are checked
+  /// at, scene units: the smallest of the zones its hulls can reach
+  /// (hullcover/mesh/tolerance.h).
+  std::vector<double> island_tolerance;
   /// What every check reads, built once...
   SceneIndexData index_data;
   /// ... and its views: per island, at the island's tolerance

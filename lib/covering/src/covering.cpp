@@ -145,6 +145,16 @@ Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& 
   covering.island_extents.clear();
   for (const Aabb& box : stages->islands.boxes)
     covering.island_extents.push_back(box.diagonal() > 0.0 ? box.diagonal() : prepared.tolerance.local_extent);
+  // Each island's checks at the smallest tolerance of the zones its hulls
+  // can reach (its box grown by its prism cap): the audit, judging each hull
+  // at its own box's (PlaceTolerance), is then never stricter than the
+  // merge was.
+  const PlaceTolerance place_tolerance(prepared.tolerance);
+  for (int island = 0; island < static_cast<int>(stages->islands.boxes.size()); ++island) {
+    const double cap = options.prism_thickness_cap.value_or(kDefaultPrismCapRelative * covering.island_extents[island]);
+    const double reach = place_tolerance.at(grown(stages->islands.boxes[island], cap));
+    stages->island_tolerance.push_back(std::min(prepared.tolerance.island_lengths[island], reach));
+  }
   // Patches never span islands unless the whole scene is one cell, so every
   // hull lies in its island's box grown by the prism cap: the sweeps need be
   // indexed only there.
@@ -164,7 +174,7 @@ Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& 
     bars.half_length_of_island.push_back(island_bar_half_length(*stages, island));
   stages->index_data = build_scene_index(prepared, bars);
   for (int island = 0; island < static_cast<int>(stages->islands.boxes.size()); ++island)
-    stages->island_index.emplace_back(stages->index_data, prepared.tolerance.island_lengths[island],
+    stages->island_index.emplace_back(stages->index_data, stages->island_tolerance[island],
                                       covering.island_extents[island]);
   stages->island_index.emplace_back(stages->index_data, prepared.tolerance.length, prepared.tolerance.largest_island);
   covering.cell_sizes = stages->cells.island_cell_size;

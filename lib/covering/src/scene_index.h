@@ -122,6 +122,7 @@ struct SceneIndex {
   /// patches no wider than `patch_extent` (scene units: an island's
   /// diagonal, or the largest island's for the whole scene).
   SceneIndex(const SceneIndexData& data, double tolerance, double patch_extent);
+  SceneIndex(SceneIndexData&&, double, double) = delete;  // would refer to a temporary
 
   const PreparedMesh* prepared;
   ValidityMode mode;

@@ -51,6 +51,8 @@ Result<Tolerance> choose_tolerance(const Mesh& mesh, const MeshIslands& islands,
   tol.diagonal = referenced_bounding_box(mesh).diagonal();
   if (!(tol.diagonal > 0.0))
     return Status{StatusCode::degenerate_scene, "all vertices coincide: the scene has no extent"};
+  if (islands.island_of_face.size() != mesh.triangles.size() || islands.boxes.empty())
+    return Status{StatusCode::invalid_argument, "the islands given are not those of this mesh"};
 
   tol.islands = static_cast<int>(islands.boxes.size());
   tol.local_extent = islands.smallest_diagonal();
@@ -72,18 +74,30 @@ Result<Tolerance> choose_tolerance(const Mesh& mesh, const MeshIslands& islands,
     own.push_back(std::max(requested, floor));
     tol.island_zones.push_back(grown(box, kIslandGapRelative * box.diagonal()));
   }
-  // Where zones meet, both islands take the smaller.
+  // Islands whose zones meet, directly or along a chain, are one group and
+  // all take the group's smallest: a hull of one is judged (PlaceTolerance)
+  // at no smaller a tolerance than the one it was made at.
+  std::vector<int> group(own.size());
+  for (size_t i = 0; i < group.size(); ++i) group[i] = static_cast<int>(i);
+  const auto root = [&group](int i) {
+    while (group[i] != i) i = group[i] = group[group[i]];
+    return i;
+  };
   const AabbTree zones(tol.island_zones);
   std::vector<int> near;
   for (size_t i = 0; i < own.size(); ++i) {
     near.clear();
     zones.overlapping(tol.island_zones[i], near);
-    double in_force = own[i];
-    for (int j : near) in_force = std::min(in_force, own[j]);
-    tol.island_lengths.push_back(in_force);
+    for (int j : near) {
+      const int a = root(static_cast<int>(i)), b = root(j);
+      if (a != b) group[std::max(a, b)] = std::min(a, b);
+    }
   }
-  tol.length = tol.island_lengths.empty() ? kDefaultRelativeTolerance * tol.diagonal
-                                          : *std::min_element(tol.island_lengths.begin(), tol.island_lengths.end());
+  std::vector<double> smallest_of_group = own;
+  for (size_t i = 0; i < own.size(); ++i)
+    smallest_of_group[root(static_cast<int>(i))] = std::min(smallest_of_group[root(static_cast<int>(i))], own[i]);
+  for (size_t i = 0; i < own.size(); ++i) tol.island_lengths.push_back(smallest_of_group[root(static_cast<int>(i))]);
+  tol.length = *std::min_element(tol.island_lengths.begin(), tol.island_lengths.end());
   return tol;
 }
 

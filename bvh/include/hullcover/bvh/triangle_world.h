@@ -21,9 +21,13 @@ namespace hullcover::bvh {
 class TriangleWorld {
 public:
   /// Builds over every triangle of `mesh` with a surface (altitude above
-  /// `tol`; others can touch nothing). Fails with `invalid_argument` for a
-  /// mesh that fails validate_mesh or has no such triangle.
-  static Result<std::shared_ptr<const TriangleWorld>> build(const Mesh& mesh, double tol);
+  /// `tol`, scene units; others can touch nothing) that `no_surface` (one
+  /// flag per triangle, or empty) does not flag: an audit passes the faces
+  /// the decomposer found zero-area at their own island's tolerance. Fails
+  /// with `invalid_argument` for a mesh that fails validate_mesh, flags of
+  /// another length, or no triangle left.
+  static Result<std::shared_ptr<const TriangleWorld>> build(const Mesh& mesh, double tol,
+                                                            const std::vector<char>& no_surface = {});
 
   ~TriangleWorld();
   TriangleWorld(const TriangleWorld&) = delete;

@@ -34,7 +34,7 @@ struct MeshIslands {
   /// The largest island diagonal (0 for no islands).
   double largest_diagonal() const;
   /// The smallest island diagonal above 0 (0 when every island is a
-  /// point): the extent the default tolerance follows.
+  /// point): the extent an island of no extent takes for its tolerance.
   double smallest_diagonal() const;
 };
 

@@ -1,10 +1,10 @@
 #pragma once
 /// \file tolerance.h
-/// hullcover's ONE length tolerance, and how it is chosen.
+/// hullcover's length tolerance, ONE per place, and how it is chosen.
 ///
-/// Every sidedness and containment test in hullcover uses `Tolerance::length`
-/// ("strictly inside" means deeper than it; "coincident" means closer than
-/// it). Every other threshold is declared in hullcover/geometry/tolerances.h:
+/// Every sidedness and containment test in hullcover uses the tolerance of
+/// the place it happens ("strictly inside" means deeper than it;
+/// "coincident" means closer than it). Every other threshold is declared in hullcover/geometry/tolerances.h:
 /// lengths as named multiples of it, directions and the runtime's as
 /// dimensionless numbers. See ../shared/DESIGN.md, "tolerance".
 ///
@@ -14,10 +14,13 @@
 /// the tolerance it has alone, and so its hulls. A test is judged at the
 /// tolerance of the place it happens: `island_lengths[i]` inside island i's
 /// zone (its box grown by `kIslandGapRelative` of its diagonal), the
-/// smallest of the zones a test's box meets (PlaceTolerance), and `length`, the
-/// smallest of all, where no place is known: never coarser than alone, and
-/// conservative where two islands come near (a larger neighbour's tolerance
-/// would let a small object's hulls take space at the neighbour's scale).
+/// smallest of the zones a test's box meets (PlaceTolerance), and `length`,
+/// the smallest of all, where no place is known. Islands whose zones meet
+/// (directly or along a chain) share their smallest: a larger neighbour's
+/// tolerance would let a small object's hulls take space at the neighbour's
+/// scale. The decomposer checks an island's hulls at the smallest tolerance
+/// of the zones its hulls can reach, so no hull is judged more strictly by
+/// the audit than it was made.
 /// A user may override it with an absolute length, but never below the floor
 /// the data itself imposes (its own rounding error, as Jolt and Manifold do):
 /// a tolerance under the noise of the coordinates would turn rounding into
@@ -42,8 +45,9 @@ struct Tolerance {
   double length = 0.0;
   /// Per island (mesh_islands.h numbering), scene units (> 0): the
   /// tolerance of tests in its zone: its own (the user's length, or the
-  /// default from its diagonal, raised to its floor), lowered to that of any
-  /// island whose zone meets its zone.
+  /// default from its diagonal, raised to its floor), lowered to the
+  /// smallest of the islands whose zones meet its zone, directly or along a
+  /// chain of zones that meet.
   std::vector<double> island_lengths;
   /// Per island: its zone, where its tolerance holds: its box grown by
   /// `kIslandGapRelative` x its diagonal. Zones of islands far apart do not
@@ -57,9 +61,9 @@ struct Tolerance {
   /// The whole scene's bounding-box diagonal: how far a ray may have to run
   /// to cross it.
   double diagonal = 0.0;
-  /// The diagonal of the scene's smallest island (mesh_islands.h), whose
-  /// default tolerance is `length` unless a floor raised it. Equal to
-  /// `diagonal` for a scene of one island.
+  /// The diagonal of the scene's smallest island (mesh_islands.h) with an
+  /// extent; islands of none take it as theirs. Equal to `diagonal` for a
+  /// scene of one island.
   double local_extent = 0.0;
   /// The diagonal of the scene's largest island: the farthest a patch (and
   /// so a hull made of one) can span. Equal to `diagonal` for one island.
@@ -83,6 +87,7 @@ struct Tolerance {
 class PlaceTolerance {
 public:
   explicit PlaceTolerance(const Tolerance& tolerance);
+  PlaceTolerance(Tolerance&&) = delete;  // would refer to a temporary
   /// Scene units (> 0). O(log islands + zones met); thread-safe.
   double at(const Aabb& box) const;
 
@@ -100,7 +105,9 @@ private:
 /// The mesh must already pass `validate_mesh`.
 Result<Tolerance> choose_tolerance(const Mesh& mesh, std::optional<double> user_length);
 
-/// The same, with the mesh's islands already found (`find_mesh_islands(mesh)`).
+/// The same, with the mesh's islands already found (`find_mesh_islands(mesh)`);
+/// fails with `invalid_argument` when they are not the mesh's (another face
+/// count, or none).
 Result<Tolerance> choose_tolerance(const Mesh& mesh, const MeshIslands& islands, std::optional<double> user_length);
 
 } // namespace hullcover
