@@ -20,6 +20,7 @@ namespace hullcover::fuzz {
 inline constexpr const char* kMeshImport = "mesh_import";
 inline constexpr const char* kRuntimeFile = "runtime_file";
 inline constexpr const char* kHullObj = "hull_obj";
+inline constexpr const char* kCellResult = "cell_result";
 
 /// Mesh import (mesh_import.h), then prepare_mesh as every command does.
 /// The first byte picks the extension (.obj .ply .stl .gltf .glb, modulo
@@ -36,5 +37,12 @@ int fuzz_one_runtime_file(const std::uint8_t* data, std::size_t size);
 /// The hull-OBJ reader (validate's load_hull_set on an `.obj`); hulls it
 /// accepts are built into a HullWorld and queried.
 int fuzz_one_hull_obj(const std::uint8_t* data, std::size_t size);
+
+/// A cell's result as bytes (StagedDecomposition: what a distributed bake's
+/// worker returns, what the cell cache reads), given to still_valid and
+/// finish for cell 0 of the demo building cut into cells: as they come,
+/// and as edits (a u16 position and a byte, each) to the valid bytes with
+/// the key and checksum made right afterwards.
+int fuzz_one_cell_result(const std::uint8_t* data, std::size_t size);
 
 } // namespace hullcover::fuzz

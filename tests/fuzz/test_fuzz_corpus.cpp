@@ -30,7 +30,10 @@ struct Target {
   Body body;
 };
 const Target kTargets[] = {
-    {kMeshImport, fuzz_one_mesh_import}, {kRuntimeFile, fuzz_one_runtime_file}, {kHullObj, fuzz_one_hull_obj}};
+    {kMeshImport, fuzz_one_mesh_import},
+    {kRuntimeFile, fuzz_one_runtime_file},
+    {kHullObj, fuzz_one_hull_obj},
+    {kCellResult, fuzz_one_cell_result}};
 
 struct Input {
   std::string target;
