@@ -90,8 +90,7 @@ Eigen::Vector3d nearest_interior_point(const HullInterior& interior, const Eigen
 
 AllowanceJudge::AllowanceJudge(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles,
                                const bvh::HullWorld& hulls, const AllowanceOptions& options)
-    : prepared_(prepared), triangles_(triangles), hulls_(hulls), hull_tree_(hull_boxes(hulls)), options_(options),
-      tol_(prepared.tolerance.length) {
+    : prepared_(prepared), triangles_(triangles), hulls_(hulls), hull_tree_(hull_boxes(hulls)), options_(options) {
   const Mesh& mesh = prepared.mesh;
   std::vector<bvh::RuntimeHull> faces;
   for (size_t f = 0; f < mesh.triangles.size(); ++f) {
@@ -118,49 +117,54 @@ AllowanceJudge::AllowanceJudge(const PreparedMesh& prepared, const bvh::Triangle
   mesh_ = std::move(world).value();
   // What a ball must reach into to take space: each hull shrunk by the
   // probe's stand-off and the tolerance (the margin balls_over allows).
-  if (options_.agent_radius)
+  if (options_.agent_radius) {
+    const PlaceTolerance place_tolerance(prepared.tolerance);
     for (const bvh::RuntimeHull& h : hulls.hulls())
-      interiors_.push_back(hull_interior(h.shape, (kRayStandOffInTolerances + 1.0) * tol_));
+      interiors_.push_back(hull_interior(h.shape, (kRayStandOffInTolerances + 1.0) * place_tolerance.at(h.box)));
+  }
 }
 
-DistanceBounds AllowanceJudge::to_mesh(const Eigen::Vector3d& p, int* face) const {
-  const bvh::DistanceResult r = distance_from(*mesh_, p, tol_);
+DistanceBounds AllowanceJudge::to_mesh(const Eigen::Vector3d& p, double tol, int* face) const {
+  const bvh::DistanceResult r = distance_from(*mesh_, p, tol);
   if (face) *face = r.hull < 0 ? -1 : face_of_[r.hull];
-  return bounds_of(r, tol_);
+  return bounds_of(r, tol);
 }
 
-DistanceBounds AllowanceJudge::to_hulls(const Eigen::Vector3d& p, int& hull, Eigen::Vector3d& nearest) const {
-  const bvh::DistanceResult r = distance_from(hulls_, p, tol_);
+DistanceBounds AllowanceJudge::to_hulls(const Eigen::Vector3d& p, double tol, int& hull,
+                                        Eigen::Vector3d& nearest) const {
+  const bvh::DistanceResult r = distance_from(hulls_, p, tol);
   hull = r.hull;
   nearest = r.on_world;
-  return bounds_of(r, tol_);
+  return bounds_of(r, tol);
 }
 
 void AllowanceJudge::judge(const ProbeRay& ray, const Eigen::Vector3d& start, double length, double stand_off,
                            const std::vector<std::pair<std::pair<double, double>, int>>& stretches,
                            AllowanceReport& out) const {
-  for (const auto& [stretch, hull] : stretches) farthest_lost(ray, start, stretch.first, stretch.second, hull, out);
+  const double tol = prepared_.face_tolerance(ray.face);
+  for (const auto& [stretch, hull] : stretches)
+    farthest_lost(ray, start, stretch.first, stretch.second, hull, tol, out);
   if (const std::optional<double> r = options_.agent_radius) {
     // Nearer than r - stand-off to its own face, no point of the ray has
     // clearance r.
     const double from = std::max(0.0, *r - stand_off);
-    if (from < length) reachable_balls(ray, start, from, length, out);
+    if (from < length) reachable_balls(ray, start, from, length, tol, out);
   }
 }
 
 // The farthest point of stretch [from, to] from the mesh, within tol; with
 // E, also whether some point lies farther than E + tol.
 void AllowanceJudge::farthest_lost(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to,
-                                   int hull, AllowanceReport& out) const {
+                                   int hull, double tol, AllowanceReport& out) const {
   ++out.lost_stretches;
   // With E the stretch is judged against E + tol; with r alone only
   // measured (an infinite limit is never broken).
-  const double limit = options_.max_deviation ? *options_.max_deviation + tol_
+  const double limit = options_.max_deviation ? *options_.max_deviation + tol
                                                      : std::numeric_limits<double>::infinity();
   const auto sample = [&](double t) {
     Sample s;
     s.t = t;
-    s.mesh = to_mesh(start + t * ray.direction, &s.face);
+    s.mesh = to_mesh(start + t * ray.direction, tol, &s.face);
     return s;
   };
   double best = -1.0;
@@ -181,7 +185,7 @@ void AllowanceJudge::farthest_lost(const ProbeRay& ray, const Eigen::Vector3d& s
     // Done with this interval once it cannot beat the best by more than
     // tol, and (with a bound to judge) cannot break it, or it already broke.
     const bool judged = highest <= limit || best > limit;
-    if ((highest <= best + tol_ && judged) || length <= tol_) continue;
+    if ((highest <= best + tol && judged) || length <= tol) continue;
     if (++evaluations > kMaxEvaluationsPerRay) {
       undecided = true;
       break;
@@ -229,14 +233,14 @@ std::vector<std::pair<double, double>> AllowanceJudge::near_hulls(const Eigen::V
 // mesh behind p along -m is the front of a face with that normal (so p is
 // on that face's own ray), and ahead the ray escapes or ends on a front.
 // False when p is on no such ray.
-bool AllowanceJudge::on_open_ray(const Eigen::Vector3d& p, const Eigen::Vector3d& m) const {
+bool AllowanceJudge::on_open_ray(const Eigen::Vector3d& p, const Eigen::Vector3d& m, double tol) const {
   const double far = std::numeric_limits<double>::max();
   bvh::RayResult behind, ahead;
   if (!triangles_.ray_cast({p, -m, far}, behind).ok() || !behind.hit) return false;
   const Eigen::Vector3d floor = triangle_area_vector(prepared_.mesh, behind.first.hull).normalized();
   if (floor.dot(m) < 1.0 - kUnitNormalSlack) return false;
   if (!triangles_.ray_cast({p, m, far}, ahead).ok() || !ahead.hit) return true;
-  return !ends_on_backs(triangles_, prepared_.mesh, p, m, ahead.first.t, tol_);
+  return !ends_on_backs(triangles_, prepared_.mesh, p, m, ahead.first.t, tol);
 }
 
 // Free space in the strict definition is the points of open rays; p is
@@ -248,13 +252,13 @@ bool AllowanceJudge::on_open_ray(const Eigen::Vector3d& p, const Eigen::Vector3d
 // their normals are cast (each column grown by tol sideways, so every face
 // whose exact column holds p is tried: the definition's rays start on the
 // face itself).
-bool AllowanceJudge::in_enclosed_space(const Eigen::Vector3d& p) const {
+bool AllowanceJudge::in_enclosed_space(const Eigen::Vector3d& p, double tol) const {
   std::vector<int> tried;
   for (const FrontPrism& prism : prisms_) {
-    if (!(prism.front.signed_distance(p) > 0.0) || deepest_signed_distance(prism.sides, p) > tol_) continue;
+    if (!(prism.front.signed_distance(p) > 0.0) || deepest_signed_distance(prism.sides, p) > tol) continue;
     if (std::find(tried.begin(), tried.end(), prism.normal) != tried.end()) continue;
     tried.push_back(prism.normal);
-    if (on_open_ray(p, normals_[prism.normal])) return false;
+    if (on_open_ray(p, normals_[prism.normal], tol)) return false;
   }
   return true;
 }
@@ -265,7 +269,8 @@ bool AllowanceJudge::in_enclosed_space(const Eigen::Vector3d& p) const {
 // boundary; a thin hull (a wedge's edge) may hold no point that deep, and a
 // point the ball reaches just under a face's edge would be judged on that
 // face's ray by the ray casts' tolerance. Judged at a point genuinely inside.
-AllowanceJudge::BallReach AllowanceJudge::ball_takes_free_space(const Eigen::Vector3d& c, double r) const {
+AllowanceJudge::BallReach AllowanceJudge::ball_takes_free_space(const Eigen::Vector3d& c, double r,
+                                                                double tol) const {
   std::vector<int> near;
   Aabb around;
   around.extend(c);
@@ -274,7 +279,7 @@ AllowanceJudge::BallReach AllowanceJudge::ball_takes_free_space(const Eigen::Vec
   for (int h : near) {
     const Eigen::Vector3d q = nearest_interior_point(interiors_[h], c);
     if (!((q - c).norm() < r)) continue;
-    if (!in_enclosed_space(q)) return BallReach::free;
+    if (!in_enclosed_space(q, tol)) return BallReach::free;
     reach = BallReach::enclosed;
   }
   return reach;
@@ -302,31 +307,31 @@ double AllowanceJudge::most_clear_between(const Eigen::Vector3d& start, const Ei
 // from every hull (unless the ball reaches in only where the strict
 // definition's space is enclosed). The first centre that breaks it ends the ray.
 void AllowanceJudge::reachable_balls(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to,
-                                     AllowanceReport& out) const {
+                                     double tol, AllowanceReport& out) const {
   ++out.centre_rays;
   int evaluations = 0;
   for (const auto& [a, b] : near_hulls(start, ray.direction, from, to)) {
     const long lost = out.reach_lost, undecided = out.undecided;
-    balls_over(ray, start, a, b, evaluations, out);
+    balls_over(ray, start, a, b, tol, evaluations, out);
     if (out.reach_lost != lost || out.undecided != undecided) return;
   }
 }
 
 void AllowanceJudge::balls_over(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to,
-                                int& evaluations, AllowanceReport& out) const {
+                                double tol, int& evaluations, AllowanceReport& out) const {
   const double r = *options_.agent_radius;
   // A centre nearer any hull than this puts its ball deeper than tol into it
   // beyond the probe's stand-off: the strict definition's rays start that
   // far off a face, so a ball resting on the face may meet a hull that
   // lies as far above it (and a face may lie that deep inside its hull).
-  const double needed = r - (kRayStandOffInTolerances + 1.0) * tol_;
+  const double needed = r - (kRayStandOffInTolerances + 1.0) * tol;
   const auto sample = [&](double t) {
     ++evaluations;
     Sample s;
     s.t = t;
     const Eigen::Vector3d c = start + t * ray.direction;
-    s.mesh = to_mesh(c, &s.face);
-    s.hulls = to_hulls(c, s.hull, s.nearest);
+    s.mesh = to_mesh(c, tol, &s.face);
+    s.hulls = to_hulls(c, tol, s.hull, s.nearest);
     return s;
   };
   // A centre whose ball reaches deeper than tol into a hull, in space the
@@ -334,7 +339,7 @@ void AllowanceJudge::balls_over(const ProbeRay& ray, const Eigen::Vector3d& star
   const auto breaks = [&](const Sample& s) {
     if (!(s.mesh.low >= r && s.hulls.high < needed)) return false;
     const Eigen::Vector3d c = start + s.t * ray.direction;
-    switch (ball_takes_free_space(c, r)) {
+    switch (ball_takes_free_space(c, r, tol)) {
       case BallReach::not_deep: return false;
       case BallReach::enclosed: ++out.enclosed_balls; return false;
       case BallReach::free: break;
@@ -354,7 +359,7 @@ void AllowanceJudge::balls_over(const ProbeRay& ray, const Eigen::Vector3d& star
     const double most_clear = most_clear_between(start, ray.direction, i.a, i.b);
     const bool no_clear_centre = most_clear < r;
     const bool far_from_hulls = lipschitz_min(i.a.hulls.low, i.b.hulls.low, length) >= needed;
-    if (no_clear_centre || far_from_hulls || length <= tol_) continue;
+    if (no_clear_centre || far_from_hulls || length <= tol) continue;
     if (evaluations >= kMaxEvaluationsPerRay) {
       ++out.undecided;
       return;

@@ -56,23 +56,25 @@ public:
              const std::vector<std::pair<std::pair<double, double>, int>>& stretches, AllowanceReport& out) const;
 
 private:
-  DistanceBounds to_mesh(const Eigen::Vector3d& p, int* face = nullptr) const;
-  DistanceBounds to_hulls(const Eigen::Vector3d& p, int& hull, Eigen::Vector3d& nearest) const;
-  void farthest_lost(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to, int hull,
+  // Each ray is judged at its face's tolerance (`tol`, the island's:
+  // hullcover/mesh/tolerance.h), as the probe stands it off.
+  DistanceBounds to_mesh(const Eigen::Vector3d& p, double tol, int* face = nullptr) const;
+  DistanceBounds to_hulls(const Eigen::Vector3d& p, double tol, int& hull, Eigen::Vector3d& nearest) const;
+  void farthest_lost(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to, int hull, double tol,
                      AllowanceReport& out) const;
-  void reachable_balls(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to,
+  void reachable_balls(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to, double tol,
                        AllowanceReport& out) const;
-  void balls_over(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to, int& evaluations,
-                  AllowanceReport& out) const;
+  void balls_over(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to, double tol,
+                  int& evaluations, AllowanceReport& out) const;
   std::vector<std::pair<double, double>> near_hulls(const Eigen::Vector3d& start, const Eigen::Vector3d& dir,
                                                     double from, double to) const;
   double most_clear_between(const Eigen::Vector3d& start, const Eigen::Vector3d& dir, const Sample& a,
                             const Sample& b) const;
-  bool in_enclosed_space(const Eigen::Vector3d& p) const;
+  bool in_enclosed_space(const Eigen::Vector3d& p, double tol) const;
   /// What the ball of radius r around c does with the hulls' interiors.
   enum class BallReach { not_deep, enclosed, free };
-  BallReach ball_takes_free_space(const Eigen::Vector3d& c, double r) const;
-  bool on_open_ray(const Eigen::Vector3d& p, const Eigen::Vector3d& m) const;
+  BallReach ball_takes_free_space(const Eigen::Vector3d& c, double r, double tol) const;
+  bool on_open_ray(const Eigen::Vector3d& p, const Eigen::Vector3d& m, double tol) const;
 
   const PreparedMesh& prepared_;
   const bvh::TriangleWorld& triangles_;
@@ -89,9 +91,10 @@ private:
     int normal = 0;
   };
   std::vector<FrontPrism> prisms_;  // per face with a surface
-  std::vector<HullInterior> interiors_;   // per hull, shrunk by the margin a ball may reach in (agent radius only)
+  // Per hull, shrunk by the margin a ball may reach in, at the tolerance of
+  // the hull's place (agent radius only).
+  std::vector<HullInterior> interiors_;
   AllowanceOptions options_;
-  double tol_;
 };
 
 /// Adds `part` (one ray's or one face's figures) to `total`, as if judged
