@@ -40,7 +40,7 @@ int fuzz_one_hull_obj(const std::uint8_t* data, std::size_t size);
 
 /// A cell's result as bytes (StagedDecomposition: what a distributed bake's
 /// worker returns, what the cell cache reads), given to still_valid and
-/// finish for cell 0 of the demo building cut into cells: as they come,
+/// finish for cell 0 of a small scene cut into cells: as they come,
 /// and as edits (a u16 position and a byte, each) to the valid bytes with
 /// the key and checksum made right afterwards.
 int fuzz_one_cell_result(const std::uint8_t* data, std::size_t size);
