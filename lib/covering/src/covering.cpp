@@ -225,8 +225,9 @@ Covering finish_stages(const DecompositionStages& stages, std::vector<CellResult
   });
   const Clock::time_point seams_start = Clock::now();
   run_in_parallel(seam_count, threads, seam_order, [&](int s) {
-    seam_mergers[s] = std::make_unique<PatchMerger>(stages.index_of_island(seams.island_of_cell[s]), seam_options, seams, s, std::move(seam_patches[s]),
-                                                    std::move(seam_origins[s]), seam_stats[s]);
+    seam_mergers[s] = std::make_unique<PatchMerger>(stages.index_of_island(seams.island_of_cell[s]), seam_options,
+                                                    seams, s, std::move(seam_patches[s]), std::move(seam_origins[s]),
+                                                    seam_stats[s]);
     seam_mergers[s]->run_seams();
   });
   stats.seconds_seams = seconds_since(seams_start);
