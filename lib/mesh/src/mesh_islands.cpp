@@ -2,6 +2,8 @@
 
 #include "hullcover/geometry/aabb_tree.h"
 
+#include "disjoint_sets.h"
+
 #include <algorithm>
 #include <array>
 #include <cstring>
@@ -11,20 +13,7 @@
 namespace hullcover {
 namespace {
 
-// Union-find with path halving; the smaller root wins, so roots are the
-// lowest member and the result does not depend on the order of unions.
-struct DisjointSets {
-  std::vector<int> parent;
-  explicit DisjointSets(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void join(int a, int b) {
-    a = find(a), b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
+using detail::DisjointSets;
 
 struct PositionHash {
   size_t operator()(const std::array<double, 3>& p) const {

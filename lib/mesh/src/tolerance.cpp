@@ -1,5 +1,7 @@
 #include "hullcover/mesh/tolerance.h"
 
+#include "disjoint_sets.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -77,26 +79,19 @@ Result<Tolerance> choose_tolerance(const Mesh& mesh, const MeshIslands& islands,
   // Islands whose zones meet, directly or along a chain, are one group and
   // all take the group's smallest: a hull of one is judged (PlaceTolerance)
   // at no smaller a tolerance than the one it was made at.
-  std::vector<int> group(own.size());
-  for (size_t i = 0; i < group.size(); ++i) group[i] = static_cast<int>(i);
-  const auto root = [&group](int i) {
-    while (group[i] != i) i = group[i] = group[group[i]];
-    return i;
-  };
+  const int count = static_cast<int>(own.size());
+  detail::DisjointSets groups(count);
   const AabbTree zones(tol.island_zones);
   std::vector<int> near;
-  for (size_t i = 0; i < own.size(); ++i) {
+  for (int i = 0; i < count; ++i) {
     near.clear();
     zones.overlapping(tol.island_zones[i], near);
-    for (int j : near) {
-      const int a = root(static_cast<int>(i)), b = root(j);
-      if (a != b) group[std::max(a, b)] = std::min(a, b);
-    }
+    for (int j : near) groups.join(i, j);
   }
   std::vector<double> smallest_of_group = own;
-  for (size_t i = 0; i < own.size(); ++i)
-    smallest_of_group[root(static_cast<int>(i))] = std::min(smallest_of_group[root(static_cast<int>(i))], own[i]);
-  for (size_t i = 0; i < own.size(); ++i) tol.island_lengths.push_back(smallest_of_group[root(static_cast<int>(i))]);
+  for (int i = 0; i < count; ++i)
+    smallest_of_group[groups.find(i)] = std::min(smallest_of_group[groups.find(i)], own[i]);
+  for (int i = 0; i < count; ++i) tol.island_lengths.push_back(smallest_of_group[groups.find(i)]);
   tol.length = *std::min_element(tol.island_lengths.begin(), tol.island_lengths.end());
   return tol;
 }
