@@ -89,7 +89,8 @@ public:
     world_ = grown(world_, kRayStandOffInTolerances * prepared.tolerance.largest_length() +
                                allowance.agent_radius.value_or(0.0));
     hull_tree_ = AabbTree(boxes);
-    if (allowance.any()) judge_ = std::make_unique<const probe::AllowanceJudge>(prepared, triangles, hulls, allowance);
+    if (allowance.any())
+      judge_ = std::make_unique<const probe::AllowanceJudge>(prepared, triangles, hulls, hull_tol_, allowance);
   }
 
   void trace(const probe::ProbeRay& ray, ItemRays& out, Stretches& stretches) const {

@@ -89,7 +89,8 @@ Eigen::Vector3d nearest_interior_point(const HullInterior& interior, const Eigen
 } // namespace
 
 AllowanceJudge::AllowanceJudge(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles,
-                               const bvh::HullWorld& hulls, const AllowanceOptions& options)
+                               const bvh::HullWorld& hulls, const std::vector<double>& hull_tolerance,
+                               const AllowanceOptions& options)
     : prepared_(prepared), triangles_(triangles), hulls_(hulls), hull_tree_(hull_boxes(hulls)), options_(options) {
   const Mesh& mesh = prepared.mesh;
   std::vector<bvh::RuntimeHull> faces;
@@ -117,11 +118,9 @@ AllowanceJudge::AllowanceJudge(const PreparedMesh& prepared, const bvh::Triangle
   mesh_ = std::move(world).value();
   // What a ball must reach into to take space: each hull shrunk by the
   // probe's stand-off and the tolerance (the margin balls_over allows).
-  if (options_.agent_radius) {
-    const PlaceTolerance place_tolerance(prepared.tolerance);
-    for (const bvh::RuntimeHull& h : hulls.hulls())
-      interiors_.push_back(hull_interior(h.shape, (kRayStandOffInTolerances + 1.0) * place_tolerance.at(h.box)));
-  }
+  if (options_.agent_radius)
+    for (size_t h = 0; h < hulls.hulls().size(); ++h)
+      interiors_.push_back(hull_interior(hulls.hulls()[h].shape, (kRayStandOffInTolerances + 1.0) * hull_tolerance[h]));
 }
 
 DistanceBounds AllowanceJudge::to_mesh(const Eigen::Vector3d& p, double tol, int* face) const {

@@ -40,12 +40,14 @@ struct Sample {
 /// going to its own report (add_allowance_figures adds them up in order).
 class AllowanceJudge {
 public:
-  /// `prepared`, `triangles` and `hulls` must outlive the judge. The mesh's
+  /// `prepared`, `triangles` and `hulls` must outlive the judge;
+  /// `hull_tolerance` is the tolerance at each hull's box (PlaceTolerance,
+  /// scene units), which the probe computes once for both. The mesh's
   /// faces with a surface are held as flat hulls for exact point-to-mesh
   /// distances. Throws std::runtime_error when they cannot be (no face with
   /// a surface).
   AllowanceJudge(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles, const bvh::HullWorld& hulls,
-                 const AllowanceOptions& options);
+                 const std::vector<double>& hull_tolerance, const AllowanceOptions& options);
 
   /// Judges one open ray: `start` (off the surface by the stand-off) along
   /// unit `ray.direction` for `length`, with `stretches` the parts of it
