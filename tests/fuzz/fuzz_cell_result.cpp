@@ -8,9 +8,11 @@
 // bytes of cell 0 (the key and checksum made right afterwards), so the
 // fuzzer reaches the checks of counts, indices and values behind them.
 
+#include "fuzz_support.h"
 #include "fuzz_targets.h"
 
 #include "hullcover/covering/staged_decomposition.h"
+#include "hullcover/geometry/little_endian_bytes.h"
 #include "hullcover/mesh/prepared_mesh.h"
 #include "hullcover/mesh/scene_builder.h"
 
@@ -40,16 +42,6 @@ Mesh small_scene() {
   add_box(m, {1.0, 0.5, 1.0}, {2.0, 1.5, 2.0});
   add_box(m, {5.0, 0.0, 0.0}, {7.0, 2.0, 3.0}, false);
   return m;
-}
-
-void put_u64(std::string& bytes, std::size_t at, std::uint64_t v) {
-  for (int k = 0; k < 8; ++k) bytes[at + k] = static_cast<char>(v >> (8 * k));
-}
-
-std::uint64_t fnv1a(const std::string& bytes, std::size_t size) {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  for (std::size_t i = 0; i < size; ++i) h = (h ^ static_cast<unsigned char>(bytes[i])) * 0x100000001b3ull;
-  return h;
 }
 
 // still_valid, then finish with the bytes in place of cell 0.
@@ -92,7 +84,8 @@ int fuzz_one_cell_result(const std::uint8_t* data, std::size_t size) {
   if (size % kEditBytes != 0) edited.resize(data[size - 1] % edited.size());
   if (edited.size() >= kKeyAt + 8 + kChecksumBytes) {
     put_u64(edited, kKeyAt, s.cell_key(0));
-    put_u64(edited, edited.size() - kChecksumBytes, fnv1a(edited, edited.size() - kChecksumBytes));
+    put_u64(edited, edited.size() - kChecksumBytes,
+            fnv1a(reinterpret_cast<const unsigned char*>(edited.data()), edited.size() - kChecksumBytes));
   }
   read_as_cell_zero(s, cells, edited);
   return 0;

@@ -6,6 +6,7 @@
 #include "fuzz_targets.h"
 
 #include "hullcover/bvh/runtime_file.h"
+#include "hullcover/geometry/little_endian_bytes.h"
 
 #include <cstring>
 #include <vector>
@@ -18,16 +19,6 @@ namespace {
 constexpr std::size_t kHeaderBytes = 40;
 constexpr std::size_t kPayloadBytesAt = 24;
 constexpr std::size_t kChecksumAt = 32;
-
-void put_u64(std::vector<std::uint8_t>& bytes, std::size_t at, std::uint64_t v) {
-  for (int k = 0; k < 8; ++k) bytes[at + k] = static_cast<std::uint8_t>(v >> (8 * k));
-}
-
-std::uint64_t fnv1a(const std::uint8_t* data, std::size_t size) {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  for (std::size_t i = 0; i < size; ++i) h = (h ^ data[i]) * 0x100000001b3ull;
-  return h;
-}
 
 void read_and_query(const std::uint8_t* data, std::size_t size) {
   const std::string path = write_scratch_file("world.hcw", data, size);

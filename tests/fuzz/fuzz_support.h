@@ -20,6 +20,16 @@ std::string write_scratch_file(const std::string& name, const std::uint8_t* data
 /// folder is empty again.
 void remove_scratch_file(const std::string& path);
 
+/// Overwrites the 8 bytes of `bytes` at `at` with `v`, little-endian: how a
+/// target makes a mutated file's size or checksum field right again, so the
+/// fuzzer reaches the checks behind it (checksums: hullcover::fnv1a,
+/// hullcover/geometry/little_endian_bytes.h). `Bytes` is any sequence of
+/// byte-sized values; `at + 8` must not pass its end.
+template <typename Bytes>
+void put_u64(Bytes& bytes, std::size_t at, std::uint64_t v) {
+  for (int k = 0; k < 8; ++k) bytes[at + k] = static_cast<typename Bytes::value_type>(v >> (8 * k));
+}
+
 /// Builds a HullWorld from `hulls` (when it accepts them) and asks it a
 /// touch, a contact, a ray and a distance query near the first hull: a
 /// reader's accepted hulls must be safe to query.
