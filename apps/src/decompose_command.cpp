@@ -111,11 +111,19 @@ int run_decompose(DecomposeCommandOptions& o) {
                 c.statistics.near_merges, c.statistics.merges);
   if (c.dissolve)
     std::printf("  dissolved patches (emptied into their neighbours): %d\n", c.statistics.dissolved_patches);
-  if (!o.cell_cache.empty())
+  if (!o.cell_cache.empty()) {
     std::printf("  cell cache %s: %d cells, %d reused (re-checked against this scene, %.3f s), %d stale, %d merged "
                 "(%.3f s)\n",
                 o.cell_cache.c_str(), cache.cells, cache.reused, cache.seconds_checking, cache.stale, cache.merged,
                 cache.seconds_merging);
+    if (cache.changed_faces < 0)
+      std::printf("    no usable record of the last bake (or an allowance): every kept patch re-checked (%ld)\n",
+                  cache.patches_rechecked);
+    else
+      std::printf("    %d faces added or removed since the last bake: %ld kept patches within their reach "
+                  "re-checked, %ld out of reach kept as they were\n",
+                  cache.changed_faces, cache.patches_rechecked, cache.patches_kept_unchecked);
+  }
   if (!exported.empty()) std::printf("  %s\n", exported.c_str());
   std::printf("  wrote %s%s%s%s%s\n", o.obj_path.c_str(), o.json_path.empty() ? "" : ", ", o.json_path.c_str(),
               o.world_path.empty() ? "" : ", ", o.world_path.c_str());

@@ -1,10 +1,13 @@
 #include "hullcover/covering/cell_cache.h"
 
-#include "hullcover/covering/staged_decomposition.h"
 #include "hullcover/geometry/atomic_file.h"
 #include "hullcover/geometry/regular_file.h"
 
+#include "hullcover/geometry/little_endian_bytes.h"
+
 #include "cell_merging.h"
+#include "cell_result_bytes.h"
+#include "scene_change.h"
 
 #include <sys/stat.h>
 
@@ -20,6 +23,11 @@ namespace hullcover {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// A snapshot takes 56 bytes a face and 16 a cell: this bound reads those of
+// scenes up to about 150 million faces; a larger file is ignored (every
+// kept hull is then re-checked), never read into memory.
+constexpr std::uint64_t kMostSnapshotBytes = std::uint64_t{1} << 33;
 
 std::string entry_path(const std::string& dir, std::uint64_t key) {
   char name[32];
@@ -40,18 +48,38 @@ Status make_folder(const std::string& dir) {
 
 namespace {
 
-Result<Covering> decompose_with_cache_unchecked(PreparedMesh prepared, const DecomposeOptions& options,
+// The last bake's scene, beside its cells (scene_change.h).
+std::string snapshot_path(const std::string& dir) { return dir + "/last-bake.scene"; }
+
+// The change since the last bake, when its snapshot reads back.
+detail::SceneChange change_since_last_bake(const detail::DecompositionStages& stages, const std::string& dir,
+                                           detail::SceneSnapshot& snapshot) {
+  Result<std::string> bytes = read_regular_file(snapshot_path(dir), kMostSnapshotBytes);
+  if (!bytes.ok()) return {};
+  Result<detail::SceneSnapshot> read = detail::read_scene_snapshot(bytes.value());
+  if (!read.ok()) return {};
+  snapshot = std::move(read).value();
+  return detail::scene_change_since(stages, snapshot);
+}
+
+Result<Covering> decompose_with_cache_unchecked(const PreparedMesh& prepared, const DecomposeOptions& options,
                                                 const std::string& cache_dir, CellCacheReport& report) {
   if (Status s = make_folder(cache_dir); !s.ok()) return s;
-  Result<std::unique_ptr<StagedDecomposition>> prepared_stages =
-      StagedDecomposition::prepare(std::move(prepared), options);
+  Result<std::unique_ptr<detail::DecompositionStages>> prepared_stages = detail::prepare_stages(prepared, options);
   if (!prepared_stages.ok()) return prepared_stages.status();
-  const StagedDecomposition& staged = *prepared_stages.value();
-  const int count = staged.cell_count();
+  detail::DecompositionStages& stages = *prepared_stages.value();
+  // Progress is this function's own, cell by cell.
+  stages.covering.options.progress = nullptr;
+  const int count = static_cast<int>(stages.cells.faces_of_cell.size());
   report.cells = count;
+  Clock::time_point start = Clock::now();
+  detail::SceneSnapshot snapshot;
+  const detail::SceneChange change = change_since_last_bake(stages, cache_dir, snapshot);
+  report.changed_faces = change.everything ? -1 : change.changed_faces;
   std::vector<std::string> cells(count);
   std::vector<char> reused(count, 0);
   std::atomic<int> stale{0};
+  std::atomic<long> rechecked{0}, kept{0};
   Status failure = Status::success();
   std::mutex mutex;
   int done = 0;
@@ -64,11 +92,22 @@ Result<Covering> decompose_with_cache_unchecked(PreparedMesh prepared, const Dec
   const int threads = threads_to_use(options.threads);
   // First every cached cell, checked; then the rest, merged: the two
   // timings tell what a re-bake costs.
-  Clock::time_point start = Clock::now();
   detail::run_in_parallel(count, threads, {}, [&](int c) {
-    Result<std::string> bytes = read_regular_file(entry_path(cache_dir, staged.cell_key(c)));
+    const std::uint64_t key = detail::cell_key(stages, c);
+    Result<std::string> bytes = read_regular_file(entry_path(cache_dir, key));
     if (!bytes.ok()) return;
-    if (staged.still_valid(c, bytes.value())) {
+    // Bytes the last bake used held against its scene: only the patches an
+    // edit since can reach need a look. Any other bytes, every patch.
+    const auto known = snapshot.cell_checksums.find(key);
+    const bool held_last_time =
+        !change.everything && known != snapshot.cell_checksums.end() &&
+        known->second == fnv1a(reinterpret_cast<const unsigned char*>(bytes.value().data()), bytes.value().size());
+    const auto touched = [&](const detail::Patch& patch, const detail::PatchHull& made) {
+      const bool look = !held_last_time || detail::patch_may_be_touched(stages, change, patch, made);
+      (look ? rechecked : kept) += 1;
+      return look;
+    };
+    if (detail::cell_bytes_hold(stages, c, bytes.value(), touched, nullptr)) {
       cells[c] = std::move(bytes).value();
       reused[c] = 1;
       progress();
@@ -80,15 +119,14 @@ Result<Covering> decompose_with_cache_unchecked(PreparedMesh prepared, const Dec
   start = Clock::now();
   detail::run_in_parallel(count, threads, {}, [&](int c) {
     if (reused[c]) return;
-    Result<std::string> bytes = staged.merge_cell(c);
-    Status stored = bytes.ok() ? write_file_atomically(entry_path(cache_dir, staged.cell_key(c)), bytes.value())
-                               : bytes.status();
+    std::string bytes = detail::cell_result_bytes(stages, c, detail::merge_cell(stages, c, nullptr));
+    Status stored = write_file_atomically(entry_path(cache_dir, detail::cell_key(stages, c)), bytes);
     if (!stored.ok()) {
       const std::lock_guard<std::mutex> lock(mutex);
       if (failure.ok()) failure = stored;
       return;
     }
-    cells[c] = std::move(bytes).value();
+    cells[c] = std::move(bytes);
     progress();
   });
   report.seconds_merging = std::chrono::duration<double>(Clock::now() - start).count();
@@ -96,10 +134,22 @@ Result<Covering> decompose_with_cache_unchecked(PreparedMesh prepared, const Dec
   for (char r : reused) report.reused += r;
   report.stale = stale;
   report.merged = count - report.reused;
-  Result<Covering> covering = staged.finish(cells);
-  if (!covering.ok()) return covering;
-  Covering finished = std::move(covering).value();
+  report.patches_rechecked = rechecked;
+  report.patches_kept_unchecked = kept;
+  std::vector<detail::CellResult> results;
+  results.reserve(cells.size());
+  for (int c = 0; c < count; ++c) {
+    Result<detail::CellResult> result = detail::cell_result_from_bytes(stages, c, cells[c]);
+    if (!result.ok()) return result.status();
+    results.push_back(std::move(result).value());
+  }
+  Covering finished = detail::finish_stages(stages, std::move(results), 0.0);
   finished.statistics.seconds_merging += report.seconds_checking + report.seconds_merging;
+  // Only after every cell held or was stored: the next bake trusts what
+  // this one records.
+  if (Status s = write_file_atomically(snapshot_path(cache_dir), detail::scene_snapshot_bytes(stages, cells));
+      !s.ok())
+    return s;
   if (options.progress) options.progress(1.0);
   return finished;
 }
@@ -112,7 +162,7 @@ Result<Covering> decompose_with_cell_cache(PreparedMesh prepared, const Decompos
   // No exception may leave the library: a worker thread's (out of memory)
   // comes back here.
   try {
-    return decompose_with_cache_unchecked(std::move(prepared), options, cache_dir, report);
+    return decompose_with_cache_unchecked(prepared, options, cache_dir, report);
   } catch (const std::exception& e) {
     return Status{StatusCode::internal_error, std::string("decomposition failed: ") + e.what()};
   }

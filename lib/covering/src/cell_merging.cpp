@@ -83,8 +83,14 @@ CellResult merge_cell(const DecompositionStages& stages, int cell, const std::fu
   }
   CellResult result;
   result.statistics = kept->statistics;
-  for (const Patch& patch : kept->merger->patches())
-    if (patch.alive) result.patches.push_back(patch);
+  ConvexHullBuilder builder;
+  std::vector<int> scratch;
+  const std::vector<Patch>& patches = kept->merger->patches();
+  for (int id = 0; id < static_cast<int>(patches.size()); ++id)
+    if (patches[id].alive) {
+      result.patches.push_back(patches[id]);
+      result.hulls.push_back(make_patch_hull(stages, stages.index_of_cell(cell), *kept->merger, id, builder, scratch));
+    }
   return result;
 }
 

@@ -10,11 +10,13 @@
 #include "hullcover/geometry/parallel_for.h"
 #include "hullcover/mesh/mesh_islands.h"
 
+#include "patch_hulls.h"
 #include "patch_merging.h"
 #include "scene_index.h"
 
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace hullcover::detail {
@@ -51,9 +53,10 @@ struct DecompositionStages {
   const SceneIndex& index_of_cell(int cell) const { return index_of_island(cells.island_of_cell[cell]); }
 };
 
-/// What one cell gave: the patches it kept and its counts.
+/// What one cell gave: the patches it kept, their hulls and its counts.
 struct CellResult {
   std::vector<Patch> patches;  ///< alive ones only
+  std::vector<PatchHull> hulls;  ///< per patch (same index), made on the cell's view
   CoveringStatistics statistics;
 };
 
@@ -72,8 +75,18 @@ double cell_near_merge_distance(const DecompositionStages& stages, int cell);
 double island_bar_half_length(const DecompositionStages& stages, int island);
 
 /// Merges one cell (every order try; the try with the fewest hulls is
-/// kept). `progress(fraction)`, when set, reports the cell's own share.
+/// kept) and makes its patches' hulls. `progress(fraction)`, when set,
+/// reports the cell's own share.
 CellResult merge_cell(const DecompositionStages& stages, int cell, const std::function<void(double)>& progress);
+
+/// Whether `bytes` can stand in for cell `cell` in this scene
+/// (StagedDecomposition::still_valid): they read back for its key, and every
+/// patch `touched` selects (every one when `touched` is empty) passes the
+/// checks its merge passed (PatchMerger::recheck_patches) and gets the same
+/// hull made now (so the finish, which keeps it, gives what a bake of this
+/// scene would). False, with `why` (optional) saying why, otherwise.
+bool cell_bytes_hold(const DecompositionStages& stages, int cell, const std::string& bytes,
+                     const std::function<bool(const Patch&, const PatchHull&)>& touched, std::string* why);
 
 /// Merges every cell on `threads` threads, largest cells first; results per
 /// cell, whichever thread ran it. Reports DecomposeOptions::progress.

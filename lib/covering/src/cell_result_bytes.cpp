@@ -11,7 +11,7 @@ namespace hullcover::detail {
 namespace {
 
 constexpr char kMagic[8] = {'H', 'C', 'C', 'E', 'L', 'L', '\0', '\0'};
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2;
 // Part of every cell key: raise it whenever a change to the merging makes a
 // cell keep other patches, so caches filled by older builds are not reused.
 constexpr std::uint32_t kMergingRevision = 1;
@@ -136,6 +136,34 @@ bool read_solid(LittleEndianReader& in, const CellVertices& vertices, ConvexPoly
   return !in.failed;
 }
 
+// A patch's hull (patch_hulls.h): faces, material and planar are the
+// patch's own and not written.
+void write_patch_hull(LittleEndianWriter& out, const PatchHull& made, const CellVertices& vertices) {
+  write_solid(out, made.hull.polytope, vertices);
+  out.f64(made.hull.thickness);
+  out.f64(made.hull.volume);
+  out.u8(made.kept_as_grown);
+  out.u32(static_cast<std::uint32_t>(made.hull.surface_planes.size()));
+  for (bool own : made.hull.surface_planes) out.u8(own);
+}
+
+bool read_patch_hull(LittleEndianReader& in, const CellVertices& vertices, const Patch& patch, PatchHull& made) {
+  CoveringHull& hull = made.hull;
+  if (!read_solid(in, vertices, hull.polytope) || hull.polytope.facets.empty()) return false;
+  hull.thickness = in.f64();
+  hull.volume = in.f64();
+  made.kept_as_grown = in.u8() != 0;
+  std::uint32_t n = 0;
+  if (!read_count(in, 1, n) || n != hull.polytope.planes.size()) return false;
+  for (std::uint32_t i = 0; i < n; ++i) hull.surface_planes.push_back(in.u8() != 0);
+  hull.planar = patch.planar;
+  hull.material = patch.material;
+  hull.faces = patch.faces;
+  std::sort(hull.faces.begin(), hull.faces.end());
+  return !in.failed && std::isfinite(hull.thickness) && hull.thickness >= 0.0 && std::isfinite(hull.volume) &&
+         hull.volume >= 0.0 && (patch.planar || hull.thickness == 0.0);
+}
+
 Status unreadable(const std::string& what) {
   return {StatusCode::unreadable_file, "cell result: " + what};
 }
@@ -206,6 +234,7 @@ std::string cell_result_bytes(const DecompositionStages& stages, int cell, const
     out.u8(patch.solid.has_value());
     if (patch.solid) write_solid(out, *patch.solid, vertices);
   }
+  for (const PatchHull& made : result.hulls) write_patch_hull(out, made, vertices);
   out.u64(fnv1a(reinterpret_cast<const unsigned char*>(out.bytes.data()), out.bytes.size()));
   return out.bytes;
 }
@@ -272,6 +301,9 @@ Result<CellResult> cell_result_from_bytes(const DecompositionStages& stages, int
     if (patch.material != smallest) return unreadable("a patch's material is not its faces'");
     result.patches.push_back(std::move(patch));
   }
+  result.hulls.resize(result.patches.size());
+  for (size_t i = 0; i < result.patches.size(); ++i)
+    if (!read_patch_hull(in, vertices, result.patches[i], result.hulls[i])) return unreadable("bad patch hull");
   if (in.failed || in.at != in.size) return unreadable("trailing or missing bytes");
   for (size_t slot = 0; slot < faces.size(); ++slot)
     if (!used[slot] && stages.index_data.face_normals[faces[slot]] != Eigen::Vector3d::Zero())

@@ -13,6 +13,8 @@
 //   vector), u8 planar, i32 material, i32 version, u8 has solid, and the
 //   solid: u32 V + V x 3 f64, u32 F + per facet u32 n + n u32 corners,
 //   u32 P + P x 4 f64 planes, u32 (0 or V) + i32 vertex ids (-1: none);
+//   then per patch its hull (patch_hulls.h): a solid as above, f64
+//   thickness, f64 volume, u8 kept as grown, u32 P + P u8 surface planes;
 //   u64 FNV-1a-64 of everything before it.
 
 #include "cell_merging.h"

@@ -5,9 +5,8 @@
 #include "hullcover/mesh/mesh_islands.h"
 
 #include "cell_merging.h"
-#include "planar_prism.h"
 #include "patch_merging.h"
-#include "surface_facets.h"
+#include "patch_hulls.h"
 
 #include <algorithm>
 #include <chrono>
@@ -48,65 +47,6 @@ Status check_options(const DecomposeOptions& o) {
   if (o.max_hull_triangles && *o.max_hull_triangles < kFewestTrianglesOfAHullLimit)
     return {StatusCode::invalid_argument, "max hull triangles must be at least 12 (a box)"};
   return Status::success();
-}
-
-// The solid for a planar patch: the thickest allowed beveled prism,
-// re-checked as a solid against conditions 1 and 3, flat if that fails.
-CoveringHull planar_hull(const SceneIndex& index, const detail::PatchMerger& merger, int patch_id,
-                         const detail::Patch& patch, double cap, ConvexHullBuilder& hulls, std::vector<int>& scratch) {
-  CoveringHull hull;
-  hull.planar = true;
-  const FlatPolygon polygon =
-      make_flat_polygon(index.mesh().positions, detail::vertices_of_faces(index.mesh(), patch.faces),
-                        patch.area_vector.normalized(), index.tol());
-  const auto in_patch = [&](int f) { return merger.in_patch(f, patch_id); };
-  const std::vector<Plane> sides = beveled_side_planes(index, polygon, in_patch, scratch);
-  hull.thickness = allowed_prism_thickness(index, polygon, sides, in_patch, cap, scratch);
-  hull.polytope = prism_polytope(polygon, sides, hull.thickness, index.tol(), hulls);
-  if (hull.thickness > 0.0 && check_solid_hull(index, hull.polytope, scratch) != Validity::valid) {
-    hull.thickness = 0.0;
-    hull.polytope = prism_polytope(polygon, sides, hull.thickness, index.tol(), hulls);
-  }
-  return hull;
-}
-
-// The hull of one patch of the final merger.
-CoveringHull make_hull(const SceneIndex& index, const detail::PatchMerger& merger, int id, double prism_cap,
-                       ConvexHullBuilder& builder, CoveringStatistics& stats, std::vector<int>& scratch) {
-  const detail::Patch& patch = merger.patches()[id];
-  CoveringHull hull;
-  if (patch.planar) {
-    hull = planar_hull(index, merger, id, patch, prism_cap, builder, scratch);
-    stats.prisms_made_flat += hull.thickness == 0.0;
-  } else {
-    // Rebuild once with Qhull: hulls grown during merging keep the
-    // triangles they grew by, Qhull merges coplanar facets into polygons.
-    std::vector<Eigen::Vector3d> points;
-    for (int v : patch.hull_vertices) points.push_back(index.mesh().positions[v]);
-    Result<ConvexPolytope> rebuilt = builder.build(points, patch.hull_vertices);
-    ++stats.qhull_calls;
-    // The hull validated during merging may differ from the rebuilt one by
-    // up to tol (points within tol of it were not added): the rebuilt hull
-    // is kept only if it passes the same checks.
-    const bool rebuilt_valid = rebuilt.ok() && check_solid_hull(index, rebuilt.value(), scratch) == Validity::valid;
-    hull.polytope = rebuilt_valid ? std::move(rebuilt).value() : *patch.solid;
-    stats.solids_kept_as_grown += !rebuilt_valid;
-  }
-  hull.faces = patch.faces;
-  std::sort(hull.faces.begin(), hull.faces.end());
-  hull.material = patch.material;
-  hull.volume = polytope_volume(hull.polytope);
-  hull.surface_planes = detail::surface_planes(index, hull.polytope, scratch);
-  return hull;
-}
-
-// The prism cap of a patch: the user's, or its island's own (the largest
-// island's among its faces').
-double prism_cap_of(const Covering& covering, const MeshIslands& islands, const detail::Patch& patch) {
-  if (covering.options.prism_thickness_cap) return *covering.options.prism_thickness_cap;
-  double extent = 0.0;
-  for (int f : patch.faces) extent = std::max(extent, covering.island_extents[islands.island_of_face[f]]);
-  return kDefaultPrismCapRelative * extent;
 }
 
 } // namespace
@@ -202,11 +142,18 @@ Covering finish_stages(const DecompositionStages& stages, std::vector<CellResult
   const int seam_count = static_cast<int>(seams.faces_of_cell.size());
   std::vector<std::vector<Patch>> seam_patches(seam_count);
   std::vector<std::vector<int>> seam_origins(seam_count);
+  // Each cell made its patches' hulls: kept for the patches the seam pass
+  // leaves as they are (same version).
+  std::vector<std::vector<PatchHull>> seam_hulls(seam_count);
+  std::vector<std::vector<int>> seam_versions(seam_count);
   for (int c = 0; c < stats.cells; ++c) {
     add_counts(stats, results[c].statistics);
     if (cells.faces_of_cell[c].size() > cells.faces_of_cell[largest].size()) largest = c;
-    for (Patch& patch : results[c].patches) {
+    for (size_t p = 0; p < results[c].patches.size(); ++p) {
+      Patch& patch = results[c].patches[p];
       const int s = seams.cell_of_face[patch.faces.front()];
+      seam_versions[s].push_back(patch.version);
+      seam_hulls[s].push_back(std::move(results[c].hulls[p]));
       seam_patches[s].push_back(std::move(patch));
       seam_origins[s].push_back(c);
     }
@@ -252,14 +199,17 @@ Covering finish_stages(const DecompositionStages& stages, std::vector<CellResult
     ConvexHullBuilder builder;
     std::vector<int> scratch;
     for (int i = run * kHullsPerRun; i < std::min(hull_count, (run + 1) * kHullsPerRun); ++i) {
-      const PatchMerger& merger = *seam_mergers[alive[i].first];
-      const int id = alive[i].second;
-      const SceneIndex& index = stages.index_of_island(seams.island_of_cell[alive[i].first]);
-      covering.hulls[i] = make_hull(index, merger, id, prism_cap_of(covering, stages.islands, merger.patches()[id]),
-                                    builder, output_stats[i], scratch);
+      const auto [s, id] = alive[i];
+      const PatchMerger& merger = *seam_mergers[s];
+      const bool unchanged = id < static_cast<int>(seam_versions[s].size()) &&
+                             merger.patches()[id].version == seam_versions[s][id];
+      PatchHull made = unchanged ? std::move(seam_hulls[s][id])
+                                 : make_patch_hull(stages, stages.index_of_island(seams.island_of_cell[s]), merger,
+                                                   id, builder, scratch);
+      count_hull_making(output_stats[i], made);
+      covering.hulls[i] = std::move(made.hull);
     }
   });
-  for (const CoveringStatistics& s : output_stats) add_counts(stats, s);
   std::sort(covering.hulls.begin(), covering.hulls.end(),
             [](const CoveringHull& x, const CoveringHull& y) { return x.faces.front() < y.faces.front(); });
   for (CoveringHull& hull : covering.hulls) hull.cell = cells.cell_of_face[hull.faces.front()];

@@ -2,6 +2,8 @@
 // (StagedDecomposition::still_valid): the same conditions a merge checks,
 // applied to each finished patch as a whole.
 
+#include "cell_merging.h"
+#include "cell_result_bytes.h"
 #include "flat_polygon_cover.h"
 #include "patch_merging.h"
 
@@ -19,12 +21,12 @@ std::vector<Eigen::Vector3d> face_corners(const Mesh& mesh, int face) {
 
 } // namespace
 
-Validity PatchMerger::recheck_patches() {
+Validity PatchMerger::recheck_patches(const std::vector<char>& which) {
   const Mesh& mesh = index_.mesh();
   const double tol = index_.tol();
   for (int p = 0; p < static_cast<int>(patches_.size()); ++p) {
     const Patch& patch = patches_[p];
-    if (!patch.alive || patch.faces.size() < 2) continue;
+    if (!patch.alive || patch.faces.size() < 2 || (!which.empty() && !which[p])) continue;
     const auto in_patch = [&](int f) { return patch_of(f) == p; };
     Validity validity = Validity::valid;
     if (patch.planar) {
@@ -53,6 +55,36 @@ Validity PatchMerger::recheck_patches() {
     if (validity != Validity::valid) return validity;
   }
   return Validity::valid;
+}
+
+bool cell_bytes_hold(const DecompositionStages& stages, int cell, const std::string& bytes,
+                     const std::function<bool(const Patch&, const PatchHull&)>& touched, std::string* why) {
+  const auto refuse = [why](const std::string& reason) {
+    if (why) *why = reason;
+    return false;
+  };
+  Result<CellResult> read = cell_result_from_bytes(stages, cell, bytes);
+  if (!read.ok()) return refuse(read.status().message());
+  CellResult result = std::move(read).value();
+  std::vector<char> which(result.patches.size(), 1);
+  for (size_t p = 0; p < which.size(); ++p)
+    if (touched) which[p] = touched(result.patches[p], result.hulls[p]);
+  // The patches as a seam pass would load them: each face in its patch.
+  CoveringStatistics statistics;
+  const SceneIndex& index = stages.index_of_cell(cell);
+  std::vector<int> origins(result.patches.size(), cell);
+  PatchMerger merger(index, stages.covering.options, stages.cells, cell, std::move(result.patches), std::move(origins),
+                     statistics);
+  const Validity validity = merger.recheck_patches(which);
+  if (validity != Validity::valid)
+    return refuse(std::string("a kept hull is no longer valid: ") + validity_name(validity));
+  ConvexHullBuilder builder;
+  std::vector<int> scratch;
+  for (size_t p = 0; p < which.size(); ++p)
+    if (which[p] && !same_hull(make_patch_hull(stages, index, merger, static_cast<int>(p), builder, scratch),
+                               result.hulls[p]))
+      return refuse("a kept hull would be made otherwise in this scene");
+  return true;
 }
 
 } // namespace hullcover::detail

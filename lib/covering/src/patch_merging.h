@@ -92,8 +92,9 @@ public:
   /// inside a kept hull, or open space a kept hull now takes. The polygon
   /// of a planar patch must be covered by faces on its own (stricter than
   /// the merge, which leaned on its two parts). Single faces need no check.
+  /// `which[p]` false skips patch p (an empty `which` checks them all).
   /// Returns the first failure found, else `valid`.
-  Validity recheck_patches();
+  Validity recheck_patches(const std::vector<char>& which = {});
 
   /// Merges until no mergeable pair is left: the paper's pass, then near
   /// merges (near_patch_merging.cpp) and dissolving (patch_dissolving.cpp),

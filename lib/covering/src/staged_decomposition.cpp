@@ -51,26 +51,15 @@ Result<std::string> StagedDecomposition::merge_cell(int cell) const {
 }
 
 bool StagedDecomposition::still_valid(int cell, const std::string& bytes, std::string* why) const {
-  const auto refuse = [why](const std::string& reason) {
-    if (why) *why = reason;
+  if (cell < 0 || cell >= cell_count()) {
+    if (why) *why = "no such cell";
     return false;
-  };
-  if (cell < 0 || cell >= cell_count()) return refuse("no such cell");
+  }
   try {
-    Result<detail::CellResult> result = detail::cell_result_from_bytes(*stages_, cell, bytes);
-    if (!result.ok()) return refuse(result.status().message());
-    // The patches as a seam pass would load them: each face in its patch.
-    CoveringStatistics statistics;
-    std::vector<detail::Patch> patches = std::move(result).value().patches;
-    std::vector<int> origins(patches.size(), cell);
-    detail::PatchMerger merger(stages_->index_of_cell(cell), stages_->covering.options, stages_->cells, cell, std::move(patches),
-                               std::move(origins), statistics);
-    const Validity validity = merger.recheck_patches();
-    if (validity != Validity::valid)
-      return refuse(std::string("a kept hull is no longer valid: ") + validity_name(validity));
-    return true;
+    return detail::cell_bytes_hold(*stages_, cell, bytes, {}, why);
   } catch (const std::exception& e) {
-    return refuse(e.what());
+    if (why) *why = e.what();
+    return false;
   }
 }
 

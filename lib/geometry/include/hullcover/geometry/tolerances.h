@@ -55,6 +55,14 @@ inline constexpr double kPlanarSlabInTolerances = 1.0;
 /// by at most two slabs more over that subset.
 inline constexpr double kRecheckSlabInTolerances = 3.0 * kPlanarSlabInTolerances;
 
+/// A re-bake (scene_change.h) counts a kept hull as touched by an edit when
+/// it comes within this many tolerances (the scene's largest) of a changed
+/// face's reach or a sweep crossing it: wider than every growth a check
+/// gives the boxes it looks up (the recheck slab, the rays' stand-off, the
+/// sweeps' start behind their face), so nothing a check reads lies beyond.
+inline constexpr double kSceneChangeSlackInTolerances =
+    4.0 * (kRecheckSlabInTolerances + kRayStandOffInTolerances);
+
 /// A solid hull whose interior shrunk by tol is empty (inradius <= tol) has
 /// no inside for rays to meet; it is then at most 4 inradii wide across one
 /// of its facets (the tetrahedron of the facet planes its inscribed ball
