@@ -156,7 +156,9 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
   cmd->add_option("--cell-cache", o->cell_cache,
                   "Re-bake only what changed: keep each cell's result in this folder under a hash of its faces and "
                   "the options; a later bake reuses a cell whose hash is unchanged once every hull it keeps passes "
-                  "the validity checks against the scene as it is now, and merges the rest (created if absent)");
+                  "the validity checks against the scene as it is now, and merges the rest (created if absent). "
+                  "The folder also keeps the faces the last bake saw (last-bake.scene), so only hulls an edit can "
+                  "reach are re-checked");
   cmd->add_option("--order", o->order, "Merge order: compact (the paper's) or random")
       ->check(CLI::IsMember({"compact", "random"}))
       ->capture_default_str();

@@ -113,7 +113,9 @@ TEST(SceneChange, PatchesNoEditCanReachHoldAndKeepTheirHulls) {
             [&](const detail::Patch& q, const detail::PatchHull&) { return q.faces == patch.faces; }, &why);
         (reachable ? touched : untouched) += 1;
         broken += !holds;
-        if (!reachable) EXPECT_TRUE(holds) << "cell " << c << " patch " << p << ", out of reach: " << why;
+        if (!reachable) {
+          EXPECT_TRUE(holds) << "cell " << c << " patch " << p << ", out of reach: " << why;
+        }
       }
     }
   }

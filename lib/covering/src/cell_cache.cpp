@@ -117,7 +117,7 @@ Result<Covering> decompose_with_cache_unchecked(const PreparedMesh& prepared, co
   });
   report.seconds_checking = std::chrono::duration<double>(Clock::now() - start).count();
   start = Clock::now();
-  detail::run_in_parallel(count, threads, {}, [&](int c) {
+  detail::run_in_parallel(count, threads, detail::largest_cells_first(stages.cells), [&](int c) {
     if (reused[c]) return;
     std::string bytes = detail::cell_result_bytes(stages, c, detail::merge_cell(stages, c, nullptr));
     Status stored = write_file_atomically(entry_path(cache_dir, detail::cell_key(stages, c)), bytes);

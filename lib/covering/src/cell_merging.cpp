@@ -94,16 +94,20 @@ CellResult merge_cell(const DecompositionStages& stages, int cell, const std::fu
   return result;
 }
 
-std::vector<CellResult> merge_cells(const DecompositionStages& stages, int threads) {
-  const CellLayout& cells = stages.cells;
-  const DecomposeOptions& options = stages.covering.options;
-  const int cell_count = static_cast<int>(cells.faces_of_cell.size());
-  // Largest cells first, so the last to finish is a small one.
-  std::vector<int> order(cell_count);
+std::vector<int> largest_cells_first(const CellLayout& cells) {
+  std::vector<int> order(cells.faces_of_cell.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
     return cells.faces_of_cell[a].size() > cells.faces_of_cell[b].size();
   });
+  return order;
+}
+
+std::vector<CellResult> merge_cells(const DecompositionStages& stages, int threads) {
+  const CellLayout& cells = stages.cells;
+  const DecomposeOptions& options = stages.covering.options;
+  const int cell_count = static_cast<int>(cells.faces_of_cell.size());
+  const std::vector<int> order = largest_cells_first(cells);
   // Progress: each cell's fraction, weighted by its faces; reported one
   // call at a time.
   std::mutex progress_mutex;

@@ -88,6 +88,10 @@ CellResult merge_cell(const DecompositionStages& stages, int cell, const std::fu
 bool cell_bytes_hold(const DecompositionStages& stages, int cell, const std::string& bytes,
                      const std::function<bool(const Patch&, const PatchHull&)>& touched, std::string* why);
 
+/// The cells' numbers, most faces first (ties by number): the order to run
+/// them in, so the last to finish is a small one.
+std::vector<int> largest_cells_first(const CellLayout& cells);
+
 /// Merges every cell on `threads` threads, largest cells first; results per
 /// cell, whichever thread ran it. Reports DecomposeOptions::progress.
 std::vector<CellResult> merge_cells(const DecompositionStages& stages, int threads);
