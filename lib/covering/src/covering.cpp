@@ -210,6 +210,7 @@ Covering finish_stages(const DecompositionStages& stages, std::vector<CellResult
       covering.hulls[i] = std::move(made.hull);
     }
   });
+  for (const CoveringStatistics& s : output_stats) add_counts(stats, s);
   std::sort(covering.hulls.begin(), covering.hulls.end(),
             [](const CoveringHull& x, const CoveringHull& y) { return x.faces.front() < y.faces.front(); });
   for (CoveringHull& hull : covering.hulls) hull.cell = cells.cell_of_face[hull.faces.front()];

@@ -88,14 +88,18 @@ bool sweep_misses_box(const FreeSpaceSweep& sweep, const Aabb& box) {
   return false;
 }
 
-// Keeps `sweep` when it crosses a changed face's box.
-void keep_if_crossing(const FreeSpaceSweep& sweep, const std::vector<Aabb>& changed, const AabbTree& changed_tree,
-                      double slack, std::vector<int>& scratch, std::vector<FreeSpaceSweep>& kept) {
-  const Aabb box = grown(bounding_box_of(sweep.corners), slack);
+// Keeps `sweep` (as far as it reaches) when its rays, followed the whole
+// way (`whole`: the same sweep at the free-space reach), cross a changed
+// face's box: a witness ray's verdict reads its first hit past the stand-off
+// of the hull's view, which can lie beyond the sweep's own reach.
+void keep_if_crossing(const FreeSpaceSweep& sweep, const FreeSpaceSweep& whole, const std::vector<Aabb>& changed,
+                      const AabbTree& changed_tree, double slack, std::vector<int>& scratch,
+                      std::vector<FreeSpaceSweep>& kept) {
+  const Aabb box = grown(bounding_box_of(whole.corners), slack);
   scratch.clear();
   changed_tree.overlapping(box, scratch);
   for (int i : scratch)
-    if (!sweep_misses_box(sweep, grown(changed[i], slack))) {
+    if (!sweep_misses_box(whole, grown(changed[i], slack))) {
       kept.push_back(sweep);
       return;
     }
@@ -163,8 +167,10 @@ SceneChange scene_change_since(const DecompositionStages& stages, const SceneSna
   SceneChange change;
   const PreparedMesh& prepared = stages.prepared;
   const Mesh& mesh = prepared.mesh;
+  // A user's free-space cap: rays are still followed past it to their first
+  // hit, which may be a changed face no capped sweep crosses.
   if (before.settings != settings_hash(stages) || stages.index_data.agent_radius > 0.0 ||
-      stages.index_data.max_deviation > 0.0)
+      stages.index_data.max_deviation > 0.0 || stages.covering.free_space_capped)
     return change;
   const int faces = static_cast<int>(mesh.triangles.size());
   std::vector<std::uint64_t> hashes(faces);
@@ -191,24 +197,38 @@ SceneChange scene_change_since(const DecompositionStages& stages, const SceneSna
   const AabbTree changed_tree(changed);
   const SceneIndexData& index = stages.index_data;
   const MeshConnectivity& c = prepared.connectivity;
+  // How far a sweep's rays are followed. Each ray's first hit past the
+  // stand-off of the sweep's own tolerance lies within its reach
+  // (first_hit_bound); a view of a larger tolerance stands further off, may
+  // pass that face and follow the ray on to the free-space reach.
+  double largest_view_tol = prepared.tolerance.length;
+  for (double tol : stages.island_tolerance) largest_view_tol = std::max(largest_view_tol, tol);
+  const auto followed = [&](double tol, double reach) {
+    return tol < largest_view_tol ? index.free_space_reach : reach;
+  };
   std::vector<int> scratch;
   std::vector<Eigen::Vector3d> triangle(3);
   for (int f = 0; f < faces; ++f) {
     if (c.zero_area[f] || index.front_reach[f] <= 0.0) continue;
     triangle_corners(mesh, f, triangle);
-    keep_if_crossing(front_space_sweep(triangle, index.face_normals[f], index.front_reach[f],
-                                       prepared.face_tolerance(f)),
+    const double tol = prepared.face_tolerance(f);
+    keep_if_crossing(front_space_sweep(triangle, index.face_normals[f], index.front_reach[f], tol),
+                     front_space_sweep(triangle, index.face_normals[f], followed(tol, index.front_reach[f]), tol),
                      changed, changed_tree, change.slack, scratch, change.sweeps);
   }
   for (int e = 0; e < static_cast<int>(c.edges.size()); ++e) {
     if (index.open_edge_use[e] < 0) continue;
     const EdgeUse& use = c.edge_uses[index.open_edge_use[e]];
     const Eigen::Vector3i& t = mesh.triangles[use.face];
+    const Eigen::Vector3d& p0 = mesh.positions[t[use.corner]];
+    const Eigen::Vector3d& p1 = mesh.positions[t[(use.corner + 1) % 3]];
+    const Eigen::Vector3d& inner = mesh.positions[t[(use.corner + 2) % 3]];
+    const Eigen::Vector3d& n = index.face_normals[use.face];
+    const double tol = prepared.face_tolerance(use.face);
     for (int fan = 0; fan < kOpeningFans; ++fan)
-      keep_if_crossing(opening_fan(mesh.positions[t[use.corner]], mesh.positions[t[(use.corner + 1) % 3]],
-                                   mesh.positions[t[(use.corner + 2) % 3]], index.face_normals[use.face], fan,
-                                   index.opening_reach[e][fan], prepared.face_tolerance(use.face)),
-                       changed, changed_tree, change.slack, scratch, change.sweeps);
+      keep_if_crossing(opening_fan(p0, p1, inner, n, fan, index.opening_reach[e][fan], tol),
+                       opening_fan(p0, p1, inner, n, fan, followed(tol, index.opening_reach[e][fan]), tol), changed,
+                       changed_tree, change.slack, scratch, change.sweeps);
   }
   std::vector<Aabb> sweep_boxes;
   for (const FreeSpaceSweep& sweep : change.sweeps)

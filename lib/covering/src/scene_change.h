@@ -4,15 +4,22 @@
 //
 // A hull's checks read (validity_conditions.h, exact_conditions.h) the
 // vertices, edges, faces and bars near it, and the free-space sweeps that
-// meet it, each followed to its first mesh hit. So an edit of faces C
-// (those added and those removed) can change a check only if the hull lies
-// near C (within the longest bar, plus the tolerances), or meets a sweep
-// that crosses C in this scene: a sweep whose reach grew passes where its
-// old blocker was, one whose reach shrank ends on a new face in C, and one
-// whose rays run through C may be decided differently. A sweep that only
-// shrank beyond a hull tests it no more, which only relaxes a check made of
-// such tests. Every other kept hull's checks read what they read when it
-// was made, and come out the same, as does the hull made anew.
+// meet it, each ray followed to its first mesh hit (witness_rays.h: past
+// the stand-off of the hull's view, so beyond the sweep's reach when that
+// view's tolerance is larger than the sweep's own).
+// So an edit of faces C (those added and those removed) can change a check
+// only if the hull lies near C (within the longest bar, plus the
+// tolerances), or meets a sweep of this scene whose rays, followed the whole
+// way, cross C: a sweep whose reach grew passes where its old blocker was,
+// one whose reach shrank ends on a new face in C, and one whose rays run
+// through C may be decided differently. A sweep that vanished (a removed
+// face's, a closed edge's) or only shrank away from a hull tests it no more,
+// which only relaxes a check made of such tests. Every other kept hull
+// passes its checks as it did. (Its hull made anew may differ where such a
+// relaxation frees room, a prism that could now be thicker: the kept one
+// stays valid, and a re-bake that re-checks everything may then merge that
+// cell again and differ.) A user's free-space cap is not such a bound (rays
+// run on past it): with one, every kept hull is re-checked.
 //
 // Faces are told apart by a hash of their corners' exact bits, material,
 // and every per-island length their checks use; a cell's bytes are known to
@@ -45,7 +52,7 @@ struct SceneSnapshot {
   std::uint64_t settings = 0;  ///< hash of the options and scene-wide lengths
   /// Per cell key: FNV-1a-64 of the bytes that bake used for it.
   std::unordered_map<std::uint64_t, std::uint64_t> cell_checksums;
-  std::vector<std::uint64_t> face_hashes;
+  std::vector<std::uint64_t> face_hashes;  ///< per face: corners' bits, material, its island's lengths
   std::vector<Aabb> face_boxes;  ///< per face, scene units
 };
 
@@ -61,7 +68,7 @@ Result<SceneSnapshot> read_scene_snapshot(const std::string& bytes);
 struct SceneChange {
   bool everything = true;  ///< no bound: every kept hull may be touched
   std::vector<Aabb> near_boxes;  ///< changed faces' boxes grown by how far a check looks around a hull
-  AabbTree near_tree;
+  AabbTree near_tree;            ///< over `near_boxes`
   std::vector<FreeSpaceSweep> sweeps;  ///< this scene's sweeps that cross a changed face
   AabbTree sweep_tree;                 ///< over their boxes
   int changed_faces = 0;               ///< added plus removed
