@@ -27,6 +27,16 @@ struct Bake {
   std::unique_ptr<PreparedMesh> prepared;
   std::unique_ptr<detail::DecompositionStages> stages;
   std::vector<std::string> cells;
+  /// The snapshot a bake with a cache would leave of it (merged bakes only).
+  std::string snapshot() const {
+    std::vector<std::uint64_t> keys;
+    for (int c = 0; c < static_cast<int>(cells.size()); ++c) keys.push_back(detail::cell_key(*stages, c));
+    return detail::scene_snapshot_bytes(*stages, detail::face_hashes_of(*stages), keys, cells);
+  }
+  /// The change from `before` to this scene.
+  detail::SceneChange change_since(const detail::SceneSnapshot& before) const {
+    return detail::scene_change_since(*stages, detail::face_hashes_of(*stages), before);
+  }
 };
 
 Bake bake(const Mesh& mesh, const DecomposeOptions& options, bool merge) {
@@ -86,14 +96,14 @@ TEST(SceneChange, PatchesNoEditCanReachHoldAndKeepTheirHulls) {
   const DecomposeOptions o = small_cells(building);
   const Bake before = bake(building, o, true);
   Result<detail::SceneSnapshot> snapshot =
-      detail::read_scene_snapshot(detail::scene_snapshot_bytes(*before.stages, before.cells));
+      detail::read_scene_snapshot(before.snapshot());
   ASSERT_TRUE(snapshot.ok()) << snapshot.status().message();
   std::map<std::uint64_t, int> old_cell;
   for (int c = 0; c < static_cast<int>(before.cells.size()); ++c) old_cell[detail::cell_key(*before.stages, c)] = c;
   int untouched = 0, touched = 0, broken = 0;
   for (const auto& [mesh, changed_faces] : edits_of(building)) {
     const Bake after = bake(mesh, o, false);
-    const detail::SceneChange change = detail::scene_change_since(*after.stages, snapshot.value());
+    const detail::SceneChange change = after.change_since(snapshot.value());
     ASSERT_FALSE(change.everything);
     EXPECT_EQ(change.changed_faces, changed_faces);
     // Cells are found by key: an edit may split an island, and number its
@@ -149,8 +159,7 @@ TEST(SceneChange, AWallTakenOutFarAwayReachesAPrismThroughTheSweepsItStopped) {
   o.cell_size = 2.0;
   const Bake before = bake(floor_between_walls(true), o, true);
   const Bake after = bake(floor_between_walls(false), o, false);
-  const detail::SceneChange change = detail::scene_change_since(
-      *after.stages, detail::read_scene_snapshot(detail::scene_snapshot_bytes(*before.stages, before.cells)).value());
+  const detail::SceneChange change = after.change_since(detail::read_scene_snapshot(before.snapshot()).value());
   ASSERT_FALSE(change.everything);
   EXPECT_EQ(change.changed_faces, 2);
   detail::SceneChange near_only = change;
@@ -224,7 +233,7 @@ TEST(SceneChange, ASnapshotIsCheckedBeforeUseAndOtherOptionsReCheckEverything) {
   const Mesh building = demo_building();
   const DecomposeOptions o = small_cells(building);
   const Bake before = bake(building, o, true);
-  const std::string bytes = detail::scene_snapshot_bytes(*before.stages, before.cells);
+  const std::string bytes = before.snapshot();
   for (size_t at : {size_t{0}, size_t{9}, bytes.size() / 2, bytes.size() - 1}) {
     std::string flipped = bytes;
     flipped[at] = static_cast<char>(flipped[at] ^ 0x10);
@@ -234,20 +243,18 @@ TEST(SceneChange, ASnapshotIsCheckedBeforeUseAndOtherOptionsReCheckEverything) {
     EXPECT_FALSE(detail::read_scene_snapshot(bytes.substr(0, keep)).ok()) << keep;
   const detail::SceneSnapshot snapshot = detail::read_scene_snapshot(bytes).value();
   EXPECT_EQ(snapshot.cell_checksums.size(), before.cells.size());
-  EXPECT_FALSE(detail::scene_change_since(*before.stages, snapshot).everything);
+  EXPECT_FALSE(before.change_since(snapshot).everything);
   DecomposeOptions capped = o;
   capped.free_space_reach = 100.0;  // rays run on past a cap: no bound
   const Bake capped_bake = bake(building, capped, true);
-  EXPECT_TRUE(detail::scene_change_since(
-                  *capped_bake.stages,
-                  detail::read_scene_snapshot(detail::scene_snapshot_bytes(*capped_bake.stages, capped_bake.cells)).value())
+  EXPECT_TRUE(capped_bake.change_since(detail::read_scene_snapshot(capped_bake.snapshot()).value())
                   .everything);
   DecomposeOptions other = o;
   other.seed += 1;
-  EXPECT_TRUE(detail::scene_change_since(*bake(building, other, false).stages, snapshot).everything);
+  EXPECT_TRUE(bake(building, other, false).change_since(snapshot).everything);
   DecomposeOptions agent = o;
   agent.agent_radius = 0.3;
-  EXPECT_TRUE(detail::scene_change_since(*bake(building, agent, false).stages, snapshot).everything);
+  EXPECT_TRUE(bake(building, agent, false).change_since(snapshot).everything);
 }
 
 } // namespace

@@ -53,7 +53,8 @@ namespace {
 std::string snapshot_path(const std::string& dir) { return dir + "/last-bake.scene"; }
 
 // The change since the last bake, when its snapshot reads back.
-detail::SceneChange change_since_last_bake(const detail::DecompositionStages& stages, const std::string& dir,
+detail::SceneChange change_since_last_bake(const detail::DecompositionStages& stages,
+                                           const std::vector<std::uint64_t>& face_hashes, const std::string& dir,
                                            detail::SceneSnapshot& snapshot) {
   const std::uint64_t own_size = 56 * std::uint64_t{stages.prepared.mesh.triangles.size()} +
                                  16 * std::uint64_t{stages.cells.faces_of_cell.size()} + 64;
@@ -63,7 +64,7 @@ detail::SceneChange change_since_last_bake(const detail::DecompositionStages& st
     Result<detail::SceneSnapshot> read = detail::read_scene_snapshot(bytes.value());
     if (!read.ok()) return {};
     snapshot = std::move(read).value();
-    return detail::scene_change_since(stages, snapshot);
+    return detail::scene_change_since(stages, face_hashes, snapshot);
   } catch (const std::bad_alloc&) {
     // Out of memory for the record: re-check everything rather than fail.
     snapshot = {};
@@ -82,8 +83,12 @@ Result<Covering> decompose_with_cache_unchecked(const PreparedMesh& prepared, co
   const int count = static_cast<int>(stages.cells.faces_of_cell.size());
   report.cells = count;
   Clock::time_point start = Clock::now();
+  // Each once: this bake's snapshot records them too.
+  const std::vector<std::uint64_t> face_hashes = detail::face_hashes_of(stages);
+  std::vector<std::uint64_t> keys(count);
+  for (int c = 0; c < count; ++c) keys[c] = detail::cell_key(stages, c);
   detail::SceneSnapshot snapshot;
-  const detail::SceneChange change = change_since_last_bake(stages, cache_dir, snapshot);
+  const detail::SceneChange change = change_since_last_bake(stages, face_hashes, cache_dir, snapshot);
   report.changed_faces = change.everything ? -1 : change.changed_faces;
   std::vector<std::string> cells(count);
   std::vector<char> reused(count, 0);
@@ -102,7 +107,7 @@ Result<Covering> decompose_with_cache_unchecked(const PreparedMesh& prepared, co
   // First every cached cell, checked; then the rest, merged: the two
   // timings tell what a re-bake costs.
   detail::run_in_parallel(count, threads, {}, [&](int c) {
-    const std::uint64_t key = detail::cell_key(stages, c);
+    const std::uint64_t key = keys[c];
     Result<std::string> bytes = read_regular_file(entry_path(cache_dir, key));
     if (!bytes.ok()) return;
     // Bytes the last bake used held against its scene: only the patches an
@@ -129,7 +134,7 @@ Result<Covering> decompose_with_cache_unchecked(const PreparedMesh& prepared, co
   detail::run_in_parallel(count, threads, detail::largest_cells_first(stages.cells), [&](int c) {
     if (reused[c]) return;
     std::string bytes = detail::cell_result_bytes(stages, c, detail::merge_cell(stages, c, nullptr));
-    Status stored = write_file_atomically(entry_path(cache_dir, detail::cell_key(stages, c)), bytes);
+    Status stored = write_file_atomically(entry_path(cache_dir, keys[c]), bytes);
     if (!stored.ok()) {
       const std::lock_guard<std::mutex> lock(mutex);
       if (failure.ok()) failure = stored;
@@ -156,7 +161,7 @@ Result<Covering> decompose_with_cache_unchecked(const PreparedMesh& prepared, co
   finished.statistics.seconds_merging += report.seconds_checking + report.seconds_merging;
   // Only after every cell held or was stored: the next bake trusts what
   // this one records.
-  if (Status s = write_file_atomically(snapshot_path(cache_dir), detail::scene_snapshot_bytes(stages, cells));
+  if (Status s = write_file_atomically(snapshot_path(cache_dir), detail::scene_snapshot_bytes(stages, face_hashes, keys, cells));
       !s.ok())
     return s;
   if (options.progress) options.progress(1.0);

@@ -190,16 +190,7 @@ std::uint64_t key_of_cell(const DecompositionStages& stages, int cell, const Cel
   key.f64(index.tol());
   key.f64(cell_near_merge_distance(stages, cell));
   key.f64(island_bar_half_length(stages, stages.cells.island_of_cell[cell]));
-  key.u8(static_cast<std::uint8_t>(options.conditions));
-  key.u8(static_cast<std::uint8_t>(options.order));
-  key.u64(options.seed);
-  key.u32(static_cast<std::uint32_t>(options.order_tries));
-  key.u8(options.keep_materials_apart);
-  key.u8(covering.dissolve);
-  key.u32(static_cast<std::uint32_t>(options.max_hull_vertices));
-  key.u32(static_cast<std::uint32_t>(options.max_hull_triangles.value_or(0)));
-  key.f64(options.agent_radius.value_or(0.0));
-  key.f64(options.max_deviation.value_or(0.0));
+  write_merging_options(key, covering);
   // What making its hulls reads besides: the prism cap (the user's or the
   // islands' extents) and how far free space is kept.
   key.f64(options.prism_thickness_cap.value_or(-1.0));
@@ -221,6 +212,20 @@ std::uint64_t key_of_cell(const DecompositionStages& stages, int cell, const Cel
 }
 
 } // namespace
+
+void write_merging_options(LittleEndianWriter& out, const Covering& covering) {
+  const DecomposeOptions& options = covering.options;
+  out.u8(static_cast<std::uint8_t>(options.conditions));
+  out.u8(static_cast<std::uint8_t>(options.order));
+  out.u64(options.seed);
+  out.u32(static_cast<std::uint32_t>(options.order_tries));
+  out.u8(options.keep_materials_apart);
+  out.u8(covering.dissolve);
+  out.u32(static_cast<std::uint32_t>(options.max_hull_vertices));
+  out.u32(static_cast<std::uint32_t>(options.max_hull_triangles.value_or(0)));
+  out.f64(options.agent_radius.value_or(0.0));
+  out.f64(options.max_deviation.value_or(0.0));
+}
 
 std::uint64_t cell_key(const DecompositionStages& stages, int cell) {
   return key_of_cell(stages, cell, cell_vertices(stages, cell));

@@ -19,10 +19,17 @@
 
 #include "cell_merging.h"
 
+#include "hullcover/geometry/little_endian_bytes.h"
+
 #include <cstdint>
 #include <string>
 
 namespace hullcover::detail {
+
+/// Writes the options every cell's merging reads (not the per-island
+/// lengths): part of each cell key, and of the cell cache's record of the
+/// last bake (scene_change.h).
+void write_merging_options(LittleEndianWriter& out, const Covering& covering);
 
 /// What decides cell `cell`'s merging, hashed (FNV-1a-64): its faces (slot
 /// order, corners by first use, materials), their positions' exact bits,

@@ -10,6 +10,8 @@
 #include "hullcover/geometry/planar_hull.h"
 #include "hullcover/geometry/tolerances.h"
 
+#include <algorithm>
+
 namespace hullcover::detail {
 namespace {
 
@@ -69,6 +71,8 @@ bool cell_bytes_hold(const DecompositionStages& stages, int cell, const std::str
   std::vector<char> which(result.patches.size(), 1);
   for (size_t p = 0; p < which.size(); ++p)
     if (touched) which[p] = touched(result.patches[p], result.hulls[p]);
+  // The bytes read back and no patch needs a look: no merger to build.
+  if (std::find(which.begin(), which.end(), 1) == which.end()) return true;
   // The patches as a seam pass would load them: each face in its patch.
   CoveringStatistics statistics;
   const SceneIndex& index = stages.index_of_cell(cell);

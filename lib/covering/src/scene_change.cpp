@@ -30,16 +30,7 @@ std::uint64_t settings_hash(const DecompositionStages& stages) {
   const DecomposeOptions& o = c.options;
   LittleEndianWriter w;
   w.u32(kVersion);
-  w.u8(static_cast<std::uint8_t>(o.conditions));
-  w.u8(static_cast<std::uint8_t>(o.order));
-  w.u64(o.seed);
-  w.u32(static_cast<std::uint32_t>(o.order_tries));
-  w.u8(o.keep_materials_apart);
-  w.u8(c.dissolve);
-  w.u32(static_cast<std::uint32_t>(o.max_hull_vertices));
-  w.u32(static_cast<std::uint32_t>(o.max_hull_triangles.value_or(0)));
-  w.f64(o.agent_radius.value_or(0.0));
-  w.f64(o.max_deviation.value_or(0.0));
+  write_merging_options(w, c);
   w.f64(o.cell_size.value_or(-1.0));
   w.f64(c.bar_half_length);
   w.f64(c.prism_thickness_cap);
@@ -107,7 +98,14 @@ void keep_if_crossing(const FreeSpaceSweep& sweep, const FreeSpaceSweep& whole, 
 
 } // namespace
 
-std::string scene_snapshot_bytes(const DecompositionStages& stages, const std::vector<std::string>& cells) {
+std::vector<std::uint64_t> face_hashes_of(const DecompositionStages& stages) {
+  std::vector<std::uint64_t> hashes(stages.prepared.mesh.triangles.size());
+  for (size_t f = 0; f < hashes.size(); ++f) hashes[f] = face_hash(stages, static_cast<int>(f));
+  return hashes;
+}
+
+std::string scene_snapshot_bytes(const DecompositionStages& stages, const std::vector<std::uint64_t>& face_hashes,
+                                 const std::vector<std::uint64_t>& cell_keys, const std::vector<std::string>& cells) {
   const Mesh& mesh = stages.prepared.mesh;
   LittleEndianWriter out;
   out.bytes.assign(kMagic, sizeof kMagic);
@@ -115,12 +113,12 @@ std::string scene_snapshot_bytes(const DecompositionStages& stages, const std::v
   out.u64(settings_hash(stages));
   out.u32(static_cast<std::uint32_t>(cells.size()));
   for (size_t c = 0; c < cells.size(); ++c) {
-    out.u64(cell_key(stages, static_cast<int>(c)));
+    out.u64(cell_keys[c]);
     out.u64(fnv1a(reinterpret_cast<const unsigned char*>(cells[c].data()), cells[c].size()));
   }
   out.u32(static_cast<std::uint32_t>(mesh.triangles.size()));
   for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) {
-    out.u64(face_hash(stages, f));
+    out.u64(face_hashes[f]);
     const Aabb box = face_box(mesh, f);
     for (int d = 0; d < 3; ++d) out.f64(box.min[d]);
     for (int d = 0; d < 3; ++d) out.f64(box.max[d]);
@@ -163,7 +161,8 @@ Result<SceneSnapshot> read_scene_snapshot(const std::string& bytes) {
   return snapshot;
 }
 
-SceneChange scene_change_since(const DecompositionStages& stages, const SceneSnapshot& before) {
+SceneChange scene_change_since(const DecompositionStages& stages, const std::vector<std::uint64_t>& hashes,
+                               const SceneSnapshot& before) {
   SceneChange change;
   const PreparedMesh& prepared = stages.prepared;
   const Mesh& mesh = prepared.mesh;
@@ -173,9 +172,8 @@ SceneChange scene_change_since(const DecompositionStages& stages, const SceneSna
       stages.index_data.max_deviation > 0.0 || stages.covering.free_space_capped)
     return change;
   const int faces = static_cast<int>(mesh.triangles.size());
-  std::vector<std::uint64_t> hashes(faces);
   std::unordered_map<std::uint64_t, int> now_count, before_count;
-  for (int f = 0; f < faces; ++f) ++now_count[hashes[f] = face_hash(stages, f)];
+  for (std::uint64_t h : hashes) ++now_count[h];
   for (std::uint64_t h : before.face_hashes) ++before_count[h];
   // Added faces, and removed ones (as many copies of a face as differ).
   std::vector<Aabb> changed;

@@ -56,9 +56,15 @@ struct SceneSnapshot {
   std::vector<Aabb> face_boxes;  ///< per face, scene units
 };
 
-/// The snapshot of this bake: its settings, its faces, and `cells` (the
-/// bytes used per cell, index = cell).
-std::string scene_snapshot_bytes(const DecompositionStages& stages, const std::vector<std::string>& cells);
+/// Per face of this scene, the hash a snapshot records (corners' bits,
+/// material, its island's lengths).
+std::vector<std::uint64_t> face_hashes_of(const DecompositionStages& stages);
+
+/// The snapshot of this bake: its settings, its faces (`face_hashes`, from
+/// face_hashes_of), and per cell (index = cell) its key (cell_key) and the
+/// bytes used.
+std::string scene_snapshot_bytes(const DecompositionStages& stages, const std::vector<std::uint64_t>& face_hashes,
+                                 const std::vector<std::uint64_t>& cell_keys, const std::vector<std::string>& cells);
 
 /// Reads a snapshot. Fails with `unknown_format` (not one, another
 /// version) or `unreadable_file` (truncated, checksum, bad values).
@@ -75,9 +81,11 @@ struct SceneChange {
   double slack = 0.0;                  ///< scene units, added to every test
 };
 
-/// The change from `before` to this scene; `everything` when the settings
-/// differ or an allowance is set.
-SceneChange scene_change_since(const DecompositionStages& stages, const SceneSnapshot& before);
+/// The change from `before` to this scene, whose faces hash to
+/// `face_hashes` (face_hashes_of); `everything` when the settings differ, a
+/// free-space cap or an allowance is set.
+SceneChange scene_change_since(const DecompositionStages& stages, const std::vector<std::uint64_t>& face_hashes,
+                               const SceneSnapshot& before);
 
 /// Whether the checks of `patch` (and the making of its hull `made`) may
 /// read something `change` changed.
