@@ -11,6 +11,12 @@ namespace hullcover {
 std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::Vector3d& origin,
                                          const Eigen::Vector3d& dir, double min_t, double max_t,
                                          std::vector<int>& scratch) {
+  return first_mesh_hit(index, origin, dir, min_t, max_t, scratch, index.tol());
+}
+
+std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::Vector3d& origin,
+                                         const Eigen::Vector3d& dir, double min_t, double max_t,
+                                         std::vector<int>& scratch, double parallel_tol) {
   (void)scratch;
   const Mesh& mesh = index.mesh();
   const double tol = index.tol();
@@ -24,7 +30,7 @@ std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::V
       origin + min_t * dir, origin + max_t * dir, tol, tol / length, [&](int f) {
         const Eigen::Vector3d& n = index.face_normals[f];
         const double rate = n.dot(dir);
-        if (n.isZero() || std::abs(rate) * length <= tol) return kNotMet;  // zero area, or running along it
+        if (n.isZero() || std::abs(rate) * length <= parallel_tol) return kNotMet;  // zero area, or running along it
         const Eigen::Vector3i& tri = mesh.triangles[f];
         const double t = n.dot(mesh.positions[tri[0]] - origin) / rate;
         if (t < min_t || t > max_t + tol) return kNotMet;

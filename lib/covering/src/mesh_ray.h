@@ -28,4 +28,11 @@ std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::V
                                          const Eigen::Vector3d& dir, double min_t, double max_t,
                                          std::vector<int>& scratch);
 
+/// As above, but faces the ray runs along are told by `parallel_tol`
+/// (scene units, >= index.tol()) in place of tol: the hits of a ray as no
+/// view of a tolerance up to parallel_tol misses them (scene_change.h).
+std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::Vector3d& origin,
+                                         const Eigen::Vector3d& dir, double min_t, double max_t,
+                                         std::vector<int>& scratch, double parallel_tol);
+
 } // namespace hullcover

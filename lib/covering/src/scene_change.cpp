@@ -5,6 +5,7 @@
 
 #include "cell_merging.h"
 #include "cell_result_bytes.h"
+#include "witness_rays.h"
 
 #include <algorithm>
 #include <cmath>
@@ -79,21 +80,58 @@ bool sweep_misses_box(const FreeSpaceSweep& sweep, const Aabb& box) {
   return false;
 }
 
-// Keeps `sweep` (as far as it reaches) when its rays, followed the whole
-// way (`whole`: the same sweep at the free-space reach), cross a changed
-// face's box: a witness ray's verdict reads its first hit past the stand-off
-// of the hull's view, which can lie beyond the sweep's own reach.
-void keep_if_crossing(const FreeSpaceSweep& sweep, const FreeSpaceSweep& whole, const std::vector<Aabb>& changed,
-                      const AabbTree& changed_tree, double slack, std::vector<int>& scratch,
-                      std::vector<FreeSpaceSweep>& kept) {
-  const Aabb box = grown(bounding_box_of(whole.corners), slack);
-  scratch.clear();
-  changed_tree.overlapping(box, scratch);
-  for (int i : scratch)
-    if (!sweep_misses_box(whole, grown(changed[i], slack))) {
-      kept.push_back(sweep);
-      return;
-    }
+// Whether `sweep` meets a changed face's box (grown by `slack`).
+bool crosses_changed(const FreeSpaceSweep& sweep, const std::vector<Aabb>& changed, const AabbTree& changed_tree,
+                     double slack, std::vector<int>& near) {
+  near.clear();
+  changed_tree.overlapping(grown(bounding_box_of(sweep.corners), slack), near);
+  for (int i : near)
+    if (!sweep_misses_box(sweep, grown(changed[i], slack))) return true;
+  return false;
+}
+
+// The views the checks run in (one per island, and the scene's): their
+// finest and coarsest tolerance, scene units.
+struct ViewTolerances {
+  double finest = 0.0;
+  double coarsest = 0.0;
+};
+
+ViewTolerances view_tolerances(const DecompositionStages& stages) {
+  const Tolerance& tolerance = stages.prepared.tolerance;
+  ViewTolerances views{tolerance.length, tolerance.length};
+  const auto add = [&](double tol) {
+    views.finest = std::min(views.finest, tol);
+    views.coarsest = std::max(views.coarsest, tol);
+  };
+  for (double tol : stages.island_tolerance) add(tol);
+  for (double tol : tolerance.island_lengths) add(tol);
+  return views;
+}
+
+// Keeps a sweep (`at_reach(r)`: it run to r, scene units; `reach`: how far
+// it runs) when its rays, followed as far as any view follows them, cross
+// a changed face. Its own reach ends each ray's first hit in its own view;
+// a coarser view stands further off, may pass that face and read the ray's
+// hit beyond (witness_rays.h), a finer one may pass between faces: then
+// the rays are followed to their bound in every view.
+template <typename SweepAtReach>
+void keep_if_crossing(const SweepAtReach& at_reach, double reach, const DecompositionStages& stages,
+                      const SceneIndex& finest_view, double coarsest_tol, const std::vector<Aabb>& changed,
+                      const AabbTree& changed_tree, double slack, std::vector<int>& near,
+                      std::vector<int>& scratch, std::vector<FreeSpaceSweep>& kept) {
+  FreeSpaceSweep sweep = at_reach(reach);
+  if (crosses_changed(sweep, changed, changed_tree, slack, near)) {
+    kept.push_back(std::move(sweep));
+    return;
+  }
+  const double free_space_reach = stages.index_data.free_space_reach;
+  if (finest_view.tol() == coarsest_tol || reach >= free_space_reach) return;
+  const FreeSpaceSweep whole = at_reach(free_space_reach);
+  if (!crosses_changed(whole, changed, changed_tree, slack, near)) return;
+  const double followed = std::min(free_space_reach, first_hit_bound_in_every_view(finest_view, whole, coarsest_tol, scratch));
+  if (followed > reach && crosses_changed(at_reach(followed), changed, changed_tree, slack, near))
+    kept.push_back(std::move(sweep));
 }
 
 } // namespace
@@ -195,24 +233,19 @@ SceneChange scene_change_since(const DecompositionStages& stages, const std::vec
   const AabbTree changed_tree(changed);
   const SceneIndexData& index = stages.index_data;
   const MeshConnectivity& c = prepared.connectivity;
-  // How far a sweep's rays are followed. Each ray's first hit past the
-  // stand-off of the sweep's own tolerance lies within its reach
-  // (first_hit_bound); a view of a larger tolerance stands further off, may
-  // pass that face and follow the ray on to the free-space reach.
-  double largest_view_tol = prepared.tolerance.length;
-  for (double tol : stages.island_tolerance) largest_view_tol = std::max(largest_view_tol, tol);
-  const auto followed = [&](double tol, double reach) {
-    return tol < largest_view_tol ? index.free_space_reach : reach;
-  };
-  std::vector<int> scratch;
+  const ViewTolerances views = view_tolerances(stages);
+  const SceneIndex finest_view(index, views.finest, prepared.tolerance.largest_island);
+  std::vector<int> near, scratch;
   std::vector<Eigen::Vector3d> triangle(3);
   for (int f = 0; f < faces; ++f) {
     if (c.zero_area[f] || index.front_reach[f] <= 0.0) continue;
     triangle_corners(mesh, f, triangle);
     const double tol = prepared.face_tolerance(f);
-    keep_if_crossing(front_space_sweep(triangle, index.face_normals[f], index.front_reach[f], tol),
-                     front_space_sweep(triangle, index.face_normals[f], followed(tol, index.front_reach[f]), tol),
-                     changed, changed_tree, change.slack, scratch, change.sweeps);
+    const auto at_reach = [&](double reach) {
+      return front_space_sweep(triangle, index.face_normals[f], reach, tol);
+    };
+    keep_if_crossing(at_reach, index.front_reach[f], stages, finest_view, views.coarsest, changed, changed_tree,
+                     change.slack, near, scratch, change.sweeps);
   }
   for (int e = 0; e < static_cast<int>(c.edges.size()); ++e) {
     if (index.open_edge_use[e] < 0) continue;
@@ -223,10 +256,11 @@ SceneChange scene_change_since(const DecompositionStages& stages, const std::vec
     const Eigen::Vector3d& inner = mesh.positions[t[(use.corner + 2) % 3]];
     const Eigen::Vector3d& n = index.face_normals[use.face];
     const double tol = prepared.face_tolerance(use.face);
-    for (int fan = 0; fan < kOpeningFans; ++fan)
-      keep_if_crossing(opening_fan(p0, p1, inner, n, fan, index.opening_reach[e][fan], tol),
-                       opening_fan(p0, p1, inner, n, fan, followed(tol, index.opening_reach[e][fan]), tol), changed,
-                       changed_tree, change.slack, scratch, change.sweeps);
+    for (int fan = 0; fan < kOpeningFans; ++fan) {
+      const auto at_reach = [&](double reach) { return opening_fan(p0, p1, inner, n, fan, reach, tol); };
+      keep_if_crossing(at_reach, index.opening_reach[e][fan], stages, finest_view, views.coarsest, changed,
+                       changed_tree, change.slack, near, scratch, change.sweeps);
+    }
   }
   std::vector<Aabb> sweep_boxes;
   for (const FreeSpaceSweep& sweep : change.sweeps)

@@ -6,11 +6,12 @@
 // vertices, edges, faces and bars near it, and the free-space sweeps that
 // meet it, each ray followed to its first mesh hit (witness_rays.h: past
 // the stand-off of the hull's view, so beyond the sweep's reach when that
-// view's tolerance is larger than the sweep's own).
+// view's tolerance is coarser than the sweep's own, or a finer view passes
+// between faces; first_hit_bound_in_every_view bounds how far).
 // So an edit of faces C (those added and those removed) can change a check
 // only if the hull lies near C (within the longest bar, plus the
-// tolerances), or meets a sweep of this scene whose rays, followed the whole
-// way, cross C: a sweep whose reach grew passes where its old blocker was,
+// tolerances), or meets a sweep of this scene whose rays, followed as far
+// as any view follows them, cross C: a sweep whose reach grew passes where its old blocker was,
 // one whose reach shrank ends on a new face in C, and one whose rays run
 // through C may be decided differently. A sweep that vanished (a removed
 // face's, a closed edge's) or only shrank away from a hull tests it no more,

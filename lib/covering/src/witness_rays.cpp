@@ -295,8 +295,11 @@ Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, co
 // RegionJudge) so that a thousand cuts cost no stack depth.
 class FirstHitBound {
 public:
-  FirstHitBound(const SceneIndex& index, const FreeSpaceSweep& sweep, std::vector<int>& scratch)
-      : index_(index), sweep_(sweep), scratch_(scratch) {}
+  /// Rays stand off by `stand_off` and pass faces they run along within
+  /// `parallel_tol` (scene units); they meet faces within index.tol().
+  FirstHitBound(const SceneIndex& index, const FreeSpaceSweep& sweep, double stand_off, double parallel_tol,
+                std::vector<int>& scratch)
+      : index_(index), sweep_(sweep), stand_off_(stand_off), parallel_tol_(parallel_tol), scratch_(scratch) {}
 
   double over(const std::vector<Eigen::Vector3d>& region) {
     std::vector<std::vector<Eigen::Vector3d>> pending = {region};
@@ -318,9 +321,9 @@ private:
     if (negligible(region, tol)) return 0.0;
     if (--budget_ < 0) return kNone;
     const std::optional<MeshRayHit> hit =
-        first_hit_past_stand_off(index_, sweep_, ray_base(sweep_, centroid_of(region)), scratch_);
+        first_mesh_hit(index_, ray_base(sweep_, centroid_of(region)), sweep_.direction, stand_off_,
+                       index_.prepared->tolerance.diagonal, scratch_, parallel_tol_);
     if (!hit) return kNone;
-    const double stand_off = kRayStandOffInTolerances * tol;
     const Mesh& mesh = index_.mesh();
     std::vector<Eigen::Vector3d> triangle(3);
     triangle_corners(mesh, hit->face, triangle);
@@ -329,7 +332,7 @@ private:
     if (!split.inside.empty()) {
       const Plane face{index_.face_normals[hit->face], index_.face_normals[hit->face].dot(triangle[0])};
       const Affine to_face = distance_to_plane(sweep_, face);
-      const Affine past_stand_off = to_face - Affine{Eigen::Vector3d::Zero(), stand_off};
+      const Affine past_stand_off = to_face - Affine{Eigen::Vector3d::Zero(), stand_off_};
       // The face bounds the rays that meet its plane past their start; the
       // others (it leans across the base) are cut off and bounded apart.
       if (const std::optional<Plane> cut = splitting_cut(split.inside, past_stand_off, tol)) {
@@ -346,9 +349,23 @@ private:
 
   const SceneIndex& index_;
   const FreeSpaceSweep& sweep_;
+  double stand_off_;
+  double parallel_tol_;
   std::vector<int>& scratch_;
   int budget_ = kMaxJudgedPieces;
 };
+
+// The rays of `sweep` first_hit_bound bounds: its base polygon, or for an
+// opening (whose base is its edge) the strip `half_width` either side of
+// the fan's plane, where its rays leave.
+std::vector<Eigen::Vector3d> ray_bases(const FreeSpaceSweep& sweep, double half_width) {
+  std::vector<Eigen::Vector3d> region = sweep.base;
+  if (region.size() == 2) {
+    const Eigen::Vector3d across = (region[1] - region[0]).cross(sweep.direction).normalized() * half_width;
+    region = {region[0] - across, region[1] - across, region[1] + across, region[0] + across};
+  }
+  return region;
+}
 
 // Judges regions exactly, piece by piece: each piece's middle ray names the
 // face that keeps it (met before the hull, or met from behind beyond it);
@@ -453,21 +470,23 @@ private:
 
 double first_hit_bound_over(const SceneIndex& index, const FreeSpaceSweep& sweep,
                             const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch) {
-  FirstHitBound bound(index, sweep, scratch);
+  FirstHitBound bound(index, sweep, kRayStandOffInTolerances * index.tol(), index.tol(), scratch);
   const double farthest = bound.over(region);
   // A ray meeting a face within tol of its plane's crossing still ends there.
   return farthest + index.tol();
 }
 
 double first_hit_bound(const SceneIndex& index, const FreeSpaceSweep& sweep, std::vector<int>& scratch) {
-  std::vector<Eigen::Vector3d> region = sweep.base;
-  if (region.size() == 2) {
-    // An opening's base is its edge; its rays leave a strip tol either side
-    // of the fan's plane.
-    const Eigen::Vector3d across = (region[1] - region[0]).cross(sweep.direction).normalized() * index.tol();
-    region = {region[0] - across, region[1] - across, region[1] + across, region[0] + across};
-  }
-  return first_hit_bound_over(index, sweep, region, scratch);
+  return first_hit_bound_over(index, sweep, ray_bases(sweep, index.tol()), scratch);
+}
+
+double first_hit_bound_in_every_view(const SceneIndex& finest, const FreeSpaceSweep& sweep, double coarsest_tol,
+                                     std::vector<int>& scratch) {
+  // Each ray's first hit in any view is a face this following meets too
+  // (it meets faces within the finest margin, stands off and passes
+  // faces it runs along as the coarsest does), not nearer.
+  FirstHitBound bound(finest, sweep, kRayStandOffInTolerances * coarsest_tol, coarsest_tol, scratch);
+  return bound.over(ray_bases(sweep, coarsest_tol)) + coarsest_tol;
 }
 
 bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,

@@ -51,6 +51,17 @@ bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, co
 /// so a sweep need reach no farther.
 double first_hit_bound(const SceneIndex& index, const FreeSpaceSweep& sweep, std::vector<int>& scratch);
 
+/// An upper bound, scene units, on where each ray of `sweep` first meets
+/// a face past its stand-off in EVERY view of a tolerance between
+/// finest.tol() and `coarsest_tol` (>= it): a view stands off by a multiple
+/// of its tolerance, meets faces within it, and passes faces it runs along
+/// within it, so a coarser view can pass the face that ends a ray in the
+/// sweep's own and read a hit beyond its reach. Infinity as
+/// first_hit_bound. What a re-bake follows a sweep's rays to
+/// (scene_change.h).
+double first_hit_bound_in_every_view(const SceneIndex& finest, const FreeSpaceSweep& sweep, double coarsest_tol,
+                                     std::vector<int>& scratch);
+
 /// first_hit_bound over the rays of `sweep` through convex polygon `region`
 /// (anywhere along them) only.
 double first_hit_bound_over(const SceneIndex& index, const FreeSpaceSweep& sweep,
