@@ -7,14 +7,14 @@
 # timeout or runs out of memory, and says where the input was saved.
 #   scripts/fuzz.sh                 every target, 60 s in all (what CI runs)
 #   scripts/fuzz.sh SECONDS         every target, SECONDS in all
-#   scripts/fuzz.sh SECONDS TARGET  one target (mesh_import, runtime_file, hull_obj, cell_result)
+#   scripts/fuzz.sh SECONDS TARGET  one target (mesh_import, runtime_file, hull_obj, cell_result, scene_snapshot)
 # HULLCOVER_WARNINGS_AS_ERRORS=ON in the environment fails the build on any warning (CI sets it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 total="${1:-60}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(mesh_import runtime_file hull_obj cell_result)
+[ ${#targets[@]} -gt 0 ] || targets=(mesh_import runtime_file hull_obj cell_result scene_snapshot)
 per_target=$(( total / ${#targets[@]} ))
 [ "$per_target" -ge 1 ] || per_target=1
 
@@ -37,7 +37,7 @@ export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan_suppressions.txt:print_su
 failed=()
 for target in "${targets[@]}"; do
   binary="build/fuzz/tests/fuzz/fuzz_$target"
-  [ -x "$binary" ] || { echo "fuzz: no target '$target' (mesh_import, runtime_file, hull_obj, cell_result)" >&2; exit 2; }
+  [ -x "$binary" ] || { echo "fuzz: no target '$target' (mesh_import, runtime_file, hull_obj, cell_result, scene_snapshot)" >&2; exit 2; }
   mkdir -p "$work/$target" "$artifacts/$target"
   cp tests/fuzz/corpus/"$target"/* "$work/$target"/
   echo "fuzz: $target for ${per_target} s"

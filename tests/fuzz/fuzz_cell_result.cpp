@@ -14,7 +14,6 @@
 #include "hullcover/covering/staged_decomposition.h"
 #include "hullcover/geometry/little_endian_bytes.h"
 #include "hullcover/mesh/prepared_mesh.h"
-#include "hullcover/mesh/scene_builder.h"
 
 #include <cstring>
 #include <string>
@@ -29,21 +28,6 @@ constexpr std::size_t kKeyAt = 12;
 constexpr std::size_t kChecksumBytes = 8;
 // Each edit: a u16 position (modulo the size) and the byte to put there.
 constexpr std::size_t kEditBytes = 3;
-// A cell side that cuts the scene below into several cells.
-constexpr double kCellSize = 2.0;
-
-// A small scene of several cells, each with merged patches (planar and
-// solid): a terrain patch, a block on it and a room beside it. Small, so
-// the fuzzer runs many inputs a second.
-Mesh small_scene() {
-  Mesh m;
-  const std::vector<double> xs = {0.0, 1.0, 2.0, 3.0, 4.0}, zs = {0.0, 1.0, 2.0, 3.0};
-  add_height_field(m, xs, zs, [](double x, double z) { return 0.1 * x * z; });
-  add_box(m, {1.0, 0.5, 1.0}, {2.0, 1.5, 2.0});
-  add_box(m, {5.0, 0.0, 0.0}, {7.0, 2.0, 3.0}, false);
-  return m;
-}
-
 // still_valid, then finish with the bytes in place of cell 0.
 void read_as_cell_zero(const StagedDecomposition& staged, const std::vector<std::string>& cells,
                        const std::string& bytes) {
@@ -57,10 +41,10 @@ void read_as_cell_zero(const StagedDecomposition& staged, const std::vector<std:
 } // namespace
 
 int fuzz_one_cell_result(const std::uint8_t* data, std::size_t size) {
-  Result<PreparedMesh> prepared = prepare_mesh(small_scene(), std::nullopt);
+  Result<PreparedMesh> prepared = prepare_mesh(small_scene_in_cells(), std::nullopt);
   if (!prepared.ok()) return 0;
   DecomposeOptions options;
-  options.cell_size = kCellSize;
+  options.cell_size = kSmallSceneCellSize;
   options.threads = 1;
   Result<std::unique_ptr<StagedDecomposition>> staged = StagedDecomposition::prepare(std::move(prepared).value(), options);
   if (!staged.ok() || staged.value()->cell_count() < 2) return 0;

@@ -1,6 +1,7 @@
 #include "fuzz_support.h"
 
 #include "hullcover/bvh/hull_world.h"
+#include "hullcover/mesh/scene_builder.h"
 
 #include <cstdlib>
 #include <filesystem>
@@ -51,6 +52,15 @@ std::string write_scratch_file(const std::string& name, const std::uint8_t* data
 void remove_scratch_file(const std::string& path) {
   std::error_code ignored;
   std::filesystem::remove(path, ignored);
+}
+
+Mesh small_scene_in_cells() {
+  Mesh m;
+  const std::vector<double> xs = {0.0, 1.0, 2.0, 3.0, 4.0}, zs = {0.0, 1.0, 2.0, 3.0};
+  add_height_field(m, xs, zs, [](double x, double z) { return 0.1 * x * z; });
+  add_box(m, {1.0, 0.5, 1.0}, {2.0, 1.5, 2.0});
+  add_box(m, {5.0, 0.0, 0.0}, {7.0, 2.0, 3.0}, false);
+  return m;
 }
 
 void query_hulls(std::vector<bvh::RuntimeHull> hulls) {

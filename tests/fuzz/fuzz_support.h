@@ -3,6 +3,7 @@
 // few queries on hulls a reader accepted.
 
 #include "hullcover/bvh/runtime_hull.h"
+#include "hullcover/geometry/mesh.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -29,6 +30,15 @@ template <typename Bytes>
 void put_u64(Bytes& bytes, std::size_t at, std::uint64_t v) {
   for (int k = 0; k < 8; ++k) bytes[at + k] = static_cast<typename Bytes::value_type>(v >> (8 * k));
 }
+
+/// A cell side (scene units) that cuts small_scene_in_cells into several
+/// cells.
+inline constexpr double kSmallSceneCellSize = 2.0;
+
+/// A small scene of several cells, each with merged patches (planar and
+/// solid): a terrain patch, a block on it and a room beside it. Small, so
+/// a fuzzer that bakes it for each input still runs many a second.
+Mesh small_scene_in_cells();
 
 /// Builds a HullWorld from `hulls` (when it accepts them) and asks it a
 /// touch, a contact, a ray and a distance query near the first hull: a

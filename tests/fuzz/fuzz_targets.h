@@ -21,6 +21,7 @@ inline constexpr const char* kMeshImport = "mesh_import";
 inline constexpr const char* kRuntimeFile = "runtime_file";
 inline constexpr const char* kHullObj = "hull_obj";
 inline constexpr const char* kCellResult = "cell_result";
+inline constexpr const char* kSceneSnapshot = "scene_snapshot";
 
 /// Mesh import (mesh_import.h), then prepare_mesh as every command does.
 /// The first byte picks the extension (.obj .ply .stl .gltf .glb, modulo
@@ -44,5 +45,11 @@ int fuzz_one_hull_obj(const std::uint8_t* data, std::size_t size);
 /// and as edits (a u16 position and a byte, each) to the valid bytes with
 /// the key and checksum made right afterwards.
 int fuzz_one_cell_result(const std::uint8_t* data, std::size_t size);
+
+/// The cell cache's record of the last bake (`last-bake.scene`), read by a
+/// re-bake of a small scene in cells with one face added: as it comes, and
+/// as edits (a u16 position and a byte, each) to the valid record with its
+/// checksum made right afterwards.
+int fuzz_one_scene_snapshot(const std::uint8_t* data, std::size_t size);
 
 } // namespace hullcover::fuzz

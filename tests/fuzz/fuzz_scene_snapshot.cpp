@@ -1,0 +1,95 @@
+// Fuzz target: the cell cache's record of the last bake (`last-bake.scene`,
+// lib/covering/src/scene_change.h), read by every bake with a cache. A bake
+// must refuse a bad record (and re-check every kept patch), never crash,
+// hang, allocate without bound or trust what it cannot read.
+//
+// For each input a small scene in cells is baked into a fresh cache; then
+// the scene, with one face added, is baked again twice: once with the input
+// as the record, once with the input read as EDITS to the valid record (its
+// checksum made right afterwards), so the fuzzer reaches the checks of
+// counts and values behind the checksum.
+
+#include "fuzz_support.h"
+#include "fuzz_targets.h"
+
+#include "hullcover/covering/cell_cache.h"
+#include "hullcover/geometry/little_endian_bytes.h"
+#include "hullcover/mesh/prepared_mesh.h"
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+namespace hullcover::fuzz {
+namespace {
+
+constexpr const char* kRecordName = "last-bake.scene";
+constexpr std::size_t kChecksumBytes = 8;
+// Each edit: a u16 position (modulo the size) and the byte to put there.
+constexpr std::size_t kEditBytes = 3;
+
+bool bake(const Mesh& mesh, const std::string& cache) {
+  Result<PreparedMesh> prepared = prepare_mesh(mesh, std::nullopt);
+  if (!prepared.ok()) return false;
+  DecomposeOptions options;
+  options.cell_size = kSmallSceneCellSize;
+  options.threads = 1;
+  CellCacheReport report;
+  return decompose_with_cell_cache(std::move(prepared).value(), options, cache, report).ok();
+}
+
+void write_record(const std::string& cache, const std::string& bytes) {
+  std::ofstream(cache + "/" + kRecordName, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+} // namespace
+
+int fuzz_one_scene_snapshot(const std::uint8_t* data, std::size_t size) {
+  const std::string marker = write_scratch_file("scene-snapshot.marker", data, 0);
+  const std::string cache = std::filesystem::path(marker).parent_path() / "scene-snapshot-cache";
+  std::error_code ignored;
+  std::filesystem::remove_all(cache, ignored);
+  const Mesh before = small_scene_in_cells();
+  if (!bake(before, cache)) return 0;
+  std::string valid;
+  {
+    std::ifstream in(cache + "/" + kRecordName, std::ios::binary);
+    valid.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  // One face added beside the block: the re-bake reads the record to find it.
+  Mesh after = before;
+  const int base = static_cast<int>(after.positions.size());
+  after.positions.insert(after.positions.end(), {{2.5, 0.2, 1.0}, {3.0, 0.2, 1.0}, {2.5, 1.0, 1.5}});
+  after.triangles.emplace_back(base, base + 1, base + 2);
+  after.material_ids.push_back(0);
+
+  write_record(cache, std::string(reinterpret_cast<const char*>(data), size));
+  (void)bake(after, cache);
+
+  std::string edited = valid;
+  if (!edited.empty()) {
+    for (std::size_t e = 0; e < size / kEditBytes; ++e) {
+      const std::size_t at =
+          (data[kEditBytes * e] | (static_cast<std::size_t>(data[kEditBytes * e + 1]) << 8)) % edited.size();
+      edited[at] = static_cast<char>(data[kEditBytes * e + 2]);
+    }
+    if (size % kEditBytes != 0) edited.resize(data[size - 1] % edited.size());
+    if (edited.size() >= kChecksumBytes)
+      put_u64(edited, edited.size() - kChecksumBytes,
+              fnv1a(reinterpret_cast<const unsigned char*>(edited.data()), edited.size() - kChecksumBytes));
+  }
+  write_record(cache, edited);
+  (void)bake(after, cache);
+  std::filesystem::remove_all(cache, ignored);
+  remove_scratch_file(marker);
+  return 0;
+}
+
+} // namespace hullcover::fuzz
+
+#ifdef HULLCOVER_LIBFUZZER_ENTRY
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  return hullcover::fuzz::fuzz_one_scene_snapshot(data, size);
+}
+#endif
