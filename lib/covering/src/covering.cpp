@@ -110,6 +110,7 @@ Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& 
   bars.agent_radius = options.agent_radius.value_or(0.0);
   bars.max_deviation = options.max_deviation.value_or(0.0);
   bars.hull_zones = std::move(hull_zones);
+  bars.threads = options.threads;
   for (int island = 0; island < static_cast<int>(stages->islands.boxes.size()); ++island)
     bars.half_length_of_island.push_back(island_bar_half_length(*stages, island));
   stages->index_data = build_scene_index(prepared, bars);

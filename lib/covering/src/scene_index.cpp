@@ -1,6 +1,7 @@
 #include "scene_index.h"
 
 #include "witness_rays.h"
+#include "hullcover/geometry/parallel_for.h"
 #include "hullcover/geometry/tolerances.h"
 
 #include <Eigen/Geometry>
@@ -88,7 +89,7 @@ void add_sweep_boxes(const FreeSpaceSweep& sweep, int item, const std::vector<Aa
 // their boxes, per hull zone they cross: the trees the exact conditions
 // look up.
 // Each face's (each open edge's) sweeps at the tolerance of its island.
-void index_sweeps(SceneIndexData& index, double hull_margin, const std::vector<Aabb>& hull_zones) {
+void index_sweeps(SceneIndexData& index, double hull_margin, const std::vector<Aabb>& hull_zones, int threads) {
   const PreparedMesh& prepared = *index.prepared;
   const Mesh& mesh = prepared.mesh;
   const MeshConnectivity& c = prepared.connectivity;
@@ -99,28 +100,49 @@ void index_sweeps(SceneIndexData& index, double hull_margin, const std::vector<A
   if (zones.empty()) zones.push_back(grown(referenced_bounding_box(mesh), hull_margin + largest_tol));
   const AabbTree zone_tree(zones);
   std::vector<int> near;
-  std::vector<int> scratch;
   std::vector<Eigen::Vector3d> triangle(3);
   std::vector<Aabb> boxes;
+  // The reaches, each face's and edge's alone, on `threads` threads; the
+  // boxes then in order, so the trees do not depend on the thread count.
   index.front_reach.assign(mesh.triangles.size(), 0.0);
+  parallel_for(static_cast<int>(mesh.triangles.size()), threads, [&](int f) {
+    if (c.zero_area[f]) return;
+    const double tol = prepared.face_tolerance(f);
+    const SceneIndex at_face(index, tol, prepared.tolerance.largest_island);
+    std::vector<Eigen::Vector3d> corners(3);
+    std::vector<int> own_scratch;
+    triangle_corners(mesh, f, corners);
+    const FreeSpaceSweep full = front_space_sweep(corners, index.face_normals[f], reach, tol);
+    index.front_reach[f] = std::min(reach, detail::first_hit_bound(at_face, full, own_scratch));
+  });
+  index.opening_reach.assign(c.edges.size(), {});
+  parallel_for(static_cast<int>(c.edges.size()), threads, [&](int e) {
+    if (index.open_edge_use[e] < 0) return;
+    const EdgeUse& use = c.edge_uses[index.open_edge_use[e]];
+    const double tol = prepared.face_tolerance(use.face);
+    const SceneIndex at_edge(index, tol, prepared.tolerance.largest_island);
+    const Eigen::Vector3i& t = mesh.triangles[use.face];
+    std::vector<int> own_scratch;
+    for (int fan = 0; fan < kOpeningFans; ++fan) {
+      const FreeSpaceSweep full = opening_fan(mesh.positions[t[use.corner]], mesh.positions[t[(use.corner + 1) % 3]],
+                                              mesh.positions[t[(use.corner + 2) % 3]], index.face_normals[use.face],
+                                              fan, reach, tol);
+      index.opening_reach[e][fan] = std::min(reach, detail::first_hit_bound(at_edge, full, own_scratch));
+    }
+  });
   for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) {
     if (c.zero_area[f]) continue;
     const double tol = prepared.face_tolerance(f);
-    const SceneIndex at_face(index, tol, prepared.tolerance.largest_island);
     triangle_corners(mesh, f, triangle);
-    const FreeSpaceSweep full = front_space_sweep(triangle, index.face_normals[f], reach, tol);
-    index.front_reach[f] = std::min(reach, detail::first_hit_bound(at_face, full, scratch));
     const FreeSpaceSweep sweep = front_space_sweep(triangle, index.face_normals[f], index.front_reach[f], tol);
     add_sweep_boxes(sweep, f, zones, zone_tree, tol, near, boxes, index.front_sweep_face);
   }
   index.front_sweep_tree = AabbTree(boxes);
   boxes.clear();
-  index.opening_reach.assign(c.edges.size(), {});
   for (int e = 0; e < static_cast<int>(c.edges.size()); ++e) {
     if (index.open_edge_use[e] < 0) continue;
     const EdgeUse& use = c.edge_uses[index.open_edge_use[e]];
     const double tol = prepared.face_tolerance(use.face);
-    const SceneIndex at_edge(index, tol, prepared.tolerance.largest_island);
     const Eigen::Vector3i& t = mesh.triangles[use.face];
     const Eigen::Vector3d& p0 = mesh.positions[t[use.corner]];
     const Eigen::Vector3d& p1 = mesh.positions[t[(use.corner + 1) % 3]];
@@ -131,8 +153,6 @@ void index_sweeps(SceneIndexData& index, double hull_margin, const std::vector<A
     std::vector<int> fan_items;
     for (int fan = 0; fan < kOpeningFans; ++fan) {
       const Eigen::Vector3d& n = index.face_normals[use.face];
-      const FreeSpaceSweep full = opening_fan(p0, p1, inner, n, fan, reach, tol);
-      index.opening_reach[e][fan] = std::min(reach, detail::first_hit_bound(at_edge, full, scratch));
       const FreeSpaceSweep sweep = opening_fan(p0, p1, inner, n, fan, index.opening_reach[e][fan], tol);
       add_sweep_boxes(sweep, e, zones, zone_tree, tol, near, fan_boxes, fan_items);
     }
@@ -259,7 +279,7 @@ SceneIndexData build_scene_index(const PreparedMesh& prepared, const BarOptions&
     }
   }
   index.bar_tree = AabbTree(boxes);
-  if (index.mode == ValidityMode::exact) index_sweeps(index, options.hull_margin, options.hull_zones);
+  if (index.mode == ValidityMode::exact) index_sweeps(index, options.hull_margin, options.hull_zones, threads_to_use(options.threads));
   return index;
 }
 

@@ -68,6 +68,9 @@ struct BarOptions {
   /// of its faces' bars (exact mode's default: a multiple of each island's
   /// own tolerance), in place of `half_length`.
   std::vector<double> half_length_of_island = {};
+  /// Threads that find how far the sweeps reach (0: every core); the index
+  /// does not depend on it.
+  int threads = 1;
 };
 
 /// What build_scene_index computes once per scene, for every view of it
