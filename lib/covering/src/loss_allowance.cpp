@@ -1,5 +1,6 @@
 #include "loss_allowance.h"
 
+#include "first_hit_bound.h"
 #include "witness_rays.h"
 
 #include "hullcover/geometry/planar_hull.h"

@@ -5,7 +5,7 @@
 
 #include "cell_merging.h"
 #include "cell_result_bytes.h"
-#include "witness_rays.h"
+#include "first_hit_bound.h"
 
 #include <algorithm>
 #include <cmath>
@@ -129,7 +129,8 @@ void keep_if_crossing(const SweepAtReach& at_reach, double reach, const Decompos
   if (finest_view.tol() == coarsest_tol || reach >= free_space_reach) return;
   const FreeSpaceSweep whole = at_reach(free_space_reach);
   if (!crosses_changed(whole, changed, changed_tree, slack, near)) return;
-  const double followed = std::min(free_space_reach, first_hit_bound_in_every_view(finest_view, whole, coarsest_tol, scratch));
+  const double followed =
+      std::min(free_space_reach, first_hit_bound_in_every_view(finest_view, whole, coarsest_tol, scratch));
   if (followed > reach && crosses_changed(at_reach(followed), changed, changed_tree, slack, near))
     kept.push_back(std::move(sweep));
 }

@@ -1,6 +1,6 @@
 #include "scene_index.h"
 
-#include "witness_rays.h"
+#include "first_hit_bound.h"
 #include "hullcover/geometry/parallel_for.h"
 #include "hullcover/geometry/tolerances.h"
 
@@ -279,7 +279,8 @@ SceneIndexData build_scene_index(const PreparedMesh& prepared, const BarOptions&
     }
   }
   index.bar_tree = AabbTree(boxes);
-  if (index.mode == ValidityMode::exact) index_sweeps(index, options.hull_margin, options.hull_zones, threads_to_use(options.threads));
+  if (index.mode == ValidityMode::exact)
+    index_sweeps(index, options.hull_margin, options.hull_zones, threads_to_use(options.threads));
   return index;
 }
 

@@ -2,6 +2,7 @@
 
 #include "loss_allowance.h"
 #include "mesh_ray.h"
+#include "shadow_pieces.h"
 
 #include "hullcover/geometry/planar_hull.h"
 
@@ -13,23 +14,6 @@
 #include <optional>
 
 namespace hullcover::detail {
-
-std::vector<Plane> column_planes(const std::vector<Eigen::Vector3d>& outline, const Eigen::Vector3d& dir) {
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& v : outline) centre += v;
-  centre /= static_cast<double>(outline.size());
-  std::vector<Plane> planes;
-  for (size_t i = 0; i < outline.size(); ++i) {
-    const Eigen::Vector3d& u = outline[i];
-    const Eigen::Vector3d& v = outline[(i + 1) % outline.size()];
-    const Eigen::Vector3d side = (v - u).cross(dir);
-    if (side.norm() <= kParallelSine * (v - u).norm()) continue;
-    Plane plane{side.normalized(), side.normalized().dot(u)};
-    if (plane.signed_distance(centre) > 0.0) plane = plane.flipped();
-    planes.push_back(plane);
-  }
-  return planes;
-}
 
 namespace {
 
@@ -56,68 +40,9 @@ std::optional<double> ray_entry(const std::vector<Plane>& planes, const Eigen::V
   return enter;
 }
 
-// A piece no wider than kNegligibleWidthInTolerances x tol (its least
-// width, over its edges' directions): a sliver of rounding, which cutting
-// would only shave again. Far below anything a ray could be aimed at: an
-// opening's strip alone is 2 tol wide.
-bool negligible(const std::vector<Eigen::Vector3d>& polygon, double tol) {
-  if (polygon.size() < 3) return true;
-  const Eigen::Vector3d normal = [&] {
-    Eigen::Vector3d twice = Eigen::Vector3d::Zero();
-    for (size_t i = 0; i < polygon.size(); ++i) twice += polygon[i].cross(polygon[(i + 1) % polygon.size()]);
-    return twice;
-  }();
-  if (!(normal.norm() > 0.0)) return true;
-  double least = std::numeric_limits<double>::infinity();
-  for (size_t i = 0; i < polygon.size(); ++i) {
-    const Eigen::Vector3d edge = polygon[(i + 1) % polygon.size()] - polygon[i];
-    const Eigen::Vector3d across = normal.cross(edge);
-    if (!(across.norm() > 0.0)) continue;
-    const Eigen::Vector3d unit = across.normalized();
-    double widest = 0.0;
-    for (const Eigen::Vector3d& p : polygon) widest = std::max(widest, std::abs(unit.dot(p - polygon[i])));
-    least = std::min(least, widest);
-  }
-  return least <= kNegligibleWidthInTolerances * tol;
-}
-
-// `region` cut along the shadow (the column along dir) of a triangle: the
-// part inside it and the parts beside each of its sides (no empty pieces).
-// The triangle is grown by tol in its plane, as rays meet it (mesh_ray.h).
-struct ShadowSplit {
-  std::vector<Eigen::Vector3d> inside;
-  std::vector<std::vector<Eigen::Vector3d>> beside;
-};
-
-ShadowSplit split_by_shadow(const std::vector<Eigen::Vector3d>& region, const std::vector<Eigen::Vector3d>& triangle,
-                            const Eigen::Vector3d& dir, double tol) {
-  const Eigen::Vector3d normal = (triangle[1] - triangle[0]).cross(triangle[2] - triangle[0]).normalized();
-  ShadowSplit split;
-  split.inside = region;
-  for (Plane plane : column_planes(triangle, dir)) {
-    // The side's edge moved out by tol in the triangle's plane moves the
-    // column's side by tol times the cosine between the two outward
-    // normals (the edge's, in the plane, is the side's projected into it).
-    const double across = plane.normal.dot(normal);
-    plane.offset += tol * std::sqrt(std::max(0.0, 1.0 - across * across));
-    std::vector<Eigen::Vector3d> beside = clip_polygon(split.inside, plane.flipped(), 0.0);
-    if (!negligible(beside, tol)) split.beside.push_back(std::move(beside));
-    split.inside = clip_polygon(split.inside, plane, 0.0);
-  }
-  if (negligible(split.inside, tol)) split.inside.clear();
-  return split;
-}
-
-
 // Witness rays start this fraction of the way in from a region's corners
 // toward its middle, where its middle's ray does not decide it.
 constexpr double kWitnessInset = 0.05;
-
-// The base of the sweep's ray through `point`: where it crosses the sweep's
-// start.
-Eigen::Vector3d ray_base(const FreeSpaceSweep& sweep, const Eigen::Vector3d& point) {
-  return point + sweep.start.signed_distance(point) * sweep.direction;
-}
 
 // The first face the sweep's ray from `base` meets past its stand-off (the
 // probe's rays stand off the surface they leave), within the scene.
@@ -157,55 +82,6 @@ WitnessRay witness_ray(const SceneIndex& index, const FreeSpaceSweep& sweep, con
   if (hit && hit->t <= enter) return {false, hit->face, false};
   if (hit && hit->from_behind) return {false, hit->face, true};
   return {true, -1, false};
-}
-
-// An affine function of a point: value(p) = gradient.p + constant.
-struct Affine {
-  Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
-  double constant = 0.0;
-  double operator()(const Eigen::Vector3d& p) const { return gradient.dot(p) + constant; }
-  Affine operator-(const Affine& other) const { return {gradient - other.gradient, constant - other.constant}; }
-  /// Where it is zero, facing where it is negative (signed distance > 0
-  /// there); its gradient must not be zero.
-  Plane zero_plane() const {
-    const double norm = gradient.norm();
-    return {-gradient / norm, constant / norm};
-  }
-};
-
-// Its lowest and highest value over a polygon (at its corners).
-std::pair<double, double> range_over(const Affine& f, const std::vector<Eigen::Vector3d>& polygon) {
-  double lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
-  for (const Eigen::Vector3d& p : polygon) {
-    lowest = std::min(lowest, f(p));
-    highest = std::max(highest, f(p));
-  }
-  return {lowest, highest};
-}
-
-// Where `margin` is zero across `piece`, when cutting there leaves a piece
-// with area on its negative side (nothing when it is negative only by
-// rounding: a piece of no area holds no ray apart from its neighbours').
-std::optional<Plane> splitting_cut(const std::vector<Eigen::Vector3d>& piece, const Affine& margin, double tol) {
-  if (!(margin.gradient.norm() > 0.0)) return std::nullopt;
-  const Plane cut = margin.zero_plane();
-  const std::vector<Eigen::Vector3d> negative = clip_polygon(piece, cut.flipped(), 0.0);
-  if (negligible(negative, tol)) return std::nullopt;
-  return cut;
-}
-
-// Along the sweep's ray through a point: the distance from the ray's base
-// to the point (where the ray enters the interior, for points on an entry
-// facet), and to the plane of a face not parallel to the ray.
-Affine distance_to_point(const FreeSpaceSweep& sweep) {
-  return {-sweep.start.normal, sweep.start.offset};
-}
-
-Affine distance_to_plane(const FreeSpaceSweep& sweep, const Plane& face) {
-  // The base is p + (start.p - start.offset) dir; the face's plane lies
-  // -face.sd(base) / slope further along.
-  const double slope = face.normal.dot(sweep.direction);
-  return {-(face.normal + slope * sweep.start.normal) / slope, (face.offset + slope * sweep.start.offset) / slope};
 }
 
 // How a face settles a piece inside its shadow (grown as rays meet faces).
@@ -289,82 +165,6 @@ Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, co
     return {};  // between the entry and f everywhere: not enclosed by f
   }
   return {true, std::nullopt, std::nullopt};
-}
-
-// The bound of first_hit_bound, piece by piece, on an explicit stack (as
-// RegionJudge) so that a thousand cuts cost no stack depth.
-class FirstHitBound {
-public:
-  /// Rays stand off by `stand_off` and pass faces they run along within
-  /// `parallel_tol` (scene units); they meet faces within index.tol().
-  FirstHitBound(const SceneIndex& index, const FreeSpaceSweep& sweep, double stand_off, double parallel_tol,
-                std::vector<int>& scratch)
-      : index_(index), sweep_(sweep), stand_off_(stand_off), parallel_tol_(parallel_tol), scratch_(scratch) {}
-
-  double over(const std::vector<Eigen::Vector3d>& region) {
-    std::vector<std::vector<Eigen::Vector3d>> pending = {region};
-    double farthest = 0.0;
-    while (!pending.empty()) {
-      std::vector<Eigen::Vector3d> piece = std::move(pending.back());
-      pending.pop_back();
-      farthest = std::max(farthest, bound_of_piece(piece, pending));
-    }
-    return farthest;
-  }
-
-private:
-  // The farthest first hit over `region`'s own rays; the pieces still to
-  // bound go on `pending`.
-  double bound_of_piece(const std::vector<Eigen::Vector3d>& region, std::vector<std::vector<Eigen::Vector3d>>& pending) {
-    constexpr double kNone = std::numeric_limits<double>::infinity();
-    const double tol = index_.tol();
-    if (negligible(region, tol)) return 0.0;
-    if (--budget_ < 0) return kNone;
-    const std::optional<MeshRayHit> hit =
-        first_mesh_hit(index_, ray_base(sweep_, centroid_of(region)), sweep_.direction, stand_off_,
-                       index_.prepared->tolerance.diagonal, scratch_, parallel_tol_);
-    if (!hit) return kNone;
-    const Mesh& mesh = index_.mesh();
-    std::vector<Eigen::Vector3d> triangle(3);
-    triangle_corners(mesh, hit->face, triangle);
-    ShadowSplit split = split_by_shadow(region, triangle, sweep_.direction, tol);
-    double farthest = 0.0;
-    if (!split.inside.empty()) {
-      const Plane face{index_.face_normals[hit->face], index_.face_normals[hit->face].dot(triangle[0])};
-      const Affine to_face = distance_to_plane(sweep_, face);
-      const Affine past_stand_off = to_face - Affine{Eigen::Vector3d::Zero(), stand_off_};
-      // The face bounds the rays that meet its plane past their start; the
-      // others (it leans across the base) are cut off and bounded apart.
-      if (const std::optional<Plane> cut = splitting_cut(split.inside, past_stand_off, tol)) {
-        const std::vector<Eigen::Vector3d> met = clip_polygon(split.inside, *cut, 0.0);
-        farthest = std::max(farthest, range_over(to_face, met).second);
-        pending.push_back(clip_polygon(split.inside, cut->flipped(), 0.0));
-      } else {
-        farthest = std::max(farthest, range_over(to_face, split.inside).second);
-      }
-    }
-    for (std::vector<Eigen::Vector3d>& piece : split.beside) pending.push_back(std::move(piece));
-    return farthest;
-  }
-
-  const SceneIndex& index_;
-  const FreeSpaceSweep& sweep_;
-  double stand_off_;
-  double parallel_tol_;
-  std::vector<int>& scratch_;
-  int budget_ = kMaxJudgedPieces;
-};
-
-// The rays of `sweep` first_hit_bound bounds: its base polygon, or for an
-// opening (whose base is its edge) the strip `half_width` either side of
-// the fan's plane, where its rays leave.
-std::vector<Eigen::Vector3d> ray_bases(const FreeSpaceSweep& sweep, double half_width) {
-  std::vector<Eigen::Vector3d> region = sweep.base;
-  if (region.size() == 2) {
-    const Eigen::Vector3d across = (region[1] - region[0]).cross(sweep.direction).normalized() * half_width;
-    region = {region[0] - across, region[1] - across, region[1] + across, region[0] + across};
-  }
-  return region;
 }
 
 // Judges regions exactly, piece by piece: each piece's middle ray names the
@@ -467,27 +267,6 @@ private:
 };
 
 } // namespace
-
-double first_hit_bound_over(const SceneIndex& index, const FreeSpaceSweep& sweep,
-                            const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch) {
-  FirstHitBound bound(index, sweep, kRayStandOffInTolerances * index.tol(), index.tol(), scratch);
-  const double farthest = bound.over(region);
-  // A ray meeting a face within tol of its plane's crossing still ends there.
-  return farthest + index.tol();
-}
-
-double first_hit_bound(const SceneIndex& index, const FreeSpaceSweep& sweep, std::vector<int>& scratch) {
-  return first_hit_bound_over(index, sweep, ray_bases(sweep, index.tol()), scratch);
-}
-
-double first_hit_bound_in_every_view(const SceneIndex& finest, const FreeSpaceSweep& sweep, double coarsest_tol,
-                                     std::vector<int>& scratch) {
-  // Each ray's first hit in any view is a face this following meets too
-  // (it meets faces within the finest margin, stands off and passes
-  // faces it runs along as the coarsest does), not nearer.
-  FirstHitBound bound(finest, sweep, kRayStandOffInTolerances * coarsest_tol, coarsest_tol, scratch);
-  return bound.over(ray_bases(sweep, coarsest_tol)) + coarsest_tol;
-}
 
 bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
                         const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch) {

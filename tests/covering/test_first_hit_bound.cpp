@@ -1,10 +1,10 @@
-// How far a sweep's rays run before their first hit (witness_rays.h), in the
+// How far a sweep's rays run before their first hit (first_hit_bound.h), in the
 // sweep's own view and in every view at once: what a re-bake follows a sweep
 // to when it asks whether an edit crosses it (scene_change.h).
 
 #include "indexed_scene.h"
 #include "mesh_ray.h"
-#include "witness_rays.h"
+#include "first_hit_bound.h"
 
 #include "hullcover/geometry/tolerances.h"
 #include "hullcover/mesh/scene_builder.h"
@@ -46,7 +46,7 @@ Mesh floor_and_roof(Between between) {
   return m;
 }
 
-TEST(WitnessRays, ASweepsRaysAreBoundedInEveryViewNotOnlyInItsOwn) {
+TEST(FirstHitBound, ASweepsRaysAreBoundedInEveryViewNotOnlyInItsOwn) {
   for (const Between between : {Between::kSheetWithinTheCoarseStandOff, Between::kCeilingWithACrack}) {
     SCOPED_TRACE(static_cast<int>(between));
     const auto scene = test::index_scene(floor_and_roof(between), kFine, {1.0, false, ValidityMode::exact, 20.0});

@@ -1,0 +1,106 @@
+#include "shadow_pieces.h"
+
+#include "hullcover/geometry/planar_hull.h"
+#include "hullcover/geometry/tolerances.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace hullcover::detail {
+
+std::vector<Plane> column_planes(const std::vector<Eigen::Vector3d>& outline, const Eigen::Vector3d& dir) {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& v : outline) centre += v;
+  centre /= static_cast<double>(outline.size());
+  std::vector<Plane> planes;
+  for (size_t i = 0; i < outline.size(); ++i) {
+    const Eigen::Vector3d& u = outline[i];
+    const Eigen::Vector3d& v = outline[(i + 1) % outline.size()];
+    const Eigen::Vector3d side = (v - u).cross(dir);
+    if (side.norm() <= kParallelSine * (v - u).norm()) continue;
+    Plane plane{side.normalized(), side.normalized().dot(u)};
+    if (plane.signed_distance(centre) > 0.0) plane = plane.flipped();
+    planes.push_back(plane);
+  }
+  return planes;
+}
+
+bool negligible(const std::vector<Eigen::Vector3d>& polygon, double tol) {
+  if (polygon.size() < 3) return true;
+  const Eigen::Vector3d normal = [&] {
+    Eigen::Vector3d twice = Eigen::Vector3d::Zero();
+    for (size_t i = 0; i < polygon.size(); ++i) twice += polygon[i].cross(polygon[(i + 1) % polygon.size()]);
+    return twice;
+  }();
+  if (!(normal.norm() > 0.0)) return true;
+  double least = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const Eigen::Vector3d edge = polygon[(i + 1) % polygon.size()] - polygon[i];
+    const Eigen::Vector3d across = normal.cross(edge);
+    if (!(across.norm() > 0.0)) continue;
+    const Eigen::Vector3d unit = across.normalized();
+    double widest = 0.0;
+    for (const Eigen::Vector3d& p : polygon) widest = std::max(widest, std::abs(unit.dot(p - polygon[i])));
+    least = std::min(least, widest);
+  }
+  return least <= kNegligibleWidthInTolerances * tol;
+}
+
+
+ShadowSplit split_by_shadow(const std::vector<Eigen::Vector3d>& region, const std::vector<Eigen::Vector3d>& triangle,
+                            const Eigen::Vector3d& dir, double tol) {
+  const Eigen::Vector3d normal = (triangle[1] - triangle[0]).cross(triangle[2] - triangle[0]).normalized();
+  ShadowSplit split;
+  split.inside = region;
+  for (Plane plane : column_planes(triangle, dir)) {
+    // The side's edge moved out by tol in the triangle's plane moves the
+    // column's side by tol times the cosine between the two outward
+    // normals (the edge's, in the plane, is the side's projected into it).
+    const double across = plane.normal.dot(normal);
+    plane.offset += tol * std::sqrt(std::max(0.0, 1.0 - across * across));
+    std::vector<Eigen::Vector3d> beside = clip_polygon(split.inside, plane.flipped(), 0.0);
+    if (!negligible(beside, tol)) split.beside.push_back(std::move(beside));
+    split.inside = clip_polygon(split.inside, plane, 0.0);
+  }
+  if (negligible(split.inside, tol)) split.inside.clear();
+  return split;
+}
+
+
+Eigen::Vector3d ray_base(const FreeSpaceSweep& sweep, const Eigen::Vector3d& point) {
+  return point + sweep.start.signed_distance(point) * sweep.direction;
+}
+
+
+std::pair<double, double> range_over(const Affine& f, const std::vector<Eigen::Vector3d>& polygon) {
+  double lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
+  for (const Eigen::Vector3d& p : polygon) {
+    lowest = std::min(lowest, f(p));
+    highest = std::max(highest, f(p));
+  }
+  return {lowest, highest};
+}
+
+std::optional<Plane> splitting_cut(const std::vector<Eigen::Vector3d>& piece, const Affine& margin, double tol) {
+  if (!(margin.gradient.norm() > 0.0)) return std::nullopt;
+  const Plane cut = margin.zero_plane();
+  const std::vector<Eigen::Vector3d> negative = clip_polygon(piece, cut.flipped(), 0.0);
+  if (negligible(negative, tol)) return std::nullopt;
+  return cut;
+}
+
+Affine distance_to_point(const FreeSpaceSweep& sweep) {
+  return {-sweep.start.normal, sweep.start.offset};
+}
+
+Affine distance_to_plane(const FreeSpaceSweep& sweep, const Plane& face) {
+  // The base is p + (start.p - start.offset) dir; the face's plane lies
+  // -face.sd(base) / slope further along.
+  const double slope = face.normal.dot(sweep.direction);
+  return {-(face.normal + slope * sweep.start.normal) / slope, (face.offset + slope * sweep.start.offset) / slope};
+}
+
+} // namespace hullcover::detail

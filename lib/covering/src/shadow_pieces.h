@@ -1,0 +1,82 @@
+#pragma once
+// Cutting a region of a sweep's rays into pieces that one face decides:
+// what the exact judges of witness_rays.h (whether a hull loses space) and
+// first_hit_bound.h (how far rays run) are both made of. Along a sweep's
+// rays, distances to a point or to a face's plane are affine over a region,
+// so a piece's corners bound them and a piece is cut where one changes
+// sign. Internal to the decomposer.
+
+#include "free_space_sweep.h"
+
+#include "hullcover/geometry/convex_polytope.h"
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <utility>
+#include <vector>
+
+namespace hullcover::detail {
+
+/// A piece of a region no wider than this many tolerances is a sliver of
+/// rounding: passed over, as it holds no ray apart from its neighbours'.
+inline constexpr double kNegligibleWidthInTolerances = 1e-6;
+
+/// The outward planes of the column that convex polygon `outline` sweeps
+/// along unit `dir`; edges running along dir (their sine with it within
+/// kParallelSine) bound nothing and give no plane.
+std::vector<Plane> column_planes(const std::vector<Eigen::Vector3d>& outline, const Eigen::Vector3d& dir);
+
+/// True for a piece no wider than kNegligibleWidthInTolerances x `tol`
+/// (scene units; its least width over its edges' directions), or with
+/// fewer than 3 corners or no area: a sliver of rounding, which cutting
+/// would only shave again. Far below anything a ray could be aimed at: an
+/// opening's strip alone is 2 tol wide.
+bool negligible(const std::vector<Eigen::Vector3d>& polygon, double tol);
+
+/// `region` cut along the shadow (the column along `dir`) of a triangle:
+/// the part inside it and the parts beside each of its sides (no negligible
+/// pieces). The triangle is grown by `tol` in its plane, as rays meet it
+/// (mesh_ray.h).
+struct ShadowSplit {
+  std::vector<Eigen::Vector3d> inside;
+  std::vector<std::vector<Eigen::Vector3d>> beside;
+};
+ShadowSplit split_by_shadow(const std::vector<Eigen::Vector3d>& region, const std::vector<Eigen::Vector3d>& triangle,
+                            const Eigen::Vector3d& dir, double tol);
+
+/// The base of the sweep's ray through `point`: where it crosses the
+/// sweep's start.
+Eigen::Vector3d ray_base(const FreeSpaceSweep& sweep, const Eigen::Vector3d& point);
+
+/// An affine function of a point: value(p) = gradient.p + constant.
+struct Affine {
+  Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
+  double constant = 0.0;
+  double operator()(const Eigen::Vector3d& p) const { return gradient.dot(p) + constant; }
+  Affine operator-(const Affine& other) const { return {gradient - other.gradient, constant - other.constant}; }
+  /// Where it is zero, facing where it is negative (signed distance > 0
+  /// there); its gradient must not be zero.
+  Plane zero_plane() const {
+    const double norm = gradient.norm();
+    return {-gradient / norm, constant / norm};
+  }
+};
+
+/// Its lowest and highest value over a polygon (at its corners).
+std::pair<double, double> range_over(const Affine& f, const std::vector<Eigen::Vector3d>& polygon);
+
+/// Where `margin` is zero across `piece`, when cutting there leaves a piece
+/// with area on its negative side (nothing when it is negative only by
+/// rounding: a piece of no area holds no ray apart from its neighbours').
+std::optional<Plane> splitting_cut(const std::vector<Eigen::Vector3d>& piece, const Affine& margin, double tol);
+
+/// Along the sweep's ray through a point: the distance from the ray's base
+/// to the point (where the ray enters the interior, for points on an entry
+/// facet)...
+Affine distance_to_point(const FreeSpaceSweep& sweep);
+
+/// ... and to the plane `face` (not parallel to the rays).
+Affine distance_to_plane(const FreeSpaceSweep& sweep, const Plane& face);
+
+} // namespace hullcover::detail
