@@ -7,6 +7,7 @@
 #include "first_hit_bound.h"
 
 #include "hullcover/geometry/tolerances.h"
+#include "covering_fixture.h"
 #include "hullcover/mesh/scene_builder.h"
 
 #include <gtest/gtest.h>
@@ -94,6 +95,41 @@ TEST(FirstHitBound, ASweepsRaysAreBoundedInEveryViewNotOnlyInItsOwn) {
       EXPECT_EQ(beyond_own_reach > 0, passes) << "view " << tol;
     }
   }
+}
+
+// A floor under the sharp tip (5.7 degrees) of a triangle, a roof far
+// above: the tip's edges pushed out by tol reach 20 tol past it, beyond its
+// box grown by tol, where rays do not meet it (mesh_ray.h). The floor's rays
+// just past the tip run on to the roof, and every bound must say so.
+TEST(FirstHitBound, RaysPastASharpCornerAreNotEndedByIt) {
+  Mesh m;
+  test::add_triangle(m, V(-0.015, 0, 0), V(0.5, -0.02, 0), V(0.5, 0.02, 0));
+  test::add_triangle(m, V(0, 0, 1), V(1, 0.05, 1), V(1, -0.05, 1));
+  add_quad(m, V(-1, -1, kRoofHeight), V(-1, 2, kRoofHeight), V(2, 2, kRoofHeight), V(2, -1, kRoofHeight));
+  const auto scene = test::index_scene(m, kFine, {1.0, false, ValidityMode::exact, 20.0});
+  const double extent = scene->prepared.tolerance.largest_island;
+  std::vector<V> floor_triangle(3);
+  triangle_corners(scene->prepared.mesh, 0, floor_triangle);
+  const SceneIndex finest(scene->data, kFine, extent);
+  std::vector<int> scratch;
+  int past_the_tip = 0;
+  for (const double tol : {kFine, 0.004, kCoarse}) {
+    const SceneIndex view(scene->data, tol, extent);
+    const FreeSpaceSweep sweep = front_space_sweep(floor_triangle, V::UnitZ(), 20.0, tol);
+    const double own = detail::first_hit_bound(view, sweep, scratch);
+    const double every = detail::first_hit_bound_in_every_view(finest, sweep, kCoarse, scratch);
+    for (double x = -0.0149; x < 0.05; x += 0.0005) {
+      const V on_floor(x, 0.0, 0.0);
+      const V base = on_floor + sweep.start.signed_distance(on_floor) * sweep.direction;
+      const auto hit = first_mesh_hit(view, base, sweep.direction, kRayStandOffInTolerances * tol,
+                                      scene->prepared.tolerance.diagonal, scratch);
+      ASSERT_TRUE(hit) << x;
+      EXPECT_LE(hit->t, own) << "view " << tol << ", ray from x = " << x;
+      EXPECT_LE(hit->t, every) << "view " << tol << ", ray from x = " << x;
+      past_the_tip += hit->t > 2.0;
+    }
+  }
+  EXPECT_GT(past_the_tip, 0);
 }
 
 } // namespace

@@ -35,6 +35,13 @@ std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::V
         const double t = n.dot(mesh.positions[tri[0]] - origin) / rate;
         if (t < min_t || t > max_t + tol) return kNotMet;
         const Eigen::Vector3d p = origin + t * dir;
+        // Only inside the face's box grown by tol, where the tree looks: a
+        // sharp corner's edges pushed out by tol reach beyond it, and a hit
+        // there would count only when the tree happened to visit the face.
+        for (int k = 0; k < 3; ++k) {
+          const double c0 = mesh.positions[tri[0]][k], c1 = mesh.positions[tri[1]][k], c2 = mesh.positions[tri[2]][k];
+          if (p[k] > std::max({c0, c1, c2}) + tol || p[k] < std::min({c0, c1, c2}) - tol) return kNotMet;
+        }
         for (int k = 0; k < 3; ++k) {
           const Eigen::Vector3d& u = mesh.positions[tri[k]];
           const Eigen::Vector3d& v = mesh.positions[tri[(k + 1) % 3]];

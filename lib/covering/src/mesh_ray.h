@@ -18,12 +18,14 @@ struct MeshRayHit {
 };
 
 /// The first face the ray `origin + t dir` (unit `dir`) meets for t in
-/// [min_t, max_t], a face counting when the ray passes within tol of it.
+/// [min_t, max_t], a face counting where the ray crosses its plane within
+/// the triangle with its edges pushed out by tol, and within its box grown
+/// by tol (past a sharp corner the pushed edges reach further).
 /// Faces met within tol of the first hit all decide `from_behind`: one met
 /// from the front among them (a ceiling coincident with the floor above)
-/// makes the ray end on a front, as DESIGN.md's strict definition says. Nothing when the ray
-/// meets no face; faces the ray runs along (within tol of their plane) are
-/// not met.
+/// makes the ray end on a front, as DESIGN.md's strict definition says.
+/// Nothing when the ray meets no face; faces the ray runs along
+/// (|normal.dir| x (max_t - min_t) <= tol) are not met.
 std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::Vector3d& origin,
                                          const Eigen::Vector3d& dir, double min_t, double max_t,
                                          std::vector<int>& scratch);

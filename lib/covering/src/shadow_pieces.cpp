@@ -49,18 +49,50 @@ bool negligible(const std::vector<Eigen::Vector3d>& polygon, double tol) {
   return least <= kNegligibleWidthInTolerances * tol;
 }
 
+namespace {
+
+// The column along `dir` of the points of the triangle's plane inside its
+// box grown by tol: rays meet a face only there (mesh_ray.h: past a sharp
+// corner, the edges pushed out by tol reach further than the box's margin,
+// where the face tree does not look). Two planes per axis; none for an axis
+// the plane is perpendicular to (every point of it lies inside that slab).
+std::vector<Plane> grown_box_column_planes(const std::vector<Eigen::Vector3d>& triangle, const Eigen::Vector3d& normal,
+                                           const Eigen::Vector3d& dir, double tol) {
+  std::vector<Plane> planes;
+  const double rate = normal.dot(dir);
+  const double on_plane = normal.dot(triangle[0]);
+  for (int k = 0; k < 3; ++k) {
+    // Where the ray through x meets the plane, coordinate k is the affine
+    // function x_k - dir_k (n.x - on_plane) / rate.
+    const Eigen::Vector3d gradient = Eigen::Vector3d::Unit(k) - (dir[k] / rate) * normal;
+    const double scale = gradient.norm();
+    if (!(scale > 0.0)) continue;
+    const double constant = dir[k] * on_plane / rate;
+    const double highest = std::max({triangle[0][k], triangle[1][k], triangle[2][k]}) + tol;
+    const double lowest = std::min({triangle[0][k], triangle[1][k], triangle[2][k]}) - tol;
+    planes.push_back({gradient / scale, (highest - constant) / scale});
+    planes.push_back({-gradient / scale, (constant - lowest) / scale});
+  }
+  return planes;
+}
+
+} // namespace
 
 ShadowSplit split_by_shadow(const std::vector<Eigen::Vector3d>& region, const std::vector<Eigen::Vector3d>& triangle,
                             const Eigen::Vector3d& dir, double tol) {
   const Eigen::Vector3d normal = (triangle[1] - triangle[0]).cross(triangle[2] - triangle[0]).normalized();
-  ShadowSplit split;
-  split.inside = region;
-  for (Plane plane : column_planes(triangle, dir)) {
+  std::vector<Plane> sides = column_planes(triangle, dir);
+  for (Plane& plane : sides) {
     // The side's edge moved out by tol in the triangle's plane moves the
     // column's side by tol times the cosine between the two outward
     // normals (the edge's, in the plane, is the side's projected into it).
     const double across = plane.normal.dot(normal);
     plane.offset += tol * std::sqrt(std::max(0.0, 1.0 - across * across));
+  }
+  for (const Plane& plane : grown_box_column_planes(triangle, normal, dir, tol)) sides.push_back(plane);
+  ShadowSplit split;
+  split.inside = region;
+  for (const Plane& plane : sides) {
     std::vector<Eigen::Vector3d> beside = clip_polygon(split.inside, plane.flipped(), 0.0);
     if (!negligible(beside, tol)) split.beside.push_back(std::move(beside));
     split.inside = clip_polygon(split.inside, plane, 0.0);
@@ -69,11 +101,9 @@ ShadowSplit split_by_shadow(const std::vector<Eigen::Vector3d>& region, const st
   return split;
 }
 
-
 Eigen::Vector3d ray_base(const FreeSpaceSweep& sweep, const Eigen::Vector3d& point) {
   return point + sweep.start.signed_distance(point) * sweep.direction;
 }
-
 
 std::pair<double, double> range_over(const Affine& f, const std::vector<Eigen::Vector3d>& polygon) {
   double lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
