@@ -6,6 +6,7 @@
 #include "covering_fixture.h"
 
 #include "hullcover/bvh/covering_hulls.h"
+#include "hullcover/geometry/tolerances.h"
 #include "hullcover/validate/audit.h"
 
 #include <gtest/gtest.h>
@@ -118,6 +119,47 @@ TEST(AllowanceAudit, ASlotNarrowerThanTheAgentMayBeFilledAWiderOneMayNot) {
   const AuditReport thin_agent = audit(*d, hulls, {0.15, std::nullopt});
   EXPECT_TRUE(has(thin_agent, AuditFinding::reachable_space_lost));
   EXPECT_EQ(thin_agent.probe.allowance.deepest_reach.hull, 2);
+}
+
+// A sheet (y up): a triangle sloping 4 tol over 4 units down to a level
+// strip 0.2 wide, above a wall hanging from the strip's outer edge and
+// facing in; so placed, the sheet's hull comes out a flat polygon (checked
+// below). The sheet's corners fit a slab of tol, so an allowance
+// makes one planar patch of it (exact mode's condition 2 refuses: the
+// slope's top corner lies 4 tol above the strip's plane). Every point of
+// the strip lies on that polygon within tol; the re-check once called the
+// strip uncovered because the polygon's far corner rises more than 2 tol
+// above the strip's own plane (recast-dungeon in the agent-radius world:
+// 3 faces).
+TEST(AllowanceAudit, AFlatHullRisingAboveAFacesPlaneFarAwayStillCoversTheFace) {
+  // The scene's tolerance, given: a round length, so the rise is 4 of it.
+  constexpr double kSceneTolerance = 1e-3;
+  constexpr double kRiseInTolerances = 4.0;
+  const double tol = kSceneTolerance, rise = kRiseInTolerances * tol;
+  Mesh m;
+  const V up(0, 1, 0), top(0, rise, 0), near(4, 0, 0), far(4, 0, 6);
+  test::add_triangle(m, top, far, near);
+  test::add_quad_facing(m, near, V(4.2, 0, 0), V(4.2, 0, 6), far, up);
+  test::add_quad_facing(m, V(4.2, 0, 0), V(4.2, -1, 0), V(4.2, -1, 6), V(4.2, 0, 6), V(-1, 0, 0));
+  DecomposeOptions options;
+  options.agent_radius = 0.3;
+  const auto d = test::decompose_and_check(m, options, tol);  // re-checks coverage of claimed faces
+  ASSERT_TRUE(d);
+  // The case at hand: the slope and the strip in one flat hull, rising above
+  // the strip's plane (y = 0) by more than the re-check's on-hull distance.
+  const int upper = d->hull_of_face(0);
+  ASSERT_GE(upper, 0);
+  const CoveringHull& hull = d->covering.hulls[upper];
+  EXPECT_TRUE(hull.planar && hull.thickness == 0.0);
+  EXPECT_EQ(hull.faces, (std::vector<int>{0, 1, 2}));
+  double highest = 0.0;
+  for (const V& p : hull.polytope.vertices) highest = std::max(highest, p.y());
+  EXPECT_GT(highest, kOnHullInTolerances * tol);
+  // Read as an audit reads hulls from a file (no faces claimed), every face
+  // is covered and the covering audits clean at the agent's radius.
+  const AuditReport agent = audit(*d, bvh::runtime_hulls(d->covering), {options.agent_radius, std::nullopt});
+  EXPECT_EQ(agent.recheck.faces_uncovered, 0) << agent.recheck.summary();
+  EXPECT_TRUE(agent.clean()) << agent.recheck.summary();
 }
 
 } // namespace

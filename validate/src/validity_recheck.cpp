@@ -50,8 +50,15 @@ struct FaceOffHull {
   double corner_off = 0.0;  // the face's farthest corner off the hull's surface, deep inside or outside
   double corner_outside = 0.0;  // the face's farthest corner outside the hull (0 when all are in or on it)
   bool on_hull(double limit) const { return in_front <= limit && corner_off <= limit; }
-  // Covered with an allowance: on the hull, or wholly inside a solid one.
-  bool on_or_inside(double limit, bool flat) const { return on_hull(limit) || (!flat && corner_outside <= limit); }
+  // Covered with an allowance, which lifts condition 2 (the face's plane
+  // need not support the hull): every corner, and so (the hull being convex)
+  // every point of the face, on the hull or in it. A flat hull has no
+  // inside: there it is the face lying on the polygon, however far the
+  // polygon rises beyond the face's own plane. A planar patch of faces
+  // within a slab of tol but not coplanar (a sloped triangle beside level
+  // strips, recast-dungeon) rises more than 2 tol above a small face's
+  // plane a few metres away, and the face is on it all the same.
+  bool on_or_inside(double limit) const { return corner_outside <= limit; }
 };
 
 FaceOffHull face_off_hull(const Mesh& mesh, const Eigen::Vector3d& normal, const Eigen::Vector3i& t,
@@ -184,13 +191,14 @@ private:
     if (out.examples.size() < kExamplesKept) out.examples.push_back(what);
   }
 
-  // On the hull; with an allowance, or inside it (counted apart).
+  // On the hull; with an allowance, or inside a solid one (counted apart),
+  // or on a flat one that condition 2 would refuse.
   bool face_covered(const Eigen::Vector3d& normal, const Eigen::Vector3i& t, const HullUnderCheck& hull,
                     const CheckedHull& c, CheckReport& out) const {
     const FaceOffHull off = face_off_hull(mesh_, normal, t, hull, c);
     if (off.on_hull(on_hull(c))) return true;
-    if (!inside_allowed_ || !off.on_or_inside(on_hull(c), c.flat)) return false;
-    ++out.faces_inside;
+    if (!inside_allowed_ || !off.on_or_inside(on_hull(c))) return false;
+    if (!c.flat) ++out.faces_inside;
     return true;
   }
 

@@ -36,7 +36,7 @@ struct CheckReport {
   long faces_off_hull = 0;       ///< condition 2: claimed faces not on their hull with their normal out
   long bars_inside = 0;          ///< condition 3: the paper's bars entering a hull
   long faces_below_polygon = 0;  ///< condition 4: faces reaching a flat hull's interior from below
-  long faces_uncovered = 0;      ///< coverage: faces with area on no hull's boundary (nor, when inside_allowed, inside one)
+  long faces_uncovered = 0;      ///< coverage: faces with area on no hull's boundary (nor, when inside_allowed, inside or on one)
   long faces_inside = 0;         ///< when inside_allowed: faces covered by lying inside a solid hull, not on it
   double uncovered_area = 0.0;   ///< their area, scene units squared
   double total_area = 0.0;       ///< the area of every face with a surface
@@ -67,13 +67,14 @@ struct CheckReport {
 /// whatever crosses it crosses the mesh. A face no hull claims counts as
 /// covered when it lies on some hull's boundary with its normal out ("on":
 /// within `kOnHullInTolerances` tolerances, hullcover/geometry/tolerances.h).
-/// With `inside_allowed`, a face (claimed or not) is also covered when its
-/// corners all lie inside one solid hull (not farther than that distance
-/// outside it), and condition 1 is reported without counting as a
-/// violation (CheckReport::inside_allowed). Hulls, then faces, are checked
-/// on `threads` threads (0: every core; negative: one), each into a part of
-/// its own added in hull and face order: the report, examples included, is
-/// the same for any thread count.
+/// With `inside_allowed`, condition 2 gives way: a face (claimed or not) is
+/// also covered when its corners all lie inside one solid hull, or on one
+/// flat hull, not farther than that distance outside it (the hull's far
+/// vertices may rise above the face's own plane), and condition 1 is
+/// reported without counting as a violation (CheckReport::inside_allowed).
+/// Hulls, then faces, are checked on `threads` threads (0: every core;
+/// negative: one), each into a part of its own added in hull and face
+/// order: the report, examples included, is the same for any thread count.
 CheckReport recheck_hulls(const PreparedMesh& prepared, const std::vector<HullUnderCheck>& hulls,
                           double bar_half_length, bool inside_allowed = false, int threads = 1);
 
