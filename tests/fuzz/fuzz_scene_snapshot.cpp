@@ -4,10 +4,11 @@
 // hang, allocate without bound or trust what it cannot read.
 //
 // For each input a small scene in cells is baked into a fresh cache; then
-// the scene, with one face added, is baked again twice: once with the input
-// as the record, once with the input read as EDITS to the valid record (its
-// checksum made right afterwards), so the fuzzer reaches the checks of
-// counts and values behind the checksum.
+// the scene, with one face added, is baked again twice from copies of it:
+// once with the input as the record, once with the input read as EDITS to
+// the valid record (its checksum made right afterwards), so the fuzzer
+// reaches the checks of counts and values behind the checksum. A bake that
+// fails (rather than falling back to re-checking everything) aborts.
 
 #include "fuzz_support.h"
 #include "fuzz_targets.h"
@@ -16,6 +17,7 @@
 #include "hullcover/geometry/little_endian_bytes.h"
 #include "hullcover/mesh/prepared_mesh.h"
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -39,24 +41,34 @@ bool bake(const Mesh& mesh, const std::string& cache) {
   return decompose_with_cell_cache(std::move(prepared).value(), options, cache, report).ok();
 }
 
-void write_record(const std::string& cache, const std::string& bytes) {
-  std::ofstream(cache + "/" + kRecordName, std::ios::binary | std::ios::trunc) << bytes;
+// A re-bake of `after` from a copy of the filled cache `filled`, with
+// `record` as the last bake's record. A bad record is refused and every
+// kept patch re-checked: the bake itself must not fail.
+void rebake_with_record(const Mesh& after, const std::string& filled, const std::string& cache,
+                        const std::string& record) {
+  std::error_code ignored;
+  std::filesystem::remove_all(cache, ignored);
+  std::filesystem::copy(filled, cache);
+  std::ofstream(cache + "/" + kRecordName, std::ios::binary | std::ios::trunc) << record;
+  if (!bake(after, cache)) std::abort();
 }
 
 } // namespace
 
 int fuzz_one_scene_snapshot(const std::uint8_t* data, std::size_t size) {
   const std::string marker = write_scratch_file("scene-snapshot.marker", data, 0);
-  const std::string cache = std::filesystem::path(marker).parent_path() / "scene-snapshot-cache";
+  const std::filesystem::path folder = std::filesystem::path(marker).parent_path();
+  const std::string filled = folder / "scene-snapshot-filled", cache = folder / "scene-snapshot-cache";
   std::error_code ignored;
-  std::filesystem::remove_all(cache, ignored);
+  std::filesystem::remove_all(filled, ignored);
   const Mesh before = small_scene_in_cells();
-  if (!bake(before, cache)) return 0;
+  if (!bake(before, filled)) std::abort();
   std::string valid;
   {
-    std::ifstream in(cache + "/" + kRecordName, std::ios::binary);
+    std::ifstream in(filled + "/" + kRecordName, std::ios::binary);
     valid.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
+  if (valid.size() <= kChecksumBytes) std::abort();
   // One face added beside the block: the re-bake reads the record to find it.
   Mesh after = before;
   const int base = static_cast<int>(after.positions.size());
@@ -64,24 +76,27 @@ int fuzz_one_scene_snapshot(const std::uint8_t* data, std::size_t size) {
   after.triangles.emplace_back(base, base + 1, base + 2);
   after.material_ids.push_back(0);
 
-  write_record(cache, std::string(reinterpret_cast<const char*>(data), size));
-  (void)bake(after, cache);
+  rebake_with_record(after, filled, cache, std::string(reinterpret_cast<const char*>(data), size));
 
+  // The valid record edited; an input of a length not a multiple of the
+  // edit size ends it there (its last one or two bytes, little-endian,
+  // modulo the size: anywhere in the record).
   std::string edited = valid;
-  if (!edited.empty()) {
-    for (std::size_t e = 0; e < size / kEditBytes; ++e) {
-      const std::size_t at =
-          (data[kEditBytes * e] | (static_cast<std::size_t>(data[kEditBytes * e + 1]) << 8)) % edited.size();
-      edited[at] = static_cast<char>(data[kEditBytes * e + 2]);
-    }
-    if (size % kEditBytes != 0) edited.resize(data[size - 1] % edited.size());
-    if (edited.size() >= kChecksumBytes)
-      put_u64(edited, edited.size() - kChecksumBytes,
-              fnv1a(reinterpret_cast<const unsigned char*>(edited.data()), edited.size() - kChecksumBytes));
+  const std::size_t edits = size / kEditBytes;
+  for (std::size_t e = 0; e < edits; ++e) {
+    const std::size_t at =
+        (data[kEditBytes * e] | (static_cast<std::size_t>(data[kEditBytes * e + 1]) << 8)) % edited.size();
+    edited[at] = static_cast<char>(data[kEditBytes * e + 2]);
   }
-  write_record(cache, edited);
-  (void)bake(after, cache);
+  const std::size_t rest = size % kEditBytes;
+  if (rest == 1) edited.resize(data[size - 1] % edited.size());
+  if (rest == 2) edited.resize((data[size - 2] | (static_cast<std::size_t>(data[size - 1]) << 8)) % edited.size());
+  if (edited.size() >= kChecksumBytes)
+    put_u64(edited, edited.size() - kChecksumBytes,
+            fnv1a(reinterpret_cast<const unsigned char*>(edited.data()), edited.size() - kChecksumBytes));
+  rebake_with_record(after, filled, cache, edited);
   std::filesystem::remove_all(cache, ignored);
+  std::filesystem::remove_all(filled, ignored);
   remove_scratch_file(marker);
   return 0;
 }

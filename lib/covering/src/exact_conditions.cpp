@@ -1,5 +1,6 @@
 #include "exact_conditions.h"
 
+#include "shadow_pieces.h"
 #include "witness_rays.h"
 
 #include <Eigen/Geometry>

@@ -1,6 +1,7 @@
 #include "loss_allowance.h"
 
 #include "first_hit_bound.h"
+#include "shadow_pieces.h"
 #include "witness_rays.h"
 
 #include "hullcover/geometry/planar_hull.h"

@@ -4,7 +4,6 @@
 // its rays. Internal to the decomposer.
 
 #include "free_space_sweep.h"
-#include "shadow_pieces.h"
 #include "scene_index.h"
 
 #include <vector>
