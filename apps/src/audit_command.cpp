@@ -111,10 +111,12 @@ void print_audit(const AuditCommandOptions& o, const PreparedMesh& prepared, con
   std::printf("%s: %s\n", o.hulls.c_str(),
               a.clean() ? (allowance ? "CLEAN: nothing taken beyond the allowance" : "CLEAN: no accessible space lost")
                         : (allowance ? "VIOLATIONS: more taken than the allowance" : "VIOLATIONS: accessible space lost"));
-  std::printf("  %zu hulls against %zu faces; tolerance %.6g%s, ray spacing %.6g, ", a.hull_count,
+  std::printf("  %zu hulls against %zu faces; tolerance %.6g%s, ray spacing %.6g", a.hull_count,
               prepared.mesh.triangles.size(), prepared.tolerance.length,
               prepared.tolerance.largest_length() > prepared.tolerance.length ? " (smallest; each island its own)" : "",
-              r.resolution);
+              r.finest_spacing);
+  if (r.coarsest_spacing > r.finest_spacing) std::printf(" to %.6g (each island its own)", r.coarsest_spacing);
+  std::printf(", ");
   if (r.probe_distance)
     std::printf("rays capped at %.6g (not the strict definition)\n", *r.probe_distance);
   else
@@ -219,8 +221,8 @@ void register_audit_command(CLI::App& app, int& exit_status) {
                   "a cap audits less than it)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--resolution", o->audit.probe.resolution,
-                  "Ray spacing on faces and open edges, and octree cell size (default 0.0025 x diagonal; every\n"
-                  "face gets rays however small)")
+                  "Ray spacing on faces and open edges, and octree cell size (default 0.0025 x the diagonal of\n"
+                  "each face's island for the rays, of the scene for the octree; every face gets rays however small)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--bar-length", o->audit.bar_half_length,
                   "Half-length of the boundary bars of the re-check (default 0.1 x diagonal, the paper-mode default)")

@@ -77,6 +77,8 @@ nlohmann::json audit_report_json(const PreparedMesh& prepared, const validate::A
       {"tolerance", prepared.tolerance.length},
       {"probe_distance", optional_json(r.probe_distance)},
       {"resolution", r.resolution},
+      {"finest_ray_spacing", r.finest_spacing},
+      {"coarsest_ray_spacing", r.coarsest_spacing},
       {"front", rays_json(r.front)},
       {"openings", rays_json(r.opening)},
       {"lost_cells", r.lost_cells},

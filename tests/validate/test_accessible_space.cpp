@@ -83,6 +83,33 @@ TEST(AccessibleSpace, AHullFillingARoomSeenFromInsideIsCaught) {
   EXPECT_LE(filled.max_lost_depth, 1.5 + 1e-9);
 }
 
+// A map inside a world is audited as finely as alone: each island's rays
+// are spaced by its own diagonal, not the world's.
+TEST(AccessibleSpace, AMapInAWorldGetsTheRaysItGetsAlone) {
+  const Mesh building = demo_building();
+  Mesh terrain;
+  add_height_field(terrain, {0, 50, 100, 150, 200}, {0, 50, 100, 150, 200},
+                   [](double x, double z) { return 0.01 * (x + z); });
+  for (V& p : terrain.positions) p += V(1000.0, 0.0, 0.0);
+  Mesh world = building;
+  const int base = static_cast<int>(world.positions.size());
+  world.positions.insert(world.positions.end(), terrain.positions.begin(), terrain.positions.end());
+  for (const Eigen::Vector3i& t : terrain.triangles) world.triangles.push_back(t + Eigen::Vector3i::Constant(base));
+  world.material_ids.insert(world.material_ids.end(), terrain.material_ids.begin(), terrain.material_ids.end());
+  const auto a = test::decompose_and_check(building);
+  const auto b = test::decompose_and_check(terrain);
+  const auto w = test::decompose_and_check(world);
+  ASSERT_TRUE(a && b && w);
+  const ProbeReport alone = probe(*a, bvh::runtime_hulls(a->covering));
+  const ProbeReport terrain_alone = probe(*b, bvh::runtime_hulls(b->covering));
+  const ProbeReport in_world = probe(*w, bvh::runtime_hulls(w->covering));
+  EXPECT_EQ(in_world.front.rays, alone.front.rays + terrain_alone.front.rays);
+  EXPECT_EQ(in_world.opening.rays, alone.opening.rays + terrain_alone.opening.rays);
+  EXPECT_DOUBLE_EQ(in_world.finest_spacing, alone.finest_spacing);
+  EXPECT_GT(in_world.coarsest_spacing, 10.0 * in_world.finest_spacing);
+  EXPECT_EQ(in_world.lost_rays(), 0);
+}
+
 TEST(AccessibleSpace, RefusesBadOptions) {
   const auto d = test::decompose_and_check(demo_building());
   ASSERT_TRUE(d);

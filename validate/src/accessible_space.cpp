@@ -295,11 +295,28 @@ Result<ProbeReport> probe_accessible_space(const PreparedMesh& prepared, const b
       };
       parallel_for_ordered(count, threads, kItemsPerBatch, trace_item, add_item);
     };
+    // Per island: a map inside a world gets the rays it gets alone.
+    std::vector<double> spacing_of_island;
+    for (const Aabb& box : prepared.islands.boxes)
+      spacing_of_island.push_back(options.resolution.value_or(kDefaultProbeSpacingRelative * box.diagonal()));
+    const auto spacing_of_face = [&](int face) {
+      const double spacing = spacing_of_island[prepared.islands.island_of_face[face]];
+      // An island of one point (all its faces of no area) has no length.
+      return spacing > 0.0 ? spacing : report.resolution;
+    };
+    report.finest_spacing = report.coarsest_spacing = report.resolution;
+    if (!spacing_of_island.empty()) {
+      report.finest_spacing = *std::min_element(spacing_of_island.begin(), spacing_of_island.end());
+      report.coarsest_spacing = *std::max_element(spacing_of_island.begin(), spacing_of_island.end());
+      if (!(report.finest_spacing > 0.0)) report.finest_spacing = report.resolution;
+    }
     const auto front_rays = [&](int face, const std::function<void(const probe::ProbeRay&)>& trace) {
-      probe::front_rays_of_face(prepared, report.resolution, face, trace);
+      probe::front_rays_of_face(prepared, spacing_of_face(face), face, trace);
     };
     const auto opening_rays = [&](int edge, const std::function<void(const probe::ProbeRay&)>& trace) {
-      probe::opening_rays_of_edge(prepared, report.resolution, edge, trace);
+      const MeshConnectivity& c = prepared.connectivity;
+      const double spacing = spacing_of_face(c.edge_uses[c.edges[edge].first_use].face);
+      probe::opening_rays_of_edge(prepared, spacing, edge, trace);
     };
     trace_items(static_cast<int>(prepared.mesh.triangles.size()), front_rays, report.front, 0.0, kFrontRayShareOfProbe);
     trace_items(static_cast<int>(prepared.connectivity.edges.size()), opening_rays, report.opening,

@@ -38,9 +38,11 @@
 
 namespace hullcover::validate {
 
-/// Default ray spacing as a fraction of the scene's bounding-box diagonal:
-/// about one front ray per spacing^2 of face area and one opening point per
-/// spacing of open edge (plus a few per face and edge however small).
+/// Default ray spacing as a fraction of the bounding-box diagonal of each
+/// face's island (mesh_islands.h; a map inside a world is audited as finely
+/// as alone): about one front ray per spacing^2 of face area and one
+/// opening point per spacing of open edge (plus a few per face and edge
+/// however small). The octree's cells are this fraction of the scene's.
 inline constexpr double kDefaultProbeSpacingRelative = 0.0025;
 
 /// How finely the probe looks; the default is relative to the scene.
@@ -50,7 +52,8 @@ struct ProbeOptions {
   /// agent's reach.
   std::optional<double> probe_distance;
   /// Ray spacing on faces and open edges, and the octree's cell size,
-  /// scene units (> 0); default kDefaultProbeSpacingRelative x diagonal.
+  /// scene units (> 0); default kDefaultProbeSpacingRelative x each
+  /// island's diagonal for the rays, x the scene's for the octree.
   std::optional<double> resolution;
   std::string octree_path;  ///< write the lost cells' octree here (.bt) when not empty
   /// What the covering was allowed to take (allowance_audit.h); none: exact mode.
@@ -82,7 +85,9 @@ struct RayTally {
 /// What the probe found.
 struct ProbeReport {
   std::optional<double> probe_distance;  ///< the cap used, scene units; none by default
-  double resolution = 0.0;               ///< ray spacing and octree cell size used, scene units
+  double resolution = 0.0;               ///< octree cell size used, scene units
+  double finest_spacing = 0.0;           ///< the finest ray spacing used (an island's), scene units
+  double coarsest_spacing = 0.0;         ///< the coarsest, scene units
   RayTally front;    ///< rays in front of faces
   RayTally opening;  ///< rays beyond open edges
   long lost_cells = 0;       ///< octree cells holding a lost ray's deepest point
