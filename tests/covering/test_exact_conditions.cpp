@@ -14,7 +14,12 @@
 
 #include "hullcover/mesh/scene_builder.h"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace hullcover {
 namespace {
@@ -209,6 +214,92 @@ TEST(StrictFreeSpace, TiltedOpeningIsKept) {
   EXPECT_EQ(exact_verdict(m, below), Validity::opening_inside);
   // Lower, out of the tilted fan's reach there, it takes nothing.
   EXPECT_EQ(exact_verdict(m, box_hull(V(1.5, -0.6, 0.2), V(2, -0.3, 0.8))), Validity::valid);
+}
+
+// A grown hull (a merged patch's hull before Qhull rebuilds it, one plane per
+// triangle it grew by, kept when the rebuild fails its checks) whose front is
+// many triangles of one wall, their planes a few millionths of a radian
+// apart by float32 rounding: hull 1641 of sauerbraten-fdm6 as `hullcover
+// world` scales it. Shrunk by tol, planes within tol/16 of each other were
+// one, yet a facet was still cut by a plane that is one with another: two
+// such planes cross a third at that shallow angle along lines metres apart,
+// and rays entering between the lines lay on no facet, so no sweep judged
+// them. The audit found a ray there 3.8 tol deep that meets no face at all.
+ConvexPolytope fdm6_grown_wall_hull() {
+  ConvexPolytope hull;
+  hull.vertices = {
+      V(6.4000000953674308, 4.0, 9.6000003814697248),
+      V(6.5999999046325684, 2.4000000953674316, 9.3999996185302734),
+      V(6.4000000953674308, 2.4000000953674316, 9.6000003814697248),
+      V(6.4000000953674316, 2.5999999046325684, 9.8000001907348633),
+      V(8.8000001907348633, 2.4000000953674316, 7.1999998092651367),
+      V(6.4000000953674316, 5.5999999046325684, 9.6000003814697266),
+      V(8.8000001907348633, 4.0, 7.1999998092651367),
+      V(8.0, 5.5999999046325684, 8.0),
+      V(9.3999996185302734, 2.5999999046325684, 6.5999999046325684),
+      V(9.6000003814697266, 2.5999999046325684, 6.4000000953674316),
+      V(9.6000003814697266, 5.5999999046325684, 6.4000000953674316),
+      V(6.4000000953674316, 4.0, 9.8000001907348633)};
+  hull.facets = {{0, 1, 2}, {2, 1, 3}, {0, 2, 3}, {1, 0, 4}, {3, 1, 4}, {0, 3, 5}, {4, 0, 5}, {4, 5, 6}, {6, 5, 7}, {4, 6, 8}, {6, 7, 9}, {3, 4, 9}, {4, 8, 9}, {8, 6, 9}, {3, 9, 10}, {9, 7, 10}, {5, 3, 11}, {7, 5, 11}, {3, 10, 11}, {10, 7, 11}};
+  for (const std::vector<int>& f : hull.facets) {
+    const V& a = hull.vertices[f[0]];
+    const V n = (hull.vertices[f[1]] - a).cross(hull.vertices[f[2]] - a).normalized();
+    hull.planes.push_back({n, n.dot(a)});
+  }
+  return hull;
+}
+
+TEST(StrictFreeSpace, RaysEnteringAGrownHullBetweenNearlyCoplanarFacetsAreJudged) {
+  const double tol = 0.000399119;  // the map's
+  const ConvexPolytope hull = fdm6_grown_wall_hull();
+  // A small face at x = 3.2 facing +x (on the map, part of face 3132): its
+  // rays pass the hull's front where the map's wall has a gap, and meet
+  // nothing.
+  Mesh m;
+  test::add_triangle(m, V(3.2, 2.42, 7.12), V(3.2, 2.44, 7.12), V(3.2, 2.43, 7.15));
+  // The audit's lost ray, at the depth it found: deeper than tol in the hull.
+  const V lost(8.8635879939332973, 2.4333334267139435, 7.1385417580604553);
+  EXPECT_LT(deepest_signed_distance(hull.planes, lost), -3.0 * tol);
+  Result<PreparedMesh> prepared = prepare_mesh(m, tol);
+  ASSERT_TRUE(prepared.ok());
+  const double margin = 10.0;  // the hull lies this far from the face, beyond the scene's box
+  BarOptions bars{kExactBarHalfLengthInTolerances * tol, false, ValidityMode::exact,
+                  uncapped_free_space_reach(prepared.value(), margin), margin};
+  const auto scene = test::index_scene(m, tol, bars);
+  std::vector<int> scratch;
+  EXPECT_EQ(check_solid_hull(scene->index, hull, scratch), Validity::front_space_inside);
+
+  // Every ray along +x that enters the shrunk hull enters through a facet of
+  // it facing against the ray (within tol of the facet's outline).
+  const HullInterior interior = hull_interior(hull, tol);
+  for (double y = 2.41; y < 5.59; y += 0.05)
+    for (double z = 6.45; z < 9.75; z += 0.05) {
+      double enter = -std::numeric_limits<double>::infinity(), leave = -enter;
+      for (const Plane& p : interior.planes) {
+        if (p.normal.x() == 0.0) continue;
+        const double t = (p.offset - p.normal.y() * y - p.normal.z() * z) / p.normal.x();
+        if (p.normal.x() < 0.0) enter = std::max(enter, t);
+        else leave = std::min(leave, t);
+      }
+      if (!(enter < leave) || deepest_signed_distance(interior.planes, V(0.5 * (enter + leave), y, z)) >= 0.0) continue;
+      bool on_facet = false;
+      for (size_t k = 0; k < interior.facets.size() && !on_facet; ++k) {
+        const std::vector<V>& f = interior.facets[k];
+        if (f.size() < 3 || interior.planes[k].normal.x() >= 0.0) continue;
+        // Seen along x, the facet's outline holds (y, z) (any winding).
+        double low = 0.0, high = 0.0;
+        for (size_t i = 0; i < f.size(); ++i) {
+          const V& a = f[i];
+          const V& b = f[(i + 1) % f.size()];
+          const double e = (b.y() - a.y()) * (z - a.z()) - (b.z() - a.z()) * (y - a.y());
+          const double length = std::hypot(b.y() - a.y(), b.z() - a.z());
+          low = std::min(low, e + tol * length);
+          high = std::max(high, e - tol * length);
+        }
+        on_facet = low >= 0.0 || high <= 0.0;
+      }
+      EXPECT_TRUE(on_facet) << "the ray at y " << y << ", z " << z << " enters through no facet";
+    }
 }
 
 } // namespace

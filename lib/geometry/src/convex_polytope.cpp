@@ -96,20 +96,28 @@ HullInterior hull_interior(const ConvexPolytope& hull, double tol) {
   }
   // Planes within kOnePlaneInTolerances of each other across the hull (a
   // grown hull's coplanar triangles) are one: cutting each by the other
-  // would leave the facet to rounding. The first holds it.
-  const auto same_plane = [&](size_t j, size_t k) {
+  // would leave the facet to rounding. The first holds it; the facets are
+  // those of the holders' polytope (a superset of the interior by at most
+  // that fraction of tol), each holder's square cut by every other holder
+  // and by no plane that is not one. Cutting a facet by a plane that is one
+  // with another holder leaves a gap: two planes a tol/16 apart cross a
+  // third at a shallow angle along lines metres apart (a grown wall's
+  // triangles on sauerbraten-fdm6), and rays entering between the two
+  // lines lay on no facet, so no sweep judged them.
+  const auto within = [&](size_t j, size_t k) {
     for (const Eigen::Vector3d& c : squares[k])
       if (std::abs(interior.planes[j].signed_distance(c)) > kOnePlaneInTolerances * tol) return false;
     return true;
   };
-  // Held by: the first plane the same as k that holds its own facet (k if
-  // none); one the same as a holder but not as k holds its own.
+  // Both ways round, so that two holders are never one.
+  const auto same_plane = [&](size_t j, size_t k) { return within(j, k) || within(k, j); };
   std::vector<bool> holds(interior.planes.size(), true);
-  for (size_t k = 0; k < interior.planes.size(); ++k) {
+  for (size_t k = 0; k < interior.planes.size(); ++k)
     for (size_t j = 0; j < k && holds[k]; ++j) holds[k] = !(holds[j] && same_plane(j, k));
+  for (size_t k = 0; k < interior.planes.size(); ++k) {
     std::vector<Eigen::Vector3d> facet = holds[k] ? squares[k] : std::vector<Eigen::Vector3d>{};
     for (size_t j = 0; j < interior.planes.size() && !facet.empty(); ++j)
-      if (j != k && !same_plane(j, k)) facet = clip_polygon(facet, interior.planes[j], 0.0);
+      if (j != k && holds[j]) facet = clip_polygon(facet, interior.planes[j], 0.0);
     if (facet.size() < 3) facet.clear();
     interior.facets.push_back(std::move(facet));
   }
