@@ -61,7 +61,8 @@ def placement(alone_corners, world_corners):
         if all(max(abs(s[k] - shifts[0][k]) for k in range(3)) <= 1e-6 * (1 + max(map(abs, shifts[0])))
                for s in shifts):
             return turn, shifts[0]
-    raise SystemExit("cannot tell how the world placed a map (not a turn about y and a shift)")
+    raise SystemExit("cannot tell how the world placed a map (the script assumes `hullcover world`'s defaults: "
+                     "one copy per map, turned about y)")
 
 
 def audit_alone_hulls(a, m, starts, owners):
@@ -71,9 +72,12 @@ def audit_alone_hulls(a, m, starts, owners):
         return vertices, [face for faces in objects for face in faces]
     world_v, world_f = scene("world.obj")
     alone_v, alone_f = scene(f"alone-{m}.obj")
+    # The map's first face in world.obj: the OBJ faces of the maps before it
+    # (`starts` counts prepared faces, for the hulls' face indices).
+    first = sum(len(scene(f"alone-{i}.obj")[1]) for i in range(m))
     sample = range(0, len(alone_f), max(1, len(alone_f) // 200))
     turn, shift = placement([alone_v[alone_f[k][c]] for k in sample for c in range(3)],
-                            [world_v[world_f[starts[m] + k][c]] for k in sample for c in range(3)])
+                            [world_v[world_f[first + k][c]] for k in sample for c in range(3)])
     path = os.path.join(a.out, f"world-with-alone-{m}.obj")
     with open(path, "w") as out:
         def write(vertices, faces, place):
@@ -97,6 +101,9 @@ def audit_alone_hulls(a, m, starts, owners):
     result = subprocess.run([a.hullcover, "audit", os.path.join(a.out, "world.obj"), path], capture_output=True,
                             text=True)
     print(f"\nmap {m} ({os.path.basename(a.scenes[m])}), its hulls alone in the world:")
+    # The audit exits 0 when clean, 1 on violations; anything else is a failed run.
+    if result.returncode not in (0, 1):
+        raise SystemExit(f"audit failed ({result.returncode}): {result.stderr.strip()}")
     print("\n".join(result.stdout.splitlines()[:6]))
 
 
