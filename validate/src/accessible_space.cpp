@@ -295,20 +295,20 @@ Result<ProbeReport> probe_accessible_space(const PreparedMesh& prepared, const b
       };
       parallel_for_ordered(count, threads, kItemsPerBatch, trace_item, add_item);
     };
-    // Per island: a map inside a world gets the rays it gets alone.
+    // Per island: a map inside a world gets the rays it gets alone. An
+    // island of one point (all its faces of no area) has no length: the
+    // scene's spacing.
     std::vector<double> spacing_of_island;
-    for (const Aabb& box : prepared.islands.boxes)
-      spacing_of_island.push_back(options.resolution.value_or(kDefaultProbeSpacingRelative * box.diagonal()));
-    const auto spacing_of_face = [&](int face) {
-      const double spacing = spacing_of_island[prepared.islands.island_of_face[face]];
-      // An island of one point (all its faces of no area) has no length.
-      return spacing > 0.0 ? spacing : report.resolution;
-    };
+    for (const Aabb& box : prepared.islands.boxes) {
+      const double spacing = options.resolution.value_or(kDefaultProbeSpacingRelative * box.diagonal());
+      spacing_of_island.push_back(spacing > 0.0 ? spacing : report.resolution);
+    }
+    const auto spacing_of_face = [&](int face) { return spacing_of_island[prepared.islands.island_of_face[face]]; };
     report.finest_spacing = report.coarsest_spacing = report.resolution;
     if (!spacing_of_island.empty()) {
-      report.finest_spacing = *std::min_element(spacing_of_island.begin(), spacing_of_island.end());
-      report.coarsest_spacing = *std::max_element(spacing_of_island.begin(), spacing_of_island.end());
-      if (!(report.finest_spacing > 0.0)) report.finest_spacing = report.resolution;
+      const auto [finest, coarsest] = std::minmax_element(spacing_of_island.begin(), spacing_of_island.end());
+      report.finest_spacing = *finest;
+      report.coarsest_spacing = *coarsest;
     }
     const auto front_rays = [&](int face, const std::function<void(const probe::ProbeRay&)>& trace) {
       probe::front_rays_of_face(prepared, spacing_of_face(face), face, trace);

@@ -90,7 +90,10 @@ Result<Covering> decompose_with_cache_unchecked(const PreparedMesh& prepared, co
   detail::SceneSnapshot snapshot;
   const detail::SceneChange change = change_since_last_bake(stages, face_hashes, cache_dir, snapshot);
   report.changed_faces = change.everything ? -1 : change.changed_faces;
+  // Each cell's bytes (stored, and checksummed in the snapshot) and its
+  // result, read or merged once.
   std::vector<std::string> cells(count);
+  std::vector<detail::CellResult> results(count);
   std::vector<char> reused(count, 0);
   std::atomic<int> stale{0};
   std::atomic<long> rechecked{0}, unchecked{0};
@@ -121,7 +124,9 @@ Result<Covering> decompose_with_cache_unchecked(const PreparedMesh& prepared, co
       (look ? rechecked : unchecked) += 1;
       return look;
     };
-    if (detail::cell_bytes_hold(stages, c, bytes.value(), touched, nullptr)) {
+    Result<detail::CellResult> result = detail::cell_result_from_bytes(stages, c, bytes.value());
+    if (result.ok() && detail::cell_result_holds(stages, c, result.value(), touched, nullptr)) {
+      results[c] = std::move(result).value();
       cells[c] = std::move(bytes).value();
       reused[c] = 1;
       progress();
@@ -133,7 +138,8 @@ Result<Covering> decompose_with_cache_unchecked(const PreparedMesh& prepared, co
   start = Clock::now();
   detail::run_in_parallel(count, threads, detail::largest_cells_first(stages.cells), [&](int c) {
     if (reused[c]) return;
-    std::string bytes = detail::cell_result_bytes(stages, c, detail::merge_cell(stages, c, nullptr));
+    detail::CellResult result = detail::merge_cell(stages, c, nullptr);
+    std::string bytes = detail::cell_result_bytes(stages, c, result);
     Status stored = write_file_atomically(entry_path(cache_dir, keys[c]), bytes);
     if (!stored.ok()) {
       const std::lock_guard<std::mutex> lock(mutex);
@@ -141,6 +147,7 @@ Result<Covering> decompose_with_cache_unchecked(const PreparedMesh& prepared, co
       return;
     }
     cells[c] = std::move(bytes);
+    results[c] = std::move(result);
     progress();
   });
   report.seconds_merging = std::chrono::duration<double>(Clock::now() - start).count();
@@ -150,13 +157,6 @@ Result<Covering> decompose_with_cache_unchecked(const PreparedMesh& prepared, co
   report.merged = count - report.reused;
   report.patches_rechecked = rechecked;
   report.patches_kept_unchecked = unchecked;
-  std::vector<detail::CellResult> results;
-  results.reserve(cells.size());
-  for (int c = 0; c < count; ++c) {
-    Result<detail::CellResult> result = detail::cell_result_from_bytes(stages, c, cells[c]);
-    if (!result.ok()) return result.status();
-    results.push_back(std::move(result).value());
-  }
   Covering finished = detail::finish_stages(stages, std::move(results), 0.0);
   finished.statistics.seconds_merging += report.seconds_checking + report.seconds_merging;
   // Only after every cell held or was stored: the next bake trusts what

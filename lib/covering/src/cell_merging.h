@@ -79,12 +79,18 @@ double island_bar_half_length(const DecompositionStages& stages, int island);
 /// reports the cell's own share.
 CellResult merge_cell(const DecompositionStages& stages, int cell, const std::function<void(double)>& progress);
 
-/// Whether `bytes` can stand in for cell `cell` in this scene
-/// (StagedDecomposition::still_valid): they read back for its key, and every
-/// patch `touched` selects (every one when `touched` is empty) passes the
-/// checks its merge passed (PatchMerger::recheck_patches) and gets the same
-/// hull made now (so the finish, which keeps it, gives what a bake of this
-/// scene would). False, with `why` (optional) saying why, otherwise.
+/// Whether `result` (read from a cell's bytes) can stand in for cell `cell`
+/// in this scene: every patch `touched` selects (every one when `touched`
+/// is empty) passes the checks its merge passed
+/// (PatchMerger::recheck_patches) and gets the same hull made now (so the
+/// finish, which keeps it, gives what a bake of this scene would). False,
+/// with `why` (optional) saying why, otherwise.
+bool cell_result_holds(const DecompositionStages& stages, int cell, const CellResult& result,
+                       const std::function<bool(const Patch&, const PatchHull&)>& touched, std::string* why);
+
+/// cell_result_holds on `bytes` read back for cell `cell`
+/// (StagedDecomposition::still_valid); false, with `why`, when they do not
+/// read back for its key.
 bool cell_bytes_hold(const DecompositionStages& stages, int cell, const std::string& bytes,
                      const std::function<bool(const Patch&, const PatchHull&)>& touched, std::string* why);
 

@@ -59,25 +59,22 @@ Validity PatchMerger::recheck_patches(const std::vector<char>& which) {
   return Validity::valid;
 }
 
-bool cell_bytes_hold(const DecompositionStages& stages, int cell, const std::string& bytes,
-                     const std::function<bool(const Patch&, const PatchHull&)>& touched, std::string* why) {
+bool cell_result_holds(const DecompositionStages& stages, int cell, const CellResult& result,
+                       const std::function<bool(const Patch&, const PatchHull&)>& touched, std::string* why) {
+  std::vector<char> which(result.patches.size(), 1);
+  for (size_t p = 0; p < which.size(); ++p)
+    if (touched) which[p] = touched(result.patches[p], result.hulls[p]);
+  // No patch needs a look: no merger to build.
+  if (std::find(which.begin(), which.end(), 1) == which.end()) return true;
   const auto refuse = [why](const std::string& reason) {
     if (why) *why = reason;
     return false;
   };
-  Result<CellResult> read = cell_result_from_bytes(stages, cell, bytes);
-  if (!read.ok()) return refuse(read.status().message());
-  CellResult result = std::move(read).value();
-  std::vector<char> which(result.patches.size(), 1);
-  for (size_t p = 0; p < which.size(); ++p)
-    if (touched) which[p] = touched(result.patches[p], result.hulls[p]);
-  // The bytes read back and no patch needs a look: no merger to build.
-  if (std::find(which.begin(), which.end(), 1) == which.end()) return true;
   // The patches as a seam pass would load them: each face in its patch.
   CoveringStatistics statistics;
   const SceneIndex& index = stages.index_of_cell(cell);
   std::vector<int> origins(result.patches.size(), cell);
-  PatchMerger merger(index, stages.covering.options, stages.cells, cell, std::move(result.patches), std::move(origins),
+  PatchMerger merger(index, stages.covering.options, stages.cells, cell, result.patches, std::move(origins),
                      statistics);
   const Validity validity = merger.recheck_patches(which);
   if (validity != Validity::valid)
@@ -89,6 +86,16 @@ bool cell_bytes_hold(const DecompositionStages& stages, int cell, const std::str
                                result.hulls[p]))
       return refuse("a kept hull would be made otherwise in this scene");
   return true;
+}
+
+bool cell_bytes_hold(const DecompositionStages& stages, int cell, const std::string& bytes,
+                     const std::function<bool(const Patch&, const PatchHull&)>& touched, std::string* why) {
+  Result<CellResult> read = cell_result_from_bytes(stages, cell, bytes);
+  if (!read.ok()) {
+    if (why) *why = read.status().message();
+    return false;
+  }
+  return cell_result_holds(stages, cell, read.value(), touched, why);
 }
 
 } // namespace hullcover::detail
