@@ -1,5 +1,7 @@
 #include "mesh_ray.h"
 
+#include "hullcover/geometry/tolerances.h"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -20,6 +22,7 @@ std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::V
   (void)scratch;
   const Mesh& mesh = index.mesh();
   const double tol = index.tol();
+  const double box_margin = kFaceBoxMarginInTolerances * tol;
   const double length = max_t - min_t;
   if (!(length > 0.0)) return std::nullopt;
   constexpr double kNotMet = std::numeric_limits<double>::infinity();
@@ -27,7 +30,7 @@ std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::V
   std::vector<std::pair<double, bool>> met;
   std::optional<MeshRayHit> first;
   index.face_tree.nearest_along_segment(
-      origin + min_t * dir, origin + max_t * dir, tol, tol / length, [&](int f) {
+      origin + min_t * dir, origin + max_t * dir, box_margin, tol / length, [&](int f) {
         const Eigen::Vector3d& n = index.face_normals[f];
         const double rate = n.dot(dir);
         if (n.isZero() || std::abs(rate) * length <= parallel_tol) return kNotMet;  // zero area, or running along it
@@ -35,12 +38,12 @@ std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::V
         const double t = n.dot(mesh.positions[tri[0]] - origin) / rate;
         if (t < min_t || t > max_t + tol) return kNotMet;
         const Eigen::Vector3d p = origin + t * dir;
-        // Only inside the face's box grown by tol, where the tree looks: a
-        // sharp corner's edges pushed out by tol reach beyond it, and a hit
-        // there would count only when the tree happened to visit the face.
+        // Only inside the face's grown box, where the tree looks: a sharp
+        // corner's edges pushed out by tol reach beyond it, and a hit there
+        // would count only when the tree happened to visit the face.
         for (int k = 0; k < 3; ++k) {
           const double c0 = mesh.positions[tri[0]][k], c1 = mesh.positions[tri[1]][k], c2 = mesh.positions[tri[2]][k];
-          if (p[k] > std::max({c0, c1, c2}) + tol || p[k] < std::min({c0, c1, c2}) - tol) return kNotMet;
+          if (p[k] > std::max({c0, c1, c2}) + box_margin || p[k] < std::min({c0, c1, c2}) - box_margin) return kNotMet;
         }
         for (int k = 0; k < 3; ++k) {
           const Eigen::Vector3d& u = mesh.positions[tri[k]];

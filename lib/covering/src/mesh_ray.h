@@ -20,7 +20,8 @@ struct MeshRayHit {
 /// The first face the ray `origin + t dir` (unit `dir`) meets for t in
 /// [min_t, max_t], a face counting where the ray crosses its plane within
 /// the triangle with its edges pushed out by tol, and within its box grown
-/// by tol (past a sharp corner the pushed edges reach further).
+/// by kFaceBoxMarginInTolerances x tol (past a sharp corner the pushed edges
+/// reach further).
 /// Faces met within tol of the first hit all decide `from_behind`: one met
 /// from the front among them (a ceiling coincident with the floor above)
 /// makes the ray end on a front, as DESIGN.md's strict definition says.

@@ -52,13 +52,14 @@ bool negligible(const std::vector<Eigen::Vector3d>& polygon, double tol) {
 namespace {
 
 // The column along `dir` of the points of the triangle's plane inside its
-// box grown by tol: rays meet a face only there (mesh_ray.h: past a sharp
+// box grown by kFaceBoxMarginInTolerances x tol: rays meet a face only there (mesh_ray.h: past a sharp
 // corner, the edges pushed out by tol reach further than the box's margin,
 // where the face tree does not look). Two planes per axis; none for an axis
 // the plane is perpendicular to (every point of it lies inside that slab).
 std::vector<Plane> grown_box_column_planes(const std::vector<Eigen::Vector3d>& triangle, const Eigen::Vector3d& normal,
                                            const Eigen::Vector3d& dir, double tol) {
   std::vector<Plane> planes;
+  const double box_margin = kFaceBoxMarginInTolerances * tol;
   const double rate = normal.dot(dir);
   const double on_plane = normal.dot(triangle[0]);
   for (int k = 0; k < 3; ++k) {
@@ -68,8 +69,8 @@ std::vector<Plane> grown_box_column_planes(const std::vector<Eigen::Vector3d>& t
     const double scale = gradient.norm();
     if (!(scale > 0.0)) continue;
     const double constant = dir[k] * on_plane / rate;
-    const double highest = std::max({triangle[0][k], triangle[1][k], triangle[2][k]}) + tol;
-    const double lowest = std::min({triangle[0][k], triangle[1][k], triangle[2][k]}) - tol;
+    const double highest = std::max({triangle[0][k], triangle[1][k], triangle[2][k]}) + box_margin;
+    const double lowest = std::min({triangle[0][k], triangle[1][k], triangle[2][k]}) - box_margin;
     planes.push_back({gradient / scale, (highest - constant) / scale});
     planes.push_back({-gradient / scale, (constant - lowest) / scale});
   }

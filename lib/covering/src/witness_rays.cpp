@@ -132,7 +132,7 @@ Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, co
     column.extend(p + (farthest + sweep.start.signed_distance(p)) * sweep.direction);
   }
   std::vector<int> near;
-  index.face_tree.overlapping(grown(column, tol), near);
+  index.face_tree.overlapping(grown(column, kFaceBoxMarginInTolerances * tol), near);  // where shadows reach
   std::vector<Eigen::Vector3d> triangle(3);
   const Affine one_tol{Eigen::Vector3d::Zero(), tol};
   for (int g : near) {

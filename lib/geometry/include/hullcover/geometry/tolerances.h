@@ -41,6 +41,15 @@ inline constexpr double kRoundingErrorsPerPlaneTest = 8.0;
 /// are not free.
 inline constexpr double kRayStandOffInTolerances = 2.0;
 
+/// The decomposer's rays meet a face only inside its bounding box grown by
+/// this many tolerances (mesh_ray.h), and its face tree looks that far
+/// around a ray. The box cuts off the tips a sharp corner's edges reach when
+/// pushed out by tol. Not 1: an axis-aligned face's pushed edges lie on its
+/// box grown by exactly tol, and so do the grown hulls' facets and the
+/// sweeps' sides; a cut there would be decided by rounding, which moves with
+/// the coordinates (a scene moved by 1e5 took another greedy path).
+inline constexpr double kFaceBoxMarginInTolerances = 1.5;
+
 /// Patches join as one planar patch only when every vertex of theirs lies in
 /// a slab this many tolerances wide along their normal; the polygon's plane
 /// runs through its middle, so every face lies within half a tol of its
