@@ -6,12 +6,15 @@
 #include "covering_fixture.h"
 
 #include "hullcover/bvh/covering_hulls.h"
+#include "hullcover/bvh/runtime_hull.h"
+#include "hullcover/covering/convex_hull_3d.h"
 #include "hullcover/geometry/tolerances.h"
 #include "hullcover/validate/audit.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace hullcover::validate {
@@ -160,6 +163,63 @@ TEST(AllowanceAudit, AFlatHullRisingAboveAFacesPlaneFarAwayStillCoversTheFace) {
   const AuditReport agent = audit(*d, bvh::runtime_hulls(d->covering), {options.agent_radius, std::nullopt});
   EXPECT_EQ(agent.recheck.faces_uncovered, 0) << agent.recheck.summary();
   EXPECT_TRUE(agent.clean()) << agent.recheck.summary();
+}
+
+// Cut from sauerbraten-pandora (its coordinates and its island's tolerance):
+// a ceiling (z = -144, facing down) over a wall at x = 496 facing -x, which
+// stands on a bevel rising from (494, z -304) to (496, z -302); a wall
+// panel far off whose open edge sends a ray along x at z = -304.125, under
+// everything, escaping. Hull 4916 of pandora's r = 0.3 covering fills the
+// space behind the bevel and under the wall (x >= 494, z in [-304, -302]),
+// space on no open front ray. Balls on that ray, centred 0.125 under the
+// hull's floor, reach into it; where the nearest point of its interior lay
+// 0.0124-0.0175 behind the wall, the ceiling's column grown by tol held it,
+// and the ray through it (not a ray of the ceiling: off its edge) slid along
+// the wall and past the bevel's edge, outside the casts' tolerance, and
+// escaped: the audit called the ball's reach free space (10 balls here, the
+// one pandora finding at 0.175). The ceiling's own rays at its edge end on
+// the bevel.
+TEST(AllowanceAudit, APointBesideAColumnIsJudgedOnTheFacesOwnRaysNotOneSlippingPastAnEdge) {
+  constexpr double kPandoraTolerance = 0.017492032471957054;
+  const std::vector<std::array<V, 3>> faces = {
+      {{V(416, 416, -306), V(416, 416, -304), V(408, 416, -320)}},  // 52657: the far panel
+      {{V(464, 416, -144), V(496, 432, -144), V(496, 416, -144)}},  // 38452: the ceiling
+      {{V(464, 416, -144), V(464, 432, -144), V(496, 432, -144)}},  // 38453
+      {{V(496, 432, -256), V(496, 416, -302), V(496, 416, -256)}},  // 54441: the wall
+      {{V(496, 432, -256), V(496, 432, -302), V(496, 416, -302)}},  // 54442
+      {{V(496, 432, -192), V(496, 416, -256), V(496, 416, -192)}},  // 54498
+      {{V(496, 432, -192), V(496, 432, -256), V(496, 416, -256)}},  // 54499
+      {{V(496, 432, -144), V(496, 416, -192), V(496, 416, -144)}},  // 54506
+      {{V(496, 432, -144), V(496, 432, -192), V(496, 416, -192)}},  // 54507
+      {{V(496, 416, -302), V(496, 432, -302), V(494, 432, -304)}},  // 44546: the bevel
+      {{V(494, 432, -304), V(496, 400, -302), V(496, 416, -302)}},  // 44547
+      {{V(494, 432, -304), V(494, 416, -304), V(496, 400, -302)}},  // 44551
+  };
+  Mesh m;
+  for (const auto& f : faces) test::add_triangle(m, f[0], f[1], f[2]);
+  Result<PreparedMesh> prepared = prepare_mesh(m, kPandoraTolerance);
+  ASSERT_TRUE(prepared.ok()) << prepared.status().message();
+  ConvexHullBuilder builder;
+  Result<ConvexPolytope> behind_bevel = builder.build({V(496, 400, -302), V(494, 400, -304), V(528, 400, -304),
+                                                       V(528, 416, -302), V(494, 432, -304), V(528, 400, -302),
+                                                       V(496, 432, -302)});
+  ASSERT_TRUE(behind_bevel.ok()) << behind_bevel.status().message();
+  HullSet set;
+  set.hulls.push_back(bvh::make_runtime_hull(std::move(behind_bevel).value(), 0));
+  for (const auto& f : faces) set.hulls.push_back(bvh::flat_triangle_hull(f[0], f[1], f[2]));  // coverage
+  AuditOptions options;
+  options.probe.allowance = {0.3, std::nullopt};
+  options.behaviour.proxies = 100;
+  Result<AuditReport> r = run_audit(prepared.value(), set, options);
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  const AllowanceReport& agent = r.value().probe.allowance;
+  // Balls do reach into the hull (the cut's own open edges also send rays
+  // into it: the strict figures are not the point here), in enclosed space.
+  EXPECT_GT(agent.enclosed_balls, 0);
+  EXPECT_EQ(agent.undecided, 0);
+  EXPECT_EQ(agent.reach_lost, 0) << "ball at " << agent.deepest_reach.centre.transpose() << " reaches "
+                                 << agent.deepest_reach.depth << " into hull " << agent.deepest_reach.hull;
+  EXPECT_FALSE(has(r.value(), AuditFinding::reachable_space_lost));
 }
 
 } // namespace

@@ -251,13 +251,35 @@ bool AllowanceJudge::on_open_ray(const Eigen::Vector3d& p, const Eigen::Vector3d
 // their normals are cast (each column grown by tol sideways, so every face
 // whose exact column holds p is tried: the definition's rays start on the
 // face itself).
+//
+// Beside the exact column, in that margin, the ray through p is no ray of
+// the face: it may slip past a neighbour's edge and escape (pandora, r =
+// 0.3: a point 0.0126 behind a wall, under a ceiling, was called free). The
+// face's nearest genuine ray is cast instead, when within tol of p.
 bool AllowanceJudge::in_enclosed_space(const Eigen::Vector3d& p, double tol) const {
-  std::vector<int> tried;
-  for (const FrontPrism& prism : prisms_) {
-    if (!(prism.front.signed_distance(p) > 0.0) || deepest_signed_distance(prism.sides, p) > tol) continue;
-    if (std::find(tried.begin(), tried.end(), prism.normal) != tried.end()) continue;
-    tried.push_back(prism.normal);
-    if (on_open_ray(p, normals_[prism.normal], tol)) return false;
+  const Mesh& mesh = prepared_.mesh;
+  std::vector<int> tried;  // normals whose ray through p itself was cast
+  for (size_t k = 0; k < prisms_.size(); ++k) {
+    const FrontPrism& prism = prisms_[k];
+    const double height = prism.front.signed_distance(p);
+    if (!(height > 0.0)) continue;
+    const double beside = deepest_signed_distance(prism.sides, p);
+    if (beside > tol) continue;
+    if (beside <= 0.0) {
+      if (std::find(tried.begin(), tried.end(), prism.normal) != tried.end()) continue;
+      tried.push_back(prism.normal);
+      if (on_open_ray(p, normals_[prism.normal], tol)) return false;
+      continue;
+    }
+    // Within tol of each side plane is not within tol of the column: a
+    // sliver's sharp corner reaches far out that way (pandora: 1.39 away).
+    const Eigen::Vector3i& t = mesh.triangles[face_of_[k]];
+    const Eigen::Vector3d& n = prism.front.normal;
+    const Eigen::Vector3d nearest = closest_point_on_triangle(p - height * n, mesh.positions[t[0]],
+                                                              mesh.positions[t[1]], mesh.positions[t[2]]) +
+                                    height * n;
+    if ((nearest - p).norm() > tol) continue;
+    if (on_open_ray(nearest, normals_[prism.normal], tol)) return false;
   }
   return true;
 }
