@@ -52,10 +52,11 @@ bool negligible(const std::vector<Eigen::Vector3d>& polygon, double tol) {
 namespace {
 
 // The column along `dir` of the points of the triangle's plane inside its
-// box grown by kFaceBoxMarginInTolerances x tol: rays meet a face only there (mesh_ray.h: past a sharp
-// corner, the edges pushed out by tol reach further than the box's margin,
-// where the face tree does not look). Two planes per axis; none for an axis
-// the plane is perpendicular to (every point of it lies inside that slab).
+// box grown by kFaceBoxMarginInTolerances x tol: rays meet a face only
+// there (mesh_ray.h: past a sharp corner, the edges pushed out by tol reach
+// further than the box's margin, where the face tree does not look). Two
+// planes per axis; none for an axis the plane is perpendicular to (every
+// point of it lies inside that slab).
 std::vector<Plane> grown_box_column_planes(const std::vector<Eigen::Vector3d>& triangle, const Eigen::Vector3d& normal,
                                            const Eigen::Vector3d& dir, double tol) {
   std::vector<Plane> planes;
