@@ -66,5 +66,50 @@ TEST(ClipPolygon, KeepsTheInnerPart) {
   EXPECT_TRUE(clip_polygon(square, {{1, 0, 0}, -1.0}, 0.0).empty());
 }
 
+// Random convex polygons (regular n-gons, turned and stretched in their
+// plane) cut by random planes, some through a corner exactly.
+TEST(SplitPolygon, EachSideIsTheClipBitForBit) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const auto random_vector = [&] { return Eigen::Vector3d(unit(rng), unit(rng), unit(rng)); };
+  std::vector<Eigen::Vector3d> inner, outer;
+  int both_sides = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const int n = 3 + trial % 6;
+    const Eigen::Vector3d centre = 100.0 * random_vector();
+    const Eigen::Vector3d u = random_vector(), v = random_vector();
+    std::vector<Eigen::Vector3d> polygon;
+    for (int i = 0; i < n; ++i) {
+      const double angle = 2.0 * 3.141592653589793 * i / n;
+      polygon.push_back(centre + std::cos(angle) * u + std::sin(angle) * v);
+    }
+    const Eigen::Vector3d normal = random_vector().normalized();
+    const Eigen::Vector3d through = trial % 3 == 0 ? polygon[trial % n] : centre + 0.7 * random_vector();
+    const Plane plane{normal, normal.dot(through)};
+    split_polygon(polygon, plane, inner, outer);
+    const std::vector<Eigen::Vector3d> kept = clip_polygon(polygon, plane, 0.0);
+    const std::vector<Eigen::Vector3d> cut_off = clip_polygon(polygon, plane.flipped(), 0.0);
+    ASSERT_EQ(inner.size(), kept.size()) << "trial " << trial;
+    ASSERT_EQ(outer.size(), cut_off.size()) << "trial " << trial;
+    for (size_t i = 0; i < kept.size(); ++i) EXPECT_TRUE(inner[i] == kept[i]) << "trial " << trial;
+    for (size_t i = 0; i < cut_off.size(); ++i) EXPECT_TRUE(outer[i] == cut_off[i]) << "trial " << trial;
+    both_sides += !kept.empty() && !cut_off.empty();
+  }
+  EXPECT_GT(both_sides, 500);  // the planes do cut, not only pass by
+}
+
+TEST(ClipPolygonInto, ReusesItsOutputAndMatchesClipPolygon) {
+  const Plane x_below_one{{1, 0, 0}, 1.0};
+  const std::vector<Eigen::Vector3d> square = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}};
+  std::vector<Eigen::Vector3d> out = {{9, 9, 9}};  // stale content is cleared
+  clip_polygon_into(square, x_below_one, 0.25, out);
+  const std::vector<Eigen::Vector3d> expected = clip_polygon(square, x_below_one, 0.25);
+  ASSERT_EQ(out.size(), expected.size());
+  for (size_t i = 0; i < out.size(); ++i) EXPECT_TRUE(out[i] == expected[i]);
+  for (const auto& p : out) EXPECT_LE(p.x(), 0.75 + 1e-12);
+  clip_polygon_into({}, x_below_one, 0.0, out);
+  EXPECT_TRUE(out.empty());
+}
+
 } // namespace
 } // namespace hullcover

@@ -43,13 +43,15 @@ bool sweep_enters_hull(const SceneIndex& index, const FreeSpaceSweep& sweep, con
                        std::vector<int>& scratch) {
   if (interior.empty() || separated(sweep, interior)) return false;
   const Eigen::Vector3d& dir = sweep.direction;
-  std::vector<Eigen::Vector3d> part;
+  std::vector<Eigen::Vector3d> part, clipped;
   for (size_t k = 0; k < interior.facets.size(); ++k) {
     // The sweep enters through facets it meets from their outer side.
     if (interior.facets[k].empty() || interior.planes[k].normal.dot(dir) >= 0.0) continue;
     part = interior.facets[k];
-    for (size_t i = 0; i < sweep.planes.size() && !part.empty(); ++i)
-      part = clip_polygon(part, sweep.planes[i], sweep.insets[i]);
+    for (size_t i = 0; i < sweep.planes.size() && !part.empty(); ++i) {
+      clip_polygon_into(part, sweep.planes[i], sweep.insets[i], clipped);
+      part.swap(clipped);
+    }
     if (part.empty()) continue;
     // Rays leaving through different facets may end differently: one
     // witness grid per way out.

@@ -25,6 +25,10 @@ FreeSpaceSweep front_space_sweep(const std::vector<Eigen::Vector3d>& corners, co
   reach += kRayStandOffInTolerances * tol;
   sweep.reach = reach;
   const Eigen::Vector3d centre = (corners[0] + corners[1] + corners[2]) / 3.0;
+  // Built for every sweep a hull check meets: sized once.
+  sweep.planes.reserve(5);
+  sweep.insets.reserve(5);
+  sweep.corners.reserve(6);
   for (int k = 0; k < 3; ++k) {
     const Eigen::Vector3d& a = corners[k];
     const Eigen::Vector3d& b = corners[(k + 1) % 3];
@@ -55,15 +59,13 @@ FreeSpaceSweep opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p
   sweep.direction = out;
   reach += kRayStandOffInTolerances * tol;
   sweep.reach = reach;
-  // A strip in the face's plane: kept within tol of it either side.
-  sweep.planes = {plane_through(face_normal, p0), plane_through(-face_normal, p0), plane_through(along, p1),
-                  plane_through(-along, p0)};
-  sweep.insets = {-tol, -tol, 0.0, 0.0};
   sweep.start = plane_through(-out, p0);
-  sweep.planes.push_back(sweep.start);
-  sweep.insets.push_back(-tol);
-  sweep.planes.push_back(plane_through(out, p0 + reach * out));
-  sweep.insets.push_back(0.0);
+  // A strip in the face's plane, kept within tol of it either side, from
+  // the start to the reach.
+  sweep.planes = {plane_through(face_normal, p0), plane_through(-face_normal, p0),
+                  plane_through(along, p1),       plane_through(-along, p0),
+                  sweep.start,                    plane_through(out, p0 + reach * out)};
+  sweep.insets = {-tol, -tol, 0.0, 0.0, -tol, 0.0};
   sweep.base = {p0, p1};
   sweep.corners = {p0, p1, p1 + reach * out, p0 + reach * out};
   return sweep;

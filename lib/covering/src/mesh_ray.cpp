@@ -26,9 +26,9 @@ std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::V
   const double length = max_t - min_t;
   if (!(length > 0.0)) return std::nullopt;
   constexpr double kNotMet = std::numeric_limits<double>::infinity();
-  // Each face met: its distance and side; the nearest decide.
-  std::vector<std::pair<double, bool>> met;
+  // The nearest face met, and the nearest met from the front: they decide.
   std::optional<MeshRayHit> first;
+  double nearest_front = kNotMet;
   index.face_tree.nearest_along_segment(
       origin + min_t * dir, origin + max_t * dir, box_margin, tol / length, [&](int f) {
         const Eigen::Vector3d& n = index.face_normals[f];
@@ -50,7 +50,7 @@ std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::V
           const Eigen::Vector3d& v = mesh.positions[tri[(k + 1) % 3]];
           if ((v - u).cross(n).normalized().dot(p - u) > tol) return kNotMet;
         }
-        met.emplace_back(t, rate > 0.0);
+        if (rate <= 0.0) nearest_front = std::min(nearest_front, t);
         if (!first || t < first->t) first = MeshRayHit{t, f, false};
         return (t - min_t) / length;
       });
@@ -58,11 +58,7 @@ std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::V
   // Enclosed only when every face met there is met from behind: where a
   // face met from the front coincides with one met from behind (a ceiling
   // under the floor above), the ray ends on the front of a face: open space.
-  if (first) {
-    first->from_behind = true;
-    for (const auto& [t, behind] : met)
-      if (t <= first->t + tol && !behind) first->from_behind = false;
-  }
+  if (first) first->from_behind = !(nearest_front <= first->t + tol);
   return first;
 }
 

@@ -11,11 +11,14 @@
 
 namespace hullcover::detail {
 
-std::vector<Plane> column_planes(const std::vector<Eigen::Vector3d>& outline, const Eigen::Vector3d& dir) {
+namespace {
+
+// column_planes, appended to `planes`.
+void append_column_planes(const std::vector<Eigen::Vector3d>& outline, const Eigen::Vector3d& dir,
+                          std::vector<Plane>& planes) {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& v : outline) centre += v;
   centre /= static_cast<double>(outline.size());
-  std::vector<Plane> planes;
   for (size_t i = 0; i < outline.size(); ++i) {
     const Eigen::Vector3d& u = outline[i];
     const Eigen::Vector3d& v = outline[(i + 1) % outline.size()];
@@ -25,6 +28,14 @@ std::vector<Plane> column_planes(const std::vector<Eigen::Vector3d>& outline, co
     if (plane.signed_distance(centre) > 0.0) plane = plane.flipped();
     planes.push_back(plane);
   }
+}
+
+} // namespace
+
+std::vector<Plane> column_planes(const std::vector<Eigen::Vector3d>& outline, const Eigen::Vector3d& dir) {
+  std::vector<Plane> planes;
+  planes.reserve(outline.size());
+  append_column_planes(outline, dir, planes);
   return planes;
 }
 
@@ -57,9 +68,8 @@ namespace {
 // further than the box's margin, where the face tree does not look). Two
 // planes per axis; none for an axis the plane is perpendicular to (every
 // point of it lies inside that slab).
-std::vector<Plane> grown_box_column_planes(const std::vector<Eigen::Vector3d>& triangle, const Eigen::Vector3d& normal,
-                                           const Eigen::Vector3d& dir, double tol) {
-  std::vector<Plane> planes;
+void append_grown_box_column_planes(const std::vector<Eigen::Vector3d>& triangle, const Eigen::Vector3d& normal,
+                                    const Eigen::Vector3d& dir, double tol, std::vector<Plane>& planes) {
   const double box_margin = kFaceBoxMarginInTolerances * tol;
   const double rate = normal.dot(dir);
   const double on_plane = normal.dot(triangle[0]);
@@ -75,32 +85,51 @@ std::vector<Plane> grown_box_column_planes(const std::vector<Eigen::Vector3d>& t
     planes.push_back({gradient / scale, (highest - constant) / scale});
     planes.push_back({-gradient / scale, (constant - lowest) / scale});
   }
-  return planes;
 }
 
 } // namespace
 
-ShadowSplit split_by_shadow(const std::vector<Eigen::Vector3d>& region, const std::vector<Eigen::Vector3d>& triangle,
-                            const Eigen::Vector3d& dir, double tol) {
+ShadowColumn shadow_column(const std::vector<Eigen::Vector3d>& triangle, const Eigen::Vector3d& dir, double tol) {
   const Eigen::Vector3d normal = (triangle[1] - triangle[0]).cross(triangle[2] - triangle[0]).normalized();
-  std::vector<Plane> sides = column_planes(triangle, dir);
-  for (Plane& plane : sides) {
+  ShadowColumn column;
+  column.sides.reserve(9);  // three sides and two planes per axis of the box
+  append_column_planes(triangle, dir, column.sides);
+  for (Plane& plane : column.sides) {
     // The side's edge moved out by tol in the triangle's plane moves the
     // column's side by tol times the cosine between the two outward
     // normals (the edge's, in the plane, is the side's projected into it).
     const double across = plane.normal.dot(normal);
     plane.offset += tol * std::sqrt(std::max(0.0, 1.0 - across * across));
   }
-  for (const Plane& plane : grown_box_column_planes(triangle, normal, dir, tol)) sides.push_back(plane);
+  append_grown_box_column_planes(triangle, normal, dir, tol, column.sides);
+  return column;
+}
+
+bool ShadowColumn::misses(const std::vector<Eigen::Vector3d>& region) const {
+  for (const Plane& plane : sides) {
+    bool all_beyond = true;
+    for (const Eigen::Vector3d& p : region) all_beyond &= plane.signed_distance(p) > 0.0;
+    if (all_beyond) return true;
+  }
+  return false;
+}
+
+ShadowSplit split_by_shadow(const std::vector<Eigen::Vector3d>& region, const ShadowColumn& column, double tol) {
   ShadowSplit split;
   split.inside = region;
-  for (const Plane& plane : sides) {
-    std::vector<Eigen::Vector3d> beside = clip_polygon(split.inside, plane.flipped(), 0.0);
-    if (!negligible(beside, tol)) split.beside.push_back(std::move(beside));
-    split.inside = clip_polygon(split.inside, plane, 0.0);
+  std::vector<Eigen::Vector3d> beside, clipped;
+  for (const Plane& plane : column.sides) {
+    split_polygon(split.inside, plane, clipped, beside);
+    if (!negligible(beside, tol)) split.beside.push_back(beside);
+    split.inside.swap(clipped);
   }
   if (negligible(split.inside, tol)) split.inside.clear();
   return split;
+}
+
+ShadowSplit split_by_shadow(const std::vector<Eigen::Vector3d>& region, const std::vector<Eigen::Vector3d>& triangle,
+                            const Eigen::Vector3d& dir, double tol) {
+  return split_by_shadow(region, shadow_column(triangle, dir, tol), tol);
 }
 
 Eigen::Vector3d ray_base(const FreeSpaceSweep& sweep, const Eigen::Vector3d& point) {

@@ -45,6 +45,20 @@ struct ShadowSplit {
 ShadowSplit split_by_shadow(const std::vector<Eigen::Vector3d>& region, const std::vector<Eigen::Vector3d>& triangle,
                             const Eigen::Vector3d& dir, double tol);
 
+/// The shadow of a triangle as split_by_shadow cuts along it: the outward
+/// planes of its column along a direction, the triangle grown by tol in
+/// its plane and kept inside its grown box (as rays meet it).
+struct ShadowColumn {
+  std::vector<Plane> sides;
+  /// True when one side has every corner of `region` strictly beyond it:
+  /// then no part of the region lies inside the shadow (split_by_shadow's
+  /// `inside` is empty), found without cutting anything.
+  bool misses(const std::vector<Eigen::Vector3d>& region) const;
+};
+ShadowColumn shadow_column(const std::vector<Eigen::Vector3d>& triangle, const Eigen::Vector3d& dir, double tol);
+/// split_by_shadow along a column made once.
+ShadowSplit split_by_shadow(const std::vector<Eigen::Vector3d>& region, const ShadowColumn& column, double tol);
+
 /// The base of the sweep's ray through `point`: where it crosses the
 /// sweep's start.
 Eigen::Vector3d ray_base(const FreeSpaceSweep& sweep, const Eigen::Vector3d& point);

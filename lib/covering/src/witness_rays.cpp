@@ -138,7 +138,11 @@ Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, co
   for (int g : near) {
     if (g == f || index.face_normals[g].dot(sweep.direction) >= 0.0) continue;  // met from behind, or zero area
     triangle_corners(mesh, g, triangle);
-    const ShadowSplit split = split_by_shadow(piece, triangle, sweep.direction, tol);
+    // Most faces near the column shadow none of the piece: one side of
+    // their column tells, before any cutting.
+    const ShadowColumn shadow = shadow_column(triangle, sweep.direction, tol);
+    if (shadow.misses(piece)) continue;
+    const ShadowSplit split = split_by_shadow(piece, shadow, tol);
     if (split.inside.empty()) continue;
     // One running along the rays is not met (mesh_ray.h).
     const Plane other{index.face_normals[g], index.face_normals[g].dot(triangle[0])};

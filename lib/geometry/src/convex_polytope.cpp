@@ -36,27 +36,66 @@ bool segment_enters_interior(const std::vector<Plane>& planes, const Eigen::Vect
   return enter < leave;
 }
 
-std::vector<Eigen::Vector3d> clip_polygon(const std::vector<Eigen::Vector3d>& polygon, const Plane& plane,
-                                          double inset) {
-  std::vector<Eigen::Vector3d> out;
+void clip_polygon_into(const std::vector<Eigen::Vector3d>& polygon, const Plane& plane, double inset,
+                       std::vector<Eigen::Vector3d>& out) {
+  out.clear();
   const size_t n = polygon.size();
+  if (n == 0) return;
   out.reserve(n + 1);
+  // Each corner's distance is computed once and carried to the next edge.
+  const double first = plane.signed_distance(polygon[0]) + inset;
+  double dp = first;
   for (size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d& p = polygon[i];
     const Eigen::Vector3d& q = polygon[(i + 1) % n];
-    const double dp = plane.signed_distance(p) + inset;
-    const double dq = plane.signed_distance(q) + inset;
+    const double dq = i + 1 < n ? plane.signed_distance(q) + inset : first;
     if (dp <= 0.0) out.push_back(p);
     if ((dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0)) out.push_back(p + (q - p) * (dp / (dp - dq)));
+    dp = dq;
   }
+}
+
+void split_polygon(const std::vector<Eigen::Vector3d>& polygon, const Plane& plane, std::vector<Eigen::Vector3d>& inner,
+                   std::vector<Eigen::Vector3d>& outer) {
+  inner.clear();
+  outer.clear();
+  const size_t n = polygon.size();
+  if (n == 0) return;
+  inner.reserve(n + 1);
+  outer.reserve(n + 1);
+  // clip_polygon_into on both sides at once: the flipped plane's distances
+  // are these negated exactly, and so are both sides' crossing points.
+  const double first = plane.signed_distance(polygon[0]);
+  double dp = first;
+  for (size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d& p = polygon[i];
+    const Eigen::Vector3d& q = polygon[(i + 1) % n];
+    const double dq = i + 1 < n ? plane.signed_distance(q) : first;
+    if (dp <= 0.0) inner.push_back(p);
+    if (dp >= 0.0) outer.push_back(p);
+    if ((dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0)) {
+      const Eigen::Vector3d crossing = p + (q - p) * (dp / (dp - dq));
+      inner.push_back(crossing);
+      outer.push_back(crossing);
+    }
+    dp = dq;
+  }
+}
+
+std::vector<Eigen::Vector3d> clip_polygon(const std::vector<Eigen::Vector3d>& polygon, const Plane& plane,
+                                          double inset) {
+  std::vector<Eigen::Vector3d> out;
+  clip_polygon_into(polygon, plane, inset, out);
   return out;
 }
 
 std::vector<Eigen::Vector3d> clip_polygon_to_planes(std::vector<Eigen::Vector3d> polygon,
                                                     const std::vector<Plane>& planes, double inset) {
+  std::vector<Eigen::Vector3d> clipped;
   for (const Plane& plane : planes) {
     if (polygon.empty()) break;
-    polygon = clip_polygon(polygon, plane, inset);
+    clip_polygon_into(polygon, plane, inset, clipped);
+    polygon.swap(clipped);
   }
   return polygon;
 }
@@ -114,10 +153,15 @@ HullInterior hull_interior(const ConvexPolytope& hull, double tol) {
   std::vector<bool> holds(interior.planes.size(), true);
   for (size_t k = 0; k < interior.planes.size(); ++k)
     for (size_t j = 0; j < k && holds[k]; ++j) holds[k] = !(holds[j] && same_plane(j, k));
+  std::vector<Eigen::Vector3d> clipped;
+  interior.facets.reserve(interior.planes.size());
   for (size_t k = 0; k < interior.planes.size(); ++k) {
     std::vector<Eigen::Vector3d> facet = holds[k] ? squares[k] : std::vector<Eigen::Vector3d>{};
     for (size_t j = 0; j < interior.planes.size() && !facet.empty(); ++j)
-      if (j != k && holds[j]) facet = clip_polygon(facet, interior.planes[j], 0.0);
+      if (j != k && holds[j]) {
+        clip_polygon_into(facet, interior.planes[j], 0.0, clipped);
+        facet.swap(clipped);
+      }
     if (facet.size() < 3) facet.clear();
     interior.facets.push_back(std::move(facet));
   }

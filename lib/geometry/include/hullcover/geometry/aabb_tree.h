@@ -8,7 +8,10 @@
 
 #include <Eigen/Core>
 
-#include <functional>
+#include <cassert>
+#include <cmath>
+#include <limits>
+#include <utility>
 #include <vector>
 
 namespace hullcover {
@@ -30,14 +33,27 @@ public:
   /// Calls `meet(i)` for the boxes that, grown by `margin`, the segment
   /// from-to passes through, nearest first as far as the tree tells, and
   /// skips boxes it enters later than the nearest meeting so far plus
-  /// `slack`. `meet` returns where item i is met as a fraction s of the
-  /// segment (s in [0, 1]), or anything above 1 + slack for not met.
+  /// `slack`. `meet` (any callable taking the item's index) returns where
+  /// item i is met as a fraction s of the segment (s in [0, 1]), or
+  /// anything above 1 + slack for not met. A template, so that the ray
+  /// casts of the validity checks (millions per scene) call `meet` inline.
+  template <class Meet>
   void nearest_along_segment(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double margin, double slack,
-                             const std::function<double(int)>& meet) const;
+                             Meet&& meet) const;
 
   bool empty() const { return nodes_.empty(); }
 
 private:
+  /// Slab test: where the segment from + s (to - from), s in [0, 1], enters
+  /// `box` grown by `margin` (0 when it starts inside), or infinity when it
+  /// misses it. `inverse` holds 1 / (to - from) per axis (infinite along an
+  /// axis the segment does not move on).
+  static double segment_box_entry(const Eigen::Vector3d& from, const Eigen::Vector3d& inverse, const Aabb& box,
+                                  double margin);
+  /// Deepest traversal stack: the tree is balanced (median splits), so its
+  /// depth is about log2(n / 4).
+  static constexpr int kMaxDepth = 128;
+
   struct Node {
     Aabb box;
     int first = 0;   ///< leaf: first item in items_
@@ -51,5 +67,68 @@ private:
   std::vector<int> items_;
   std::vector<Aabb> item_boxes_;
 };
+
+inline double AabbTree::segment_box_entry(const Eigen::Vector3d& from, const Eigen::Vector3d& inverse,
+                                          const Aabb& box, double margin) {
+  constexpr double kMiss = std::numeric_limits<double>::infinity();
+  double enter = 0.0, leave = 1.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double low = box.min[axis] - margin - from[axis];
+    const double high = box.max[axis] + margin - from[axis];
+    if (std::isinf(inverse[axis])) {
+      if (low > 0.0 || high < 0.0) return kMiss;
+      continue;
+    }
+    double s0 = low * inverse[axis];
+    double s1 = high * inverse[axis];
+    if (s0 > s1) std::swap(s0, s1);
+    enter = std::max(enter, s0);
+    leave = std::min(leave, s1);
+    if (enter > leave) return kMiss;
+  }
+  return enter;
+}
+
+template <class Meet>
+void AabbTree::nearest_along_segment(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double margin,
+                                     double slack, Meet&& meet) const {
+  if (nodes_.empty()) return;
+  const Eigen::Vector3d delta = to - from;
+  Eigen::Vector3d inverse;
+  for (int axis = 0; axis < 3; ++axis)
+    inverse[axis] = delta[axis] == 0.0 ? std::numeric_limits<double>::infinity() : 1.0 / delta[axis];
+  // Each stack entry carries where the segment enters its box; the nearer
+  // child goes on top, so boxes are mostly opened nearest first.
+  std::pair<int, double> stack[kMaxDepth];
+  int top = 0;
+  const double root = segment_box_entry(from, inverse, nodes_[0].box, margin);
+  if (std::isinf(root)) return;
+  stack[top++] = {0, root};
+  double best = std::numeric_limits<double>::infinity();
+  while (top > 0) {
+    const auto [n, entry] = stack[--top];
+    if (entry > best + slack) continue;
+    const Node& node = nodes_[n];
+    if (node.count > 0) {
+      for (int i = node.first; i < node.first + node.count; ++i) {
+        // A missed box's entry is infinite, and so is `best` until a first
+        // meeting: test the miss on its own.
+        const double item_entry = segment_box_entry(from, inverse, item_boxes_[items_[i]], margin);
+        if (!std::isinf(item_entry) && item_entry <= best + slack) best = std::min(best, meet(items_[i]));
+      }
+      continue;
+    }
+    const double left = segment_box_entry(from, inverse, nodes_[node.left].box, margin);
+    const double right = segment_box_entry(from, inverse, nodes_[node.right].box, margin);
+    assert(top + 2 <= kMaxDepth);
+    if (left <= right) {
+      if (!std::isinf(right)) stack[top++] = {node.right, right};
+      if (!std::isinf(left)) stack[top++] = {node.left, left};
+    } else {
+      if (!std::isinf(left)) stack[top++] = {node.left, left};
+      stack[top++] = {node.right, right};
+    }
+  }
+}
 
 } // namespace hullcover

@@ -55,6 +55,19 @@ bool segment_enters_interior(const std::vector<Plane>& planes, const Eigen::Vect
 std::vector<Eigen::Vector3d> clip_polygon(const std::vector<Eigen::Vector3d>& polygon, const Plane& plane,
                                           double inset);
 
+/// `clip_polygon` written into `out` (cleared first; its capacity is kept,
+/// so a caller clipping in a loop allocates once). `out` must not be
+/// `polygon`.
+void clip_polygon_into(const std::vector<Eigen::Vector3d>& polygon, const Plane& plane, double inset,
+                       std::vector<Eigen::Vector3d>& out);
+
+/// `polygon` cut by `plane` into its part on the inner side (`inner`, as
+/// clip_polygon with no inset) and on the outer side (`outer`, as
+/// clip_polygon by the flipped plane), bit for bit, in one pass. Neither
+/// output may be `polygon`.
+void split_polygon(const std::vector<Eigen::Vector3d>& polygon, const Plane& plane, std::vector<Eigen::Vector3d>& inner,
+                   std::vector<Eigen::Vector3d>& outer);
+
 /// `clip_polygon` by every plane of `planes` in turn, with the same inset;
 /// stops early once nothing is left.
 std::vector<Eigen::Vector3d> clip_polygon_to_planes(std::vector<Eigen::Vector3d> polygon,
