@@ -8,6 +8,7 @@
 
 #include "covering_fixture.h"
 
+#include "hullcover/covering/convex_hull_3d.h"
 #include "hullcover/geometry/planar_hull.h"
 #include "hullcover/geometry/tolerances.h"
 #include "hullcover/mesh/scene_builder.h"
@@ -25,8 +26,9 @@ using test::box_hull;
 
 const V kUp = V::UnitY();
 
-ProbeReport strict_probe(const Mesh& mesh, const std::vector<bvh::RuntimeHull>& hulls, ProbeOptions options = {}) {
-  const PreparedMesh prepared = prepare_mesh(mesh, std::nullopt).value();
+ProbeReport strict_probe(const Mesh& mesh, const std::vector<bvh::RuntimeHull>& hulls, ProbeOptions options = {},
+                         std::optional<double> tol = std::nullopt) {
+  const PreparedMesh prepared = prepare_mesh(mesh, tol).value();
   const auto world = bvh::HullWorld::build(hulls).value();
   const auto triangles = bvh::TriangleWorld::build(prepared.mesh, prepared.tolerance.length).value();
   Result<ProbeReport> r = probe_accessible_space(prepared, *triangles, *world, options);
@@ -166,6 +168,43 @@ TEST(StrictProbe, AFlatHullLosesNothing) {
   square.sides = polygon_side_planes(square.corners, kUp);
   const ProbeReport r = strict_probe(m, {bvh::make_runtime_hull(flat_polytope(square, true), 0)});
   EXPECT_EQ(r.front.lost, 0);
+}
+
+// Cut from Red Eclipse's depot (its coordinates and tolerance): a rail's
+// top (y = 69, facing up) ends on the side (z = -6) of a closed post, so its
+// open edge's rays run into the post and end on the back of its far side
+// (z = -8): enclosed, and the decomposer filled the post with a wedge. A
+// second rail leaves the post's far corner at 45 degrees; its side's
+// 11-degree tip at (-435, 69, -8) lies 0.06-0.15 off those rays, beyond the
+// rail by far more than tol, yet within tol of both of the tip's edges
+// pushed out by tol. Counted as a hit there (the triangle baseline did not
+// keep to the face's grown box, as the decomposer's rays do), that front
+// ended the rays before the post's back: the audit called them open and
+// the wedge lost space (6 rays on depot).
+TEST(StrictProbe, ARayPassingASharpTipByMoreThanTolDoesNotMeetIt) {
+  const double tol = 0.0210516;
+  Mesh m;
+  test::add_triangle(m, V(-434, 69, -6), V(-435, 69, -6), V(-435, 69, 0));     // the rail's top
+  add_quad_facing(m, V(-435, 64, -6), V(-434, 64, -6), V(-434, 72, -6), V(-435, 72, -6), V(0, 0, 1));  // post, near
+  test::add_triangle(m, V(-435, 69, -8), V(-440, 69, -13), V(-440, 68, -13));  // the tip
+  const Mesh open = m;
+  add_quad_facing(m, V(-435, 64, -8), V(-434, 64, -8), V(-434, 72, -8), V(-435, 72, -8), V(0, 0, -1));  // post, far
+  ConvexHullBuilder builder;
+  const Result<ConvexPolytope> wedge = builder.build({V(-434, 72, -8), V(-435, 72, -6), V(-435, 64, -6),
+                                                      V(-434, 64, -8), V(-434, 64, -6), V(-434, 72, -6)});
+  ASSERT_TRUE(wedge.ok()) << wedge.status().message();
+  const std::vector<bvh::RuntimeHull> hulls = {bvh::make_runtime_hull(wedge.value(), 0)};
+  ProbeOptions fine;
+  fine.resolution = 0.01;  // rays every 0.01 along the rail's edge, through the tip's reach
+  const ProbeReport enclosed = strict_probe(m, hulls, fine, tol);
+  EXPECT_EQ(enclosed.opening.lost, 0) << "deepest " << enclosed.opening.deepest.depth << " at x "
+                                      << enclosed.opening.deepest.point.x();
+  EXPECT_EQ(enclosed.front.lost, 0);
+  EXPECT_GT(enclosed.opening.enclosed, 0);
+  // Without the post's far side the same rays escape, and the wedge takes them.
+  const ProbeReport escaping = strict_probe(open, hulls, fine, tol);
+  EXPECT_GT(escaping.opening.lost, 0);
+  EXPECT_EQ(escaping.opening.deepest.hull, 0);
 }
 
 } // namespace

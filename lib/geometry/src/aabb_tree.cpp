@@ -10,7 +10,7 @@ namespace {
 constexpr int kLeafSize = 4;
 } // namespace
 
-AabbTree::AabbTree(const std::vector<Aabb>& boxes) : item_boxes_(boxes) {
+AabbTree::AabbTree(const std::vector<Aabb>& boxes) {
   // Empty boxes overlap nothing: left out, they cannot stretch a node's box
   // to infinity (an empty box's min is +infinity) or give NaN centres.
   for (int i = 0; i < static_cast<int>(boxes.size()); ++i)
@@ -20,6 +20,9 @@ AabbTree::AabbTree(const std::vector<Aabb>& boxes) : item_boxes_(boxes) {
   for (size_t i = 0; i < boxes.size(); ++i) centres[i] = 0.5 * (boxes[i].min + boxes[i].max);
   nodes_.reserve(2 * items_.size() / kLeafSize + 2);
   build(0, static_cast<int>(items_.size()), boxes, centres);
+  // A leaf's boxes side by side, in the order its items are listed.
+  leaf_boxes_.reserve(items_.size());
+  for (int item : items_) leaf_boxes_.push_back(boxes[item]);
 }
 
 int AabbTree::build(int begin, int end, const std::vector<Aabb>& boxes, std::vector<Eigen::Vector3d>& centres) {
@@ -61,7 +64,7 @@ void AabbTree::overlapping(const Aabb& query, std::vector<int>& out) const {
     if (!boxes_overlap(node.box, query)) continue;
     if (node.count > 0) {
       for (int i = node.first; i < node.first + node.count; ++i)
-        if (boxes_overlap(item_boxes_[items_[i]], query)) out.push_back(items_[i]);
+        if (boxes_overlap(leaf_boxes_[i], query)) out.push_back(items_[i]);
       continue;
     }
     assert(top + 2 <= kMaxDepth);

@@ -65,7 +65,7 @@ private:
 
   std::vector<Node> nodes_;
   std::vector<int> items_;
-  std::vector<Aabb> item_boxes_;
+  std::vector<Aabb> leaf_boxes_;  ///< the box of items_[i] at i: read in the order the walks read them
 };
 
 inline double AabbTree::segment_box_entry(const Eigen::Vector3d& from, const Eigen::Vector3d& inverse,
@@ -113,7 +113,7 @@ void AabbTree::nearest_along_segment(const Eigen::Vector3d& from, const Eigen::V
       for (int i = node.first; i < node.first + node.count; ++i) {
         // A missed box's entry is infinite, and so is `best` until a first
         // meeting: test the miss on its own.
-        const double item_entry = segment_box_entry(from, inverse, item_boxes_[items_[i]], margin);
+        const double item_entry = segment_box_entry(from, inverse, leaf_boxes_[i], margin);
         if (!std::isinf(item_entry) && item_entry <= best + slack) best = std::min(best, meet(items_[i]));
       }
       continue;
