@@ -44,5 +44,32 @@ TEST(ConvexPolygon2d, SubtractionLeavesDisjointPiecesOutsideTheCutter) {
   EXPECT_NEAR(polygon_area(apart[0]), 1.0, 1e-12);
 }
 
+// A piece that straddles the lines of the cutter's first edges but lies
+// beyond a later one comes back whole, not cut along lines that do not
+// separate it from the cutter; so does one whose own edge separates them,
+// and one merely touching the cutter along an edge.
+TEST(ConvexPolygon2d, APieceApartFromTheCutterComesBackWhole) {
+  const P cutter = square(0, 0, 1);
+  const P beside = square(-2, 3, 5);  // across the lines x = 0 and x = 1, above y = 1
+  const auto above = subtract_convex_polygon(beside, cutter);
+  ASSERT_EQ(above.size(), 1u);
+  EXPECT_EQ(above[0], beside);
+  // Separated only by an edge of the piece: a triangle whose edge on
+  // x + y = 2.05 passes the square's corner (1, 1), reaching past the
+  // lines of all four of the square's edges.
+  const P leaning = {{2.05, 0.0}, {3.0, 3.0}, {0.0, 2.05}};
+  const auto leaning_pieces = subtract_convex_polygon(leaning, cutter);
+  ASSERT_EQ(leaning_pieces.size(), 1u);
+  EXPECT_EQ(leaning_pieces[0], leaning);
+  const auto touching = subtract_convex_polygon(square(1, 0, 1), cutter);
+  ASSERT_EQ(touching.size(), 1u);
+  EXPECT_NEAR(polygon_area(touching[0]), 1.0, 1e-12);
+  // Overlapping, it is still cut: the pieces cover the piece less the cutter.
+  const auto overlapping = subtract_convex_polygon(square(0.5, 0.5, 1), cutter);
+  double area = 0.0;
+  for (const P& p : overlapping) area += polygon_area(p);
+  EXPECT_NEAR(area, 0.75, 1e-12);
+}
+
 } // namespace
 } // namespace hullcover

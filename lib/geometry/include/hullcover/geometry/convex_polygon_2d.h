@@ -24,7 +24,9 @@ std::vector<Eigen::Vector2d> intersect_convex_polygons(const std::vector<Eigen::
 
 /// `piece` minus `cutter` (both convex, counter-clockwise): disjoint convex
 /// pieces, one per edge of the cutter the piece reaches beyond, each
-/// counter-clockwise. Empty when the cutter covers the piece.
+/// counter-clockwise. Empty when the cutter covers the piece; the piece
+/// itself, whole, when the two share no interior (an edge of either has the
+/// other on its outer side) or the cutter has fewer than 3 corners.
 std::vector<std::vector<Eigen::Vector2d>> subtract_convex_polygon(const std::vector<Eigen::Vector2d>& piece,
                                                                   const std::vector<Eigen::Vector2d>& cutter);
 
