@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
 
 namespace hullcover {
 namespace {
@@ -158,6 +159,52 @@ Mesh floor_and_open_tube() {
   add_quad_facing(m, V(0, 0, 0), V(0, 0, 1), V(0, 2, 1), V(0, 2, 0), V(-1, 0, 0));
   add_quad_facing(m, V(1, 0, 0), V(1, 0, 1), V(1, 2, 1), V(1, 2, 0), V(1, 0, 0));
   return m;
+}
+
+// Judging first the pieces of free space that rejected the latest hulls
+// (RecentRejections, as the merger does) never changes whether a hull is
+// valid: random boxes about the demo building, each judged with and without
+// the memory of the ones before.
+TEST(StrictFreeSpace, RecentRejectionsChangeNoVerdict) {
+  const Mesh m = demo_building();
+  Result<PreparedMesh> prepared = prepare_mesh(m, std::nullopt);
+  ASSERT_TRUE(prepared.ok());
+  const double margin = 0.0;
+  BarOptions bars{kExactBarHalfLengthInTolerances * prepared.value().tolerance.length, false, ValidityMode::exact,
+                  uncapped_free_space_reach(prepared.value(), margin), margin};
+  const auto scene = test::index_scene(m, std::nullopt, bars);
+  Aabb box;
+  for (const V& p : m.positions) box.extend(p);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  RecentRejections recent;
+  std::vector<int> scratch;
+  int exact_rejections = 0, valid = 0, told_first = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    V low, high;
+    for (int k = 0; k < 3; ++k) {
+      const double extent = box.max[k] - box.min[k];
+      low[k] = box.min[k] + unit(rng) * extent;
+      high[k] = low[k] + (0.02 + 0.2 * unit(rng)) * extent;
+    }
+    if (trial % 4 == 0) {  // under the scene, where no ray of free space reaches: valid
+      const double height = box.max.y() - box.min.y();
+      high.y() = box.min.y() - 0.1 * height;
+      low.y() = high.y() - 0.2 * height;
+    }
+    const ConvexPolytope hull = box_hull(low, high);
+    const Validity alone = check_solid_hull(scene->index, hull, scratch);
+    const SweepRef first_before = *recent.begin();
+    const Validity remembered = check_solid_hull(scene->index, hull, scratch, &recent);
+    EXPECT_EQ(alone == Validity::valid, remembered == Validity::valid) << "trial " << trial;
+    exact_rejections += alone == Validity::front_space_inside || alone == Validity::opening_inside;
+    valid += alone == Validity::valid;
+    told_first += remembered != Validity::valid && first_before.item >= 0 && *recent.begin() == first_before;
+  }
+  // Both verdicts occur, and a remembered piece rejected hulls again.
+  EXPECT_GT(exact_rejections, 10);
+  EXPECT_GT(valid, 10);
+  EXPECT_GT(told_first, 0);
 }
 
 TEST(StrictFreeSpace, HullFillingAnOpenTopTubeTakesTheRaysThatEscape) {

@@ -235,7 +235,7 @@ PatchMerger::Candidate PatchMerger::evaluate(int a, int b) {
     out.validity = Validity::too_many_triangles;
     return out;
   }
-  out.validity = check_solid_hull(index_, *hull, scratch_);
+  out.validity = check_solid_hull(index_, *hull, scratch_, &recent_rejections_);
   if (out.validity == Validity::valid) out.validity = check_thin_hull(a, b, *hull, ids);
   out.hull_vertices = hull->vertex_ids;
   std::sort(out.hull_vertices.begin(), out.hull_vertices.end());

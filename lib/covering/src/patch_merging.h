@@ -195,6 +195,7 @@ private:
   std::vector<int> face_patch_;  // per face of the cell (by CellLayout::slot_in_cell)
   std::vector<QueueEntry> queue_;  // a min-heap by QueueEntry::operator>
   ConvexHullBuilder hull_builder_;
+  RecentRejections recent_rejections_;  // judged first in each candidate's exact checks
   std::vector<int> scratch_;
   double near_merge_distance_;
   std::set<std::array<int, 4>> near_pairs_tried_;  // {a, version a, b, version b}

@@ -15,55 +15,90 @@ bool planes_support_points(const std::vector<Plane>& planes, const std::vector<E
 
 namespace {
 
-// E1-E3 (exact_conditions.h) for a solid hull whose box grown by tol is `box`.
-Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, const Aabb& box,
-                                std::vector<int>& scratch) {
+// E1-E3 of one piece of free space against a hull's interior.
+Validity judge_sweep(const SceneIndex& index, const SweepRef& ref, const HullInterior& interior,
+                     std::vector<int>& ray_scratch) {
   const double tol = index.tol();
   const Mesh& mesh = index.mesh();
-  std::vector<Eigen::Vector3d> triangle(3);
-  std::vector<int> ray_scratch;
-  const HullInterior interior = hull_interior(hull, tol);
-  if (interior.empty()) return Validity::valid;  // thinner than 2 tol: nothing is strictly inside
-  // A sweep has a box per hull zone it crosses: each face or edge once.
-  const auto owners = [&scratch](const std::vector<int>& owner_of_item) {
-    for (int& item : scratch) item = owner_of_item[item];
-    std::sort(scratch.begin(), scratch.end());
-    scratch.erase(std::unique(scratch.begin(), scratch.end()), scratch.end());
-  };
-  scratch.clear();
-  index.front_sweep_tree.overlapping(box, scratch);
-  owners(index.front_sweep_face);
-  for (int f : scratch) {
-    triangle_corners(mesh, f, triangle);
-    const FreeSpaceSweep front = front_space_sweep(triangle, index.face_normals[f], index.front_reach[f], tol);
+  if (ref.fan < 0) {
+    std::vector<Eigen::Vector3d> triangle(3);
+    triangle_corners(mesh, ref.item, triangle);
+    const FreeSpaceSweep front = front_space_sweep(triangle, index.face_normals[ref.item], index.front_reach[ref.item], tol);
     if (crossing_face_leaks(index, front, interior, ray_scratch)) return Validity::face_crosses_hull;
     if (sweep_enters_hull(index, front, interior, ray_scratch)) return Validity::front_space_inside;
+    return Validity::valid;
   }
-  scratch.clear();
-  index.opening_sweep_tree.overlapping(box, scratch);
-  owners(index.opening_sweep_edge);
-  const MeshConnectivity& c = index.prepared->connectivity;
-  for (int e : scratch) {
-    // The use names the face and where the edge sits in it: its far corner
-    // is the face's side of the edge.
-    const EdgeUse& use = c.edge_uses[index.open_edge_use[e]];
-    const Eigen::Vector3i& t = mesh.triangles[use.face];
-    const Eigen::Vector3d& p0 = mesh.positions[t[use.corner]];
-    const Eigen::Vector3d& p1 = mesh.positions[t[(use.corner + 1) % 3]];
-    const Eigen::Vector3d& inner = mesh.positions[t[(use.corner + 2) % 3]];
-    for (int fan = 0; fan < kOpeningFans; ++fan) {
-      const double reach = index.opening_reach[e][fan];
-      if (sweep_enters_hull(index, opening_fan(p0, p1, inner, index.face_normals[use.face], fan, reach, tol),
-                            interior, ray_scratch))
-        return Validity::opening_inside;
-    }
-  }
+  // The use names the face and where the edge sits in it: its far corner
+  // is the face's side of the edge.
+  const EdgeUse& use = index.prepared->connectivity.edge_uses[index.open_edge_use[ref.item]];
+  const Eigen::Vector3i& t = mesh.triangles[use.face];
+  const Eigen::Vector3d& p0 = mesh.positions[t[use.corner]];
+  const Eigen::Vector3d& p1 = mesh.positions[t[(use.corner + 1) % 3]];
+  const Eigen::Vector3d& inner = mesh.positions[t[(use.corner + 2) % 3]];
+  const double reach = index.opening_reach[ref.item][ref.fan];
+  if (sweep_enters_hull(index, opening_fan(p0, p1, inner, index.face_normals[use.face], ref.fan, reach, tol), interior,
+                        ray_scratch))
+    return Validity::opening_inside;
+  return Validity::valid;
+}
+
+// The items of `tree` whose boxes meet `box`, as their owners (a sweep has a
+// box per hull zone it crosses: each face or edge once), ascending.
+void sweep_owners(const AabbTree& tree, const std::vector<int>& owner_of_item, const Aabb& box,
+                  std::vector<int>& out) {
+  out.clear();
+  tree.overlapping(box, out);
+  for (int& item : out) item = owner_of_item[item];
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+// E1-E3 (exact_conditions.h) for a solid hull whose box grown by tol is `box`.
+Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, const Aabb& box,
+                                std::vector<int>& scratch, RecentRejections* recent) {
+  std::vector<int> ray_scratch;
+  const HullInterior interior = hull_interior(hull, index.tol());
+  if (interior.empty()) return Validity::valid;  // thinner than 2 tol: nothing is strictly inside
+  std::vector<int>& fronts = scratch;
+  std::vector<int> openings;
+  sweep_owners(index.front_sweep_tree, index.front_sweep_face, box, fronts);
+  sweep_owners(index.opening_sweep_tree, index.opening_sweep_edge, box, openings);
+  // Judged first: pieces that rejected the latest hulls, where this hull's
+  // box meets them (the same pieces the loops below would judge).
+  const auto meets = [&](const SweepRef& ref) {
+    const std::vector<int>& owners = ref.fan < 0 ? fronts : openings;
+    return ref.item >= 0 && std::binary_search(owners.begin(), owners.end(), ref.item);
+  };
+  const auto rejects = [&](const SweepRef& ref, Validity& validity) {
+    validity = judge_sweep(index, ref, interior, ray_scratch);
+    if (validity == Validity::valid) return false;
+    if (recent) recent->note(ref);
+    return true;
+  };
+  Validity validity = Validity::valid;
+  SweepRef judged[RecentRejections::kKept];
+  int judged_count = 0;
+  if (recent)
+    for (const SweepRef& ref : *recent)
+      if (meets(ref)) {
+        if (rejects(ref, validity)) return validity;
+        judged[judged_count++] = ref;
+      }
+  const auto judged_already = [&](const SweepRef& ref) {
+    return std::find(judged, judged + judged_count, ref) != judged + judged_count;
+  };
+  for (int f : fronts)
+    if (!judged_already({f, -1}) && rejects({f, -1}, validity)) return validity;
+  for (int e : openings)
+    for (int fan = 0; fan < kOpeningFans; ++fan)
+      if (!judged_already({e, fan}) && rejects({e, fan}, validity)) return validity;
   return Validity::valid;
 }
 
 } // namespace
 
-Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, std::vector<int>& scratch) {
+Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, std::vector<int>& scratch,
+                          RecentRejections* recent) {
   const double tol = index.tol();
   const Aabb box = grown(bounding_box_of(hull.vertices), tol);
   const Mesh& mesh = index.mesh();
@@ -96,7 +131,7 @@ Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, s
   }
   if (index.mode != ValidityMode::exact) return Validity::valid;
 
-  return check_exact_solid_hull(index, hull, box, scratch);
+  return check_exact_solid_hull(index, hull, box, scratch, recent);
 }
 
 Validity check_faces_below_polygon(const SceneIndex& index, const FlatPolygon& polygon, double half_width,

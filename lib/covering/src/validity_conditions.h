@@ -31,9 +31,46 @@ namespace hullcover {
 /// or within `tol` in front.
 bool planes_support_points(const std::vector<Plane>& planes, const std::vector<Eigen::Vector3d>& points, double tol);
 
+/// One piece of free space the exact conditions judge: the front space of
+/// face `item` (fan < 0), or fan `fan` of the opening beyond open edge
+/// `item` (the scene index's numbering of open edges).
+struct SweepRef {
+  int item = -1;
+  int fan = -1;
+  bool operator==(const SweepRef& o) const { return item == o.item && fan == o.fan; }
+};
+
+/// The pieces of free space that rejected the latest hulls, most recent
+/// first. Candidates tried one after another (a face offered to patch after
+/// patch when dissolving, a patch's neighbours in turn) mostly fail on the
+/// same piece, and check_solid_hull judges these first. It changes only
+/// which failed condition is reported, never whether a hull is valid: the
+/// conditions are a conjunction, each judged on its own.
+class RecentRejections {
+public:
+  static constexpr int kKept = 4;
+  /// Most recent first; unused slots have item -1.
+  const SweepRef* begin() const { return refs_; }
+  const SweepRef* end() const { return refs_ + kKept; }
+  /// `ref` rejected a hull: it goes first.
+  void note(const SweepRef& ref) {
+    int at = kKept - 1;
+    for (int i = 0; i < kKept; ++i)
+      if (refs_[i] == ref) at = i;
+    for (int i = at; i > 0; --i) refs_[i] = refs_[i - 1];
+    refs_[0] = ref;
+  }
+
+private:
+  SweepRef refs_[kKept];
+};
+
 /// Conditions 1 and 3 (exact mode: and E1-E3) for a solid hull. `scratch`
-/// is reused storage.
-Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, std::vector<int>& scratch);
+/// is reused storage. `recent`, when given, is judged first among the
+/// pieces of free space the hull's box meets, and told the piece that
+/// rejects this hull.
+Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, std::vector<int>& scratch,
+                          RecentRejections* recent = nullptr);
 
 /// Condition 4 alone, for a flat polygon or a solid thin enough to act as
 /// one (within `half_width` of the polygon's plane, scene units): a face
