@@ -19,12 +19,37 @@ Polygon2d convex_in_frame(const PlaneFrame& frame, const std::vector<Eigen::Vect
   return polygon;
 }
 
-// Every piece less `cutter`, dropping slivers no wider than about 2 tol.
-std::vector<Polygon2d> subtract_from_all(const std::vector<Polygon2d>& pieces, const Polygon2d& cutter, double tol) {
+// Whether the boxes of two polygons are apart.
+bool boxes_apart(const Polygon2d& a, const Polygon2d& b) {
+  Eigen::Vector2d a_low = a.front(), a_high = a.front(), b_low = b.front(), b_high = b.front();
+  for (const Eigen::Vector2d& p : a) {
+    a_low = a_low.cwiseMin(p);
+    a_high = a_high.cwiseMax(p);
+  }
+  for (const Eigen::Vector2d& p : b) {
+    b_low = b_low.cwiseMin(p);
+    b_high = b_high.cwiseMax(p);
+  }
+  return (a_high.array() < b_low.array()).any() || (b_high.array() < a_low.array()).any();
+}
+
+// Every piece less `cutter`, dropping slivers no wider than about 2 tol. A
+// piece whose box is apart from the cutter's is what subtracting would give
+// back whole (convex polygons apart have a separating edge), kept without
+// a copy: most faces in a large polygon's slab reach one piece or none.
+std::vector<Polygon2d> subtract_from_all(std::vector<Polygon2d>&& pieces, const Polygon2d& cutter, double tol) {
   std::vector<Polygon2d> out;
-  for (const Polygon2d& piece : pieces)
-    for (Polygon2d& rest : subtract_convex_polygon(piece, cutter))
-      if (polygon_area(rest) > tol * polygon_perimeter(rest)) out.push_back(std::move(rest));
+  out.reserve(pieces.size());
+  const auto keep = [&](Polygon2d&& rest) {
+    if (polygon_area(rest) > tol * polygon_perimeter(rest)) out.push_back(std::move(rest));
+  };
+  for (Polygon2d& piece : pieces) {
+    if (piece.empty() || cutter.empty() || boxes_apart(piece, cutter)) {
+      if (piece.size() >= 3) keep(std::move(piece));
+      continue;
+    }
+    for (Polygon2d& rest : subtract_convex_polygon(piece, cutter)) keep(std::move(rest));
+  }
   return out;
 }
 
@@ -38,8 +63,8 @@ Validity check_polygon_covered(const SceneIndex& index, const FlatPolygon& merge
   const double tol = index.tol();
   const PlaneFrame frame = PlaneFrame::from_normal(merged.corners.front(), merged.plane.normal);
   std::vector<Polygon2d> uncovered = {convex_in_frame(frame, merged.corners, tol)};
-  uncovered = subtract_from_all(uncovered, convex_in_frame(frame, corners_a, tol), tol);
-  uncovered = subtract_from_all(uncovered, convex_in_frame(frame, corners_b, tol), tol);
+  uncovered = subtract_from_all(std::move(uncovered), convex_in_frame(frame, corners_a, tol), tol);
+  uncovered = subtract_from_all(std::move(uncovered), convex_in_frame(frame, corners_b, tol), tol);
   if (uncovered.empty()) return Validity::valid;
 
   // Other faces in the slab may cover the rest (a near merge across a tile
@@ -59,7 +84,7 @@ Validity check_polygon_covered(const SceneIndex& index, const FlatPolygon& merge
       in_slab = in_slab && std::abs(merged.plane.signed_distance(corners[k])) <= slab;
     }
     if (!in_slab) continue;
-    uncovered = subtract_from_all(uncovered, convex_in_frame(frame, corners, tol), tol);
+    uncovered = subtract_from_all(std::move(uncovered), convex_in_frame(frame, corners, tol), tol);
     if (uncovered.empty()) return Validity::valid;
     if (static_cast<int>(uncovered.size()) > kMaxUncoveredPieces) return Validity::polygon_spans_gap;
   }
