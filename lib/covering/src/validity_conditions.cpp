@@ -15,15 +15,16 @@ bool planes_support_points(const std::vector<Plane>& planes, const std::vector<E
 
 namespace {
 
-// E1-E3 of one piece of free space against a hull's interior.
+// E1-E3 of one piece of free space against a hull's interior. `triangle`
+// is reused storage (three corners).
 Validity judge_sweep(const SceneIndex& index, const SweepRef& ref, const HullInterior& interior,
-                     std::vector<int>& ray_scratch) {
+                     std::vector<Eigen::Vector3d>& triangle, std::vector<int>& ray_scratch) {
   const double tol = index.tol();
   const Mesh& mesh = index.mesh();
   if (ref.fan < 0) {
-    std::vector<Eigen::Vector3d> triangle(3);
-    triangle_corners(mesh, ref.item, triangle);
-    const FreeSpaceSweep front = front_space_sweep(triangle, index.face_normals[ref.item], index.front_reach[ref.item], tol);
+    const int f = ref.item;
+    triangle_corners(mesh, f, triangle);
+    const FreeSpaceSweep front = front_space_sweep(triangle, index.face_normals[f], index.front_reach[f], tol);
     if (crossing_face_leaks(index, front, interior, ray_scratch)) return Validity::face_crosses_hull;
     if (sweep_enters_hull(index, front, interior, ray_scratch)) return Validity::front_space_inside;
     return Validity::valid;
@@ -57,6 +58,7 @@ void sweep_owners(const AabbTree& tree, const std::vector<int>& owner_of_item, c
 Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, const Aabb& box,
                                 std::vector<int>& scratch, RecentRejections* recent) {
   std::vector<int> ray_scratch;
+  std::vector<Eigen::Vector3d> triangle(3);
   const HullInterior interior = hull_interior(hull, index.tol());
   if (interior.empty()) return Validity::valid;  // thinner than 2 tol: nothing is strictly inside
   std::vector<int>& fronts = scratch;
@@ -70,7 +72,7 @@ Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& h
     return ref.item >= 0 && std::binary_search(owners.begin(), owners.end(), ref.item);
   };
   const auto rejects = [&](const SweepRef& ref, Validity& validity) {
-    validity = judge_sweep(index, ref, interior, ray_scratch);
+    validity = judge_sweep(index, ref, interior, triangle, ray_scratch);
     if (validity == Validity::valid) return false;
     if (recent) recent->note(ref);
     return true;
