@@ -135,10 +135,10 @@ void print_audit(const AuditCommandOptions& o, const PreparedMesh& prepared, con
               recheck.inside_allowed ? "neither on nor inside a hull" : "on no hull's surface", recheck.bars_inside);
   if (recheck.inside_allowed) std::printf("            %ld faces covered by lying inside a hull\n", recheck.faces_inside);
   std::printf("  behaviour: %ld proxies (size %.6g): %ld missed contacts, %ld false contacts (%ld deeper than the\n"
-              "             tolerance, deepest %.6g), normals %.3g deg apart on average, %.3g at most, over %ld\n"
-              "             shared contacts\n",
-              b.poses, b.size, b.missed, b.false_contacts, b.deep_false_contacts, b.max_false_depth,
-              b.mean_normal_angle, b.max_normal_angle, b.both_touch);
+              "             tolerance in free space, %ld only in enclosed space (allowed), deepest %.6g), normals\n"
+              "             %.3g deg apart on average, %.3g at most, over %ld shared contacts\n",
+              b.poses, b.size, b.missed, b.false_contacts, b.deep_false_contacts, b.enclosed_false_contacts,
+              b.max_false_depth, b.mean_normal_angle, b.max_normal_angle, b.both_touch);
   if (b.deepest_false.hull >= 0)
     std::printf("      deepest false contact: %.6g into hull %d, proxy centred at (%.17g, %.17g, %.17g) in front of face %d,\n"
                 "      touching at (%.17g, %.17g, %.17g)\n",

@@ -103,6 +103,7 @@ nlohmann::json audit_report_json(const PreparedMesh& prepared, const validate::A
         {"false_contacts", b.false_contacts},
         {"deep_false_contacts", b.deep_false_contacts},
         {"deep_false_boxes", b.deep_false_boxes},
+        {"enclosed_false_contacts", b.enclosed_false_contacts},
         {"max_false_depth", b.max_false_depth},
         {"deepest_false_contact", false_contact_json(b.deepest_false)},
         {"both_touch", b.both_touch},

@@ -88,6 +88,7 @@ void expect_same(const BehaviourReport& a, const BehaviourReport& b) {
   EXPECT_EQ(a.false_contacts, b.false_contacts);
   EXPECT_EQ(a.deep_false_contacts, b.deep_false_contacts);
   EXPECT_EQ(a.deep_false_boxes, b.deep_false_boxes);
+  EXPECT_EQ(a.enclosed_false_contacts, b.enclosed_false_contacts);
   EXPECT_EQ(a.max_false_depth, b.max_false_depth);
   EXPECT_EQ(a.deepest_false.hull, b.deepest_false.hull);
   EXPECT_EQ(a.deepest_false.face, b.deepest_false.face);

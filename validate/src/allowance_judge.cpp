@@ -91,7 +91,8 @@ Eigen::Vector3d nearest_interior_point(const HullInterior& interior, const Eigen
 AllowanceJudge::AllowanceJudge(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles,
                                const bvh::HullWorld& hulls, const std::vector<double>& hull_tolerance,
                                const AllowanceOptions& options)
-    : prepared_(prepared), triangles_(triangles), hulls_(hulls), hull_tree_(hull_boxes(hulls)), options_(options) {
+    : prepared_(prepared), triangles_(triangles), hulls_(hulls), hull_tree_(hull_boxes(hulls)),
+      enclosed_(prepared, triangles), options_(options) {
   const Mesh& mesh = prepared.mesh;
   std::vector<bvh::RuntimeHull> faces;
   for (size_t f = 0; f < mesh.triangles.size(); ++f) {
@@ -100,19 +101,7 @@ AllowanceJudge::AllowanceJudge(const PreparedMesh& prepared, const bvh::Triangle
     const std::vector<Eigen::Vector3d> corners = {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
     faces.push_back(bvh::flat_triangle_hull(corners[0], corners[1], corners[2]));
     face_of_.push_back(static_cast<int>(f));
-    const Eigen::Vector3d n = triangle_area_vector(mesh, static_cast<int>(f)).normalized();
-    normals_.push_back(n);
-    prisms_.push_back({{n, n.dot(corners[0])}, polygon_side_planes(corners, n), 0});
   }
-  // One ray family per direction: faces sharing a normal to the last bit share it.
-  const auto lexicographic = [](const Eigen::Vector3d& x, const Eigen::Vector3d& y) {
-    return std::lexicographical_compare(x.data(), x.data() + 3, y.data(), y.data() + 3);
-  };
-  std::sort(normals_.begin(), normals_.end(), lexicographic);
-  normals_.erase(std::unique(normals_.begin(), normals_.end()), normals_.end());
-  for (FrontPrism& prism : prisms_)
-    prism.normal = static_cast<int>(
-        std::lower_bound(normals_.begin(), normals_.end(), prism.front.normal, lexicographic) - normals_.begin());
   Result<std::shared_ptr<const bvh::HullWorld>> world = bvh::HullWorld::build(faces);
   if (!world.ok()) throw std::runtime_error("the mesh's faces as flat hulls: " + world.status().message());
   mesh_ = std::move(world).value();
@@ -228,62 +217,6 @@ std::vector<std::pair<double, double>> AllowanceJudge::near_hulls(const Eigen::V
   return merged;
 }
 
-// Whether the front ray along face normal `m` through `p` is open: the
-// mesh behind p along -m is the front of a face with that normal (so p is
-// on that face's own ray), and ahead the ray escapes or ends on a front.
-// False when p is on no such ray.
-bool AllowanceJudge::on_open_ray(const Eigen::Vector3d& p, const Eigen::Vector3d& m, double tol) const {
-  const double far = std::numeric_limits<double>::max();
-  bvh::RayResult behind, ahead;
-  if (!triangles_.ray_cast({p, -m, far}, behind).ok() || !behind.hit) return false;
-  const Eigen::Vector3d floor = triangle_area_vector(prepared_.mesh, behind.first.hull).normalized();
-  if (floor.dot(m) < 1.0 - kUnitNormalSlack) return false;
-  if (!triangles_.ray_cast({p, m, far}, ahead).ok() || !ahead.hit) return true;
-  return !ends_on_backs(triangles_, prepared_.mesh, p, m, ahead.first.t, tol);
-}
-
-// Free space in the strict definition is the points of open rays; p is
-// enclosed when no face's front ray through it is open. Every distinct
-// face normal is tried (opening rays, from edges, make surfaces, not
-// volumes, and are left to the probe).
-//
-// Only a face whose front column holds p can have p on its ray, so only
-// their normals are cast (each column grown by tol sideways, so every face
-// whose exact column holds p is tried: the definition's rays start on the
-// face itself).
-//
-// Beside the exact column, in that margin, the ray through p is no ray of
-// the face: it may slip past a neighbour's edge and escape (pandora, r =
-// 0.3: a point 0.0126 behind a wall, under a ceiling, was called free). The
-// face's nearest genuine ray is cast instead, when within tol of p.
-bool AllowanceJudge::in_enclosed_space(const Eigen::Vector3d& p, double tol) const {
-  const Mesh& mesh = prepared_.mesh;
-  std::vector<int> tried;  // normals whose ray through p itself was cast
-  for (size_t k = 0; k < prisms_.size(); ++k) {
-    const FrontPrism& prism = prisms_[k];
-    const double height = prism.front.signed_distance(p);
-    if (!(height > 0.0)) continue;
-    const double beside = deepest_signed_distance(prism.sides, p);
-    if (beside > tol) continue;
-    if (beside <= 0.0) {
-      if (std::find(tried.begin(), tried.end(), prism.normal) != tried.end()) continue;
-      tried.push_back(prism.normal);
-      if (on_open_ray(p, normals_[prism.normal], tol)) return false;
-      continue;
-    }
-    // Within tol of each side plane is not within tol of the column: a
-    // sliver's sharp corner reaches far out that way (pandora: 1.39 away).
-    const Eigen::Vector3i& t = mesh.triangles[face_of_[k]];
-    const Eigen::Vector3d& n = prism.front.normal;
-    const Eigen::Vector3d nearest = closest_point_on_triangle(p - height * n, mesh.positions[t[0]],
-                                                              mesh.positions[t[1]], mesh.positions[t[2]]) +
-                                    height * n;
-    if ((nearest - p).norm() > tol) continue;
-    if (on_open_ray(nearest, normals_[prism.normal], tol)) return false;
-  }
-  return true;
-}
-
 // Where the ball of radius r around c meets a hull deeper than the margin,
 // at the point of each hull's interior nearest c, in free space? The
 // distance query only says the ball comes within the margin of a hull's
@@ -300,7 +233,7 @@ AllowanceJudge::BallReach AllowanceJudge::ball_takes_free_space(const Eigen::Vec
   for (int h : near) {
     const Eigen::Vector3d q = nearest_interior_point(interiors_[h], c);
     if (!((q - c).norm() < r)) continue;
-    if (!in_enclosed_space(q, tol)) return BallReach::free;
+    if (!enclosed_.holds(q, tol)) return BallReach::free;
     reach = BallReach::enclosed;
   }
   return reach;

@@ -5,6 +5,7 @@
 
 #include "hullcover/validate/allowance_audit.h"
 
+#include "enclosed_space.h"
 #include "probe_rays.h"
 
 #include "hullcover/bvh/hull_world.h"
@@ -72,11 +73,9 @@ private:
                                                     double from, double to) const;
   double most_clear_between(const Eigen::Vector3d& start, const Eigen::Vector3d& dir, const Sample& a,
                             const Sample& b) const;
-  bool in_enclosed_space(const Eigen::Vector3d& p, double tol) const;
   /// What the ball of radius r around c does with the hulls' interiors.
   enum class BallReach { not_deep, enclosed, free };
   BallReach ball_takes_free_space(const Eigen::Vector3d& c, double r, double tol) const;
-  bool on_open_ray(const Eigen::Vector3d& p, const Eigen::Vector3d& m, double tol) const;
 
   const PreparedMesh& prepared_;
   const bvh::TriangleWorld& triangles_;
@@ -84,15 +83,7 @@ private:
   AabbTree hull_tree_;
   std::shared_ptr<const bvh::HullWorld> mesh_;
   std::vector<int> face_of_;  // mesh face id of mesh_'s hull i
-  std::vector<Eigen::Vector3d> normals_;  // every distinct unit face normal
-  /// A face's front column: in front of `front`, behind its `sides`
-  /// (polygon_side_planes); `normal` indexes normals_.
-  struct FrontPrism {
-    Plane front;
-    std::vector<Plane> sides;
-    int normal = 0;
-  };
-  std::vector<FrontPrism> prisms_;  // per face with a surface
+  EnclosedSpace enclosed_;
   // Per hull, shrunk by the margin a ball may reach in, at the tolerance of
   // the hull's place (agent radius only).
   std::vector<HullInterior> interiors_;

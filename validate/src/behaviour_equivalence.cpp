@@ -1,5 +1,7 @@
 #include "hullcover/validate/behaviour_equivalence.h"
 
+#include "enclosed_space.h"
+
 #include "hullcover/geometry/tolerances.h"
 
 #include <Eigen/Geometry>
@@ -7,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <random>
 
 namespace hullcover::validate {
@@ -29,6 +32,21 @@ bool accessible(const bvh::TriangleWorld& triangles, const Mesh& mesh, const Eig
   return triangle_area_vector(mesh, hit.first.hull).dot(dir) < 0.0;
 }
 
+// Does the proxy's reach into the hull lie in enclosed space? Judged where
+// it reaches deepest (the contact point pushed in by the depth) and half
+// way there; either point free makes the contact lost space. A proxy can
+// pass an opening in a closed object without touching a triangle (a rail
+// whose side against a wall is left out, the wall's floor and ceiling
+// running on behind it: Red Eclipse's deathtrap), and a hull may fill what
+// lies behind such an opening, the strict definition's enclosed space.
+bool reach_is_enclosed(const probe::EnclosedSpace& enclosed, const bvh::Contact& deepest, double tol) {
+  const Eigen::Vector3d inward = -deepest.normal;
+  for (const double share : {1.0, 0.5})
+    if (share * deepest.depth > tol && !enclosed.holds(deepest.point + share * deepest.depth * inward, tol))
+      return false;
+  return true;
+}
+
 } // namespace
 
 Result<BehaviourReport> compare_behaviour(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles,
@@ -49,6 +67,7 @@ Result<BehaviourReport> compare_behaviour(const PreparedMesh& prepared, const bv
   std::normal_distribution<double> g(0.0, 1.0);
   const double s = report.size;
   double angle_sum = 0.0;
+  std::optional<probe::EnclosedSpace> enclosed;  // built at the first deep false contact
   try {
     for (int i = 0; i < options.proxies; ++i) {
       const int f = faces[pick(rng)];
@@ -96,13 +115,26 @@ Result<BehaviourReport> compare_behaviour(const PreparedMesh& prepared, const bv
       } else if (h_touch) {
         ++report.false_contacts;
         // A proxy clear of every triangle yet deeper than tol in a hull
-        // stands in free space the hull takes (DESIGN.md, "behaviour").
+        // stands in space the hull takes (DESIGN.md, "behaviour"): lost
+        // when free, allowed when enclosed. Every hull it reaches into is
+        // judged, deepest first.
         const bvh::Contact& deepest = on_hulls.contacts[0];
         if (centre_free && deepest.depth > tol) {
-          ++report.deep_false_contacts;
-          if (shape.kind == bvh::ShapeKind::box) ++report.deep_false_boxes;
-          if (deepest.depth > report.deepest_false.depth)
-            report.deepest_false = {deepest.hull, f, pose.translation(), deepest.point, deepest.depth};
+          if (!enclosed) enclosed.emplace(prepared, triangles);
+          const bvh::Contact* lost = nullptr;
+          for (const bvh::Contact& c : on_hulls.contacts)
+            if (c.depth > tol && !reach_is_enclosed(*enclosed, c, tol)) {
+              lost = &c;
+              break;
+            }
+          if (!lost) {
+            ++report.enclosed_false_contacts;
+          } else {
+            ++report.deep_false_contacts;
+            if (shape.kind == bvh::ShapeKind::box) ++report.deep_false_boxes;
+            if (lost->depth > report.deepest_false.depth)
+              report.deepest_false = {lost->hull, f, pose.translation(), lost->point, lost->depth};
+          }
         }
         report.max_false_depth = std::max(report.max_false_depth, deepest.depth);
       } else {

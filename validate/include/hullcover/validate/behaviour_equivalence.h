@@ -38,13 +38,18 @@ struct BehaviourReport {
   long missed = 0;               ///< triangles touched, hulls not
   long false_contacts = 0;       ///< hulls touched, triangles not
   /// False contacts deeper than tol into a hull by a proxy whose centre lies
-  /// on its face's open front ray: lost space, a violation.
+  /// on its face's open front ray, reaching free space there (a point on a
+  /// face's open front ray): lost space, a violation.
   long deep_false_contacts = 0;
+  /// The same contacts reaching into enclosed space only, past an opening
+  /// no triangle closes (the space behind it is the strict definition's
+  /// enclosed space, which hulls may fill): allowed, counted apart.
+  long enclosed_false_contacts = 0;
   /// Of those, by box proxies: a box is no union of balls, so under an
   /// agent radius its false contacts are measured, not judged.
   long deep_false_boxes = 0;
   double max_false_depth = 0.0;  ///< deepest false contact of either kind, scene units
-  FalseContactPlace deepest_false;  ///< the deepest of the deep false contacts (hull -1 when none)
+  FalseContactPlace deepest_false;  ///< the deepest of the lost (deep, free) false contacts (hull -1 when none)
   double max_normal_angle = 0.0; ///< degrees, from the hulls' deepest normal to the nearest triangle normal, when both touch
   double mean_normal_angle = 0.0;  ///< degrees, the same angle on average
 };
