@@ -19,18 +19,20 @@ Polygon2d convex_in_frame(const PlaneFrame& frame, const std::vector<Eigen::Vect
   return polygon;
 }
 
-// Whether the boxes of two polygons are apart.
-bool boxes_apart(const Polygon2d& a, const Polygon2d& b) {
-  Eigen::Vector2d a_low = a.front(), a_high = a.front(), b_low = b.front(), b_high = b.front();
-  for (const Eigen::Vector2d& p : a) {
-    a_low = a_low.cwiseMin(p);
-    a_high = a_high.cwiseMax(p);
+// A polygon's box in its plane frame (of a non-empty polygon).
+struct Box2d {
+  Eigen::Vector2d low = Eigen::Vector2d::Zero(), high = Eigen::Vector2d::Zero();
+};
+Box2d box_of(const Polygon2d& polygon) {
+  Box2d box{polygon.front(), polygon.front()};
+  for (const Eigen::Vector2d& p : polygon) {
+    box.low = box.low.cwiseMin(p);
+    box.high = box.high.cwiseMax(p);
   }
-  for (const Eigen::Vector2d& p : b) {
-    b_low = b_low.cwiseMin(p);
-    b_high = b_high.cwiseMax(p);
-  }
-  return (a_high.array() < b_low.array()).any() || (b_high.array() < a_low.array()).any();
+  return box;
+}
+bool boxes_apart(const Box2d& a, const Box2d& b) {
+  return (a.high.array() < b.low.array()).any() || (b.high.array() < a.low.array()).any();
 }
 
 // Every piece less `cutter`, dropping slivers no wider than about 2 tol. A
@@ -43,8 +45,9 @@ std::vector<Polygon2d> subtract_from_all(std::vector<Polygon2d>&& pieces, const 
   const auto keep = [&](Polygon2d&& rest) {
     if (polygon_area(rest) > tol * polygon_perimeter(rest)) out.push_back(std::move(rest));
   };
+  const Box2d cutter_box = cutter.empty() ? Box2d{} : box_of(cutter);  // once for every piece
   for (Polygon2d& piece : pieces) {
-    if (piece.empty() || cutter.empty() || boxes_apart(piece, cutter)) {
+    if (piece.empty() || cutter.empty() || boxes_apart(box_of(piece), cutter_box)) {
       if (piece.size() >= 3) keep(std::move(piece));
       continue;
     }
