@@ -91,7 +91,7 @@ Eigen::Vector3d nearest_interior_point(const HullInterior& interior, const Eigen
 AllowanceJudge::AllowanceJudge(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles,
                                const bvh::HullWorld& hulls, const std::vector<double>& hull_tolerance,
                                const AllowanceOptions& options)
-    : prepared_(prepared), triangles_(triangles), hulls_(hulls), hull_tree_(hull_boxes(hulls)),
+    : prepared_(prepared), hulls_(hulls), hull_tree_(hull_boxes(hulls)),
       enclosed_(prepared, triangles), options_(options) {
   const Mesh& mesh = prepared.mesh;
   std::vector<bvh::RuntimeHull> faces;

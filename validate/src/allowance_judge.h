@@ -78,7 +78,6 @@ private:
   BallReach ball_takes_free_space(const Eigen::Vector3d& c, double r, double tol) const;
 
   const PreparedMesh& prepared_;
-  const bvh::TriangleWorld& triangles_;
   const bvh::HullWorld& hulls_;
   AabbTree hull_tree_;
   std::shared_ptr<const bvh::HullWorld> mesh_;
