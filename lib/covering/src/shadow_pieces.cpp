@@ -47,17 +47,21 @@ bool negligible(const std::vector<Eigen::Vector3d>& polygon, double tol) {
     return twice;
   }();
   if (!(normal.norm() > 0.0)) return true;
-  double least = std::numeric_limits<double>::infinity();
+  // Negligible when the polygon lies within the width of some edge's line
+  // (its narrowest width). Each edge is dropped at its first point beyond:
+  // the checks on the hot path of every judged piece stay near linear.
+  const double width = kNegligibleWidthInTolerances * tol;
   for (size_t i = 0; i < polygon.size(); ++i) {
     const Eigen::Vector3d edge = polygon[(i + 1) % polygon.size()] - polygon[i];
     const Eigen::Vector3d across = normal.cross(edge);
     if (!(across.norm() > 0.0)) continue;
     const Eigen::Vector3d unit = across.normalized();
-    double widest = 0.0;
-    for (const Eigen::Vector3d& p : polygon) widest = std::max(widest, std::abs(unit.dot(p - polygon[i])));
-    least = std::min(least, widest);
+    const bool within = std::all_of(polygon.begin(), polygon.end(), [&](const Eigen::Vector3d& p) {
+      return std::abs(unit.dot(p - polygon[i])) <= width;
+    });
+    if (within) return true;
   }
-  return least <= kNegligibleWidthInTolerances * tol;
+  return false;
 }
 
 namespace {

@@ -41,40 +41,67 @@ public:
   void nearest_along_segment(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double margin, double slack,
                              Meet&& meet) const;
 
-  bool empty() const { return nodes_.empty(); }
+  bool empty() const { return items_.empty(); }
 
 private:
+  /// A box in floats, rounded outward from the doubles it stands for: an
+  /// inner node then fits one 64-byte cache line with both of its
+  /// children's boxes, and the walks (memory-bound on large scenes) read
+  /// half as much. Being outward, it can only make a walk open more nodes,
+  /// never fewer; items are always tested on their exact boxes.
+  struct FloatBox {
+    float min[3];
+    float max[3];
+  };
+  static FloatBox outward(const Aabb& box);
+  /// A child of an inner node: an inner node's index in nodes_, or a leaf,
+  /// `count` items from items_[index].
+  struct ChildRef {
+    int index = 0;  ///< inner: index in nodes_; leaf: first item in items_
+    int count = 0;  ///< leaf: number of items (> 0); inner: 0
+  };
+  /// An inner node: its two children and their boxes, read together.
+  struct Node {
+    FloatBox box[2];
+    ChildRef child[2];
+  };
+  static_assert(sizeof(Node) == 64, "an inner node fills one cache line");
+
+  static bool overlaps(const FloatBox& box, const Aabb& query) {
+    for (int axis = 0; axis < 3; ++axis)
+      if (double(box.min[axis]) > query.max[axis] || double(box.max[axis]) < query.min[axis]) return false;
+    return true;
+  }
   /// Slab test: where the segment from + s (to - from), s in [0, 1], enters
-  /// `box` grown by `margin` (0 when it starts inside), or infinity when it
-  /// misses it. `inverse` holds 1 / (to - from) per axis (infinite along an
-  /// axis the segment does not move on).
-  static double segment_box_entry(const Eigen::Vector3d& from, const Eigen::Vector3d& inverse, const Aabb& box,
+  /// `box` (an Aabb or a FloatBox) grown by `margin` (0 when it starts
+  /// inside), or infinity when it misses it. `inverse` holds 1 / (to - from)
+  /// per axis (infinite along an axis the segment does not move on).
+  template <class Box>
+  static double segment_box_entry(const Eigen::Vector3d& from, const Eigen::Vector3d& inverse, const Box& box,
                                   double margin);
   /// Deepest traversal stack: the tree is balanced (median splits), so its
   /// depth is about log2(n / 4).
   static constexpr int kMaxDepth = 128;
 
-  struct Node {
-    Aabb box;
-    int first = 0;   ///< leaf: first item in items_
-    int count = 0;   ///< leaf: number of items; inner node: 0
-    int left = -1;   ///< inner node: children
-    int right = -1;
-  };
-  int build(int begin, int end, const std::vector<Aabb>& boxes, std::vector<Eigen::Vector3d>& centres);
+  /// Builds the subtree over items_[begin, end); returns it and its box.
+  ChildRef build(int begin, int end, const std::vector<Aabb>& boxes, const std::vector<Eigen::Vector3d>& centres,
+                 Aabb& box);
 
-  std::vector<Node> nodes_;
+  std::vector<Node> nodes_;       ///< the inner nodes
+  ChildRef root_;                 ///< the root: an inner node, or the only leaf
+  FloatBox root_box_{};
   std::vector<int> items_;
   std::vector<Aabb> leaf_boxes_;  ///< the box of items_[i] at i: read in the order the walks read them
 };
 
+template <class Box>
 inline double AabbTree::segment_box_entry(const Eigen::Vector3d& from, const Eigen::Vector3d& inverse,
-                                          const Aabb& box, double margin) {
+                                          const Box& box, double margin) {
   constexpr double kMiss = std::numeric_limits<double>::infinity();
   double enter = 0.0, leave = 1.0;
   for (int axis = 0; axis < 3; ++axis) {
-    const double low = box.min[axis] - margin - from[axis];
-    const double high = box.max[axis] + margin - from[axis];
+    const double low = double(box.min[axis]) - margin - from[axis];
+    const double high = double(box.max[axis]) + margin - from[axis];
     if (std::isinf(inverse[axis])) {
       if (low > 0.0 || high < 0.0) return kMiss;
       continue;
@@ -92,25 +119,24 @@ inline double AabbTree::segment_box_entry(const Eigen::Vector3d& from, const Eig
 template <class Meet>
 void AabbTree::nearest_along_segment(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double margin,
                                      double slack, Meet&& meet) const {
-  if (nodes_.empty()) return;
+  if (items_.empty()) return;
   const Eigen::Vector3d delta = to - from;
   Eigen::Vector3d inverse;
   for (int axis = 0; axis < 3; ++axis)
     inverse[axis] = delta[axis] == 0.0 ? std::numeric_limits<double>::infinity() : 1.0 / delta[axis];
   // Each stack entry carries where the segment enters its box; the nearer
   // child goes on top, so boxes are mostly opened nearest first.
-  std::pair<int, double> stack[kMaxDepth];
+  std::pair<ChildRef, double> stack[kMaxDepth];
   int top = 0;
-  const double root = segment_box_entry(from, inverse, nodes_[0].box, margin);
+  const double root = segment_box_entry(from, inverse, root_box_, margin);
   if (std::isinf(root)) return;
-  stack[top++] = {0, root};
+  stack[top++] = {root_, root};
   double best = std::numeric_limits<double>::infinity();
   while (top > 0) {
-    const auto [n, entry] = stack[--top];
+    const auto [ref, entry] = stack[--top];
     if (entry > best + slack) continue;
-    const Node& node = nodes_[n];
-    if (node.count > 0) {
-      for (int i = node.first; i < node.first + node.count; ++i) {
+    if (ref.count > 0) {
+      for (int i = ref.index; i < ref.index + ref.count; ++i) {
         // A missed box's entry is infinite, and so is `best` until a first
         // meeting: test the miss on its own.
         const double item_entry = segment_box_entry(from, inverse, leaf_boxes_[i], margin);
@@ -118,15 +144,16 @@ void AabbTree::nearest_along_segment(const Eigen::Vector3d& from, const Eigen::V
       }
       continue;
     }
-    const double left = segment_box_entry(from, inverse, nodes_[node.left].box, margin);
-    const double right = segment_box_entry(from, inverse, nodes_[node.right].box, margin);
+    const Node& node = nodes_[ref.index];
+    const double left = segment_box_entry(from, inverse, node.box[0], margin);
+    const double right = segment_box_entry(from, inverse, node.box[1], margin);
     assert(top + 2 <= kMaxDepth);
     if (left <= right) {
-      if (!std::isinf(right)) stack[top++] = {node.right, right};
-      if (!std::isinf(left)) stack[top++] = {node.left, left};
+      if (!std::isinf(right)) stack[top++] = {node.child[1], right};
+      if (!std::isinf(left)) stack[top++] = {node.child[0], left};
     } else {
-      if (!std::isinf(left)) stack[top++] = {node.left, left};
-      stack[top++] = {node.right, right};
+      if (!std::isinf(left)) stack[top++] = {node.child[0], left};
+      stack[top++] = {node.child[1], right};
     }
   }
 }
