@@ -122,6 +122,50 @@ TEST(AabbTree, OverlappingMatchesBruteForceOnContinuousBoxes) {
   EXPECT_EQ(all.size(), boxes.size());
 }
 
+// The tree keeps its inner boxes in floats (aabb_tree.h): far from the
+// origin a float is ~0.03 apart, a double ~1e-11. A query touching a box at
+// a coordinate no float holds must still find it, and one missing it by a
+// hair of a double must not: inner boxes only ever round outward.
+TEST(AabbTree, OverlappingIsExactWhereFloatsCannotHoldTheCorners) {
+  const double base = 1.0e6 / 3.0;  // float spacing 0.03125 here
+  std::vector<Aabb> boxes;
+  for (int i = 0; i < 64; ++i) {
+    const V min(base + 0.1 * i + 0.01, base - 0.05 * i, base + 1e-3 * i);
+    boxes.push_back(box(min, min + V(0.07, 0.03, 0.0013)));
+  }
+  const AabbTree tree(boxes);
+  const double hair = 1e-9;  // far above a double's spacing here, far below a float's
+  for (int i = 0; i < 64; ++i) {
+    for (int axis = 0; axis < 3; ++axis) {
+      for (bool above : {true, false}) {
+        // A thin query on the box's face, reaching away from it.
+        Aabb touch = boxes[i];
+        if (above) {
+          touch.min[axis] = boxes[i].max[axis];
+          touch.max[axis] = boxes[i].max[axis] + hair;
+        } else {
+          touch.max[axis] = boxes[i].min[axis];
+          touch.min[axis] = boxes[i].min[axis] - hair;
+        }
+        Aabb apart = touch;
+        apart.min[axis] += above ? hair : -hair;
+        apart.max[axis] += above ? hair : -hair;
+        std::vector<int> expected_touch, expected_apart, got_touch, got_apart;
+        for (int j = 0; j < 64; ++j) {
+          if (reference_overlap(boxes[j], touch)) expected_touch.push_back(j);
+          if (reference_overlap(boxes[j], apart)) expected_apart.push_back(j);
+        }
+        ASSERT_TRUE(std::count(expected_touch.begin(), expected_touch.end(), i) == 1);
+        ASSERT_TRUE(std::count(expected_apart.begin(), expected_apart.end(), i) == 0);
+        tree.overlapping(touch, got_touch);
+        tree.overlapping(apart, got_apart);
+        ASSERT_EQ(sorted(got_touch), expected_touch) << "box " << i << " axis " << axis;
+        ASSERT_EQ(sorted(got_apart), expected_apart) << "box " << i << " axis " << axis;
+      }
+    }
+  }
+}
+
 TEST(AabbTree, EmptyBoxesAreNeverReported) {
   std::vector<Aabb> boxes(5);  // default boxes: empty
   boxes.push_back(box(V(0, 0, 0), V(1, -1, 1)));  // inverted on y
