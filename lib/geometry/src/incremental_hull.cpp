@@ -5,7 +5,6 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
-#include <map>
 
 namespace hullcover {
 std::optional<ConvexPolytope> add_point_to_hull(const ConvexPolytope& hull, const Eigen::Vector3d& p, int id,
@@ -22,13 +21,27 @@ std::optional<ConvexPolytope> add_point_to_hull(const ConvexPolytope& hull, cons
   }
   if (!any_visible) return hull;  // inside, or within a sliver of the boundary
 
-  // Which facet owns each directed edge u -> v.
-  std::map<std::pair<int, int>, int> owner;
+  // Which facet owns each directed edge u -> v: a sorted list, not a map,
+  // as this runs for most merges and a map allocates per edge.
+  struct DirectedEdge {
+    int from, to, facet;
+    bool operator<(const DirectedEdge& other) const {
+      return from != other.from ? from < other.from : to < other.to;
+    }
+  };
+  std::vector<DirectedEdge> owner;
   for (int f = 0; f < facet_count; ++f) {
     const std::vector<int>& poly = hull.facets[f];
-    for (size_t i = 0; i < poly.size(); ++i)
-      if (!owner.emplace(std::make_pair(poly[i], poly[(i + 1) % poly.size()]), f).second) return std::nullopt;
+    for (size_t i = 0; i < poly.size(); ++i) owner.push_back({poly[i], poly[(i + 1) % poly.size()], f});
   }
+  std::sort(owner.begin(), owner.end());
+  for (size_t i = 1; i < owner.size(); ++i)
+    if (!(owner[i - 1] < owner[i])) return std::nullopt;  // an edge used twice the same way: not a surface
+  const auto owner_of = [&](int from, int to) {
+    const DirectedEdge key{from, to, -1};
+    const auto it = std::lower_bound(owner.begin(), owner.end(), key);
+    return it != owner.end() && !(key < *it) ? it->facet : -1;
+  };
 
   ConvexPolytope out;
   out.vertices = hull.vertices;
@@ -44,9 +57,9 @@ std::optional<ConvexPolytope> add_point_to_hull(const ConvexPolytope& hull, cons
     const std::vector<int>& poly = hull.facets[f];
     for (size_t i = 0; i < poly.size(); ++i) {
       const int u = poly[i], v = poly[(i + 1) % poly.size()];
-      const auto across = owner.find({v, u});
-      if (across == owner.end()) return std::nullopt;  // not closed
-      if (!visible[across->second]) new_triangles.push_back({u, v, new_vertex});
+      const int across = owner_of(v, u);
+      if (across < 0) return std::nullopt;  // not closed
+      if (!visible[across]) new_triangles.push_back({u, v, new_vertex});
     }
   }
   for (int f = 0; f < facet_count; ++f) {

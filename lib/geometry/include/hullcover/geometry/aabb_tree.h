@@ -56,9 +56,17 @@ private:
   static FloatBox outward(const Aabb& box);
   /// A child of an inner node: an inner node's index in nodes_, or a leaf,
   /// `count` items from items_[index].
+  /// Plain data (no initialisers), so that a walk's stack of them is not
+  /// cleared on every call: each walk is short, and there are millions.
   struct ChildRef {
-    int index = 0;  ///< inner: index in nodes_; leaf: first item in items_
-    int count = 0;  ///< leaf: number of items (> 0); inner: 0
+    int index;  ///< inner: index in nodes_; leaf: first item in items_
+    int count;  ///< leaf: number of items (> 0); inner: 0
+  };
+  /// A child still to open on a segment walk, and where the segment enters
+  /// its box.
+  struct PendingChild {
+    ChildRef ref;
+    double entry;
   };
   /// An inner node: its two children and their boxes, read together.
   struct Node {
@@ -88,7 +96,7 @@ private:
                  Aabb& box);
 
   std::vector<Node> nodes_;       ///< the inner nodes
-  ChildRef root_;                 ///< the root: an inner node, or the only leaf
+  ChildRef root_{0, 0};           ///< the root: an inner node, or the only leaf
   FloatBox root_box_{};
   std::vector<int> items_;
   std::vector<Aabb> leaf_boxes_;  ///< the box of items_[i] at i: read in the order the walks read them
@@ -126,14 +134,16 @@ void AabbTree::nearest_along_segment(const Eigen::Vector3d& from, const Eigen::V
     inverse[axis] = delta[axis] == 0.0 ? std::numeric_limits<double>::infinity() : 1.0 / delta[axis];
   // Each stack entry carries where the segment enters its box; the nearer
   // child goes on top, so boxes are mostly opened nearest first.
-  std::pair<ChildRef, double> stack[kMaxDepth];
+  PendingChild stack[kMaxDepth];
   int top = 0;
   const double root = segment_box_entry(from, inverse, root_box_, margin);
   if (std::isinf(root)) return;
   stack[top++] = {root_, root};
   double best = std::numeric_limits<double>::infinity();
   while (top > 0) {
-    const auto [ref, entry] = stack[--top];
+    const PendingChild pending = stack[--top];
+    const ChildRef ref = pending.ref;
+    const double entry = pending.entry;
     if (entry > best + slack) continue;
     if (ref.count > 0) {
       for (int i = ref.index; i < ref.index + ref.count; ++i) {
