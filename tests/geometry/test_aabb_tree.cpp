@@ -209,11 +209,17 @@ double reference_entry(const V& from, const V& to, const Aabb& b, double margin)
   return enter <= leave ? enter : kInf;
 }
 
-TEST(AabbTree, NearestAlongSegmentMeetsEveryCandidateNearerThanTheFirstMeetingPlusSlack) {
-  std::mt19937 rng(23);
-  std::uniform_real_distribution<double> u(-10.0, 10.0), size(0.0, 1.5), unit(0.0, 1.0);
+// Seeded random boxes and segments in a 20-unit cube centred at `offset`
+// on every axis. Far from the origin (offset 3e6: float spacing 0.25, more
+// than many boxes' sizes) the inner boxes round out a lot; the walk must
+// still meet every candidate and find the first meeting.
+void check_nearest_along_segment(double offset, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(offset - 10.0, offset + 10.0), size(0.0, 1.5), unit(0.0, 1.0);
   std::uniform_int_distribution<int> kind(0, 9);
-  constexpr double kEps = 1e-9;  // rounding apart from the tree's own slab test
+  // Rounding apart from the tree's own slab test: a double's spacing at the
+  // offset, over segments as short as ~0.1.
+  const double kEps = 1e-9 + 1e-14 * offset;
   long must_total = 0, called_total = 0;
   for (int scene = 0; scene < 6; ++scene) {
     std::vector<Aabb> boxes;
@@ -232,7 +238,7 @@ TEST(AabbTree, NearestAlongSegmentMeetsEveryCandidateNearerThanTheFirstMeetingPl
       V to(u(rng), u(rng), u(rng));
       switch (q % 5) {
         case 0: to[q % 3] = from[q % 3]; break;                   // flat on one axis
-        case 1: to = from; to[q % 3] += u(rng); break;            // along one axis
+        case 1: to = from; to[q % 3] += u(rng) - offset; break;   // along one axis
         case 2: to = from; break;                                  // a point
         default: break;
       }
@@ -268,6 +274,52 @@ TEST(AabbTree, NearestAlongSegmentMeetsEveryCandidateNearerThanTheFirstMeetingPl
   }
   EXPECT_GT(must_total, 500) << "the queries should reach many boxes";
   EXPECT_LT(called_total, 30 * must_total) << "the tree should prune";
+}
+
+TEST(AabbTree, NearestAlongSegmentMeetsEveryCandidateNearerThanTheFirstMeetingPlusSlack) {
+  check_nearest_along_segment(0.0, 23);
+}
+
+TEST(AabbTree, NearestAlongSegmentMeetsEveryCandidateFarFromTheOrigin) {
+  check_nearest_along_segment(3.0e6, 25);
+}
+
+// Coordinates beyond the float range (a hostile or corrupt file that got
+// past the readers): the inner boxes clamp to the largest float or
+// infinity, outward, and queries stay exact on the items.
+TEST(AabbTree, BoxesBeyondTheFloatRangeAreStillFound) {
+  std::vector<Aabb> boxes;
+  for (int i = 0; i < 40; ++i) {
+    const double x = (i % 2 == 0 ? 1.0 : -1.0) * 1e39 * (1 + i);  // |x| > FLT_MAX (3.4e38)
+    boxes.push_back(box(V(x, 0, 0), V(x + 1e30, 1, 1)));
+  }
+  boxes.push_back(box(V(-1e300, -1e300, -1e300), V(-1e299, -1e299, -1e299)));
+  const AabbTree tree(boxes);
+  for (int i = 0; i < static_cast<int>(boxes.size()); ++i) {
+    std::vector<int> got;
+    tree.overlapping(box(boxes[i].max, boxes[i].max), got);  // touching its far corner
+    EXPECT_EQ(got, std::vector<int>{i}) << "box " << i;
+    got.clear();
+    Aabb beyond = box(boxes[i].max, boxes[i].max);
+    beyond.min[1] = beyond.max[1] = std::nextafter(boxes[i].max[1], kInf);
+    tree.overlapping(beyond, got);
+    EXPECT_TRUE(got.empty()) << "box " << i;
+  }
+  // Along the x axis through the boxes of the first 40: every one is met,
+  // and the nearest is found.
+  std::vector<int> calls;
+  const V from(-1e41, 0.5, 0.5), to(1e41, 0.5, 0.5);
+  double best = kInf;
+  tree.nearest_along_segment(from, to, 0.0, 2.0, [&](int i) {
+    calls.push_back(i);
+    const double s = reference_entry(from, to, boxes[i], 0.0);
+    best = std::min(best, s);
+    return s;
+  });
+  std::vector<int> expected(40);
+  for (int i = 0; i < 40; ++i) expected[i] = i;
+  EXPECT_EQ(sorted(calls), expected);
+  EXPECT_EQ(best, reference_entry(from, to, boxes[39], 0.0));  // -4e40, the leftmost
 }
 
 // Exact coordinates: integer boxes, axis-aligned segments of power-of-two

@@ -51,7 +51,9 @@ std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::V
           if ((v - u).cross(n).normalized().dot(p - u) > tol) return kNotMet;
         }
         if (rate <= 0.0) nearest_front = std::min(nearest_front, t);
-        if (!first || t < first->t) first = MeshRayHit{t, f, false};
+        // Equal t (a ray through a shared edge) goes to the lower face index,
+        // not to whichever face the walk happened to meet first.
+        if (!first || t < first->t || (t == first->t && f < first->face)) first = MeshRayHit{t, f, false};
         return (t - min_t) / length;
       });
   if (first && first->t > max_t) first.reset();

@@ -31,7 +31,8 @@ std::vector<Plane> column_planes(const std::vector<Eigen::Vector3d>& outline, co
 /// (scene units; its least width over its edges' directions), or with
 /// fewer than 3 corners or no area: a sliver of rounding, which cutting
 /// would only shave again. Far below anything a ray could be aimed at: an
-/// opening's strip alone is 2 tol wide.
+/// opening's strip alone is 2 tol wide. Corners are finite (a NaN corner
+/// would make no edge's width hold the piece: kept, never dropped).
 bool negligible(const std::vector<Eigen::Vector3d>& polygon, double tol);
 
 /// `region` cut along the shadow (the column along `dir`) of a triangle:

@@ -9,8 +9,9 @@ namespace hullcover {
 namespace {
 constexpr int kLeafSize = 4;
 
-// The greatest float at or below `value` (-infinity below the float range:
-// a double beyond it has no float neighbour, and casting it is undefined).
+// The greatest float at or below `value` (-infinity below the float range,
+// the largest float above it: a double beyond the range has no float
+// neighbour, and casting it is undefined).
 float float_at_or_below(double value) {
   constexpr float kInfinity = std::numeric_limits<float>::infinity();
   constexpr double kLargest = std::numeric_limits<float>::max();
@@ -38,7 +39,9 @@ AabbTree::AabbTree(const std::vector<Aabb>& boxes) {
   if (items_.empty()) return;
   std::vector<Eigen::Vector3d> centres(boxes.size());
   for (size_t i = 0; i < boxes.size(); ++i) centres[i] = 0.5 * (boxes[i].min + boxes[i].max);
-  nodes_.reserve(items_.size() / kLeafSize + 2);
+  // Leaves hold 2 to kLeafSize items (median splits), so there are at most
+  // n / 2 leaves and one inner node fewer.
+  nodes_.reserve(items_.size() / 2 + 1);
   Aabb root_box;
   root_ = build(0, static_cast<int>(items_.size()), boxes, centres, root_box);
   root_box_ = outward(root_box);
@@ -56,8 +59,8 @@ AabbTree::ChildRef AabbTree::build(int begin, int end, const std::vector<Aabb>& 
     centre_box.extend(centres[items_[i]]);
   }
   if (end - begin <= kLeafSize) return ChildRef{begin, end - begin};
-  // The parent before its children, the left child right after it: a walk
-  // going left reads the next cache line.
+  // The parent before its children, the left child (when inner) right after
+  // it: a walk going left reads the next cache line.
   const int index = static_cast<int>(nodes_.size());
   nodes_.emplace_back();
   Eigen::Index axis = 0;

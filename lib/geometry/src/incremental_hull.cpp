@@ -30,6 +30,9 @@ std::optional<ConvexPolytope> add_point_to_hull(const ConvexPolytope& hull, cons
     }
   };
   std::vector<DirectedEdge> owner;
+  size_t edge_count = 0;
+  for (int f = 0; f < facet_count; ++f) edge_count += hull.facets[f].size();
+  owner.reserve(edge_count);
   for (int f = 0; f < facet_count; ++f) {
     const std::vector<int>& poly = hull.facets[f];
     for (size_t i = 0; i < poly.size(); ++i) owner.push_back({poly[i], poly[(i + 1) % poly.size()], f});

@@ -20,6 +20,7 @@ namespace hullcover {
 /// the indices of the boxes in that list.
 class AabbTree {
 public:
+  /// An empty tree: every query on it meets nothing.
   AabbTree() = default;
   /// Builds over `boxes` (index i is reported for boxes[i]); empty boxes
   /// are never reported. O(n log n).
@@ -41,14 +42,17 @@ public:
   void nearest_along_segment(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double margin, double slack,
                              Meet&& meet) const;
 
+  /// True when the tree holds no (non-empty) box.
   bool empty() const { return items_.empty(); }
 
 private:
   /// A box in floats, rounded outward from the doubles it stands for: an
   /// inner node then fits one 64-byte cache line with both of its
   /// children's boxes, and the walks (memory-bound on large scenes) read
-  /// half as much. Being outward, it can only make a walk open more nodes,
-  /// never fewer; items are always tested on their exact boxes.
+  /// half as much. Being outward, it can only make an overlap walk open
+  /// more nodes, never fewer; items are always tested on their exact boxes.
+  /// (A segment walk may take nodes in another order than exact boxes
+  /// would give, so callers must not depend on the order of equal hits.)
   struct FloatBox {
     float min[3];
     float max[3];
@@ -68,12 +72,16 @@ private:
     ChildRef ref;
     double entry;
   };
-  /// An inner node: its two children and their boxes, read together.
-  struct Node {
+  /// An inner node: its two children and their boxes, read together, on a
+  /// cache-line boundary so that one node is one memory read.
+  struct alignas(64) Node {
     FloatBox box[2];
     ChildRef child[2];
   };
-  static_assert(sizeof(Node) == 64, "an inner node fills one cache line");
+  static_assert(sizeof(Node) == 64 && alignof(Node) == 64, "an inner node fills one cache line");
+
+  /// Whether the closed boxes meet; false for an empty query (its min is
+  /// above its max).
 
   static bool overlaps(const FloatBox& box, const Aabb& query) {
     for (int axis = 0; axis < 3; ++axis)
@@ -97,7 +105,7 @@ private:
 
   std::vector<Node> nodes_;       ///< the inner nodes
   ChildRef root_{0, 0};           ///< the root: an inner node, or the only leaf
-  FloatBox root_box_{};
+  FloatBox root_box_{};            ///< the root's box (a leaf's when the root is the only leaf)
   std::vector<int> items_;
   std::vector<Aabb> leaf_boxes_;  ///< the box of items_[i] at i: read in the order the walks read them
 };
