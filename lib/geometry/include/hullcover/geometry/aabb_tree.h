@@ -82,7 +82,6 @@ private:
 
   /// Whether the closed boxes meet; false for an empty query (its min is
   /// above its max).
-
   static bool overlaps(const FloatBox& box, const Aabb& query) {
     for (int axis = 0; axis < 3; ++axis)
       if (double(box.min[axis]) > query.max[axis] || double(box.max[axis]) < query.min[axis]) return false;
@@ -105,7 +104,7 @@ private:
 
   std::vector<Node> nodes_;       ///< the inner nodes
   ChildRef root_{0, 0};           ///< the root: an inner node, or the only leaf
-  FloatBox root_box_{};            ///< the root's box (a leaf's when the root is the only leaf)
+  FloatBox root_box_{};           ///< the root's box (a leaf's when the root is the only leaf)
   std::vector<int> items_;
   std::vector<Aabb> leaf_boxes_;  ///< the box of items_[i] at i: read in the order the walks read them
 };
