@@ -10,6 +10,37 @@
 #include <limits>
 
 namespace hullcover::validate::probe {
+namespace {
+
+// How many units of rounding a column box's far end may be short by: its
+// length and end are each a few rounded operations on coordinates no larger
+// than the box's.
+constexpr double kColumnBoxRoundingUnits = 8.0;
+
+// The box of face f's column within `bounds` (which holds the face): the
+// triangle swept along its unit normal n from height 0 to the height s1 at
+// which the swept triangle's box leaves `bounds` on some axis. Every point
+// x + s n with x on the triangle and s >= 0 that lies in `bounds` has
+// s <= s1 (on an axis k with n_k > 0, x_k + s n_k <= max_k while x_k >=
+// the triangle's lowest; alike below), so it lies in this box.
+Aabb column_box(const Mesh& mesh, int f, const Eigen::Vector3d& n, const Aabb& bounds) {
+  const Eigen::Vector3i& t = mesh.triangles[f];
+  Aabb triangle;
+  for (int i = 0; i < 3; ++i) triangle.extend(mesh.positions[t[i]]);
+  double s1 = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    if (n[k] > 0.0) s1 = std::min(s1, (bounds.max[k] - triangle.min[k]) / n[k]);
+    if (n[k] < 0.0) s1 = std::min(s1, (triangle.max[k] - bounds.min[k]) / -n[k]);
+  }
+  s1 = std::max(s1, 0.0);
+  Aabb column = triangle;
+  column.extend(triangle.min + s1 * n);
+  column.extend(triangle.max + s1 * n);
+  const double magnitude = std::max(bounds.min.cwiseAbs().maxCoeff(), bounds.max.cwiseAbs().maxCoeff()) + s1;
+  return grown(column, kColumnBoxRoundingUnits * std::numeric_limits<double>::epsilon() * magnitude);
+}
+
+} // namespace
 
 EnclosedSpace::EnclosedSpace(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles)
     : prepared_(prepared), triangles_(triangles) {
@@ -31,6 +62,11 @@ EnclosedSpace::EnclosedSpace(const PreparedMesh& prepared, const bvh::TriangleWo
   for (FrontPrism& prism : prisms_)
     prism.normal = static_cast<int>(
         std::lower_bound(normals_.begin(), normals_.end(), prism.front.normal, lexicographic) - normals_.begin());
+  bounds_ = bounding_box_of(mesh.positions);
+  std::vector<Aabb> column_boxes;
+  column_boxes.reserve(prisms_.size());
+  for (const FrontPrism& prism : prisms_) column_boxes.push_back(column_box(mesh, prism.face, prism.front.normal, bounds_));
+  columns_ = AabbTree(column_boxes);
 }
 
 // Whether the front ray along face normal `m` through `p` is open: the
@@ -57,30 +93,46 @@ bool EnclosedSpace::on_open_ray(const Eigen::Vector3d& p, const Eigen::Vector3d&
 // 0.3: a point 0.0126 behind a wall, under a ceiling, was called free). The
 // face's nearest genuine ray is cast instead, when within tol of p.
 bool EnclosedSpace::holds(const Eigen::Vector3d& p, double tol) const {
-  const Mesh& mesh = prepared_.mesh;
   std::vector<int> tried;  // normals whose ray through p itself was cast
-  for (const FrontPrism& prism : prisms_) {
-    const double height = prism.front.signed_distance(p);
-    if (!(height > 0.0)) continue;
-    const double beside = deepest_signed_distance(prism.sides, p);
-    if (beside > tol) continue;
-    if (beside <= 0.0) {
-      if (std::find(tried.begin(), tried.end(), prism.normal) != tried.end()) continue;
-      tried.push_back(prism.normal);
-      if (on_open_ray(p, normals_[prism.normal], tol)) return false;
-      continue;
-    }
-    // Within tol of each side plane is not within tol of the column: a
-    // sliver's sharp corner reaches far out that way (pandora: 1.39 away).
-    const Eigen::Vector3i& t = mesh.triangles[prism.face];
-    const Eigen::Vector3d& n = prism.front.normal;
-    const Eigen::Vector3d nearest = closest_point_on_triangle(p - height * n, mesh.positions[t[0]],
-                                                              mesh.positions[t[1]], mesh.positions[t[2]]) +
-                                    height * n;
-    if ((nearest - p).norm() > tol) continue;
-    if (on_open_ray(nearest, normals_[prism.normal], tol)) return false;
+  const Aabb near_p = grown(Aabb{p, p}, tol);
+  // A column point within tol of p lies in bounds_ only when p's box does;
+  // elsewhere the boxes, cut at bounds_, may miss it: every column is tried.
+  const bool indexed = (near_p.min.array() >= bounds_.min.array()).all() &&
+                       (near_p.max.array() <= bounds_.max.array()).all();
+  if (!indexed) {
+    for (size_t i = 0; i < prisms_.size(); ++i)
+      if (open_through(p, static_cast<int>(i), tol, tried)) return false;
+    return true;
   }
+  std::vector<int> candidates;
+  columns_.overlapping(near_p, candidates);
+  // The walk's order is the tree's; the answer is not (any open ray ends it).
+  for (int i : candidates)
+    if (open_through(p, i, tol, tried)) return false;
   return true;
+}
+
+bool EnclosedSpace::open_through(const Eigen::Vector3d& p, int index, double tol, std::vector<int>& tried) const {
+  const FrontPrism& prism = prisms_[index];
+  const double height = prism.front.signed_distance(p);
+  if (!(height > 0.0)) return false;
+  const double beside = deepest_signed_distance(prism.sides, p);
+  if (beside > tol) return false;
+  if (beside <= 0.0) {
+    if (std::find(tried.begin(), tried.end(), prism.normal) != tried.end()) return false;
+    tried.push_back(prism.normal);
+    return on_open_ray(p, normals_[prism.normal], tol);
+  }
+  // Within tol of each side plane is not within tol of the column: a
+  // sliver's sharp corner reaches far out that way (pandora: 1.39 away).
+  const Mesh& mesh = prepared_.mesh;
+  const Eigen::Vector3i& t = mesh.triangles[prism.face];
+  const Eigen::Vector3d& n = prism.front.normal;
+  const Eigen::Vector3d nearest =
+      closest_point_on_triangle(p - height * n, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]) +
+      height * n;
+  if ((nearest - p).norm() > tol) return false;
+  return on_open_ray(nearest, normals_[prism.normal], tol);
 }
 
 } // namespace hullcover::validate::probe

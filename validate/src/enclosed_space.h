@@ -5,6 +5,7 @@
 // reach into it without taking free space.
 
 #include "hullcover/bvh/triangle_world.h"
+#include "hullcover/geometry/aabb_tree.h"
 #include "hullcover/geometry/convex_polytope.h"
 #include "hullcover/mesh/prepared_mesh.h"
 
@@ -27,11 +28,16 @@ public:
   /// ray through p, or its nearest genuine ray within tol of p, end on a
   /// back, or not reach p from that face at all. Opening rays, from edges,
   /// make surfaces rather than volumes and are left to the probe's rays.
-  /// Linear in the faces: for the rare point in question, not for sweeps.
+  /// Inside the mesh's bounding box, only the columns whose boxes (each
+  /// cut where it leaves that box) come within tol of p are tried; outside
+  /// it, every column (columns have no end, as the definition's rays).
   bool holds(const Eigen::Vector3d& p, double tol) const;
 
 private:
   bool on_open_ray(const Eigen::Vector3d& p, const Eigen::Vector3d& m, double tol) const;
+  /// Whether the face of `prism` puts p (within tol of its column) on an
+  /// open ray; `tried` holds the normals whose ray through p was cast.
+  bool open_through(const Eigen::Vector3d& p, int prism, double tol, std::vector<int>& tried) const;
 
   const PreparedMesh& prepared_;
   const bvh::TriangleWorld& triangles_;
@@ -45,6 +51,12 @@ private:
     int face = -1;
   };
   std::vector<FrontPrism> prisms_;
+  /// The mesh's bounding box: where the column boxes below end.
+  Aabb bounds_;
+  /// Over each prism's column within bounds_: a face's triangle swept along
+  /// its normal until its box leaves bounds_ (sideways growth by tol is
+  /// left to the query's box, so one tree serves every tol).
+  AabbTree columns_;
 };
 
 } // namespace hullcover::validate::probe
