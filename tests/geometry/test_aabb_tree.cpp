@@ -370,5 +370,48 @@ TEST(AabbTree, NearestAlongSegmentNeverMeetsABoxTheSegmentMisses) {
   });
 }
 
+// nearest_to_point: items are points inside their boxes (so no nearer than
+// their boxes, as the contract asks). Its answer must be the brute-force
+// minimum over every item, capped at limit^2; each item asked at most once,
+// and never an empty box's. Far from the origin (offset) inner boxes round
+// outward to floats ~0.06 apart, coarser than the points' spacing.
+void check_nearest_to_point(double offset, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-10.0, 10.0), size(0.0, 2.0), share(0.0, 1.0);
+  std::vector<Aabb> boxes;
+  std::vector<V> points;
+  for (int i = 0; i < 1200; ++i) {
+    const V min = V::Constant(offset) + V(u(rng), u(rng), u(rng));
+    const V extent(size(rng), size(rng), size(rng));
+    boxes.push_back(box(min, min + extent));
+    points.push_back(min + V(share(rng), share(rng), share(rng)).cwiseProduct(extent));
+    if (i % 10 == 0) boxes.back() = Aabb{};  // empty: never asked
+  }
+  const AabbTree tree(boxes);
+  for (int q = 0; q < 300; ++q) {
+    const V p = V::Constant(offset) + 1.5 * V(u(rng), u(rng), u(rng));
+    const double limit = q % 3 == 0 ? 0.5 : (q % 3 == 1 ? 3.0 : kInf);
+    double expected = limit * limit;
+    for (size_t i = 0; i < boxes.size(); ++i)
+      if (!boxes[i].empty()) expected = std::min(expected, (points[i] - p).squaredNorm());
+    std::vector<int> asked;
+    const double got = tree.nearest_to_point(p, limit, [&](int i) {
+      asked.push_back(i);
+      return (points[i] - p).squaredNorm();
+    });
+    ASSERT_EQ(got, expected) << "query " << q << " limit " << limit;
+    const std::vector<int> once = sorted(asked);
+    ASSERT_TRUE(std::adjacent_find(once.begin(), once.end()) == once.end()) << "an item asked twice";
+    for (int i : asked) ASSERT_FALSE(boxes[i].empty()) << "an empty box asked";
+    if (std::isinf(limit)) {
+      EXPECT_LT(asked.size(), boxes.size() / 4) << "the walk should prune far boxes";
+    }
+  }
+}
+
+TEST(AabbTree, NearestToPointIsTheMinimumOverEveryItem) { check_nearest_to_point(0.0, 31); }
+
+TEST(AabbTree, NearestToPointIsTheMinimumFarFromTheOrigin) { check_nearest_to_point(1.0e6, 32); }
+
 } // namespace
 } // namespace hullcover

@@ -22,21 +22,16 @@ struct Cell {
 };
 
 // The distance from `p` to the nearest triangle, or `limit` when none is
-// nearer (limit > 0).
-double clearance_below(const SceneIndex& index, const Eigen::Vector3d& p, double limit, std::vector<int>& near) {
-  Aabb around;
-  around.extend(p);
-  near.clear();
-  index.face_tree.overlapping(grown(around, limit), near);
+// nearer (limit > 0). A proof's cell far from its lost point looks up as
+// far as that point; the tree's nearest-first walk then asks only the
+// triangles nearer than the nearest met so far, not all within the limit.
+double clearance_below(const SceneIndex& index, const Eigen::Vector3d& p, double limit) {
   const Mesh& mesh = index.mesh();
-  double best2 = limit * limit;
-  for (int f : near) {
+  return std::sqrt(index.face_tree.nearest_to_point(p, limit, [&](int f) {
     const auto& t = mesh.triangles[f];
-    const Eigen::Vector3d q =
-        closest_point_on_triangle(p, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
-    best2 = std::min(best2, (q - p).squaredNorm());
-  }
-  return std::sqrt(best2);
+    return (closest_point_on_triangle(p, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]) - p)
+        .squaredNorm();
+  }));
 }
 
 // A lower bound on the distance from `p` to the polytope (0 inside it):
@@ -83,14 +78,13 @@ bool prove_over(const Aabb& box, double smallest, Judge&& judge) {
 }
 
 // Every point of the polytope within max_deviation of a triangle.
-bool within_deviation(const SceneIndex& index, const std::vector<Plane>& lost, const Aabb& box,
-                      std::vector<int>& near) {
+bool within_deviation(const SceneIndex& index, const std::vector<Plane>& lost, const Aabb& box) {
   const double limit = index.max_deviation;
   return prove_over(box, index.tol(), [&](const Cell& cell) {
     const double h = cell.half_diagonal();
     const double outside = distance_below(lost, cell.centre);
     if (outside > h) return CellVerdict::outside;
-    const double clearance = clearance_below(index, cell.centre, limit + h, near);
+    const double clearance = clearance_below(index, cell.centre, limit + h);
     if (clearance + h <= limit) return CellVerdict::proved;
     if (outside <= 0.0 && clearance > limit) return CellVerdict::counterexample;
     return CellVerdict::open;
@@ -100,7 +94,7 @@ bool within_deviation(const SceneIndex& index, const std::vector<Plane>& lost, c
 // No ball of radius agent_radius that touches no triangle reaches into the
 // polytope: every point within that radius of it has clearance below it.
 bool out_of_agents_reach(const SceneIndex& index, const std::vector<Plane>& lost, const Aabb& box,
-                         const Eigen::Vector3d& lost_point, std::vector<int>& near) {
+                         const Eigen::Vector3d& lost_point) {
   const double r = index.agent_radius;
   return prove_over(grown(box, r), index.tol(), [&](const Cell& cell) {
     const double h = cell.half_diagonal();
@@ -109,7 +103,7 @@ bool out_of_agents_reach(const SceneIndex& index, const std::vector<Plane>& lost
     // Looked up as far as the lost point, to see whether an empty ball
     // around the centre holds it (a refusal, so rounding here is harmless).
     const double limit = std::max(r, (lost_point - cell.centre).norm());
-    const double clearance = clearance_below(index, cell.centre, limit, near);
+    const double clearance = clearance_below(index, cell.centre, limit);
     if (clearance + h < r) return CellVerdict::proved;
     if (clearance >= r) {
       // The ball of radius `clearance` around the centre touches nothing,
@@ -128,9 +122,8 @@ bool out_of_agents_reach(const SceneIndex& index, const std::vector<Plane>& lost
 bool loss_allowed(const SceneIndex& index, const std::vector<Plane>& lost, const Aabb& box,
                   const Eigen::Vector3d& lost_point, bool within_deviation_known) {
   if (!index.has_allowance()) return false;
-  std::vector<int> near;
-  if (index.max_deviation > 0.0 && !within_deviation_known && !within_deviation(index, lost, box, near)) return false;
-  return !(index.agent_radius > 0.0) || out_of_agents_reach(index, lost, box, lost_point, near);
+  if (index.max_deviation > 0.0 && !within_deviation_known && !within_deviation(index, lost, box)) return false;
+  return !(index.agent_radius > 0.0) || out_of_agents_reach(index, lost, box, lost_point);
 }
 
 // An upper bound on how far from the sweep's base, along its rays, the rays

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -41,6 +42,16 @@ public:
   template <class Meet>
   void nearest_along_segment(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double margin, double slack,
                              Meet&& meet) const;
+
+  /// The smallest squared distance from `p` to an item, as `distance2(i)`
+  /// (any callable taking the item's index and returning its squared
+  /// distance from p, never below its box's) tells, or limit * limit when
+  /// no item is nearer than `limit`. Only items whose boxes lie no farther
+  /// than the nearest found so far are asked, nearest box first as far as
+  /// the tree tells: the answer is the minimum over every item within
+  /// `limit`, whatever the order.
+  template <class Distance2>
+  double nearest_to_point(const Eigen::Vector3d& p, double limit, Distance2&& distance2) const;
 
   /// True when the tree holds no (non-empty) box.
   bool empty() const { return items_.empty(); }
@@ -86,6 +97,17 @@ private:
     for (int axis = 0; axis < 3; ++axis)
       if (double(box.min[axis]) > query.max[axis] || double(box.max[axis]) < query.min[axis]) return false;
     return true;
+  }
+  /// Squared distance from `p` to `box` (an Aabb or a FloatBox); 0 inside.
+  template <class Box>
+  static double point_box_distance2(const Eigen::Vector3d& p, const Box& box) {
+    double sum = 0.0;
+    for (int axis = 0; axis < 3; ++axis) {
+      const double below = double(box.min[axis]) - p[axis], above = p[axis] - double(box.max[axis]);
+      const double gap = std::max({below, above, 0.0});
+      sum += gap * gap;
+    }
+    return sum;
   }
   /// Slab test: where the segment from + s (to - from), s in [0, 1], enters
   /// `box` (an Aabb or a FloatBox) grown by `margin` (0 when it starts
@@ -173,6 +195,45 @@ void AabbTree::nearest_along_segment(const Eigen::Vector3d& from, const Eigen::V
       stack[top++] = {node.child[1], right};
     }
   }
+}
+
+template <class Distance2>
+double AabbTree::nearest_to_point(const Eigen::Vector3d& p, double limit, Distance2&& distance2) const {
+  double best = limit * limit;
+  if (items_.empty()) return best;
+  // Each stack entry carries its box's squared distance from p; the nearer
+  // child goes on top, so near items are met first and prune the rest.
+  struct PendingNode {
+    ChildRef ref;
+    double distance2;
+  };
+  PendingNode stack[kMaxDepth];
+  int top = 0;
+  const double root = point_box_distance2(p, root_box_);
+  if (root > best) return best;
+  stack[top++] = {root_, root};
+  while (top > 0) {
+    const PendingNode pending = stack[--top];
+    if (pending.distance2 > best) continue;
+    const ChildRef ref = pending.ref;
+    if (ref.count > 0) {
+      for (int i = ref.index; i < ref.index + ref.count; ++i)
+        if (point_box_distance2(p, leaf_boxes_[i]) <= best) best = std::min(best, distance2(items_[i]));
+      continue;
+    }
+    const Node& node = nodes_[ref.index];
+    const double left = point_box_distance2(p, node.box[0]);
+    const double right = point_box_distance2(p, node.box[1]);
+    assert(top + 2 <= kMaxDepth);
+    if (left <= right) {
+      if (right <= best) stack[top++] = {node.child[1], right};
+      if (left <= best) stack[top++] = {node.child[0], left};
+    } else {
+      if (left <= best) stack[top++] = {node.child[0], left};
+      stack[top++] = {node.child[1], right};
+    }
+  }
+  return best;
 }
 
 } // namespace hullcover
