@@ -125,6 +125,13 @@ double allowed_prism_thickness(const SceneIndex& index, const FlatPolygon& polyg
 
 ConvexPolytope prism_polytope(const FlatPolygon& polygon, const std::vector<Plane>& sides, double& thickness,
                               double tol, ConvexHullBuilder& hulls) {
+  // A patch whose faces span no polygon (a cached cell's bytes may claim
+  // one: fuzz_cell_result) has no bottom to build: its flat polytope, as
+  // empty as the polygon, which matches no kept hull.
+  if (polygon.corners.size() < 3) {
+    thickness = 0.0;
+    return flat_polytope(polygon, true);
+  }
   const Eigen::Vector3d& n = polygon.plane.normal;
   for (int attempt = 0; thickness > 0.0 && attempt <= kBottomRetries; ++attempt, thickness *= 0.5) {
     std::vector<Eigen::Vector3d> bottom;

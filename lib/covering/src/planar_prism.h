@@ -42,7 +42,8 @@ double allowed_prism_thickness(const SceneIndex& index, const FlatPolygon& polyg
 /// between the side planes `sides`, built by `hulls`. Where the sides meet
 /// before that depth the thickness is reduced until the bottom is a proper
 /// polygon (corners more than `tol` apart and off each other's lines); `thickness` returns what was used. Thickness 0 gives the flat
-/// polygon: front and back facets and the vertical side planes.
+/// polygon: front and back facets and the vertical side planes. A polygon
+/// of fewer than 3 corners gives that flat polytope too (thickness 0).
 ConvexPolytope prism_polytope(const FlatPolygon& polygon, const std::vector<Plane>& sides, double& thickness,
                               double tol, ConvexHullBuilder& hulls);
 
