@@ -17,16 +17,13 @@ namespace {
 // than the box's.
 constexpr double kColumnBoxRoundingUnits = 8.0;
 
-// The box of face f's column within `bounds` (which holds the face): the
-// triangle swept along its unit normal n from height 0 to the height s1 at
-// which the swept triangle's box leaves `bounds` on some axis. Every point
-// x + s n with x on the triangle and s >= 0 that lies in `bounds` has
-// s <= s1 (on an axis k with n_k > 0, x_k + s n_k <= max_k while x_k >=
-// the triangle's lowest; alike below), so it lies in this box.
-Aabb column_box(const Mesh& mesh, int f, const Eigen::Vector3d& n, const Aabb& bounds) {
-  const Eigen::Vector3i& t = mesh.triangles[f];
-  Aabb triangle;
-  for (int i = 0; i < 3; ++i) triangle.extend(mesh.positions[t[i]]);
+// The box of a face's column within `bounds` (which holds the face): the
+// face's box `triangle` swept along its unit normal n from height 0 to the
+// height s1 at which it leaves `bounds` on some axis. Every point x + s n
+// with x on the face and s >= 0 that lies in `bounds` has s <= s1 (on an
+// axis k with n_k > 0, x_k + s n_k <= max_k while x_k >= the face's
+// lowest; alike below), so it lies in this box.
+Aabb column_box(const Aabb& triangle, const Eigen::Vector3d& n, const Aabb& bounds) {
   double s1 = std::numeric_limits<double>::infinity();
   for (int k = 0; k < 3; ++k) {
     if (n[k] > 0.0) s1 = std::min(s1, (bounds.max[k] - triangle.min[k]) / n[k]);
@@ -45,6 +42,8 @@ Aabb column_box(const Mesh& mesh, int f, const Eigen::Vector3d& n, const Aabb& b
 EnclosedSpace::EnclosedSpace(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles)
     : prepared_(prepared), triangles_(triangles) {
   const Mesh& mesh = prepared.mesh;
+  bounds_ = bounding_box_of(mesh.positions);
+  std::vector<Aabb> column_boxes;
   for (size_t f = 0; f < mesh.triangles.size(); ++f) {
     if (prepared.connectivity.zero_area[f]) continue;
     const Eigen::Vector3i& t = mesh.triangles[f];
@@ -52,7 +51,9 @@ EnclosedSpace::EnclosedSpace(const PreparedMesh& prepared, const bvh::TriangleWo
     const Eigen::Vector3d n = triangle_area_vector(mesh, static_cast<int>(f)).normalized();
     normals_.push_back(n);
     prisms_.push_back({{n, n.dot(corners[0])}, polygon_side_planes(corners, n), 0, static_cast<int>(f)});
+    column_boxes.push_back(column_box(bounding_box_of(corners), n, bounds_));
   }
+  columns_ = AabbTree(column_boxes);
   // One ray family per direction: faces sharing a normal to the last bit share it.
   const auto lexicographic = [](const Eigen::Vector3d& x, const Eigen::Vector3d& y) {
     return std::lexicographical_compare(x.data(), x.data() + 3, y.data(), y.data() + 3);
@@ -62,11 +63,6 @@ EnclosedSpace::EnclosedSpace(const PreparedMesh& prepared, const bvh::TriangleWo
   for (FrontPrism& prism : prisms_)
     prism.normal = static_cast<int>(
         std::lower_bound(normals_.begin(), normals_.end(), prism.front.normal, lexicographic) - normals_.begin());
-  bounds_ = bounding_box_of(mesh.positions);
-  std::vector<Aabb> column_boxes;
-  column_boxes.reserve(prisms_.size());
-  for (const FrontPrism& prism : prisms_) column_boxes.push_back(column_box(mesh, prism.face, prism.front.normal, bounds_));
-  columns_ = AabbTree(column_boxes);
 }
 
 // Whether the front ray along face normal `m` through `p` is open: the
