@@ -230,7 +230,7 @@ double AabbTree::nearest_to_point(const Eigen::Vector3d& p, double limit, Distan
       if (left <= best) stack[top++] = {node.child[0], left};
     } else {
       if (left <= best) stack[top++] = {node.child[0], left};
-      stack[top++] = {node.child[1], right};
+      if (right <= best) stack[top++] = {node.child[1], right};
     }
   }
   return best;
