@@ -100,7 +100,12 @@ void print_allowance(const validate::AllowanceReport& a) {
                   p.depth, p.hull, p.centre.x(), p.centre.y(), p.centre.z(), p.clearance,
                   p.opening ? "the open edge" : "the front", p.face);
   }
-  if (a.undecided > 0) std::printf("    %ld rays ran out of evaluations (undecided: a violation)\n", a.undecided);
+  if (a.undecided > 0) {
+    const validate::RayPoint& u = a.first_undecided;
+    std::printf("    %ld rays ran out of evaluations (undecided: a violation); the first at (%.17g, %.17g, %.17g),\n"
+                "      on a ray of %s of face %d\n",
+                a.undecided, u.point.x(), u.point.y(), u.point.z(), u.opening ? "the open edge" : "the front", u.face);
+  }
 }
 
 void print_audit(const AuditCommandOptions& o, const PreparedMesh& prepared, const validate::AuditReport& a) {

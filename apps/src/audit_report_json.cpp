@@ -56,7 +56,13 @@ nlohmann::json allowance_json(const validate::AllowanceReport& a) {
                                                         {"depth", p.depth},
                                                         {"clearance", p.clearance},
                                                         {"opening", p.opening}}},
-          {"undecided", a.undecided}};
+          {"undecided", a.undecided},
+          {"first_undecided", a.undecided == 0 ? nlohmann::json(nullptr)
+                                               : nlohmann::json{{"point", {a.first_undecided.point.x(),
+                                                                           a.first_undecided.point.y(),
+                                                                           a.first_undecided.point.z()}},
+                                                                {"face", a.first_undecided.face},
+                                                                {"opening", a.first_undecided.opening}}}};
 }
 
 }  // namespace

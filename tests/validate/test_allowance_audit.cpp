@@ -222,5 +222,48 @@ TEST(AllowanceAudit, APointBesideAColumnIsJudgedOnTheFacesOwnRaysNotOneSlippingP
   EXPECT_FALSE(has(r.value(), AuditFinding::reachable_space_lost));
 }
 
+// A one-sided wall 20 high (facing away), a hull filling the void behind it
+// 0.15 deep, and a strip of floor 0.3-0.44 behind the wall whose rays rise
+// beside the hull for 18 units: every ball of 0.3 on them reaches into the
+// hull, always where no face's ray passes (enclosed, allowed). Halving to
+// tol takes about 37,000 evaluations per ray; the audit decides them all.
+// A small face inside the hull, facing up, opens its column through it:
+// the balls above it now take free space, and the audit says so.
+TEST(AllowanceAudit, ALongRayBesideAFilledVoidIsDecidedAndAnOpeningAboveItIsCaught) {
+  constexpr double kHeight = 20.0;
+  Mesh m;
+  test::add_quad_facing(m, V(0, 0, 0), V(0.4, 0, 0), V(0.4, kHeight, 0), V(0, kHeight, 0), V(0, 0, 1));
+  test::add_quad_facing(m, V(0, 0, -0.44), V(0.4, 0, -0.44), V(0.4, 0, -0.2), V(0, 0, -0.2), V(0, 1, 0));
+  const auto d = test::decompose_and_check(m, {}, 1e-3);
+  ASSERT_TRUE(d);
+  const std::vector<bvh::RuntimeHull> hulls = {test::box_hull(V(0, 1, -0.15), V(0.4, kHeight - 1, 0))};
+  const auto agent_audit = [](const test::Decomposed& scene, const std::vector<bvh::RuntimeHull>& h) {
+    HullSet set;
+    set.hulls = h;
+    AuditOptions options;
+    options.probe.allowance = {0.3, std::nullopt};
+    options.probe.resolution = 0.2;  // a few rays: each is long work
+    options.behaviour.proxies = 30;
+    Result<AuditReport> r = run_audit(scene.prepared, set, options);
+    EXPECT_TRUE(r.ok()) << r.status().message();
+    return r.ok() ? r.value().probe.allowance : AllowanceReport{};
+  };
+  const AllowanceReport enclosed = agent_audit(*d, hulls);
+  EXPECT_GT(enclosed.centre_rays, 0);
+  EXPECT_GT(enclosed.enclosed_balls, 1000);
+  EXPECT_EQ(enclosed.reach_lost, 0);
+  EXPECT_EQ(enclosed.undecided, 0) << "first given up at " << enclosed.first_undecided.point.transpose();
+
+  Mesh opened = m;
+  test::add_quad_facing(opened, V(0.1, 10, -0.15), V(0.3, 10, -0.15), V(0.3, 10, -0.05), V(0.1, 10, -0.05),
+                        V(0, 1, 0));
+  const auto o = test::decompose_and_check(opened, {}, 1e-3);
+  ASSERT_TRUE(o);
+  const AllowanceReport caught = agent_audit(*o, hulls);
+  EXPECT_GT(caught.reach_lost, 0);
+  EXPECT_EQ(caught.deepest_reach.hull, 0);
+  EXPECT_GT(caught.deepest_reach.centre.y(), 10.0);
+}
+
 } // namespace
 } // namespace hullcover::validate

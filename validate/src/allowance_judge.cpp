@@ -86,6 +86,11 @@ Eigen::Vector3d nearest_interior_point(const HullInterior& interior, const Eigen
   return best;
 }
 
+// Counts a ray out of evaluations, and keeps where the first one was.
+void note_undecided(const ProbeRay& ray, const Eigen::Vector3d& at, AllowanceReport& out) {
+  if (out.undecided++ == 0) out.first_undecided = {at, ray.face, ray.opening};
+}
+
 } // namespace
 
 AllowanceJudge::AllowanceJudge(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles,
@@ -185,7 +190,7 @@ void AllowanceJudge::farthest_lost(const ProbeRay& ray, const Eigen::Vector3d& s
   }
   // Out of evaluations matters only where the stretch is judged; measured
   // alone, the figure is a lower bound then.
-  if (undecided && std::isfinite(limit)) ++out.undecided;
+  if (undecided && std::isfinite(limit)) note_undecided(ray, start + from * ray.direction, out);
   if (best > limit) ++out.beyond_deviation;
   if (best > out.max_lost_deviation) {
     out.max_lost_deviation = best;
@@ -315,7 +320,7 @@ void AllowanceJudge::balls_over(const ProbeRay& ray, const Eigen::Vector3d& star
     const bool far_from_hulls = lipschitz_min(i.a.hulls.low, i.b.hulls.low, length) >= needed;
     if (no_clear_centre || far_from_hulls || length <= tol) continue;
     if (evaluations >= kMaxEvaluationsPerRay) {
-      ++out.undecided;
+      note_undecided(ray, start + i.a.t * ray.direction, out);
       return;
     }
     const Sample mid = sample(0.5 * (i.a.t + i.b.t));
@@ -331,6 +336,7 @@ void add_allowance_figures(AllowanceReport& total, const AllowanceReport& part) 
   total.centre_rays += part.centre_rays;
   total.reach_lost += part.reach_lost;
   total.enclosed_balls += part.enclosed_balls;
+  if (total.undecided == 0 && part.undecided > 0) total.first_undecided = part.first_undecided;
   total.undecided += part.undecided;
   if (part.max_lost_deviation > total.max_lost_deviation) {
     total.max_lost_deviation = part.max_lost_deviation;

@@ -36,8 +36,14 @@
 namespace hullcover::validate {
 
 /// How many distance evaluations one ray may use before it is counted
-/// undecided (a finding): a bound on the work, never a pass.
-inline constexpr int kMaxEvaluationsPerRay = 16384;
+/// undecided (a finding): a bound on the work, never a pass. Bisection
+/// stops at intervals of tol, so a ray needs at most 2 per tol of its
+/// length near hulls (plus 2 per stretch): it runs out only past about
+/// 2^17 tol of that length (a map's diagonal is about 10^5 of its own tol)
+/// where every centre is clear yet near a hull, which only enclosed space
+/// allows (a tall shaft beside a filled void). Each evaluation costs up to
+/// a millisecond there, hence a bound at all.
+inline constexpr int kMaxEvaluationsPerRay = 1 << 18;
 
 /// What a covering was allowed to take beyond exact mode.
 struct AllowanceOptions {
@@ -55,6 +61,13 @@ struct ReachPlace {
   double depth = 0.0;  ///< r minus its distance to the hull: how deep the ball reaches in, scene units
   double clearance = 0.0;  ///< its distance to the nearest triangle (>= r), scene units
   bool opening = false;    ///< on an opening ray
+};
+
+/// A point of a probe ray.
+struct RayPoint {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< scene coordinates
+  int face = -1;         ///< the face whose ray it lies on; -1 for no point
+  bool opening = false;  ///< on an opening ray
 };
 
 /// What the allowance audit found.
@@ -80,6 +93,9 @@ struct AllowanceReport {
   /// space too; reported, allowed.
   long enclosed_balls = 0;
   long undecided = 0;         ///< rays or stretches out of evaluations (counted as violations)
+  /// Where the first undecided ray (in ray order) was given up: a point of
+  /// the interval it was halving; face -1 when no ray is undecided.
+  RayPoint first_undecided;
 
   /// No finding under the knobs set.
   bool clean() const { return beyond_deviation == 0 && reach_lost == 0 && undecided == 0; }
