@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
 #include <limits>
 #include <random>
 #include <vector>
@@ -81,6 +82,25 @@ TEST(TriangleDistance, AgreesWithSamplingAndIgnoresRotation) {
     const V t_turned[3] = {turn * t[0], turn * t[1], turn * t[2]};
     EXPECT_NEAR(triangle_distance(s_turned, t_turned), d, kUnitRounding) << "pair " << k;
   }
+}
+
+TEST(TrianglesWithin, AnswersAsTheDistanceComparedAtEveryThreshold) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
+  const auto random_point = [&] { return V(coordinate(rng), coordinate(rng), coordinate(rng)); };
+  int apart = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const V offset = 2.0 * random_point();
+    const V s[3] = {random_point(), random_point(), random_point()};
+    const V t[3] = {random_point() + offset, random_point() + offset, random_point() + offset};
+    const double d = triangle_distance(s, t);
+    apart += d > 0.0;
+    // At the distance itself and one rounding step either side: the
+    // bounded test stops early, yet must agree to the last bit.
+    for (const double threshold : {0.0, std::nextafter(d, 0.0), d, std::nextafter(d, 10.0), 0.5 * d, 2.0 * d + 0.1})
+      EXPECT_EQ(triangles_within(s, t, threshold), d <= threshold) << "pair " << k << " at " << threshold;
+  }
+  EXPECT_GT(apart, 1000);  // most pairs are apart, so the thresholds below d are asked
 }
 
 } // namespace

@@ -46,7 +46,7 @@ bool PatchMerger::face_near_patch(int f, int q) const {
   }
   for (int g : faces.size() > kFacesReadDirectly ? candidates : faces) {
     corners_of_face(mesh, g, other);
-    if (boxes_overlap(reach, box_of_face(other)) && triangle_distance(face, other) <= near_merge_distance_)
+    if (boxes_overlap(reach, box_of_face(other)) && triangles_within(face, other, near_merge_distance_))
       return true;
   }
   return false;

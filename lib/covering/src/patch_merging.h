@@ -8,9 +8,10 @@
 #include "scene_index.h"
 
 #include <array>
+#include <cstdint>
 #include <map>
 #include <optional>
-#include <set>
+#include <unordered_set>
 #include <vector>
 
 namespace hullcover::detail {
@@ -198,7 +199,16 @@ private:
   RecentRejections recent_rejections_;  // judged first in each candidate's exact checks
   std::vector<int> scratch_;
   double near_merge_distance_;
-  std::set<std::array<int, 4>> near_pairs_tried_;  // {a, version a, b, version b}
+  /// {a, version a, b, version b}: hashed, as it grows to millions on a
+  /// large cell and is asked for every near pair on every pass.
+  struct TriedPairHash {
+    std::size_t operator()(const std::array<int, 4>& k) const {
+      std::uint64_t h = 0;
+      for (int x : k) h = (h ^ static_cast<std::uint32_t>(x)) * 0x100000001b3ull;  // FNV-1a over the four ints
+      return static_cast<std::size_t>(h ^ (h >> 29));
+    }
+  };
+  std::unordered_set<std::array<int, 4>, TriedPairHash> near_pairs_tried_;
   long changes_ = 0;  // counts changes to patches, for Patch::changed_at
   std::vector<int> cell_of_patch_;  // seam pass: the cell each starting patch came from
 };

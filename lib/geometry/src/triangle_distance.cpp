@@ -84,30 +84,52 @@ double segment_distance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, co
   return (on_p - on_q).norm();
 }
 
-double triangle_distance(const Eigen::Vector3d (&s)[3], const Eigen::Vector3d (&t)[3]) {
-  // Every candidate is the distance of a real pair of points, one on each
-  // triangle, so none is below the true distance; and the true one is among
-  // them: it is met at a corner against a face, at two sides, or, where the
-  // triangles cross, at a side's crossing of the other's plane (distance 0).
-  double best = std::numeric_limits<double>::infinity();
-  const auto corners_against = [&best](const Eigen::Vector3d (&from)[3], const Eigen::Vector3d (&onto)[3]) {
+namespace {
+
+// Calls `take(d)` with the distance of each candidate pair of points, one on
+// each triangle, until it returns true. Every candidate is the distance of
+// a real pair, so none is below the true distance; and the true one is
+// among them: it is met at a corner against a face, at two sides, or, where
+// the triangles cross, at a side's crossing of the other's plane
+// (distance 0). One list of candidates serves both the distance and the
+// bounded test, so they agree to the last bit.
+template <class Take>
+void triangle_pair_candidates(const Eigen::Vector3d (&s)[3], const Eigen::Vector3d (&t)[3], Take&& take) {
+  const auto corners_against = [&take](const Eigen::Vector3d (&from)[3], const Eigen::Vector3d (&onto)[3]) {
     const Eigen::Vector3d normal = (onto[1] - onto[0]).cross(onto[2] - onto[0]);
     for (int i = 0; i < 3; ++i) {
       const Eigen::Vector3d& p = from[i];
-      best = std::min(best, (p - closest_point_on_triangle(p, onto[0], onto[1], onto[2])).norm());
+      if (take((p - closest_point_on_triangle(p, onto[0], onto[1], onto[2])).norm())) return true;
       const Eigen::Vector3d& q = from[(i + 1) % 3];
       const double side_p = normal.dot(p - onto[0]), side_q = normal.dot(q - onto[0]);
       if ((side_p <= 0.0) != (side_q <= 0.0)) {
         const Eigen::Vector3d crossing = p + (side_p / (side_p - side_q)) * (q - p);
-        best = std::min(best, (crossing - closest_point_on_triangle(crossing, onto[0], onto[1], onto[2])).norm());
+        if (take((crossing - closest_point_on_triangle(crossing, onto[0], onto[1], onto[2])).norm())) return true;
       }
     }
+    return false;
   };
-  corners_against(s, t);
-  corners_against(t, s);
+  if (corners_against(s, t) || corners_against(t, s)) return;
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) best = std::min(best, segment_distance(s[i], s[(i + 1) % 3], t[j], t[(j + 1) % 3]));
+    for (int j = 0; j < 3; ++j)
+      if (take(segment_distance(s[i], s[(i + 1) % 3], t[j], t[(j + 1) % 3]))) return;
+}
+
+} // namespace
+
+double triangle_distance(const Eigen::Vector3d (&s)[3], const Eigen::Vector3d (&t)[3]) {
+  double best = std::numeric_limits<double>::infinity();
+  triangle_pair_candidates(s, t, [&best](double d) {
+    best = std::min(best, d);
+    return false;
+  });
   return best;
+}
+
+bool triangles_within(const Eigen::Vector3d (&s)[3], const Eigen::Vector3d (&t)[3], double distance) {
+  bool within = false;
+  triangle_pair_candidates(s, t, [&](double d) { return within = d <= distance; });
+  return within;
 }
 
 } // namespace hullcover

@@ -36,4 +36,9 @@ double segment_distance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, co
 /// Scene units; cannot fail (degenerate triangles measure as their sides).
 double triangle_distance(const Eigen::Vector3d (&s)[3], const Eigen::Vector3d (&t)[3]);
 
+/// Whether triangle_distance(s, t) <= `distance` (scene units), exactly as
+/// that comparison answers it, stopping at the first pair of points that
+/// close: near-merge searches ask this of many pairs that touch.
+bool triangles_within(const Eigen::Vector3d (&s)[3], const Eigen::Vector3d (&t)[3], double distance);
+
 } // namespace hullcover
