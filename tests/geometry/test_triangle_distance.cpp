@@ -101,6 +101,13 @@ TEST(TrianglesWithin, AnswersAsTheDistanceComparedAtEveryThreshold) {
       EXPECT_EQ(triangles_within(s, t, threshold), d <= threshold) << "pair " << k << " at " << threshold;
   }
   EXPECT_GT(apart, 1000);  // most pairs are apart, so the thresholds below d are asked
+  // Corners that are no numbers: the distance is infinity, met only by it.
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  const V s[3] = {V(nan, nan, nan), V(nan, nan, nan), V(nan, nan, nan)};
+  const V t[3] = {V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)};
+  EXPECT_EQ(triangle_distance(s, t), inf);
+  for (const double threshold : {0.0, 1e300, inf, nan})
+    EXPECT_EQ(triangles_within(s, t, threshold), triangle_distance(s, t) <= threshold) << threshold;
 }
 
 } // namespace

@@ -237,11 +237,12 @@ TEST(AllowanceAudit, ALongRayBesideAFilledVoidIsDecidedAndAnOpeningAboveItIsCaug
   const auto d = test::decompose_and_check(m, {}, 1e-3);
   ASSERT_TRUE(d);
   const std::vector<bvh::RuntimeHull> hulls = {test::box_hull(V(0, 1, -0.15), V(0.4, kHeight - 1, 0))};
-  const auto agent_audit = [](const test::Decomposed& scene, const std::vector<bvh::RuntimeHull>& h) {
+  const auto agent_audit = [](const test::Decomposed& scene, const std::vector<bvh::RuntimeHull>& h,
+                              int max_evaluations = kMaxEvaluationsPerRay) {
     HullSet set;
     set.hulls = h;
     AuditOptions options;
-    options.probe.allowance = {0.3, std::nullopt};
+    options.probe.allowance = {0.3, std::nullopt, max_evaluations};
     options.probe.resolution = 0.2;  // a few rays: each is long work
     options.behaviour.proxies = 30;
     Result<AuditReport> r = run_audit(scene.prepared, set, options);
@@ -253,6 +254,20 @@ TEST(AllowanceAudit, ALongRayBesideAFilledVoidIsDecidedAndAnOpeningAboveItIsCaug
   EXPECT_GT(enclosed.enclosed_balls, 1000);
   EXPECT_EQ(enclosed.reach_lost, 0);
   EXPECT_EQ(enclosed.undecided, 0) << "first given up at " << enclosed.first_undecided.point.transpose();
+  EXPECT_EQ(enclosed.first_undecided.face, -1);
+  // Bound to 16,384 evaluations, the same rays run out, and the report says
+  // where: on the floor strip's rays, beside the hull.
+  const AllowanceReport bounded = agent_audit(*d, hulls, 16384);
+  EXPECT_GT(bounded.undecided, 0);
+  EXPECT_EQ(bounded.reach_lost, 0);
+  const RayPoint& given_up = bounded.first_undecided;
+  EXPECT_TRUE(given_up.face == 2 || given_up.face == 3) << given_up.face;  // the floor strip's two triangles
+  EXPECT_FALSE(given_up.opening);
+  EXPECT_GE(given_up.point.x(), 0.0);
+  EXPECT_LE(given_up.point.x(), 0.4);
+  EXPECT_GT(given_up.point.y(), 0.5);
+  EXPECT_LT(given_up.point.y(), kHeight - 0.5);
+  EXPECT_NEAR(given_up.point.z(), -0.37, 0.08);
 
   Mesh opened = m;
   test::add_quad_facing(opened, V(0.1, 10, -0.15), V(0.3, 10, -0.15), V(0.3, 10, -0.05), V(0.1, 10, -0.05),
@@ -263,6 +278,19 @@ TEST(AllowanceAudit, ALongRayBesideAFilledVoidIsDecidedAndAnOpeningAboveItIsCaug
   EXPECT_GT(caught.reach_lost, 0);
   EXPECT_EQ(caught.deepest_reach.hull, 0);
   EXPECT_GT(caught.deepest_reach.centre.y(), 10.0);
+}
+
+TEST(AllowanceAudit, ABoundBelowARaysTwoEndsIsRefused) {
+  const auto d = test::decompose_and_check(grooved_floor());
+  ASSERT_TRUE(d);
+  HullSet set;
+  set.hulls = bvh::runtime_hulls(d->covering);
+  AuditOptions options;
+  options.probe.allowance = {0.3, std::nullopt, 1};
+  const Result<AuditReport> r = run_audit(d->prepared, set, options);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), StatusCode::invalid_argument);
+  EXPECT_NE(r.status().message().find("at least 2 evaluations"), std::string::npos) << r.status().message();
 }
 
 } // namespace

@@ -62,6 +62,8 @@ void expect_same(const AllowanceReport& a, const AllowanceReport& b) {
   EXPECT_EQ(a.deepest_reach.opening, b.deepest_reach.opening);
   EXPECT_EQ(a.enclosed_balls, b.enclosed_balls);
   EXPECT_EQ(a.undecided, b.undecided);
+  EXPECT_EQ(a.first_undecided.point, b.first_undecided.point);
+  EXPECT_EQ(a.first_undecided.face, b.first_undecided.face);
 }
 
 void expect_same(const CheckReport& a, const CheckReport& b) {
@@ -178,6 +180,16 @@ TEST(AuditThreads, AnAllowanceAuditGivesTheSameReportOnAnyThreadCount) {
   for (int threads : {2, 3, 8}) {
     SCOPED_TRACE(testing::Message() << threads << " threads");
     expect_same(one, audit_on(*d, set, options, threads));
+  }
+  // Held to 4 evaluations a ray, many run out: the first one named is the
+  // first in ray order, whichever thread met it.
+  options.probe.allowance.max_evaluations_per_ray = 4;
+  const AuditReport bounded = audit_on(*d, set, options, 1);
+  EXPECT_GT(bounded.probe.allowance.undecided, 1);
+  EXPECT_GE(bounded.probe.allowance.first_undecided.face, 0);
+  for (int threads : {2, 8}) {
+    SCOPED_TRACE(testing::Message() << threads << " threads, bounded");
+    expect_same(bounded, audit_on(*d, set, options, threads));
   }
 }
 

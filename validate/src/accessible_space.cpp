@@ -268,6 +268,8 @@ Result<ProbeReport> probe_accessible_space(const PreparedMesh& prepared, const b
       (allowance.max_deviation && !positive_length(*allowance.max_deviation)))
     return Status{StatusCode::invalid_argument,
                   "the agent radius must be a finite length above twice the tolerance, the max deviation a positive length"};
+  if (allowance.max_evaluations_per_ray < 2)
+    return Status{StatusCode::invalid_argument, "a ray needs at least 2 evaluations (its two ends)"};
   if (0.5 * diagonal / report.resolution > kMaxCellsPerAxis)
     return Status{StatusCode::invalid_argument, "resolution too fine: the octree has 16 levels (32768 cells a side)"};
   if (threads < 0)

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 namespace hullcover::validate::probe {
@@ -169,7 +170,7 @@ void AllowanceJudge::farthest_lost(const ProbeRay& ray, const Eigen::Vector3d& s
   keep(open.back().a);
   keep(open.back().b);
   int evaluations = 2;
-  bool undecided = false;
+  std::optional<double> given_up_at;  // where the interval being halved began
   while (!open.empty()) {
     const Interval i = open.back();
     open.pop_back();
@@ -179,8 +180,8 @@ void AllowanceJudge::farthest_lost(const ProbeRay& ray, const Eigen::Vector3d& s
     // tol, and (with a bound to judge) cannot break it, or it already broke.
     const bool judged = highest <= limit || best > limit;
     if ((highest <= best + tol && judged) || length <= tol) continue;
-    if (++evaluations > kMaxEvaluationsPerRay) {
-      undecided = true;
+    if (++evaluations > options_.max_evaluations_per_ray) {
+      given_up_at = i.a.t;
       break;
     }
     const Sample mid = sample(0.5 * (i.a.t + i.b.t));
@@ -190,7 +191,7 @@ void AllowanceJudge::farthest_lost(const ProbeRay& ray, const Eigen::Vector3d& s
   }
   // Out of evaluations matters only where the stretch is judged; measured
   // alone, the figure is a lower bound then.
-  if (undecided && std::isfinite(limit)) note_undecided(ray, start + from * ray.direction, out);
+  if (given_up_at && std::isfinite(limit)) note_undecided(ray, start + *given_up_at * ray.direction, out);
   if (best > limit) ++out.beyond_deviation;
   if (best > out.max_lost_deviation) {
     out.max_lost_deviation = best;
@@ -319,7 +320,7 @@ void AllowanceJudge::balls_over(const ProbeRay& ray, const Eigen::Vector3d& star
     const bool no_clear_centre = most_clear < r;
     const bool far_from_hulls = lipschitz_min(i.a.hulls.low, i.b.hulls.low, length) >= needed;
     if (no_clear_centre || far_from_hulls || length <= tol) continue;
-    if (evaluations >= kMaxEvaluationsPerRay) {
+    if (evaluations >= options_.max_evaluations_per_ray) {
       note_undecided(ray, start + i.a.t * ray.direction, out);
       return;
     }

@@ -129,7 +129,8 @@ double triangle_distance(const Eigen::Vector3d (&s)[3], const Eigen::Vector3d (&
 bool triangles_within(const Eigen::Vector3d (&s)[3], const Eigen::Vector3d (&t)[3], double distance) {
   bool within = false;
   triangle_pair_candidates(s, t, [&](double d) { return within = d <= distance; });
-  return within;
+  // With no candidate a number (NaN corners), the distance is infinity.
+  return within || std::numeric_limits<double>::infinity() <= distance;
 }
 
 } // namespace hullcover

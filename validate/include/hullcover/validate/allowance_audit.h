@@ -35,20 +35,24 @@
 
 namespace hullcover::validate {
 
-/// How many distance evaluations one ray may use before it is counted
-/// undecided (a finding): a bound on the work, never a pass. Bisection
-/// stops at intervals of tol, so a ray needs at most 2 per tol of its
-/// length near hulls (plus 2 per stretch): it runs out only past about
-/// 2^17 tol of that length (a map's diagonal is about 10^5 of its own tol)
-/// where every centre is clear yet near a hull, which only enclosed space
-/// allows (a tall shaft beside a filled void). Each evaluation costs up to
-/// a millisecond there, hence a bound at all.
+/// How many distance evaluations one ray may use, by default, before it is
+/// counted undecided (a finding): a bound on the work, never a pass.
+/// Bisection stops at intervals of tol, so a ray needs at most 2 per tol of
+/// its length near hulls (plus 2 per stretch): it runs out only past about
+/// 2^17 tol of that length where every centre is clear yet near a hull,
+/// which only enclosed space allows (a tall shaft beside a filled void). A
+/// map's diagonal is about 10^5 of its own tol; a small map's ray crossing
+/// a world of larger ones may need more. Each evaluation costs up to a
+/// millisecond there, hence a bound at all.
 inline constexpr int kMaxEvaluationsPerRay = 1 << 18;
 
 /// What a covering was allowed to take beyond exact mode.
 struct AllowanceOptions {
   std::optional<double> agent_radius;   ///< r, scene units, finite and > 2 tol; none: no agent check
   std::optional<double> max_deviation;  ///< E, scene units, finite and > 0; none: no deviation bound
+  /// The bound on one ray's distance evaluations (>= 2); past it the ray is
+  /// undecided, a finding. Raise it to decide longer rays at more cost.
+  int max_evaluations_per_ray = kMaxEvaluationsPerRay;
   /// Either knob set: the audit judges the allowance instead of exact mode.
   bool any() const { return agent_radius.has_value() || max_deviation.has_value(); }
 };
