@@ -252,6 +252,12 @@ void register_audit_command(CLI::App& app, int& exit_status) {
                   "the farthest point any hull takes from a probe ray is found (within the tolerance) and must\n"
                   "lie no farther. With --agent-radius, both are judged.")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--max-ray-evaluations", o->audit.probe.allowance.max_evaluations_per_ray,
+                  "With --agent-radius or --max-deviation: distance evaluations one ray may use before it counts\n"
+                  "as undecided (a violation; the report says where the first was given up). A ray needs about 2\n"
+                  "per tolerance of its length beside hulls in enclosed space")
+      ->check(CLI::Range(2, std::numeric_limits<int>::max()))
+      ->capture_default_str();
   cmd->add_option("--threads", o->audit.threads,
                   "Threads re-checking hulls and tracing rays at once (default 0: every core); the verdict,\n"
                   "the figures and the located places are the same for any count")

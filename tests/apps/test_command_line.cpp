@@ -264,4 +264,26 @@ TEST(CommandLine, AuditPrintsAndWritesTheSameOnAnyThreadCount) {
   EXPECT_NE(help.out.find("--threads"), std::string::npos) << help.out;
 }
 
+// `audit --max-ray-evaluations N`: a ray held to its two ends runs out and
+// is a violation, named in the text and the JSON; below 2 is bad usage.
+TEST(CommandLine, AuditSaysWhereARayRanOutOfEvaluations) {
+  TempDir dir;
+  ASSERT_EQ(run(dir, "demo --out " + dir.path("demo")).status, 0);
+  const std::string scene = dir.path("demo/demo-scene.obj");
+  ASSERT_EQ(run(dir, "decompose " + scene + " -o " + dir.path("h.obj") + " --agent-radius 0.3 -q").status, 0);
+  const std::string common = "audit " + scene + " " + dir.path("h.obj") + " --agent-radius 0.3 --resolution 0.3 "
+                             "--proxies 300 --json " + dir.path("a.json") + " --max-ray-evaluations ";
+  const CommandRun bounded = run(dir, common + "2");
+  EXPECT_EQ(bounded.status, 1) << bounded.err;
+  EXPECT_NE(bounded.out.find("ran out of evaluations (undecided: a violation); the first at ("), std::string::npos)
+      << bounded.out;
+  const nlohmann::json allowance = nlohmann::json::parse(slurp(dir.path("a.json")))["allowance"];
+  EXPECT_GT(allowance["undecided"].get<long>(), 0);
+  EXPECT_GE(allowance["first_undecided"]["face"].get<int>(), 0);
+  EXPECT_EQ(allowance["first_undecided"]["point"].size(), 3u);
+  const CommandRun refused = run(dir, common + "1");
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_NE(refused.err.find("--max-ray-evaluations"), std::string::npos) << refused.err;
+}
+
 } // namespace
