@@ -69,15 +69,22 @@ int PatchMerger::push_near_pairs() {
   const std::vector<Aabb> boxes = near_boxes();
   const AabbTree tree(boxes);
   int pushed = 0;
+  // A pair of patches both unchanged since the last pass was listed then as
+  // it is now (the same boxes, the same shared edges) and so is among the
+  // pairs tried: passed over before the tried set is asked, which on a
+  // large cell is a cache miss or two per pair.
+  const long listed_at = near_pairs_listed_at_;
+  near_pairs_listed_at_ = changes_;
   std::vector<int> near;
   for (int a = 0; a < patch_count; ++a) {
     const Patch& pa = patches_[a];
     if (!pa.alive) continue;
+    const bool a_unchanged = pa.changed_at <= listed_at;
     near.clear();
     tree.overlapping(boxes[a], near);
     for (int b : near) {
       const Patch& pb = patches_[b];
-      if (b <= a || pa.shared_length.count(b)) continue;
+      if (b <= a || (a_unchanged && pb.changed_at <= listed_at) || pa.shared_length.count(b)) continue;
       if (!near_pairs_tried_.insert({a, pa.version, b, pb.version}).second) continue;
       if (!patches_support_each_other(index_, pa, pb) || !patches_near(a, b)) continue;
       push_pair(a, b);

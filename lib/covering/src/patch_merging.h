@@ -209,6 +209,7 @@ private:
     }
   };
   std::unordered_set<std::array<int, 4>, TriedPairHash> near_pairs_tried_;
+  long near_pairs_listed_at_ = -1;  // changes_ when push_near_pairs last listed pairs; -1 before the first
   long changes_ = 0;  // counts changes to patches, for Patch::changed_at
   std::vector<int> cell_of_patch_;  // seam pass: the cell each starting patch came from
 };
