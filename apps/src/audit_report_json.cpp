@@ -14,6 +14,11 @@ nlohmann::json place_json(const validate::LostPlace& p) {
           {"opening", p.opening}};
 }
 
+nlohmann::json ray_point_json(const validate::RayPoint& p) {
+  if (p.face < 0) return nullptr;
+  return {{"point", {p.point.x(), p.point.y(), p.point.z()}}, {"face", p.face}, {"opening", p.opening}};
+}
+
 nlohmann::json false_contact_json(const validate::FalseContactPlace& p) {
   if (p.hull < 0) return nullptr;
   return {{"hull", p.hull},
@@ -57,12 +62,7 @@ nlohmann::json allowance_json(const validate::AllowanceReport& a) {
                                                         {"clearance", p.clearance},
                                                         {"opening", p.opening}}},
           {"undecided", a.undecided},
-          {"first_undecided", a.undecided == 0 ? nlohmann::json(nullptr)
-                                               : nlohmann::json{{"point", {a.first_undecided.point.x(),
-                                                                           a.first_undecided.point.y(),
-                                                                           a.first_undecided.point.z()}},
-                                                                {"face", a.first_undecided.face},
-                                                                {"opening", a.first_undecided.opening}}}};
+          {"first_undecided", ray_point_json(a.first_undecided)}};
 }
 
 }  // namespace
