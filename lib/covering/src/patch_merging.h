@@ -204,7 +204,7 @@ private:
   struct TriedPairHash {
     std::size_t operator()(const std::array<int, 4>& k) const {
       std::uint64_t h = 0;
-      for (int x : k) h = (h ^ static_cast<std::uint32_t>(x)) * 0x100000001b3ull;  // FNV-1a over the four ints
+      for (int x : k) h = (h ^ static_cast<std::uint32_t>(x)) * 0x100000001b3ull;  // an FNV-style mix of the four ints
       return static_cast<std::size_t>(h ^ (h >> 29));
     }
   };
