@@ -80,7 +80,7 @@ void expect_sane(const RayResult& r, const std::string& what) {
 
 // ---- Scenes -------------------------------------------------------------------
 
-struct Worlds {
+struct BlockWorlds {
   std::shared_ptr<const HullWorld> hulls;
   std::shared_ptr<const TriangleWorld> triangles;
   double tol = 0.0;  // the triangle world's
@@ -88,7 +88,7 @@ struct Worlds {
 
 // The block [0,2] x [0,1] x [0,3] moved by `offset`, decomposed at the
 // defaults (a closed box: one hull), with the triangle world of its mesh.
-Worlds block_worlds(const V& offset) {
+BlockWorlds block_worlds(const V& offset) {
   Mesh m;
   add_box(m, offset, offset + V(2, 1, 3));
   const auto d = test::decompose_and_check(m);
@@ -101,7 +101,7 @@ Worlds block_worlds(const V& offset) {
 // A sphere of radius `r` at `centre` against both worlds: apart when
 // `depth` is NAN, else touching that deep, the deepest contact of each
 // pushing along `normal` (either way along it when `either_way`).
-void check_sphere(const Worlds& w, const std::string& what, const V& centre, double r, double depth, const V& normal,
+void check_sphere(const BlockWorlds& w, const std::string& what, const V& centre, double r, double depth, const V& normal,
                   bool either_way = false) {
   ContactResult h, t;
   ASSERT_TRUE(w.hulls->contacts({QueryShape::sphere(r), at(centre), kAllContacts}, h).ok()) << what;
@@ -128,7 +128,7 @@ struct KnownRay {
 
 // A ray against both worlds: the expected hit or none; met from outside, a
 // facet faces the ray (at an edge or corner, any of its facets does).
-void check_ray(const Worlds& w, const KnownRay& k, const V& offset = V::Zero()) {
+void check_ray(const BlockWorlds& w, const KnownRay& k, const V& offset = V::Zero()) {
   const RayRequest ray{offset + k.origin, k.direction, kRayReach};
   RayResult h, t;
   ASSERT_TRUE(w.hulls->ray_cast(ray, h).ok()) << k.name;
@@ -188,7 +188,7 @@ std::vector<Resting> resting_shapes(const V& o) {
 // touching exactly when gap <= 0, at depth max(0, -gap), pushed up; the
 // hull world's normal among the triangle world's; moving the shape by depth
 // plus a step along it separates it from both.
-void check_resting(const Worlds& w, const V& offset, double gap) {
+void check_resting(const BlockWorlds& w, const V& offset, double gap) {
   for (const Resting& r : resting_shapes(offset)) {
     const Eigen::Isometry3d pose = r.pose_at(gap);
     const std::string what = r.name + " at gap " + std::to_string(gap);
@@ -246,7 +246,7 @@ void check_resting(const Worlds& w, const V& offset, double gap) {
 constexpr double kKnifeGap = 1e-9;
 
 TEST(RuntimeEdgeCases, TouchingAndRestingShapesAgreeWithTheTriangles) {
-  const Worlds w = block_worlds(V::Zero());
+  const BlockWorlds w = block_worlds(V::Zero());
   ASSERT_TRUE(w.hulls && w.triangles);
   for (const double gap : {kKnifeGap, 0.0, -kKnifeGap}) check_resting(w, V::Zero(), gap);
   // Clearly apart and clearly in, where FCL's yes/no must agree too.
@@ -293,12 +293,12 @@ std::vector<KnownRay> edge_rays() {
   };
 }
 
-void check_rays(const Worlds& w, const V& offset) {
+void check_rays(const BlockWorlds& w, const V& offset) {
   for (const KnownRay& k : edge_rays()) check_ray(w, k, offset);
 }
 
 TEST(RuntimeEdgeCases, RaysAlongEdgesAndThroughVerticesAgreeWithTheTriangles) {
-  const Worlds w = block_worlds(V::Zero());
+  const BlockWorlds w = block_worlds(V::Zero());
   ASSERT_TRUE(w.hulls && w.triangles);
   check_rays(w, V::Zero());
 }
@@ -307,7 +307,7 @@ TEST(RuntimeEdgeCases, RaysAlongEdgesAndThroughVerticesAgreeWithTheTriangles) {
 // a hit within tol of their edges (TriangleWorld), so they may meet it, but
 // only there.
 TEST(RuntimeEdgeCases, ARayJustClearOfAnEdgeMissesTheHull) {
-  const Worlds w = block_worlds(V::Zero());
+  const BlockWorlds w = block_worlds(V::Zero());
   ASSERT_TRUE(w.hulls && w.triangles);
   const RayRequest ray{V(-1, 1 + kKnifeGap, 1.5), V(1, 0, 0), kRayReach};
   RayResult h, t;
@@ -330,7 +330,7 @@ TEST(RuntimeEdgeCases, AHullAMillionthThick) {
   const double thin_tol = thickness / 16.0;
   Mesh m;
   add_box(m, V(0, 0, 0), V(width, thickness, width));
-  const Worlds w{HullWorld::build({test::box_hull(V(0, 0, 0), V(width, thickness, width))}).value(),
+  const BlockWorlds w{HullWorld::build({test::box_hull(V(0, 0, 0), V(width, thickness, width))}).value(),
                  TriangleWorld::build(m, thin_tol).value(), thin_tol};
   ASSERT_EQ(w.triangles->triangle_count(), 12);
   const double r = 0.5;
@@ -379,7 +379,7 @@ TEST(RuntimeEdgeCases, FlatHullsOfADoubleSidedFloor) {
   const auto d = test::decompose_and_check(m);
   ASSERT_TRUE(d);
   for (const CoveringHull& hull : d->covering.hulls) ASSERT_EQ(hull.thickness, 0.0) << "expected flat hulls";
-  const Worlds w{build_hull_world(d->covering).value(), TriangleWorld::build(d->prepared.mesh, d->tol()).value(),
+  const BlockWorlds w{build_hull_world(d->covering).value(), TriangleWorld::build(d->prepared.mesh, d->tol()).value(),
                  d->tol()};
   const double r = 0.5;
   check_sphere(w, "touching from above", V(1, r, 1), r, 0.0, kUp);
@@ -404,7 +404,7 @@ TEST(RuntimeEdgeCases, FarFromTheOrigin) {
   for (const double far : {1e5, 1e7}) {
     const V offset = V::Constant(far);
     SCOPED_TRACE("offset " + std::to_string(far));
-    const Worlds w = block_worlds(offset);
+    const BlockWorlds w = block_worlds(offset);
     ASSERT_TRUE(w.hulls && w.triangles);
     const double gap = 1e3 * rounding_at(offset);
     const double clear = 2.0 * kTriangleMarginInTolerances * w.tol;

@@ -15,6 +15,8 @@
 namespace hullcover {
 namespace {
 
+using V = Eigen::Vector3d;
+
 // `mesh` followed by a copy of it moved by `offset`.
 Mesh with_moved_copy(const Mesh& mesh, const Eigen::Vector3d& offset) {
   Mesh out = mesh;
@@ -142,7 +144,6 @@ TEST(Tolerance, ASmallObjectBesideALargeMapKeepsItsOwnPrecision) {
 // A pillar: four walls facing out, open at top and bottom (its inside is
 // behind every wall: enclosed, a hull may fill it).
 Mesh pillar() {
-  using V = Eigen::Vector3d;
   Mesh m;
   test::add_quad_facing(m, V(0, 0, 0), V(1, 0, 0), V(1, 2, 0), V(0, 2, 0), V(0, 0, -1));
   test::add_quad_facing(m, V(0, 0, 1), V(1, 0, 1), V(1, 2, 1), V(0, 2, 1), V(0, 0, 1));
@@ -163,7 +164,6 @@ TEST(Decompose, AnotherIslandsRaysStillKeepTheirSpace) {
   EXPECT_TRUE(test::point_inside_covering(alone->covering, inside, alone->tol()));
 
   Mesh world = pillar();
-  using V = Eigen::Vector3d;
   test::add_quad_facing(world, V(-1, 40, -1), V(2, 40, -1), V(2, 40, 2), V(-1, 40, 2), V(0, -1, 0));
   ASSERT_EQ(find_mesh_islands(world).boxes.size(), 2u);
   const auto under_ceiling = test::decompose_and_check(world);

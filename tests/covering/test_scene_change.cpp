@@ -49,12 +49,6 @@ Bake bake(const Mesh& mesh, const DecomposeOptions& options, bool merge) {
   return b;
 }
 
-DecomposeOptions small_cells(const Mesh& mesh) {
-  DecomposeOptions o;
-  o.cell_size = prepare_mesh(mesh, std::nullopt).value().tolerance.local_extent / 6.0;
-  return o;
-}
-
 Mesh without_faces(const Mesh& mesh, const std::vector<int>& faces) {
   Mesh m = mesh;
   m.triangles.clear();
@@ -93,7 +87,7 @@ std::vector<std::pair<Mesh, int>> edits_of(const Mesh& building) {
 
 TEST(SceneChange, PatchesNoEditCanReachHoldAndKeepTheirHulls) {
   const Mesh building = demo_building();
-  const DecomposeOptions o = small_cells(building);
+  const DecomposeOptions o = test::options_with_small_cells(building);
   const Bake before = bake(building, o, true);
   Result<detail::SceneSnapshot> snapshot =
       detail::read_scene_snapshot(before.snapshot());
@@ -198,7 +192,7 @@ TEST(SceneChange, AWallTakenOutFarAwayReachesAPrismThroughTheSweepsItStopped) {
 
 TEST(SceneChange, AReBakeTrustingTheSnapshotIsValidAndAsSmallAsAFullReCheck) {
   const Mesh building = demo_building();
-  const DecomposeOptions o = small_cells(building);
+  const DecomposeOptions o = test::options_with_small_cells(building);
   test::TempDir dir;
   const std::string trusting = dir.path("trusting"), checking = dir.path("checking");
   CellCacheReport report;
@@ -235,7 +229,7 @@ TEST(SceneChange, AReBakeTrustingTheSnapshotIsValidAndAsSmallAsAFullReCheck) {
 
 TEST(SceneChange, ASnapshotIsCheckedBeforeUseAndOtherOptionsReCheckEverything) {
   const Mesh building = demo_building();
-  const DecomposeOptions o = small_cells(building);
+  const DecomposeOptions o = test::options_with_small_cells(building);
   const Bake before = bake(building, o, true);
   const std::string bytes = before.snapshot();
   for (size_t at : {size_t{0}, size_t{9}, bytes.size() / 2, bytes.size() - 1}) {

@@ -33,15 +33,9 @@ std::vector<std::string> merge_every_cell(const StagedDecomposition& s) {
   return cells;
 }
 
-DecomposeOptions small_cells(const Mesh& mesh) {
-  DecomposeOptions o;
-  o.cell_size = prepare_mesh(mesh, std::nullopt).value().tolerance.local_extent / 6.0;
-  return o;
-}
-
 TEST(StagedDecomposition, CellsCarriedAsBytesGiveDecomposesCovering) {
   const Mesh building = demo_building();
-  const DecomposeOptions o = small_cells(building);
+  const DecomposeOptions o = test::options_with_small_cells(building);
   const auto whole = test::decompose_and_check(building, o);
   const auto s = staged(building, o);
   ASSERT_TRUE(whole && s);
@@ -62,7 +56,7 @@ TEST(StagedDecomposition, CellsCarriedAsBytesGiveDecomposesCovering) {
 
 TEST(StagedDecomposition, CellBytesAreCheckedBeforeUse) {
   const Mesh building = demo_building();
-  const auto s = staged(building, small_cells(building));
+  const auto s = staged(building, test::options_with_small_cells(building));
   ASSERT_TRUE(s);
   const std::vector<std::string> cells = merge_every_cell(*s);
   const auto finish_with = [&](int cell, const std::string& bytes) {

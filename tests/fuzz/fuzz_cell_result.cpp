@@ -25,9 +25,6 @@ namespace {
 // cell_result_bytes.h's layout: magic (8 bytes), u32 version, u64 cell
 // key; ..., u64 FNV-1a-64 of everything before it.
 constexpr std::size_t kKeyAt = 12;
-constexpr std::size_t kChecksumBytes = 8;
-// Each edit: a u16 position (modulo the size) and the byte to put there.
-constexpr std::size_t kEditBytes = 3;
 // still_valid, then finish with the bytes in place of cell 0.
 void read_as_cell_zero(const StagedDecomposition& staged, const std::vector<std::string>& cells,
                        const std::string& bytes) {
@@ -60,11 +57,7 @@ int fuzz_one_cell_result(const std::uint8_t* data, std::size_t size) {
   // The valid bytes, edited; an input of a length not a multiple of the
   // edit size ends them there (a truncation to that many bytes modulo the size).
   std::string edited = cells[0];
-  const std::size_t edits = size / kEditBytes;
-  for (std::size_t e = 0; e < edits; ++e) {
-    const std::size_t at = (data[kEditBytes * e] | (static_cast<std::size_t>(data[kEditBytes * e + 1]) << 8)) % edited.size();
-    edited[at] = static_cast<char>(data[kEditBytes * e + 2]);
-  }
+  apply_byte_edits(edited, data, size);
   if (size % kEditBytes != 0) edited.resize(data[size - 1] % edited.size());
   if (edited.size() >= kKeyAt + 8 + kChecksumBytes) {
     put_u64(edited, kKeyAt, s.cell_key(0));

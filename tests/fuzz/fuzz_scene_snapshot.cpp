@@ -27,9 +27,6 @@ namespace hullcover::fuzz {
 namespace {
 
 constexpr const char* kRecordName = "last-bake.scene";
-constexpr std::size_t kChecksumBytes = 8;
-// Each edit: a u16 position (modulo the size) and the byte to put there.
-constexpr std::size_t kEditBytes = 3;
 
 bool bake(const Mesh& mesh, const std::string& cache) {
   Result<PreparedMesh> prepared = prepare_mesh(mesh, std::nullopt);
@@ -82,12 +79,7 @@ int fuzz_one_scene_snapshot(const std::uint8_t* data, std::size_t size) {
   // edit size ends it there (its last one or two bytes, little-endian,
   // modulo the size: anywhere in the record).
   std::string edited = valid;
-  const std::size_t edits = size / kEditBytes;
-  for (std::size_t e = 0; e < edits; ++e) {
-    const std::size_t at =
-        (data[kEditBytes * e] | (static_cast<std::size_t>(data[kEditBytes * e + 1]) << 8)) % edited.size();
-    edited[at] = static_cast<char>(data[kEditBytes * e + 2]);
-  }
+  apply_byte_edits(edited, data, size);
   const std::size_t rest = size % kEditBytes;
   if (rest == 1) edited.resize(data[size - 1] % edited.size());
   if (rest == 2) edited.resize((data[size - 2] | (static_cast<std::size_t>(data[size - 1]) << 8)) % edited.size());

@@ -49,6 +49,13 @@ std::string write_scratch_file(const std::string& name, const std::uint8_t* data
   return path;
 }
 
+void apply_byte_edits(std::string& bytes, const std::uint8_t* data, std::size_t size) {
+  for (std::size_t e = 0; e < size / kEditBytes; ++e) {
+    const std::uint8_t* edit = data + kEditBytes * e;
+    bytes[(edit[0] | (static_cast<std::size_t>(edit[1]) << 8)) % bytes.size()] = static_cast<char>(edit[2]);
+  }
+}
+
 void remove_scratch_file(const std::string& path) {
   std::error_code ignored;
   std::filesystem::remove(path, ignored);

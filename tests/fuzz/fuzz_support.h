@@ -31,6 +31,16 @@ void put_u64(Bytes& bytes, std::size_t at, std::uint64_t v) {
   for (int k = 0; k < 8; ++k) bytes[at + k] = static_cast<typename Bytes::value_type>(v >> (8 * k));
 }
 
+/// Bytes of the FNV-1a-64 checksum ending a cell result or a scene record.
+inline constexpr std::size_t kChecksumBytes = 8;
+/// Bytes of one edit an input makes to a valid file: a u16 position
+/// (little-endian, modulo the file's size) and the byte to put there.
+inline constexpr std::size_t kEditBytes = 3;
+
+/// Applies the size / kEditBytes whole edits at the start of `data` to
+/// `bytes` (not empty); the rest of the input is the caller's.
+void apply_byte_edits(std::string& bytes, const std::uint8_t* data, std::size_t size);
+
 /// A cell side (scene units) that cuts small_scene_in_cells into several
 /// cells.
 inline constexpr double kSmallSceneCellSize = 2.0;

@@ -71,4 +71,16 @@ Mesh grooved_floor() {
   return m;
 }
 
+DecomposeOptions options_with_small_cells(const Mesh& mesh) {
+  DecomposeOptions o;
+  o.cell_size = prepare_mesh(mesh, std::nullopt).value().tolerance.local_extent / 6.0;
+  return o;
+}
+
+std::string finding_names(const std::vector<validate::AuditFinding>& findings) {
+  std::string s;
+  for (validate::AuditFinding f : findings) s += std::string(validate::audit_finding_name(f)) + " ";
+  return s;
+}
+
 } // namespace hullcover::test

@@ -1,6 +1,7 @@
 #pragma once
 // Decomposes a mesh built in a test and re-checks the result independently.
 
+#include "hullcover/validate/audit.h"
 #include "hullcover/validate/validity_recheck.h"
 
 #include "hullcover/covering/covering.h"
@@ -44,6 +45,13 @@ inline Eigen::Vector3d random_unit(std::mt19937& rng) {
   std::normal_distribution<double> gauss(0.0, 1.0);
   return Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)).normalized();
 }
+
+/// Options putting `mesh` in cells a sixth of its extent wide: several
+/// cells, so stages, caches and re-bakes have cells to carry.
+DecomposeOptions options_with_small_cells(const Mesh& mesh);
+
+/// The audit's findings by name, for failure messages.
+std::string finding_names(const std::vector<validate::AuditFinding>& findings);
 
 /// The covering as write_covering_obj writes it, byte for byte.
 std::string covering_obj_bytes(const Covering& covering);

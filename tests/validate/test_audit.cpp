@@ -30,12 +30,6 @@ using V = Eigen::Vector3d;
 
 using test::box_hull;
 
-std::string names(const std::vector<AuditFinding>& findings) {
-  std::string s;
-  for (AuditFinding f : findings) s += std::string(audit_finding_name(f)) + " ";
-  return s;
-}
-
 // Coarser than the defaults (R / 8 = 0.06 m here) and fewer proxies: the
 // unit tier stays fast, and a 1.2 x 2.1 x 0.2 m doorway still holds samples.
 AuditOptions quick_options() {
@@ -52,7 +46,7 @@ TEST(Audit, TheDecomposedBuildingIsCleanAndAClosedDoorwayLosesSpace) {
   set.hulls = bvh::runtime_hulls(d->covering);
   const Result<AuditReport> clean = run_audit(d->prepared, set, quick_options());
   ASSERT_TRUE(clean.ok()) << clean.status().message();
-  EXPECT_TRUE(clean.value().clean()) << names(clean.value().findings);
+  EXPECT_TRUE(clean.value().clean()) << test::finding_names(clean.value().findings);
   EXPECT_EQ(clean.value().hull_count, d->covering.hulls.size());
   EXPECT_GT(clean.value().probe.front.rays, 1000);
   EXPECT_GT(clean.value().behaviour.poses, 300);
@@ -65,7 +59,7 @@ TEST(Audit, TheDecomposedBuildingIsCleanAndAClosedDoorwayLosesSpace) {
   ASSERT_TRUE(closed.ok()) << closed.status().message();
   EXPECT_FALSE(closed.value().clean());
   EXPECT_EQ(closed.value().findings, (std::vector<AuditFinding>{AuditFinding::front_space_lost}))
-      << names(closed.value().findings);
+      << test::finding_names(closed.value().findings);
   EXPECT_GT(closed.value().probe.lost_cells, 0);
   ASSERT_FALSE(closed.value().probe.worst.empty());
   EXPECT_EQ(closed.value().probe.worst[0].hull, static_cast<int>(set.hulls.size()) - 1);
@@ -114,7 +108,7 @@ TEST(Audit, ACoveringAuditsTheSameFromObjAndFromTheRuntimeFile) {
   const Result<AuditReport> a = run_audit(d->prepared, from_obj.value(), quick_options());
   const Result<AuditReport> b = run_audit(d->prepared, from_hcw.value(), quick_options());
   ASSERT_TRUE(a.ok() && b.ok());
-  EXPECT_EQ(a.value().findings, b.value().findings) << names(a.value().findings) << "/ " << names(b.value().findings);
+  EXPECT_EQ(a.value().findings, b.value().findings) << test::finding_names(a.value().findings) << "/ " << test::finding_names(b.value().findings);
   EXPECT_EQ(a.value().probe.front.lost, b.value().probe.front.lost);
   EXPECT_EQ(a.value().probe.opening.lost, b.value().probe.opening.lost);
   EXPECT_EQ(a.value().probe.front.enclosed, b.value().probe.front.enclosed);

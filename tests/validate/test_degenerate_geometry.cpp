@@ -41,12 +41,6 @@ constexpr double kQuickProbeSpacingRelative = 8.0 * kDefaultProbeSpacingRelative
 // small scenes.
 constexpr int kQuickProxies = 600;
 
-std::string names(const std::vector<AuditFinding>& findings) {
-  std::string s;
-  for (AuditFinding f : findings) s += std::string(audit_finding_name(f)) + " ";
-  return s;
-}
-
 // Decomposes `mesh` with the default options (at `tolerance` when given,
 // else the scene's default), audits the hulls under the strict definition
 // and expects the audit clean and every face with a surface claimed by a
@@ -68,7 +62,7 @@ long strict_clean_hull_count(const Mesh& mesh, std::optional<double> tolerance =
   EXPECT_TRUE(audit.ok()) << audit.status().message();
   if (!audit.ok()) return -1;
   const AuditReport& r = audit.value();
-  EXPECT_TRUE(r.clean()) << names(r.findings) << "\n" << r.recheck.summary() << "\nfront lost " << r.probe.front.lost
+  EXPECT_TRUE(r.clean()) << test::finding_names(r.findings) << "\n" << r.recheck.summary() << "\nfront lost " << r.probe.front.lost
                          << " opening lost " << r.probe.opening.lost << " deepest " << r.probe.max_lost_depth
                          << " missed " << r.behaviour.missed << " deep false " << r.behaviour.deep_false_contacts;
   EXPECT_GT(r.probe.front.rays, 0);

@@ -24,7 +24,7 @@ using V = Eigen::Vector3d;
 using test::add_quad_facing;
 using test::box_hull;
 
-const V kUp = V::UnitY();
+const V kUpward = V::UnitY();
 
 ProbeReport strict_probe(const Mesh& mesh, const std::vector<bvh::RuntimeHull>& hulls, ProbeOptions options = {},
                          std::optional<double> tol = std::nullopt) {
@@ -41,13 +41,13 @@ ProbeReport strict_probe(const Mesh& mesh, const std::vector<bvh::RuntimeHull>& 
 // top when asked.
 Mesh tube_on_floor(bool walls_inward, bool cap) {
   Mesh m;
-  add_quad_facing(m, V(-5, 0, -5), V(5, 0, -5), V(5, 0, 5), V(-5, 0, 5), kUp);
+  add_quad_facing(m, V(-5, 0, -5), V(5, 0, -5), V(5, 0, 5), V(-5, 0, 5), kUpward);
   const double side = walls_inward ? -1.0 : 1.0;
   add_quad_facing(m, V(-1, 0, -1), V(-1, 4, -1), V(-1, 4, 1), V(-1, 0, 1), V(-side, 0, 0));
   add_quad_facing(m, V(1, 0, -1), V(1, 4, -1), V(1, 4, 1), V(1, 0, 1), V(side, 0, 0));
   add_quad_facing(m, V(-1, 0, -1), V(-1, 4, -1), V(1, 4, -1), V(1, 0, -1), V(0, 0, -side));
   add_quad_facing(m, V(-1, 0, 1), V(-1, 4, 1), V(1, 4, 1), V(1, 0, 1), V(0, 0, side));
-  if (cap) add_quad_facing(m, V(-1, 4, -1), V(1, 4, -1), V(1, 4, 1), V(-1, 4, 1), kUp);
+  if (cap) add_quad_facing(m, V(-1, 4, -1), V(1, 4, -1), V(1, 4, 1), V(-1, 4, 1), kUpward);
   return m;
 }
 
@@ -102,8 +102,8 @@ TEST(StrictProbe, AHullFloatingFarAboveAFloorIsLostWithItsDeepestPoint) {
 // the floor: the floor's rays under it meet the top's back: enclosed.
 TEST(StrictProbe, AHullUnderAOneSidedTableTopIsEnclosed) {
   Mesh m;
-  add_quad_facing(m, V(-3, 0, -3), V(5, 0, -3), V(5, 0, 5), V(-3, 0, 5), kUp);
-  add_quad_facing(m, V(0, 1, 0), V(2, 1, 0), V(2, 1, 2), V(0, 1, 2), kUp);
+  add_quad_facing(m, V(-3, 0, -3), V(5, 0, -3), V(5, 0, 5), V(-3, 0, 5), kUpward);
+  add_quad_facing(m, V(0, 1, 0), V(2, 1, 0), V(2, 1, 2), V(0, 1, 2), kUpward);
   const ProbeReport r = strict_probe(m, {box_hull(V(0, 0, 0), V(2, 1, 2))});
   EXPECT_EQ(r.front.lost, 0);
   EXPECT_EQ(r.opening.lost, 0);
@@ -113,7 +113,7 @@ TEST(StrictProbe, AHullUnderAOneSidedTableTopIsEnclosed) {
 // A floor running into a closed pillar filled by its hull: allowed.
 TEST(StrictProbe, AFloorRunningIntoAClosedPillarIsClean) {
   Mesh m;
-  add_quad_facing(m, V(-5, 0, -5), V(5, 0, -5), V(5, 0, 5), V(-5, 0, 5), kUp);
+  add_quad_facing(m, V(-5, 0, -5), V(5, 0, -5), V(5, 0, 5), V(-5, 0, 5), kUpward);
   add_box(m, V(-1, 0, -1), V(1, 3, 1), true);
   const ProbeReport r = strict_probe(m, {box_hull(V(-1, 0, -1), V(1, 3, 1))});
   EXPECT_EQ(r.front.lost, 0);
@@ -126,7 +126,7 @@ TEST(StrictProbe, AFloorRunningIntoAClosedPillarIsClean) {
 TEST(StrictProbe, ATinyFaceInFrontOfAHullIsStillProbed) {
   Mesh m;
   test::add_triangle(m, V(0, 0, 0), V(0, 0, 0.01), V(0.01, 0, 0));  // face 0, facing up
-  add_quad_facing(m, V(3, 0, -5), V(13, 0, -5), V(13, 0, 5), V(3, 0, 5), kUp);
+  add_quad_facing(m, V(3, 0, -5), V(13, 0, -5), V(13, 0, 5), V(3, 0, 5), kUpward);
   ProbeOptions coarse;
   coarse.resolution = 1.0;  // a hundred times the tiny face
   const ProbeReport r = strict_probe(m, {box_hull(V(-0.1, 0.5, -0.1), V(0.1, 0.7, 0.1))}, coarse);
@@ -141,7 +141,7 @@ TEST(StrictProbe, ATinyFaceInFrontOfAHullIsStillProbed) {
 // min(6 - x, -0.2 - y), largest where the two meet: t = 4.2 / (c + s).
 TEST(StrictProbe, AnOpeningIsLostToATiltedRay) {
   Mesh m;
-  add_quad_facing(m, V(0, 0, 0), V(2, 0, 0), V(2, 0, 2), V(0, 0, 2), kUp);
+  add_quad_facing(m, V(0, 0, 0), V(2, 0, 0), V(2, 0, 2), V(0, 0, 2), kUpward);
   const ProbeReport r = strict_probe(m, {box_hull(V(3, -1, 0.5), V(6, -0.2, 1.5))});
   EXPECT_EQ(r.front.lost, 0);
   EXPECT_GT(r.opening.lost, 0);
@@ -160,12 +160,12 @@ TEST(StrictProbe, AnOpeningIsLostToATiltedRay) {
 // A flat hull has no inside: it loses nothing, whatever crosses it.
 TEST(StrictProbe, AFlatHullLosesNothing) {
   Mesh m;
-  add_quad_facing(m, V(0, 0, 0), V(2, 0, 0), V(2, 0, 2), V(0, 0, 2), kUp);
+  add_quad_facing(m, V(0, 0, 0), V(2, 0, 0), V(2, 0, 2), V(0, 0, 2), kUpward);
   FlatPolygon square;
   square.corners = {V(0, 1, 0), V(0, 1, 2), V(2, 1, 2), V(2, 1, 0)};  // counter-clockwise seen from above
   square.corner_vertices = {-1, -1, -1, -1};
-  square.plane = {kUp, 1.0};
-  square.sides = polygon_side_planes(square.corners, kUp);
+  square.plane = {kUpward, 1.0};
+  square.sides = polygon_side_planes(square.corners, kUpward);
   const ProbeReport r = strict_probe(m, {bvh::make_runtime_hull(flat_polytope(square, true), 0)});
   EXPECT_EQ(r.front.lost, 0);
 }

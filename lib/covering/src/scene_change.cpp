@@ -14,8 +14,8 @@
 namespace hullcover::detail {
 namespace {
 
-constexpr char kMagic[8] = {'H', 'C', 'S', 'C', 'E', 'N', 'E', '\0'};
-constexpr std::uint32_t kVersion = 1;
+constexpr char kSnapshotMagic[8] = {'H', 'C', 'S', 'C', 'E', 'N', 'E', '\0'};
+constexpr std::uint32_t kSnapshotVersion = 1;
 // A hostile count may not ask for more entries than this before the bytes
 // run out (each entry takes at least 16 bytes anyway).
 constexpr std::uint32_t kMostEntries = 1u << 28;
@@ -30,7 +30,7 @@ std::uint64_t settings_hash(const DecompositionStages& stages) {
   const Covering& c = stages.covering;
   const DecomposeOptions& o = c.options;
   LittleEndianWriter w;
-  w.u32(kVersion);
+  w.u32(kSnapshotVersion);
   write_merging_options(w, c);
   w.f64(o.cell_size.value_or(-1.0));
   w.f64(c.bar_half_length);
@@ -147,8 +147,8 @@ std::string scene_snapshot_bytes(const DecompositionStages& stages, const std::v
                                  const std::vector<std::uint64_t>& cell_keys, const std::vector<std::string>& cells) {
   const Mesh& mesh = stages.prepared.mesh;
   LittleEndianWriter out;
-  out.bytes.assign(kMagic, sizeof kMagic);
-  out.u32(kVersion);
+  out.bytes.assign(kSnapshotMagic, sizeof kSnapshotMagic);
+  out.u32(kSnapshotVersion);
   out.u64(settings_hash(stages));
   out.u32(static_cast<std::uint32_t>(cells.size()));
   for (size_t c = 0; c < cells.size(); ++c) {
@@ -171,12 +171,12 @@ Result<SceneSnapshot> read_scene_snapshot(const std::string& bytes) {
   const auto unreadable = [](const std::string& what) {
     return Status{StatusCode::unreadable_file, "scene snapshot: " + what};
   };
-  if (bytes.size() < sizeof kMagic + 4 + 8 || std::memcmp(data, kMagic, sizeof kMagic) != 0)
+  if (bytes.size() < sizeof kSnapshotMagic + 4 + 8 || std::memcmp(data, kSnapshotMagic, sizeof kSnapshotMagic) != 0)
     return Status{StatusCode::unknown_format, "not a hullcover scene snapshot"};
   LittleEndianReader tail{data, bytes.size(), bytes.size() - 8};
   if (tail.u64() != fnv1a(data, bytes.size() - 8)) return unreadable("checksum mismatch");
-  LittleEndianReader in{data, bytes.size() - 8, sizeof kMagic};
-  if (in.u32() != kVersion) return Status{StatusCode::unknown_format, "scene snapshot of another version"};
+  LittleEndianReader in{data, bytes.size() - 8, sizeof kSnapshotMagic};
+  if (in.u32() != kSnapshotVersion) return Status{StatusCode::unknown_format, "scene snapshot of another version"};
   SceneSnapshot snapshot;
   snapshot.settings = in.u64();
   std::uint32_t n = in.u32();

@@ -16,7 +16,7 @@ namespace {
 
 using Json = nlohmann::json;
 
-Status damaged(const std::string& why) { return {StatusCode::unreadable_file, "glTF: " + why}; }
+Status damaged_gltf(const std::string& why) { return damaged_file("glTF: " + why); }
 
 // A non-negative integer member, or `fallback` when absent; false when
 // present but not one.
@@ -75,21 +75,21 @@ Status check_references(const Json& gltf) {
 Status check_nodes(const Json& gltf, const ImportLimits& limits) {
   const auto nodes = gltf.find("nodes");
   if (nodes == gltf.end()) return Status::success();
-  if (!nodes->is_array()) return damaged("'nodes' is not an array");
+  if (!nodes->is_array()) return damaged_gltf("'nodes' is not an array");
   const std::size_t n = nodes->size();
   std::vector<int> parents(n, 0);
   std::vector<std::vector<std::size_t>> children(n);
   for (std::size_t i = 0; i < n; ++i) {
     const Json& node = (*nodes)[i];
-    if (!node.is_object()) return damaged("node " + std::to_string(i) + " is not an object");
+    if (!node.is_object()) return damaged_gltf("node " + std::to_string(i) + " is not an object");
     const auto list = node.find("children");
     if (list == node.end()) continue;
-    if (!list->is_array()) return damaged("node " + std::to_string(i) + "'s children are not an array");
+    if (!list->is_array()) return damaged_gltf("node " + std::to_string(i) + "'s children are not an array");
     for (const Json& c : *list) {
       if (!c.is_number_unsigned() || c.get<std::uint64_t>() >= n)
-        return damaged("node " + std::to_string(i) + " names a child that does not exist");
+        return damaged_gltf("node " + std::to_string(i) + " names a child that does not exist");
       const std::size_t child = static_cast<std::size_t>(c.get<std::uint64_t>());
-      if (++parents[child] > 1) return damaged("node " + std::to_string(child) + " has two parents");
+      if (++parents[child] > 1) return damaged_gltf("node " + std::to_string(child) + " has two parents");
       children[i].push_back(child);
     }
   }
@@ -105,7 +105,7 @@ Status check_nodes(const Json& gltf, const ImportLimits& limits) {
       return deeper_than_limit("glTF node hierarchy", limits);
     for (const std::size_t c : children[node]) pending.push_back({c, depth + 1});
   }
-  if (reached != n) return damaged("the node hierarchy has a cycle");
+  if (reached != n) return damaged_gltf("the node hierarchy has a cycle");
   return Status::success();
 }
 
@@ -119,13 +119,13 @@ Status check_data(const Json& gltf, const std::string& path, std::uint64_t glb_b
       const Json& b = (*buffers)[i];
       std::uint64_t declared = 0;
       if (!b.is_object() || !count_member(b, "byteLength", 0, declared))
-        return damaged("buffer " + std::to_string(i) + " has no valid byteLength");
+        return damaged_gltf("buffer " + std::to_string(i) + " has no valid byteLength");
       std::uint64_t present = 0;
       const auto uri = b.find("uri");
       if (uri == b.end()) {
         present = i == 0 ? glb_binary_bytes : 0;
       } else if (!uri->is_string()) {
-        return damaged("buffer " + std::to_string(i) + "'s uri is not a string");
+        return damaged_gltf("buffer " + std::to_string(i) + "'s uri is not a string");
       } else if (uri->get<std::string>().compare(0, 5, "data:") == 0) {
         const std::string& text = uri->get_ref<const std::string&>();
         const std::size_t comma = text.find(',');
@@ -137,7 +137,7 @@ Status check_data(const Json& gltf, const std::string& path, std::uint64_t glb_b
         present = std::filesystem::is_regular_file(file, error) ? std::filesystem::file_size(file, error) : declared;
       }
       if (declared > present)
-        return damaged("buffer " + std::to_string(i) + " declares " + std::to_string(declared) +
+        return damaged_gltf("buffer " + std::to_string(i) + " declares " + std::to_string(declared) +
                        " bytes but holds " + std::to_string(present));
       buffer_bytes.push_back(declared);
     }
@@ -149,7 +149,7 @@ Status check_data(const Json& gltf, const std::string& path, std::uint64_t glb_b
       if (!v.is_object() || !count_member(v, "buffer", ~std::uint64_t{0}, buffer) ||
           !count_member(v, "byteOffset", 0, offset) || !count_member(v, "byteLength", 0, length) ||
           buffer >= buffer_bytes.size() || offset > buffer_bytes[buffer] || length > buffer_bytes[buffer] - offset)
-        return damaged("buffer view " + std::to_string(i) + " lies outside its buffer");
+        return damaged_gltf("buffer view " + std::to_string(i) + " lies outside its buffer");
       view_bytes.push_back(length);
     }
   if (const auto accessors = gltf.find("accessors"); accessors != gltf.end() && accessors->is_array())
@@ -158,13 +158,13 @@ Status check_data(const Json& gltf, const std::string& path, std::uint64_t glb_b
       std::uint64_t view = 0, count = 0, offset = 0;
       if (!a.is_object() || !count_member(a, "count", 0, count) || !count_member(a, "byteOffset", 0, offset) ||
           !count_member(a, "bufferView", ~std::uint64_t{0}, view))
-        return damaged("accessor " + std::to_string(i) + " has a malformed count, offset or view");
+        return damaged_gltf("accessor " + std::to_string(i) + " has a malformed count, offset or view");
       if (view == ~std::uint64_t{0}) continue;
-      if (view >= view_bytes.size()) return damaged("accessor " + std::to_string(i) + " names a missing view");
+      if (view >= view_bytes.size()) return damaged_gltf("accessor " + std::to_string(i) + " names a missing view");
       // Each element takes at least one byte (the smallest component type,
       // scalar): the count can be no larger than the view's bytes.
       if (offset > view_bytes[view] || count > view_bytes[view] - offset)
-        return damaged("accessor " + std::to_string(i) + " declares " + std::to_string(count) +
+        return damaged_gltf("accessor " + std::to_string(i) + " declares " + std::to_string(count) +
                        " elements, more than its view's " + std::to_string(view_bytes[view]) + " bytes hold");
     }
   return Status::success();
@@ -180,10 +180,10 @@ Status check_gltf(const std::string& path, std::ifstream& in, std::uint64_t file
     unsigned char header[20] = {};
     in.read(reinterpret_cast<char*>(header), sizeof header);
     if (in.gcount() != sizeof header || std::string(reinterpret_cast<char*>(header), 4) != "glTF")
-      return damaged("not a GLB file (no 'glTF' magic)");
+      return damaged_gltf("not a GLB file (no 'glTF' magic)");
     const std::uint32_t json_bytes = little_endian_u32(header + 12);
     if (std::string(reinterpret_cast<char*>(header + 16), 4) != "JSON" || 20 + std::uint64_t{json_bytes} > file_bytes)
-      return damaged("GLB's JSON chunk runs past the end of the file");
+      return damaged_gltf("GLB's JSON chunk runs past the end of the file");
     text.resize(json_bytes);
     in.read(text.data(), json_bytes);
     const std::uint64_t after = 20 + std::uint64_t{json_bytes} + 8;
@@ -199,7 +199,7 @@ Status check_gltf(const std::string& path, std::ifstream& in, std::uint64_t file
   if (json_nesting_depth(text) > limits.max_node_depth)
     return deeper_than_limit("glTF JSON nested", limits);
   const Json gltf = Json::parse(text, nullptr, false);
-  if (gltf.is_discarded() || !gltf.is_object()) return damaged("the JSON does not parse to an object");
+  if (gltf.is_discarded() || !gltf.is_object()) return damaged_gltf("the JSON does not parse to an object");
   if (Status references = check_references(gltf); !references.ok()) return references;
   if (Status nodes = check_nodes(gltf, limits); !nodes.ok()) return nodes;
   return check_data(gltf, path, glb_binary_bytes);

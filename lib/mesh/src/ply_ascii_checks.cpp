@@ -16,8 +16,6 @@ constexpr std::size_t kMaxTokenChars = 64;
 // fits 64 bits.
 constexpr std::uint64_t kLengthCeiling = 1'000'000'000'000'000'000;
 
-Status damaged(const std::string& why) { return {StatusCode::unreadable_file, why}; }
-
 struct Token {
   std::string text;  // its first kMaxTokenChars characters
   std::uint64_t length = 0;
@@ -57,7 +55,7 @@ std::optional<std::uint64_t> whole_number(const Token& t) {
 }
 
 Status not_a_length(const std::string& where, const Property& p, const Token& t) {
-  return damaged("PLY " + where + " has a " + p.name + " list of length " + shown(t) + ", not a whole number");
+  return damaged_file("PLY " + where + " has a " + p.name + " list of length " + shown(t) + ", not a whole number");
 }
 
 // Whether Assimp's reader of `number` (strtoul10, strtol10,
@@ -173,7 +171,7 @@ Status check_line(AssimpLines& lines, const Element& e, std::uint64_t i, std::ui
     return instance(e, i) + " (line " + std::to_string(lines.number()) + ", one element a line as Assimp reads it)";
   };
   const auto not_read_whole = [&](const Property& p, const Token& t) {
-    return damaged("PLY " + where() + " has " + shown(t) + " for " + p.name +
+    return damaged_file("PLY " + where() + " has " + shown(t) + " for " + p.name +
                    ", not a number Assimp reads whole (it would read the rest as the next value)");
   };
   Token t;
@@ -189,7 +187,7 @@ Status check_line(AssimpLines& lines, const Element& e, std::uint64_t i, std::ui
     // Assimp keeps the lists of edge and material elements all at once.
     listed += *items;
     if (listed > data_bytes / kAsciiItemBytes)
-      return damaged("PLY lists up to " + where() + " have " + std::to_string(listed) + " items in all; the " +
+      return damaged_file("PLY lists up to " + where() + " have " + std::to_string(listed) + " items in all; the " +
                      std::to_string(data_bytes) + " bytes of data hold at most " +
                      std::to_string(data_bytes / kAsciiItemBytes));
     for (std::uint64_t k = 0; k < *items; ++k) {
@@ -220,7 +218,7 @@ Status walk_ascii_tokens(BodyReader& body, const std::vector<Element>& elements)
     if (!e.has_list()) {
       // The size check keeps count x properties within 64 bits.
       if (!skip_tokens(body, e.count * e.properties.size()))
-        return damaged("PLY data ends inside the " + e.name + " elements");
+        return damaged_file("PLY data ends inside the " + e.name + " elements");
       continue;
     }
     for (std::uint64_t i = 0; i < e.count; ++i)
@@ -249,7 +247,7 @@ Status walk_assimp_lines(BodyReader& body, const std::vector<Element>& elements,
         // Past the last line Assimp parses that line again for each instance.
         if (std::any_of(elements.begin() + static_cast<std::ptrdiff_t>(k), elements.end(),
                         [](const Element& later) { return later.lists_parsed(); }))
-          return damaged("PLY data has no line for " + instance(e, i) + " (Assimp reads one element a line)");
+          return damaged_file("PLY data has no line for " + instance(e, i) + " (Assimp reads one element a line)");
         return Status::success();
       }
       if (!parsed) continue;

@@ -17,8 +17,6 @@ namespace {
 // (defined behaviour); any length this long is refused anyway.
 constexpr double kRealLengthCeiling = 0x1p62;
 
-Status damaged(const std::string& why) { return {StatusCode::unreadable_file, why}; }
-
 ScalarType ply_scalar_type(const std::string& type) {
   if (type == "char" || type == "int8") return {1, Number::signed_integer};
   if (type == "uchar" || type == "uint8") return {1, Number::unsigned_integer};
@@ -77,12 +75,12 @@ Status add_property(const std::vector<std::string>& words, Element& e) {
     p.length = ply_scalar_type(word(2));
     p.value = ply_scalar_type(word(3));
     if (p.length.bytes == 0 || p.value.bytes == 0)
-      return damaged("PLY list property with types '" + word(2) + "', '" + word(3) + "'");
+      return damaged_file("PLY list property with types '" + word(2) + "', '" + word(3) + "'");
   } else if ((p.value = ply_scalar_type(word(1))).bytes == 0) {
-    return damaged("PLY property of unknown type '" + word(1) + "'");
+    return damaged_file("PLY property of unknown type '" + word(1) + "'");
   }
   p.name = word(p.is_list ? 4 : 2);
-  if (p.name.empty()) return damaged("PLY property of '" + e.name + "' has no name (Assimp would drop it)");
+  if (p.name.empty()) return damaged_file("PLY property of '" + e.name + "' has no name (Assimp would drop it)");
   e.properties.push_back(p);
   return Status::success();
 }
@@ -95,7 +93,7 @@ Status read_header(std::ifstream& in, std::uint64_t file_bytes, Header& h) {
   text.resize(static_cast<std::size_t>(std::min<std::uint64_t>(file_bytes, kMaxPlyHeaderBytes)));
   in.read(text.data(), static_cast<std::streamsize>(text.size()));
   text.resize(static_cast<std::size_t>(in.gcount()));
-  if (text.compare(0, 3, "ply") != 0) return damaged("not a PLY file (no 'ply' magic)");
+  if (text.compare(0, 3, "ply") != 0) return damaged_file("not a PLY file (no 'ply' magic)");
   std::size_t at = 0;
   bool have_format = false;
   bool ended = false;
@@ -110,8 +108,8 @@ Status read_header(std::ifstream& in, std::uint64_t file_bytes, Header& h) {
     if (keyword == "format") {
       const std::string format = words.size() > 1 ? words[1] : std::string();
       if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
-        return damaged("PLY format '" + format + "' is none of ascii, binary_little_endian, binary_big_endian");
-      if (have_format) return damaged("PLY header has two format lines");
+        return damaged_file("PLY format '" + format + "' is none of ascii, binary_little_endian, binary_big_endian");
+      if (have_format) return damaged_file("PLY header has two format lines");
       h.ascii = format == "ascii";
       h.big_endian = format == "binary_big_endian";
       have_format = true;
@@ -120,15 +118,15 @@ Status read_header(std::ifstream& in, std::uint64_t file_bytes, Header& h) {
       e.name = words.size() > 1 ? words[1] : std::string();
       const std::string count = words.size() > 2 ? words[2] : std::string();
       if (count.size() > 19 || !all_digits(count))
-        return damaged("PLY element '" + e.name + "' has count '" + count + "', not a number");
+        return damaged_file("PLY element '" + e.name + "' has count '" + count + "', not a number");
       e.count = std::stoull(count);
       h.elements.push_back(e);
       in_element = true;
       continue;
     } else if (keyword == "property") {
-      if (h.elements.empty()) return damaged("PLY property before any element");
+      if (h.elements.empty()) return damaged_file("PLY property before any element");
       if (!in_element)
-        return damaged("PLY property line '" + *line + "' follows a line that ends " + h.elements.back().name +
+        return damaged_file("PLY property line '" + *line + "' follows a line that ends " + h.elements.back().name +
                        "'s properties (Assimp would drop it)");
       if (Status added = add_property(words, h.elements.back()); !added.ok()) return added;
       continue;
@@ -136,10 +134,10 @@ Status read_header(std::ifstream& in, std::uint64_t file_bytes, Header& h) {
     in_element = in_element && keyword == "comment";
   }
   if (!ended)
-    return damaged("PLY header has no 'end_header' within the first " + std::to_string(text.size()) + " bytes");
-  if (!have_format) return damaged("PLY header has no format line");
+    return damaged_file("PLY header has no 'end_header' within the first " + std::to_string(text.size()) + " bytes");
+  if (!have_format) return damaged_file("PLY header has no format line");
   // The byte after the line decides where binary data starts, so it must be read too.
-  if (at >= text.size() && text.size() < file_bytes) return damaged("PLY 'end_header' line has no end");
+  if (at >= text.size() && text.size() < file_bytes) return damaged_file("PLY 'end_header' line has no end");
   at = std::min(at, text.size());
   h.after_line = at;
   h.line_number += static_cast<std::uint64_t>(std::count(text.data(), text.data() + at, '\n'));
@@ -147,7 +145,7 @@ Status read_header(std::ifstream& in, std::uint64_t file_bytes, Header& h) {
   // as the second half of a "\r\n" line end; after a plain '\n' it is data.
   const bool newline_next = at < text.size() && text[at] == '\n';
   if (!h.ascii && newline_next && text[at - 1] == '\n')
-    return damaged("binary PLY data starts with byte 0x0A, which Assimp would skip as part of the 'end_header' "
+    return damaged_file("binary PLY data starts with byte 0x0A, which Assimp would skip as part of the 'end_header' "
                    "line's end, reading every value one byte off");
   h.data_at = at + (newline_next ? 1 : 0);
   return Status::success();
@@ -181,7 +179,7 @@ Status walk_binary(BodyReader& body, const std::vector<Element>& elements, bool 
     if (!e.has_list()) {
       // Fixed-size instances: one skip however many (the size check keeps
       // count x bytes within 64 bits).
-      if (!body.skip(e.count * e.least_bytes)) return damaged("PLY data ends inside the " + e.name + " elements");
+      if (!body.skip(e.count * e.least_bytes)) return damaged_file("PLY data ends inside the " + e.name + " elements");
       continue;
     }
     for (std::uint64_t i = 0; i < e.count; ++i) {
@@ -194,9 +192,9 @@ Status walk_binary(BodyReader& body, const std::vector<Element>& elements, bool 
         if (!body.read(raw, static_cast<std::size_t>(p.length.bytes))) return ends_inside(instance(e, i), e);
         const std::optional<std::int64_t> items = binary_length(raw, p.length, big_endian);
         if (!items)
-          return damaged("PLY " + instance(e, i) + " has a " + p.name + " list whose length is not a number");
+          return damaged_file("PLY " + instance(e, i) + " has a " + p.name + " list whose length is not a number");
         if (*items < 0)
-          return damaged("PLY " + instance(e, i) + " has a " + p.name + " list of " + std::to_string(*items) +
+          return damaged_file("PLY " + instance(e, i) + " has a " + p.name + " list of " + std::to_string(*items) +
                          " items (a negative length)");
         const auto item_bytes = static_cast<std::uint64_t>(p.value.bytes);
         // Compared by division: items x bytes may not fit 64 bits.
@@ -226,21 +224,21 @@ Status check_ply(std::ifstream& in, std::uint64_t file_bytes) {
       e.least_bytes += h.ascii ? kAsciiItemBytes : static_cast<std::uint64_t>(binary_bytes);
     }
     if (e.least_bytes == 0 && e.count > 0)
-      return damaged("PLY element '" + e.name + "' has no properties but a count of " + std::to_string(e.count));
+      return damaged_file("PLY element '" + e.name + "' has no properties but a count of " + std::to_string(e.count));
     // Compared by division: count x bytes may not fit 64 bits.
     if (e.least_bytes > 0 && e.count > (body + 1) / e.least_bytes)
-      return damaged("PLY declares " + std::to_string(e.count) + " " + e.name + " elements, more than its " +
+      return damaged_file("PLY declares " + std::to_string(e.count) + " " + e.name + " elements, more than its " +
                      std::to_string(body) + " bytes of data can hold");
     needed += e.count * e.least_bytes;
     if (needed > body + 1)
-      return damaged("PLY elements need at least " + std::to_string(needed) + " bytes; the data has " +
+      return damaged_file("PLY elements need at least " + std::to_string(needed) + " bytes; the data has " +
                      std::to_string(body));
   }
   // An element Assimp does not count shifts where it reads every later one.
   for (auto e = h.elements.begin(); e != h.elements.end(); ++e) {
     const bool later_data = std::any_of(e + 1, h.elements.end(), [](const Element& l) { return l.count > 0; });
     if (e->assimp_count() > e->count || (e->assimp_count() != e->count && later_data))
-      return damaged("PLY element '" + e->name + "' (" + std::to_string(e->count) +
+      return damaged_file("PLY element '" + e->name + "' (" + std::to_string(e->count) +
                      ") is not one Assimp counts (vertex, face, tristrips, edge, material): it would read " +
                      std::to_string(e->assimp_count()) + " of it and the elements after it from the wrong place");
   }

@@ -4,6 +4,8 @@
 // Both hold the elements the header declares against the body, read a chunk
 // at a time, and report in the same words.
 
+#include "scene_file_checks.h"
+
 #include "hullcover/geometry/status.h"
 
 #include <algorithm>

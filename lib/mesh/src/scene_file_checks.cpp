@@ -19,8 +19,6 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-Status damaged(const std::string& why) { return {StatusCode::unreadable_file, why}; }
-
 // A binary STL is an 80-byte header, a count and 50 bytes per triangle; an
 // ASCII one starts with "solid" (a binary header may too, so the size
 // decides first).
@@ -34,11 +32,11 @@ Status check_stl(std::ifstream& in, std::uint64_t file_bytes) {
     const std::uint64_t count = little_endian_u32(reinterpret_cast<const unsigned char*>(head + 80));
     if (84 + 50 * count == file_bytes) return Status::success();
     if (start.compare(0, 5, "solid") == 0) return Status::success();
-    return damaged("binary STL declares " + std::to_string(count) + " triangles, which take " +
+    return damaged_file("binary STL declares " + std::to_string(count) + " triangles, which take " +
                    std::to_string(84 + 50 * count) + " bytes; the file has " + std::to_string(file_bytes));
   }
   if (start.compare(0, 5, "solid") == 0) return Status::success();
-  return damaged("STL shorter than a binary header (84 bytes) and not ASCII ('solid')");
+  return damaged_file("STL shorter than a binary header (84 bytes) and not ASCII ('solid')");
 }
 
 } // namespace
