@@ -273,7 +273,7 @@ TEST(CommandLine, AuditSaysWhereARayRanOutOfEvaluations) {
   ASSERT_EQ(run(dir, "decompose " + scene + " -o " + dir.path("h.obj") + " --agent-radius 0.3 -q").status, 0);
   const std::string common = "audit " + scene + " " + dir.path("h.obj") + " --agent-radius 0.3 --resolution 0.3 "
                              "--proxies 300 --json " + dir.path("a.json") + " --max-ray-evaluations ";
-  const CommandRun bounded = run(dir, common + "2");
+  const CommandRun bounded = run(dir, common + "2 --html " + dir.path("a.html"));
   EXPECT_EQ(bounded.status, 1) << bounded.err;
   EXPECT_NE(bounded.out.find("ran out of evaluations (undecided: a violation); the first at ("), std::string::npos)
       << bounded.out;
@@ -281,6 +281,17 @@ TEST(CommandLine, AuditSaysWhereARayRanOutOfEvaluations) {
   EXPECT_GT(allowance["undecided"].get<long>(), 0);
   EXPECT_GE(allowance["first_undecided"]["face"].get<int>(), 0);
   EXPECT_EQ(allowance["first_undecided"]["point"].size(), 3u);
+  // The HTML report's table names it too, on the face the JSON gives, with
+  // no hull and no depth.
+  const std::string html = slurp(dir.path("a.html"));
+  const std::string row = "first ray out of evaluations (undecided)</td>";
+  const size_t at = html.find(row);
+  ASSERT_NE(at, std::string::npos);
+  const std::string rest = html.substr(at, html.find("</tr>", at) - at);
+  EXPECT_NE(rest.find("<td>&mdash;</td><td>&mdash;</td><td>" +
+                      std::to_string(allowance["first_undecided"]["face"].get<int>()) + "</td>"),
+            std::string::npos)
+      << rest;
   const CommandRun refused = run(dir, common + "1");
   EXPECT_EQ(refused.status, 2);
   EXPECT_NE(refused.err.find("--max-ray-evaluations"), std::string::npos) << refused.err;

@@ -96,9 +96,9 @@ TEST(RuntimeFile, VersionOneFilesStillLoad) {
   std::string payload;
   size_t at = kHeader;
   for (size_t h = 0; h < hulls.size(); ++h) {
-    const std::uint64_t V = field(v2, at + 4, 4), F = field(v2, at + 8, 4), P = field(v2, at + 12, 4),
-                        I = field(v2, at + 16, 4);
-    const size_t hull_bytes = 20 + 48 + V * 24 + P * 32 + F * 4 + I * 4;
+    const std::uint64_t vertices = field(v2, at + 4, 4), facets = field(v2, at + 8, 4),
+                        planes = field(v2, at + 12, 4), indices = field(v2, at + 16, 4);
+    const size_t hull_bytes = 20 + 48 + vertices * 24 + planes * 32 + facets * 4 + indices * 4;
     payload += v2.substr(at, hull_bytes);
     at += hull_bytes;
     at += 4 + field(v2, at, 4);  // version 2's surface flags, dropped

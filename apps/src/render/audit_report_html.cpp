@@ -14,6 +14,9 @@ namespace {
 // this fraction of the scene's diagonal: one deep place must not hide the
 // scene.
 constexpr double kMaxMarkerFraction = 0.03;
+// A place with no depth (a ray the audit could not decide) still needs a
+// ball to be seen: this fraction of the diagonal.
+constexpr double kUndecidedMarkerFraction = 0.01;
 constexpr ImageSize kPictureSize{960, 720};
 // The cut-away from above shows lost places inside closed rooms that the
 // oblique view hides behind the back walls.
@@ -126,7 +129,8 @@ void append_places_table(std::string& out, const std::vector<LostSpacePlace>& pl
   for (size_t i = 0; i < places.size(); ++i) {
     const LostSpacePlace& p = places[i];
     out += "<tr><td>" + std::to_string(i + 1) + "</td><td>" + escaped(p.kind) + "</td><td>" + point_text(p.point) +
-           "</td><td>" + number(p.depth) + "</td><td>" + std::to_string(p.hull) + "</td><td>" +
+           "</td><td>" + (p.hull >= 0 ? number(p.depth) : std::string("&mdash;")) + "</td><td>" +
+           (p.hull >= 0 ? std::to_string(p.hull) : std::string("&mdash;")) + "</td><td>" +
            (p.face >= 0 ? std::to_string(p.face) : std::string("&mdash;")) + "</td></tr>";
   }
   out += "</table>\n";
@@ -155,6 +159,10 @@ std::vector<LostSpacePlace> lost_space_places(const validate::AuditReport& repor
       a.farthest_face);
   add("deepest reachable ball (centre)", a.deepest_reach.centre, a.deepest_reach.depth, a.deepest_reach.hull,
       a.deepest_reach.face);
+  // Undecided is a violation with no hull to name: the place it was given up.
+  if (a.undecided > 0 && a.first_undecided.face >= 0)
+    places.push_back({"first ray out of evaluations (undecided)", a.first_undecided.point, 0.0, -1,
+                      a.first_undecided.face});
   const validate::FalseContactPlace& f = report.behaviour.deepest_false;
   add("deepest false contact", f.point, f.depth, f.hull, f.face);
   return places;
@@ -202,18 +210,22 @@ Result<std::string> audit_report_html(const AuditHtmlInput& input) {
       return s;
 
     const double diagonal = referenced_bounding_box(*input.scene).diagonal();
-    for (size_t i = 0; i < places.size(); ++i)  // numbered as the table's rows
-      content.markers.push_back(
-          {places[i].point, std::min(places[i].depth, kMaxMarkerFraction * diagonal), Marker{}.colour, std::to_string(i + 1)});
+    for (size_t i = 0; i < places.size(); ++i) {  // numbered as the table's rows
+      const double radius = places[i].hull >= 0 ? std::min(places[i].depth, kMaxMarkerFraction * diagonal)
+                                                : kUndecidedMarkerFraction * diagonal;
+      content.markers.push_back({places[i].point, radius, Marker{}.colour, std::to_string(i + 1)});
+    }
     content.pale_hulls = true;
-    for (const LostSpacePlace& p : places) content.highlighted.push_back(p.hull);
+    for (const LostSpacePlace& p : places)
+      if (p.hull >= 0) content.highlighted.push_back(p.hull);
     options.cut = true;
     out += "<h2>Lost space</h2>\n";
     const std::string marked =
         places.empty() ? "No place was located: nothing is marked."
                        : std::to_string(places.size()) + (places.size() == 1 ? " located place" : " located places") +
                              " in red, numbered as in the table below (ball radius: the depth lost there, at most " + number(100.0 * kMaxMarkerFraction) +
-                             "% of the scene's diagonal); the "
+                             "% of the scene's diagonal; " + number(100.0 * kUndecidedMarkerFraction) +
+                             "% where a ray was undecided); the "
                              "hulls holding them in full colour.";
     if (Status s = picture(out, content, options, "lost space, cut away", "Cut away, other hulls pale. " + marked);
         !s.ok())

@@ -41,14 +41,15 @@ struct AuditHtmlInput {
 struct LostSpacePlace {
   std::string kind;  ///< which figure found it ("front rays", "opening rays", "false contact", ...)
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< scene coordinates
-  double depth = 0.0;  ///< how deep it lies in the hull, scene units
-  int hull = -1;       ///< the hull it lies in
+  double depth = 0.0;  ///< how deep it lies in the hull, scene units (0 with no hull)
+  int hull = -1;       ///< the hull it lies in; -1 where the audit gave up a ray undecided
   int face = -1;       ///< the face whose ray or proxy found it (-1 unknown)
 };
 
 /// Every located place of the report: the deepest lost point per hull, the
 /// deepest of front and opening rays, the allowance's farthest point and
-/// deepest reachable ball, the deepest false contact. Each place once.
+/// deepest reachable ball, the deepest false contact, the first ray the
+/// allowance audit left undecided. Each place once.
 std::vector<LostSpacePlace> lost_space_places(const validate::AuditReport& report);
 
 /// "CLEAN", or "VIOLATION: " and the findings' names joined by ", ".
