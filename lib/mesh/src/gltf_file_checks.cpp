@@ -138,7 +138,7 @@ Status check_data(const Json& gltf, const std::string& path, std::uint64_t glb_b
       }
       if (declared > present)
         return damaged_gltf("buffer " + std::to_string(i) + " declares " + std::to_string(declared) +
-                       " bytes but holds " + std::to_string(present));
+                            " bytes but holds " + std::to_string(present));
       buffer_bytes.push_back(declared);
     }
   std::vector<std::uint64_t> view_bytes;
@@ -165,7 +165,7 @@ Status check_data(const Json& gltf, const std::string& path, std::uint64_t glb_b
       // scalar): the count can be no larger than the view's bytes.
       if (offset > view_bytes[view] || count > view_bytes[view] - offset)
         return damaged_gltf("accessor " + std::to_string(i) + " declares " + std::to_string(count) +
-                       " elements, more than its view's " + std::to_string(view_bytes[view]) + " bytes hold");
+                            " elements, more than its view's " + std::to_string(view_bytes[view]) + " bytes hold");
     }
   return Status::success();
 }

@@ -172,7 +172,7 @@ Status check_line(AssimpLines& lines, const Element& e, std::uint64_t i, std::ui
   };
   const auto not_read_whole = [&](const Property& p, const Token& t) {
     return damaged_file("PLY " + where() + " has " + shown(t) + " for " + p.name +
-                   ", not a number Assimp reads whole (it would read the rest as the next value)");
+                        ", not a number Assimp reads whole (it would read the rest as the next value)");
   };
   Token t;
   for (const Property& p : e.properties) {
@@ -188,8 +188,8 @@ Status check_line(AssimpLines& lines, const Element& e, std::uint64_t i, std::ui
     listed += *items;
     if (listed > data_bytes / kAsciiItemBytes)
       return damaged_file("PLY lists up to " + where() + " have " + std::to_string(listed) + " items in all; the " +
-                     std::to_string(data_bytes) + " bytes of data hold at most " +
-                     std::to_string(data_bytes / kAsciiItemBytes));
+                          std::to_string(data_bytes) + " bytes of data hold at most " +
+                          std::to_string(data_bytes / kAsciiItemBytes));
     for (std::uint64_t k = 0; k < *items; ++k) {
       if (!lines.next_value(t)) return Status::success();
       if (!read_whole(t, p.value.number)) return not_read_whole(p, t);

@@ -127,7 +127,7 @@ Status read_header(std::ifstream& in, std::uint64_t file_bytes, Header& h) {
       if (h.elements.empty()) return damaged_file("PLY property before any element");
       if (!in_element)
         return damaged_file("PLY property line '" + *line + "' follows a line that ends " + h.elements.back().name +
-                       "'s properties (Assimp would drop it)");
+                            "'s properties (Assimp would drop it)");
       if (Status added = add_property(words, h.elements.back()); !added.ok()) return added;
       continue;
     }
@@ -146,7 +146,7 @@ Status read_header(std::ifstream& in, std::uint64_t file_bytes, Header& h) {
   const bool newline_next = at < text.size() && text[at] == '\n';
   if (!h.ascii && newline_next && text[at - 1] == '\n')
     return damaged_file("binary PLY data starts with byte 0x0A, which Assimp would skip as part of the 'end_header' "
-                   "line's end, reading every value one byte off");
+                        "line's end, reading every value one byte off");
   h.data_at = at + (newline_next ? 1 : 0);
   return Status::success();
 }
@@ -195,7 +195,7 @@ Status walk_binary(BodyReader& body, const std::vector<Element>& elements, bool 
           return damaged_file("PLY " + instance(e, i) + " has a " + p.name + " list whose length is not a number");
         if (*items < 0)
           return damaged_file("PLY " + instance(e, i) + " has a " + p.name + " list of " + std::to_string(*items) +
-                         " items (a negative length)");
+                              " items (a negative length)");
         const auto item_bytes = static_cast<std::uint64_t>(p.value.bytes);
         // Compared by division: items x bytes may not fit 64 bits.
         if (static_cast<std::uint64_t>(*items) > body.left() / item_bytes)
@@ -228,19 +228,19 @@ Status check_ply(std::ifstream& in, std::uint64_t file_bytes) {
     // Compared by division: count x bytes may not fit 64 bits.
     if (e.least_bytes > 0 && e.count > (body + 1) / e.least_bytes)
       return damaged_file("PLY declares " + std::to_string(e.count) + " " + e.name + " elements, more than its " +
-                     std::to_string(body) + " bytes of data can hold");
+                          std::to_string(body) + " bytes of data can hold");
     needed += e.count * e.least_bytes;
     if (needed > body + 1)
       return damaged_file("PLY elements need at least " + std::to_string(needed) + " bytes; the data has " +
-                     std::to_string(body));
+                          std::to_string(body));
   }
   // An element Assimp does not count shifts where it reads every later one.
   for (auto e = h.elements.begin(); e != h.elements.end(); ++e) {
     const bool later_data = std::any_of(e + 1, h.elements.end(), [](const Element& l) { return l.count > 0; });
     if (e->assimp_count() > e->count || (e->assimp_count() != e->count && later_data))
       return damaged_file("PLY element '" + e->name + "' (" + std::to_string(e->count) +
-                     ") is not one Assimp counts (vertex, face, tristrips, edge, material): it would read " +
-                     std::to_string(e->assimp_count()) + " of it and the elements after it from the wrong place");
+                          ") is not one Assimp counts (vertex, face, tristrips, edge, material): it would read " +
+                          std::to_string(e->assimp_count()) + " of it and the elements after it from the wrong place");
   }
 
   if (std::none_of(h.elements.begin(), h.elements.end(), [](const Element& e) { return e.has_list(); }))

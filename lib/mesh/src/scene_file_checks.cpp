@@ -33,7 +33,7 @@ Status check_stl(std::ifstream& in, std::uint64_t file_bytes) {
     if (84 + 50 * count == file_bytes) return Status::success();
     if (start.compare(0, 5, "solid") == 0) return Status::success();
     return damaged_file("binary STL declares " + std::to_string(count) + " triangles, which take " +
-                   std::to_string(84 + 50 * count) + " bytes; the file has " + std::to_string(file_bytes));
+                        std::to_string(84 + 50 * count) + " bytes; the file has " + std::to_string(file_bytes));
   }
   if (start.compare(0, 5, "solid") == 0) return Status::success();
   return damaged_file("STL shorter than a binary header (84 bytes) and not ASCII ('solid')");
