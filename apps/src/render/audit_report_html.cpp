@@ -216,16 +216,21 @@ Result<std::string> audit_report_html(const AuditHtmlInput& input) {
       content.markers.push_back({places[i].point, radius, Marker{}.colour, std::to_string(i + 1)});
     }
     content.pale_hulls = true;
-    for (const LostSpacePlace& p : places)
+    bool any_undecided = false;
+    for (const LostSpacePlace& p : places) {
       if (p.hull >= 0) content.highlighted.push_back(p.hull);
+      any_undecided |= p.hull < 0;
+    }
     options.cut = true;
     out += "<h2>Lost space</h2>\n";
     const std::string marked =
         places.empty() ? "No place was located: nothing is marked."
                        : std::to_string(places.size()) + (places.size() == 1 ? " located place" : " located places") +
                              " in red, numbered as in the table below (ball radius: the depth lost there, at most " + number(100.0 * kMaxMarkerFraction) +
-                             "% of the scene's diagonal; " + number(100.0 * kUndecidedMarkerFraction) +
-                             "% where a ray was undecided); the "
+                             "% of the scene's diagonal" +
+                             (any_undecided ? "; " + number(100.0 * kUndecidedMarkerFraction) + "% where a ray was undecided"
+                                            : std::string()) +
+                             "); the "
                              "hulls holding them in full colour.";
     if (Status s = picture(out, content, options, "lost space, cut away", "Cut away, other hulls pale. " + marked);
         !s.ok())
