@@ -223,15 +223,14 @@ Result<std::string> audit_report_html(const AuditHtmlInput& input) {
     }
     options.cut = true;
     out += "<h2>Lost space</h2>\n";
+    const std::string undecided_size =
+        any_undecided ? "; " + number(100.0 * kUndecidedMarkerFraction) + "% where a ray was undecided" : "";
     const std::string marked =
         places.empty() ? "No place was located: nothing is marked."
                        : std::to_string(places.size()) + (places.size() == 1 ? " located place" : " located places") +
-                             " in red, numbered as in the table below (ball radius: the depth lost there, at most " + number(100.0 * kMaxMarkerFraction) +
-                             "% of the scene's diagonal" +
-                             (any_undecided ? "; " + number(100.0 * kUndecidedMarkerFraction) + "% where a ray was undecided"
-                                            : std::string()) +
-                             "); the "
-                             "hulls holding them in full colour.";
+                             " in red, numbered as in the table below (ball radius: the depth lost there, at most " +
+                             number(100.0 * kMaxMarkerFraction) + "% of the scene's diagonal" + undecided_size +
+                             "); the hulls holding them in full colour.";
     if (Status s = picture(out, content, options, "lost space, cut away", "Cut away, other hulls pale. " + marked);
         !s.ok())
       return s;
