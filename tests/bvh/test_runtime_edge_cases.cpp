@@ -101,8 +101,8 @@ BlockWorlds block_worlds(const V& offset) {
 // A sphere of radius `r` at `centre` against both worlds: apart when
 // `depth` is NAN, else touching that deep, the deepest contact of each
 // pushing along `normal` (either way along it when `either_way`).
-void check_sphere(const BlockWorlds& w, const std::string& what, const V& centre, double r, double depth, const V& normal,
-                  bool either_way = false) {
+void check_sphere(const BlockWorlds& w, const std::string& what, const V& centre, double r, double depth,
+                  const V& normal, bool either_way = false) {
   ContactResult h, t;
   ASSERT_TRUE(w.hulls->contacts({QueryShape::sphere(r), at(centre), kAllContacts}, h).ok()) << what;
   ASSERT_TRUE(w.triangles->contacts({QueryShape::sphere(r), at(centre), kAllContacts}, t).ok()) << what;

@@ -108,7 +108,8 @@ TEST(Audit, ACoveringAuditsTheSameFromObjAndFromTheRuntimeFile) {
   const Result<AuditReport> a = run_audit(d->prepared, from_obj.value(), quick_options());
   const Result<AuditReport> b = run_audit(d->prepared, from_hcw.value(), quick_options());
   ASSERT_TRUE(a.ok() && b.ok());
-  EXPECT_EQ(a.value().findings, b.value().findings) << test::finding_names(a.value().findings) << "/ " << test::finding_names(b.value().findings);
+  EXPECT_EQ(a.value().findings, b.value().findings)
+      << test::finding_names(a.value().findings) << "/ " << test::finding_names(b.value().findings);
   EXPECT_EQ(a.value().probe.front.lost, b.value().probe.front.lost);
   EXPECT_EQ(a.value().probe.opening.lost, b.value().probe.opening.lost);
   EXPECT_EQ(a.value().probe.front.enclosed, b.value().probe.front.enclosed);

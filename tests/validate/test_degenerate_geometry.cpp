@@ -62,9 +62,10 @@ long strict_clean_hull_count(const Mesh& mesh, std::optional<double> tolerance =
   EXPECT_TRUE(audit.ok()) << audit.status().message();
   if (!audit.ok()) return -1;
   const AuditReport& r = audit.value();
-  EXPECT_TRUE(r.clean()) << test::finding_names(r.findings) << "\n" << r.recheck.summary() << "\nfront lost " << r.probe.front.lost
-                         << " opening lost " << r.probe.opening.lost << " deepest " << r.probe.max_lost_depth
-                         << " missed " << r.behaviour.missed << " deep false " << r.behaviour.deep_false_contacts;
+  EXPECT_TRUE(r.clean()) << test::finding_names(r.findings) << "\n" << r.recheck.summary() << "\nfront lost "
+                         << r.probe.front.lost << " opening lost " << r.probe.opening.lost << " deepest "
+                         << r.probe.max_lost_depth << " missed " << r.behaviour.missed << " deep false "
+                         << r.behaviour.deep_false_contacts;
   EXPECT_GT(r.probe.front.rays, 0);
   return static_cast<long>(d->covering.hulls.size());
 }

@@ -165,13 +165,12 @@ class BodyReader {
 
 inline Status too_long(const std::string& where, const Property& p, const std::string& items, std::uint64_t left,
                        std::uint64_t item_bytes) {
-  return {StatusCode::unreadable_file, "PLY " + where + " has a " + p.name + " list of " + items + " items; the " +
-                                           std::to_string(left) + " bytes left hold at most " +
-                                           std::to_string(left / item_bytes)};
+  return damaged_file("PLY " + where + " has a " + p.name + " list of " + items + " items; the " +
+                      std::to_string(left) + " bytes left hold at most " + std::to_string(left / item_bytes));
 }
 
 inline Status ends_inside(const std::string& where, const Element& e) {
-  return {StatusCode::unreadable_file, "PLY data ends inside " + where + " of " + std::to_string(e.count)};
+  return damaged_file("PLY data ends inside " + where + " of " + std::to_string(e.count));
 }
 
 } // namespace hullcover::detail

@@ -14,11 +14,11 @@
 
 namespace hullcover::detail {
 
-/// The unsigned 32-bit little-endian number in `bytes[0..3]` (GLB chunk
-/// lengths, a binary STL's triangle count).
 /// A file that is not what it says: `unreadable_file` with `why`.
 inline Status damaged_file(const std::string& why) { return {StatusCode::unreadable_file, why}; }
 
+/// The unsigned 32-bit little-endian number in `bytes[0..3]` (GLB chunk
+/// lengths, a binary STL's triangle count).
 inline std::uint32_t little_endian_u32(const unsigned char* bytes) {
   return static_cast<std::uint32_t>(bytes[0]) | static_cast<std::uint32_t>(bytes[1]) << 8 |
          static_cast<std::uint32_t>(bytes[2]) << 16 | static_cast<std::uint32_t>(bytes[3]) << 24;
