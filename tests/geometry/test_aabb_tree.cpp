@@ -191,6 +191,35 @@ TEST(AabbTree, AnEmptyQueryOverlapsNothing) {
   EXPECT_TRUE(got.empty());
 }
 
+TEST(AabbTree, BoxesSpreadEachTwiceAsFarAsTheLastKeepTheTreeShallow) {
+  // Centres at 2^i: every surface-area split parts the farthest box from
+  // the rest, a tree one level per box, deeper than a walk's stack. The
+  // builder turns to median splits below a fixed depth (found by writing
+  // this test: without that, a walk overran its stack, which the assertion
+  // on its depth caught).
+  constexpr int kBoxes = 1000;
+  std::vector<Aabb> boxes;
+  for (int i = 0; i < kBoxes; ++i) {
+    const double at = std::ldexp(1.0, i);
+    boxes.push_back(box(V(at, 0, 0), V(1.5 * at, 1, 1)));
+  }
+  const AabbTree tree(boxes);
+  for (int i = 0; i < kBoxes; ++i) {
+    std::vector<int> got;
+    tree.overlapping(boxes[i], got);
+    ASSERT_EQ(got, std::vector<int>{i});
+  }
+  // A segment along all of them, meeting none: every box is asked once.
+  std::vector<int> asked;
+  tree.nearest_along_segment(V(0, 0.5, 0.5), V(std::ldexp(1.0, kBoxes), 0.5, 0.5), 0.0, 0.0, [&](int i) {
+    asked.push_back(i);
+    return kInf;
+  });
+  ASSERT_EQ(asked.size(), size_t(kBoxes));
+  std::sort(asked.begin(), asked.end());
+  for (int i = 0; i < kBoxes; ++i) EXPECT_EQ(asked[i], i);
+}
+
 // Where segment from-to (s in [0, 1]) enters `b` grown by `margin`, 0 when
 // it starts inside, infinity when it misses: clipped by division per axis.
 double reference_entry(const V& from, const V& to, const Aabb& b, double margin) {

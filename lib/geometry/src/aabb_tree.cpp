@@ -8,6 +8,9 @@
 namespace hullcover {
 namespace {
 constexpr int kLeafSize = 4;
+// Candidate split planes per axis: more finds slightly better splits, at a
+// longer build.
+constexpr int kSplitBins = 16;
 
 // The greatest float at or below `value` (-infinity below the float range,
 // the largest float above it: a double beyond the range has no float
@@ -39,23 +42,96 @@ AabbTree::AabbTree(const std::vector<Aabb>& boxes) {
   if (items_.empty()) return;
   std::vector<Eigen::Vector3d> centres(boxes.size());
   for (size_t i = 0; i < boxes.size(); ++i) centres[i] = 0.5 * (boxes[i].min + boxes[i].max);
-  // Leaves hold 2 to kLeafSize items (median splits), so there are at most
-  // n / 2 leaves and one inner node fewer.
+  // Median splits would give at most n / 2 leaves; a surface-area split may
+  // leave one item alone, so this is a first guess, not a bound.
   nodes_.reserve(items_.size() / 2 + 1);
   Aabb root_box;
-  root_ = build(0, static_cast<int>(items_.size()), boxes, centres, root_box);
+  root_ = build(0, static_cast<int>(items_.size()), 0, boxes, centres, root_box);
   root_box_ = outward(root_box);
   // A leaf's boxes side by side, in the order its items are listed.
   leaf_boxes_.reserve(items_.size());
   for (int item : items_) leaf_boxes_.push_back(boxes[item]);
 }
 
-AabbTree::ChildRef AabbTree::build(int begin, int end, const std::vector<Aabb>& boxes,
+namespace {
+// Half the surface area of a box (0 when empty): what a split is priced by.
+double half_area(const Aabb& box) {
+  if (box.empty()) return 0.0;
+  const Eigen::Vector3d extent = box.max - box.min;
+  return extent.x() * extent.y() + extent.y() * extent.z() + extent.z() * extent.x();
+}
+
+// `box` grown to hold `other`; unchanged by an empty `other` (whose corners
+// are infinities).
+void extend_by_box(Aabb& box, const Aabb& other) {
+  if (other.empty()) return;
+  box.extend(other.min);
+  box.extend(other.max);
+}
+} // namespace
+
+int AabbTree::surface_area_split(int begin, int end, const std::vector<Aabb>& boxes,
+                                 const std::vector<Eigen::Vector3d>& centres, const Aabb& centre_box) {
+  // A line or a box meets a child about in proportion to its surface area,
+  // so the split that minimises area x items on both sides opens the fewest
+  // items per walk. Binned, as in most ray-tracing trees: kSplitBins
+  // candidate planes per axis, each priced in one pass over the items.
+  double best_cost = std::numeric_limits<double>::infinity();
+  int best_axis = -1, best_bin = -1;
+  const Eigen::Vector3d extent = centre_box.max - centre_box.min;
+  const Eigen::Vector3d scale = Eigen::Vector3d::Constant(kSplitBins).cwiseQuotient(extent);
+  // The bin of an item's centre on an axis; the top edge goes to the last bin.
+  const auto bin_of = [&](int item, int axis) {
+    return std::min(kSplitBins - 1, static_cast<int>((centres[item][axis] - centre_box.min[axis]) * scale[axis]));
+  };
+  for (int axis = 0; axis < 3; ++axis) {
+    // No plane along an axis the centres do not spread on, nor along one
+    // too long for a double (its scale would be 0).
+    if (!(extent[axis] > 0.0) || !std::isfinite(extent[axis])) continue;
+    Aabb bin_box[kSplitBins];
+    int bin_count[kSplitBins] = {};
+    for (int i = begin; i < end; ++i) {
+      const int bin = bin_of(items_[i], axis);
+      ++bin_count[bin];
+      extend_by_box(bin_box[bin], boxes[items_[i]]);
+    }
+    // Above each plane, swept from the top; below it, from the bottom.
+    double above_area[kSplitBins] = {};
+    int above_count[kSplitBins] = {};
+    Aabb above;
+    int count = 0;
+    for (int bin = kSplitBins - 1; bin > 0; --bin) {
+      extend_by_box(above, bin_box[bin]);
+      count += bin_count[bin];
+      above_area[bin] = half_area(above);
+      above_count[bin] = count;
+    }
+    Aabb below;
+    int below_count = 0;
+    for (int bin = 0; bin + 1 < kSplitBins; ++bin) {
+      extend_by_box(below, bin_box[bin]);
+      below_count += bin_count[bin];
+      if (below_count == 0 || above_count[bin + 1] == 0) continue;
+      // A NaN cost (an infinite area) is never below the best.
+      const double cost = half_area(below) * below_count + above_area[bin + 1] * above_count[bin + 1];
+      if (cost < best_cost) {
+        best_cost = cost;
+        best_axis = axis;
+        best_bin = bin;
+      }
+    }
+  }
+  if (best_axis < 0) return -1;
+  const auto middle = std::partition(items_.begin() + begin, items_.begin() + end,
+                                     [&](int item) { return bin_of(item, best_axis) <= best_bin; });
+  return static_cast<int>(middle - items_.begin());
+}
+
+AabbTree::ChildRef AabbTree::build(int begin, int end, int depth, const std::vector<Aabb>& boxes,
                                    const std::vector<Eigen::Vector3d>& centres, Aabb& box) {
   Aabb centre_box;
   for (int i = begin; i < end; ++i) {
-    box.extend(boxes[items_[i]].min);
-    box.extend(boxes[items_[i]].max);
+    extend_by_box(box, boxes[items_[i]]);
     centre_box.extend(centres[items_[i]]);
   }
   if (end - begin <= kLeafSize) return ChildRef{begin, end - begin};
@@ -63,15 +139,20 @@ AabbTree::ChildRef AabbTree::build(int begin, int end, const std::vector<Aabb>& 
   // it: a walk going left reads the next cache line.
   const int index = static_cast<int>(nodes_.size());
   nodes_.emplace_back();
-  Eigen::Index axis = 0;
-  (centre_box.max - centre_box.min).maxCoeff(&axis);
-  const int middle = begin + (end - begin) / 2;
-  std::nth_element(items_.begin() + begin, items_.begin() + middle, items_.begin() + end, [&](int a, int b) {
-    return centres[a][axis] < centres[b][axis] || (centres[a][axis] == centres[b][axis] && a < b);
-  });
+  int middle = depth < kMaxSurfaceAreaDepth ? surface_area_split(begin, end, boxes, centres, centre_box) : -1;
+  if (middle <= begin || middle >= end) {
+    // All centres in one bin (or too deep): the median on the longest axis,
+    // which halves the items and so bounds the depth.
+    Eigen::Index axis = 0;
+    (centre_box.max - centre_box.min).maxCoeff(&axis);
+    middle = begin + (end - begin) / 2;
+    std::nth_element(items_.begin() + begin, items_.begin() + middle, items_.begin() + end, [&](int a, int b) {
+      return centres[a][axis] < centres[b][axis] || (centres[a][axis] == centres[b][axis] && a < b);
+    });
+  }
   Aabb left_box, right_box;
-  const ChildRef left = build(begin, middle, boxes, centres, left_box);
-  const ChildRef right = build(middle, end, boxes, centres, right_box);
+  const ChildRef left = build(begin, middle, depth + 1, boxes, centres, left_box);
+  const ChildRef right = build(middle, end, depth + 1, boxes, centres, right_box);
   Node& node = nodes_[index];
   node.box[0] = outward(left_box);
   node.box[1] = outward(right_box);

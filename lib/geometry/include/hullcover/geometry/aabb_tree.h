@@ -116,13 +116,27 @@ private:
   template <class Box>
   static double segment_box_entry(const Eigen::Vector3d& from, const Eigen::Vector3d& inverse, const Box& box,
                                   double margin);
-  /// Deepest traversal stack: the tree is balanced (median splits), so its
-  /// depth is about log2(n / 4).
+  /// Deepest traversal stack: a walk holds at most one entry per level
+  /// more than the tree's depth.
   static constexpr int kMaxDepth = 128;
 
-  /// Builds the subtree over items_[begin, end); returns it and its box.
-  ChildRef build(int begin, int end, const std::vector<Aabb>& boxes, const std::vector<Eigen::Vector3d>& centres,
-                 Aabb& box);
+  /// Below this depth nodes split where the surface-area cost is least;
+  /// from it on, at the median, which halves the items: the depth then
+  /// stays under kMaxSurfaceAreaDepth + log2(n) + 1 < kMaxDepth for any n
+  /// an int counts.
+  static constexpr int kMaxSurfaceAreaDepth = 64;
+  static_assert(kMaxSurfaceAreaDepth + 32 < kMaxDepth, "a walk's stack holds the deepest tree");
+
+  /// Reorders items_[begin, end) about the binned split plane of least
+  /// surface-area cost and returns where the second part starts, or -1 when
+  /// no plane parts them (every centre in one bin, or extents too large to
+  /// bin).
+  int surface_area_split(int begin, int end, const std::vector<Aabb>& boxes,
+                         const std::vector<Eigen::Vector3d>& centres, const Aabb& centre_box);
+  /// Builds the subtree over items_[begin, end), `depth` levels below the
+  /// root; returns it and its box.
+  ChildRef build(int begin, int end, int depth, const std::vector<Aabb>& boxes,
+                 const std::vector<Eigen::Vector3d>& centres, Aabb& box);
 
   std::vector<Node> nodes_;       ///< the inner nodes
   ChildRef root_{0, 0};           ///< the root: an inner node, or the only leaf
