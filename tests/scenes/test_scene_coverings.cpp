@@ -8,9 +8,11 @@
 // five larger ones at twice it, to keep pandora and the gear fast
 // (scripts/compare_conditions.sh audits all eight at the defaults).
 // On collision-world and nav_test the paper's conditions alone are shown to
-// lose space where exact mode does not.
+// lose space where exact mode does not. The same covering is then exported
+// for the engines and checked (test_scene_exports.cpp).
 
 #include "covering_fixture.h"
+#include "scene_export_checks.h"
 #include "shared_data.h"
 
 #include "hullcover/bvh/covering_hulls.h"
@@ -123,7 +125,7 @@ long lost_space(const test::Decomposed& d, const Worlds& w, double spacing_per_d
 
 class SharedSceneCovering : public ::testing::TestWithParam<SceneCase> {};
 
-TEST_P(SharedSceneCovering, EveryHullIsValidAndNoSpaceOrContactIsLost) {
+TEST_P(SharedSceneCovering, EveryHullIsValidNoSpaceOrContactIsLostAndEveryExportReadsBack) {
   HULLCOVER_REQUIRE_SHARED_SCENES(dir);
   const SceneCase& c = GetParam();
   const Result<ImportedMesh> imported = import_mesh(dir + "/" + c.scene);
@@ -168,6 +170,11 @@ TEST_P(SharedSceneCovering, EveryHullIsValidAndNoSpaceOrContactIsLost) {
   ASSERT_TRUE(behaviour.ok());
   EXPECT_GT(behaviour.value().both_touch, 50);
   EXPECT_EQ(behaviour.value().missed, 0);
+
+  {
+    SCOPED_TRACE("engine exports of the covering");
+    check_engine_exports(c.scene, d->prepared, d->covering);
+  }
 
   if (c.paper_loses) {
     DecomposeOptions paper;

@@ -2,16 +2,16 @@
 // the Khronos validator and reads back in Assimp with every hull; the Unreal
 // and Godot OBJs read back as the hulls alone; and the audit of the .glb,
 // allowed the stated flat-hull thickness, finds nothing farther from the
-// mesh than that thickness and no face uncovered.
+// mesh than that thickness and no face uncovered. Run on the covering
+// test_scene_coverings.cpp makes of each scene, so that each is decomposed
+// once.
 
-#include "shared_data.h"
+#include "scene_export_checks.h"
 #include "temp_dir.h"
 
 #include "export/collider_export.h"
 
 #include "hullcover/bvh/covering_hulls.h"
-#include "hullcover/covering/covering.h"
-#include "hullcover/mesh/mesh_import.h"
 #include "hullcover/validate/audit.h"
 
 #include <assimp/Importer.hpp>
@@ -34,25 +34,17 @@ std::string file_text(const std::string& path) {
   return s.str();
 }
 
-class SharedSceneExport : public ::testing::TestWithParam<const char*> {};
+} // namespace
 
-TEST_P(SharedSceneExport, EveryFormatReadsBackAndTheAuditBoundsTheLossByTheThickness) {
-  HULLCOVER_REQUIRE_SHARED_SCENES(dir);
-  const std::string scene = GetParam();
-  const Result<ImportedMesh> imported = import_mesh(dir + "/" + scene);
-  ASSERT_TRUE(imported.ok()) << imported.status().message();
-  const Result<PreparedMesh> prepared = prepare_mesh(imported.value().mesh, std::nullopt);
-  ASSERT_TRUE(prepared.ok()) << prepared.status().message();
-  const Result<Covering> covering = decompose(prepared.value(), {});
-  ASSERT_TRUE(covering.ok()) << covering.status().message();
-  const std::vector<bvh::RuntimeHull> hulls = bvh::runtime_hulls(covering.value());
-  const double tol = prepared.value().tolerance.length;
+void check_engine_exports(const std::string& scene, const PreparedMesh& prepared, const Covering& covering) {
+  const std::vector<bvh::RuntimeHull> hulls = bvh::runtime_hulls(covering);
+  const double tol = prepared.tolerance.length;
   const test::TempDir out;
 
   app::ColliderExportOptions glb_options;
   glb_options.with_scene = true;
   const Result<app::ColliderExportReport> glb =
-      app::export_colliders(hulls, tol, &prepared.value().mesh, glb_options, out.path("hulls.glb"));
+      app::export_colliders(hulls, tol, &prepared.mesh, glb_options, out.path("hulls.glb"));
   ASSERT_TRUE(glb.ok()) << glb.status().message();
   std::printf("%s: %zu hulls, %d flat given thickness %.6g (%d split), tol %.6g\n", scene.c_str(), hulls.size(),
               glb.value().flat_thickened, glb.value().thickness, glb.value().split, tol);
@@ -83,7 +75,7 @@ TEST_P(SharedSceneExport, EveryFormatReadsBackAndTheAuditBoundsTheLossByTheThick
     if (unreal) names.ucx_name = "Level";
     else names.godot_names = true;
     const std::string path = out.path(unreal ? "ucx.obj" : "godot.obj");
-    ASSERT_TRUE(app::export_colliders(hulls, tol, &prepared.value().mesh, names, path).ok());
+    ASSERT_TRUE(app::export_colliders(hulls, tol, &prepared.mesh, names, path).ok());
     const Result<validate::HullSet> set = validate::load_hull_set(path);
     ASSERT_TRUE(set.ok()) << set.status().message();
     EXPECT_EQ(set.value().hulls.size(), hulls.size()) << path;
@@ -95,7 +87,7 @@ TEST_P(SharedSceneExport, EveryFormatReadsBackAndTheAuditBoundsTheLossByTheThick
   ASSERT_EQ(set.value().hulls.size(), hulls.size());
   validate::AuditOptions audit;
   audit.probe.allowance.max_deviation = glb.value().thickness;
-  const Result<validate::AuditReport> report = validate::run_audit(prepared.value(), set.value(), audit);
+  const Result<validate::AuditReport> report = validate::run_audit(prepared, set.value(), audit);
   ASSERT_TRUE(report.ok()) << report.status().message();
   const validate::AllowanceReport& a = report.value().probe.allowance;
   std::printf("%s: audit of the .glb: farthest lost point %.6g from the mesh (thickness %.6g), %ld strict lost rays, "
@@ -107,10 +99,4 @@ TEST_P(SharedSceneExport, EveryFormatReadsBackAndTheAuditBoundsTheLossByTheThick
   EXPECT_TRUE(report.value().clean());
 }
 
-INSTANTIATE_TEST_SUITE_P(SharedScenes, SharedSceneExport, ::testing::ValuesIn(test::kSharedScenes),
-                         [](const ::testing::TestParamInfo<const char*>& param_info) {
-                           return test::file_test_name(param_info.param);
-                         });
-
-} // namespace
 } // namespace hullcover
