@@ -33,9 +33,9 @@ namespace hullcover {
 namespace {
 
 using V = Eigen::Vector3d;
-constexpr double kTol = 1e-3;
+constexpr double kPrismTol = 1e-3;
 // A prism thinner than this is made flat (planar_prism.cpp).
-constexpr double kMinThickness = kMinPrismThicknessInTolerances * kTol;
+constexpr double kMinThickness = kMinPrismThicknessInTolerances * kPrismTol;
 
 using test::add_triangle;
 using test::random_unit;
@@ -90,12 +90,12 @@ struct Prism {
 
 Prism build_prism(const Scene& s, double cap, ValidityMode mode = ValidityMode::paper, double bar_half_length = 0.2) {
   Prism p;
-  p.scene = std::make_unique<test::IndexedScene>(prepare_mesh(s.mesh, kTol).value(),
+  p.scene = std::make_unique<test::IndexedScene>(prepare_mesh(s.mesh, kPrismTol).value(),
                                                  BarOptions{bar_half_length, false, mode, 0.5});
   std::vector<int> patch_vertices;
   for (int f = 0; f < s.patch_faces; ++f)
     for (int k = 0; k < 3; ++k) patch_vertices.push_back(p.scene->prepared.mesh.triangles[f][k]);
-  p.polygon = make_flat_polygon(p.scene->prepared.mesh.positions, patch_vertices, s.frame.normal, kTol);
+  p.polygon = make_flat_polygon(p.scene->prepared.mesh.positions, patch_vertices, s.frame.normal, kPrismTol);
   const int patch_faces = s.patch_faces;
   const auto in_patch = [patch_faces](int f) { return f < patch_faces; };
   std::vector<int> scratch;
@@ -103,7 +103,7 @@ Prism build_prism(const Scene& s, double cap, ValidityMode mode = ValidityMode::
   p.allowed = allowed_prism_thickness(p.scene->index, p.polygon, p.sides, in_patch, cap, scratch);
   p.used = p.allowed;
   ConvexHullBuilder hulls;
-  p.polytope = prism_polytope(p.polygon, p.sides, p.used, kTol, hulls);
+  p.polytope = prism_polytope(p.polygon, p.sides, p.used, kPrismTol, hulls);
   return p;
 }
 
@@ -202,14 +202,14 @@ TEST(PlanarPrism, SwallowsNothingOnRandomScenes) {
       for (int i = 0; i <= 12; ++i)
         for (int j = 0; i + j <= 12; ++j) {
           const V x = a + (b - a) * (i / 12.0) + (c - a) * (j / 12.0);
-          ASSERT_LE(depth_inside(p.polytope, x), kTol) << "face " << f << " at " << i << "," << j;
+          ASSERT_LE(depth_inside(p.polytope, x), kPrismTol) << "face " << f << " at " << i << "," << j;
         }
     }
     for (const BoundaryBar& bar : p.scene->index.bars)
       for (int i = 0; i <= 40; ++i)
         for (int j = 0; j <= (bar.is_sheet() ? 10 : 0); ++j) {
           const V x = bar.a + (bar.b - bar.a) * (i / 40.0) + bar.along * (j / 10.0);
-          ASSERT_LE(depth_inside(p.polytope, x), kTol) << "bar of edge " << bar.edge;
+          ASSERT_LE(depth_inside(p.polytope, x), kPrismTol) << "bar of edge " << bar.edge;
         }
   }
   // The scenes should exercise every branch.
@@ -262,7 +262,7 @@ TEST(PlanarPrism, BevelKeepsTheCapBesideAFaceLeavingAnEdgeInward) {
     ASSERT_LT(j, p.polygon.corners.size());
     EXPECT_LT(p.sides[j].normal.dot(p.polygon.sides[j].normal), 1.0 - 1e-6) << "edge " << j << " not beveled";
     for (int k = 0; k <= 20; ++k)
-      EXPECT_LE(depth_inside(p.polytope, a + (c - a) * (k / 20.0)), kTol);
+      EXPECT_LE(depth_inside(p.polytope, a + (c - a) * (k / 20.0)), kPrismTol);
   }
 }
 
@@ -272,7 +272,7 @@ TEST(PlanarPrism, FaceBehindAtDepthDLimitsTheThicknessToD) {
   const double cap = 0.5;
   for (int trial = 0; trial < 30; ++trial) {
     Scene s = patch_scene(rng);
-    const double d = 3.0 * kTol + (cap - 3.0 * kTol) * unit(rng);
+    const double d = 3.0 * kPrismTol + (cap - 3.0 * kPrismTol) * unit(rng);
     add_parallel_face(s, d, trial % 2 == 0);
     const Prism p = build_prism(s, cap);
     EXPECT_NEAR(p.allowed, d, 1e-9) << "trial " << trial;
@@ -291,7 +291,7 @@ TEST(PlanarPrism, BackToBackCoincidentFaceGivesThicknessZero) {
   for (int trial = 0; trial < 20; ++trial) {
     for (bool facing_polygon : {false, true}) {
       Scene s = patch_scene(rng);
-      add_parallel_face(s, 0.5 * kTol * sym(rng), facing_polygon);  // within tol of the polygon's plane
+      add_parallel_face(s, 0.5 * kPrismTol * sym(rng), facing_polygon);  // within tol of the polygon's plane
       const Prism p = build_prism(s, 0.4);
       if (facing_polygon) {
         // Its normal points away from the prism: a second copy of the

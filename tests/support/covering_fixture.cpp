@@ -83,4 +83,8 @@ std::string finding_names(const std::vector<validate::AuditFinding>& findings) {
   return s;
 }
 
+bool has_finding(const validate::AuditReport& report, validate::AuditFinding finding) {
+  return std::find(report.findings.begin(), report.findings.end(), finding) != report.findings.end();
+}
+
 } // namespace hullcover::test

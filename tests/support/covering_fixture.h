@@ -53,6 +53,9 @@ DecomposeOptions options_with_small_cells(const Mesh& mesh);
 /// The audit's findings by name, for failure messages.
 std::string finding_names(const std::vector<validate::AuditFinding>& findings);
 
+/// Whether the audit reported `finding`.
+bool has_finding(const validate::AuditReport& report, validate::AuditFinding finding);
+
 /// The covering as write_covering_obj writes it, byte for byte.
 std::string covering_obj_bytes(const Covering& covering);
 

@@ -36,10 +36,6 @@ AuditReport audit(const test::Decomposed& d, std::vector<bvh::RuntimeHull> hulls
   return r.ok() ? r.value() : AuditReport{};
 }
 
-bool has(const AuditReport& r, AuditFinding f) {
-  return std::find(r.findings.begin(), r.findings.end(), f) != r.findings.end();
-}
-
 TEST(AllowanceAudit, MaxDeviationFindsTheFarthestLostPointAndJudgesIt) {
   DecomposeOptions options;
   options.max_deviation = 2.0 * kGrooveDepth;
@@ -56,12 +52,12 @@ TEST(AllowanceAudit, MaxDeviationFindsTheFarthestLostPointAndJudgesIt) {
   // Held to a quarter of the groove's depth, the same hulls take too much,
   // and the farthest point found lies in the groove.
   const AuditReport tight = audit(*d, hulls, {std::nullopt, 0.25 * kGrooveDepth});
-  EXPECT_TRUE(has(tight, AuditFinding::deviation_exceeded));
+  EXPECT_TRUE(test::has_finding(tight, AuditFinding::deviation_exceeded));
   EXPECT_GT(tight.probe.allowance.beyond_deviation, 0);
   EXPECT_NEAR(tight.probe.allowance.farthest_point.x(), 1.1, 0.1);
   EXPECT_LT(tight.probe.allowance.farthest_point.y(), 0.0);
   // And exact mode calls it lost space.
-  EXPECT_TRUE(has(audit(*d, hulls, {}), AuditFinding::front_space_lost));
+  EXPECT_TRUE(test::has_finding(audit(*d, hulls, {}), AuditFinding::front_space_lost));
 }
 
 TEST(AllowanceAudit, AgentRadiusPassesTheAgentCoveringAndCatchesAFloatingHull) {
@@ -82,7 +78,7 @@ TEST(AllowanceAudit, AgentRadiusPassesTheAgentCoveringAndCatchesAFloatingHull) {
   // above it, so it takes reachable space; the audit says where.
   hulls.push_back(test::box_hull(V(0.3, 0.4, 0.3), V(0.6, 0.7, 0.6)));
   const AuditReport caught = audit(*d, hulls, {options.agent_radius, std::nullopt});
-  EXPECT_TRUE(has(caught, AuditFinding::reachable_space_lost));
+  EXPECT_TRUE(test::has_finding(caught, AuditFinding::reachable_space_lost));
   EXPECT_EQ(caught.probe.allowance.deepest_reach.hull, static_cast<int>(hulls.size()) - 1);
   EXPECT_GT(caught.probe.allowance.deepest_reach.clearance, *options.agent_radius - d->tol());
 }
@@ -115,12 +111,12 @@ TEST(AllowanceAudit, ASlotNarrowerThanTheAgentMayBeFilledAWiderOneMayNot) {
   }
   ASSERT_EQ(hulls.size(), 7u);
   const AuditReport exact = audit(*d, hulls, {});
-  EXPECT_TRUE(has(exact, AuditFinding::front_space_lost));
+  EXPECT_TRUE(test::has_finding(exact, AuditFinding::front_space_lost));
   const AuditReport wide_agent = audit(*d, hulls, {0.3, std::nullopt});
   EXPECT_EQ(wide_agent.probe.allowance.reach_lost, 0);
-  EXPECT_FALSE(has(wide_agent, AuditFinding::reachable_space_lost));
+  EXPECT_FALSE(test::has_finding(wide_agent, AuditFinding::reachable_space_lost));
   const AuditReport thin_agent = audit(*d, hulls, {0.15, std::nullopt});
-  EXPECT_TRUE(has(thin_agent, AuditFinding::reachable_space_lost));
+  EXPECT_TRUE(test::has_finding(thin_agent, AuditFinding::reachable_space_lost));
   EXPECT_EQ(thin_agent.probe.allowance.deepest_reach.hull, 2);
 }
 
@@ -219,7 +215,7 @@ TEST(AllowanceAudit, APointBesideAColumnIsJudgedOnTheFacesOwnRaysNotOneSlippingP
   EXPECT_EQ(agent.undecided, 0);
   EXPECT_EQ(agent.reach_lost, 0) << "ball at " << agent.deepest_reach.centre.transpose() << " reaches "
                                  << agent.deepest_reach.depth << " into hull " << agent.deepest_reach.hull;
-  EXPECT_FALSE(has(r.value(), AuditFinding::reachable_space_lost));
+  EXPECT_FALSE(test::has_finding(r.value(), AuditFinding::reachable_space_lost));
 }
 
 // A one-sided wall 20 high (facing away), a hull filling the void behind it

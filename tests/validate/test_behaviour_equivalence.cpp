@@ -59,10 +59,6 @@ AuditReport audit_with(const PreparedMesh& prepared, const bvh::RuntimeHull& sol
   return r.ok() ? r.value() : AuditReport{};
 }
 
-bool has(const AuditReport& r, AuditFinding f) {
-  return std::find(r.findings.begin(), r.findings.end(), f) != r.findings.end();
-}
-
 TEST(Behaviour, AProxyReachingThroughAnOpeningIntoEnclosedSpaceTakesNothingFree) {
   constexpr double kDeathtrapTolerance = 0.011571274778519436;
   Result<PreparedMesh> prepared = prepare_mesh(deathtrap_rail(), kDeathtrapTolerance);
@@ -74,14 +70,14 @@ TEST(Behaviour, AProxyReachingThroughAnOpeningIntoEnclosedSpaceTakesNothingFree)
   EXPECT_GT(b.enclosed_false_contacts, 0) << "no proxy reached the rail: the cut tests nothing";
   EXPECT_EQ(b.deep_false_contacts, 0) << b.deepest_false.depth << " into hull " << b.deepest_false.hull << " from "
                                       << b.deepest_false.centre.transpose();
-  EXPECT_FALSE(has(rail, AuditFinding::false_contacts));
+  EXPECT_FALSE(test::has_finding(rail, AuditFinding::false_contacts));
   EXPECT_EQ(rail.probe.front.lost + rail.probe.opening.lost, 0);  // the rays agree: enclosed
 
   // Control: a hull in the free space behind the back walls, where the
   // proxies stand, is lost space to both.
   const AuditReport floating = audit_with(prepared.value(), test::box_hull(V(-343, 76, -2), V(-340, 84, 2)));
   EXPECT_GT(floating.behaviour.deep_false_contacts, 0);
-  EXPECT_TRUE(has(floating, AuditFinding::false_contacts));
+  EXPECT_TRUE(test::has_finding(floating, AuditFinding::false_contacts));
   EXPECT_GT(floating.probe.front.lost, 0);
 }
 

@@ -7,7 +7,6 @@
 namespace hullcover::app::render {
 namespace {
 
-constexpr double kDegrees = M_PI / 180.0;
 // Below this length the viewing direction has no horizontal part worth a
 // direction (a view within a hundredth of a degree of vertical).
 constexpr double kLeastHorizontalLength = 1e-4;
@@ -41,11 +40,11 @@ bool CutAway::is_roof(const std::vector<Eigen::Vector3d>& vertices) const {
 
 bool CutAway::is_front_wall(const std::vector<Eigen::Vector3d>& vertices, const Eigen::Vector3d& normal) const {
   if (horizontal_forward_.isZero() || !normal.allFinite() || normal.isZero()) return false;
-  if (std::abs(normal.dot(up_)) > std::sin(kWallTiltDeg * kDegrees)) return false;
+  if (std::abs(normal.dot(up_)) > std::sin(kWallTiltDeg * kRadiansPerDegree)) return false;
   Eigen::Vector3d towards_camera = (normal - normal.dot(up_) * up_).normalized();
   // The camera looks along horizontal_forward_: a face it sees points against it.
   if (towards_camera.dot(horizontal_forward_) > 0.0) towards_camera = -towards_camera;
-  if (-towards_camera.dot(horizontal_forward_) < std::cos(kWallFacingDeg * kDegrees)) return false;
+  if (-towards_camera.dot(horizontal_forward_) < std::cos(kWallFacingDeg * kRadiansPerDegree)) return false;
   const auto [low, high] = box_extent_along(box_, towards_camera);
   const double slice_start = high - kFrontCutFraction * (high - low);
   return std::all_of(vertices.begin(), vertices.end(),

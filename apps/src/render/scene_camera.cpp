@@ -10,7 +10,6 @@
 namespace hullcover::app::render {
 namespace {
 
-constexpr double kDegrees = M_PI / 180.0;
 // Half the vertical field of view: wide enough for depth to show, narrow
 // enough that near walls do not balloon.
 constexpr double kHalfFieldOfViewDeg = 18.0;
@@ -74,7 +73,7 @@ Result<ImageSize> parse_image_size(const std::string& text) {
 }
 
 SceneCamera::SceneCamera(const Aabb& box, const SceneAxes& axes, const ViewAngles& view, const ImageSize& size) {
-  const double azimuth = view.azimuth_deg * kDegrees, elevation = view.elevation_deg * kDegrees;
+  const double azimuth = view.azimuth_deg * kRadiansPerDegree, elevation = view.elevation_deg * kRadiansPerDegree;
   const Eigen::Vector3d ground = std::cos(azimuth) * axes.front + std::sin(azimuth) * axes.right;
   const Eigen::Vector3d to_camera = std::cos(elevation) * ground + std::sin(elevation) * axes.up;
   // The derivative of `to_camera` by elevation: unit, square to it, and
@@ -85,7 +84,7 @@ SceneCamera::SceneCamera(const Aabb& box, const SceneAxes& axes, const ViewAngle
 
   const Eigen::Vector3d centre = 0.5 * (box.min + box.max);
   const double radius = std::max(0.5 * box.diagonal(), std::numeric_limits<double>::min());
-  const double distance = radius / std::sin(kHalfFieldOfViewDeg * kDegrees);
+  const double distance = radius / std::sin(kHalfFieldOfViewDeg * kRadiansPerDegree);
   eye_ = centre + distance * to_camera.normalized();
   near_depth_ = kNearDepthFraction * distance;
 

@@ -8,9 +8,13 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
 #include <string>
 
 namespace hullcover::app::render {
+
+/// Radians in one degree: views and cut-away angles are given in degrees.
+constexpr double kRadiansPerDegree = M_PI / 180.0;
 
 /// Which scene axis points up: game formats (OBJ, glTF) are y-up, CAD
 /// formats (STL) often z-up.
