@@ -49,6 +49,11 @@ int in_child(Work work) {
   return status;
 }
 
+// Set only in a forked child: the next rename raises SIGTERM just before
+// it, at the moment the finished file has its temporary name (see the
+// rename below).
+bool terminate_before_next_rename = false;
+
 // Big enough to pass stdio's buffer and any small file-size limit.
 const std::string kLargeContent(1 << 20, 'x');
 
@@ -136,5 +141,33 @@ TEST(AtomicFile, AKillDuringTheWriteLeavesTheOldFile) {
   }
 }
 
+TEST(AtomicFile, AStopSignalWhileTheFileHasItsTemporaryNameWaitsForTheRename) {
+  // The moment InterruptedOutputs can land in, rarely: before the signals
+  // were held there, a SIGTERM between naming the file and renaming it left
+  // `.out.txt.hullcover-PID-0` behind and the old content (this test showed
+  // it).
+  const TempDir dir;
+  const std::string path = dir.write("out.txt", "old\n");
+  const int status = in_child([&] {
+    terminate_before_next_rename = true;
+    const Status s = write_file_atomically(path, std::string("new\n"));
+    return s.ok() ? 0 : 1;
+  });
+  ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << "the signal was never delivered";
+  EXPECT_EQ(read_whole(path), "new\n");
+  EXPECT_EQ(test::folder_entries(dir.path("")), std::set<std::string>{"out.txt"});
+}
+
 } // namespace
 } // namespace hullcover
+
+// The C library's rename, interposed for the test above: a definition in the
+// executable wins over the shared library's for the hullcover code linked
+// into it. Every other caller gets the plain rename.
+extern "C" int rename(const char* from, const char* to) noexcept {
+  if (hullcover::terminate_before_next_rename) {
+    hullcover::terminate_before_next_rename = false;
+    std::raise(SIGTERM);
+  }
+  return renameat(AT_FDCWD, from, AT_FDCWD, to);
+}

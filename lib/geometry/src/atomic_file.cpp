@@ -2,8 +2,10 @@
 
 #include <cerrno>
 #include <cstring>
+#include <csignal>
 #include <fcntl.h>
 #include <memory>
+#include <pthread.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -42,10 +44,7 @@ public:
   TemporaryFile(const DestinationParts& destination) : destination_(destination) {}
   TemporaryFile(const TemporaryFile&) = delete;
   TemporaryFile& operator=(const TemporaryFile&) = delete;
-  ~TemporaryFile() {
-    if (stream_ != nullptr) std::fclose(stream_);
-    if (!named_path_.empty()) ::unlink(named_path_.c_str());
-  }
+  ~TemporaryFile() { discard(); }
 
   // Opens the stream; errno tells why when it returns false.
   bool open() {
@@ -72,18 +71,32 @@ public:
 
   std::FILE* stream() const { return stream_; }
 
-  // Flushes the content to the disk and closes the stream; errno tells why
-  // when it returns false. A full disk shows here at the latest.
+  // Flushes the content to the disk; errno tells why when it returns false.
+  // A full disk shows here at the latest.
   bool finish_content() {
     errno = 0;
     if (std::fflush(stream_) != 0 || std::ferror(stream_) != 0 || ::fsync(fileno(stream_)) != 0) {
       if (errno == 0) errno = EIO;  // an earlier write set the error flag and errno moved on
       return false;
     }
+    return true;
+  }
+
+  // Gives the finished file its temporary name (an unnamed file gets one
+  // now) and closes the stream; errno tells why when it returns false.
+  bool name_and_close() {
     if (named_path_.empty()) return give_name();  // the name comes from the open descriptor
     const bool closed = std::fclose(stream_) == 0;
     stream_ = nullptr;
     return closed;
+  }
+
+  // Closes the stream and removes the temporary name, if any, now.
+  void discard() {
+    if (stream_ != nullptr) std::fclose(stream_);
+    stream_ = nullptr;
+    if (!named_path_.empty()) ::unlink(named_path_.c_str());
+    named_path_.clear();
   }
 
   // Renames the finished file over `path`; errno tells why when it fails.
@@ -121,6 +134,30 @@ private:
   std::string named_path_;
 };
 
+// Holds back, on this thread, the signals that stop a program by default
+// from a terminal or a supervisor (SIGINT, SIGTERM, SIGHUP, SIGQUIT) for as
+// long as it lives: one that arrives meanwhile is delivered when it ends.
+// Used while a finished file has its temporary name in the destination's
+// folder, so that a stopped run never leaves that name behind.
+class TerminationSignalsHeld {
+public:
+  TerminationSignalsHeld() {
+    sigset_t held;
+    sigemptyset(&held);
+    for (const int signal_number : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) sigaddset(&held, signal_number);
+    holding_ = ::pthread_sigmask(SIG_BLOCK, &held, &previous_) == 0;
+  }
+  TerminationSignalsHeld(const TerminationSignalsHeld&) = delete;
+  TerminationSignalsHeld& operator=(const TerminationSignalsHeld&) = delete;
+  ~TerminationSignalsHeld() {
+    if (holding_) ::pthread_sigmask(SIG_SETMASK, &previous_, nullptr);
+  }
+
+private:
+  sigset_t previous_{};
+  bool holding_ = false;
+};
+
 } // namespace
 
 Status write_file_atomically(const std::string& path, const FileContentWriter& write_content) {
@@ -129,7 +166,19 @@ Status write_file_atomically(const std::string& path, const FileContentWriter& w
   if (!file.open()) return failure(path, "cannot create a file in its folder", errno);
   if (!write_content(file.stream())) return {StatusCode::unwritable_file, path + ": the content could not be made"};
   if (!file.finish_content()) return failure(path, "write failed", errno);
-  if (!file.replace(path)) return failure(path, "cannot replace it", errno);
+  // From naming the file to the rename, or to removing the name again, a
+  // stop signal waits.
+  const TerminationSignalsHeld held;
+  if (!file.name_and_close()) {
+    const int error_number = errno;
+    file.discard();
+    return failure(path, "write failed", error_number);
+  }
+  if (!file.replace(path)) {
+    const int error_number = errno;
+    file.discard();
+    return failure(path, "cannot replace it", error_number);
+  }
   return Status::success();
 }
 

@@ -5,13 +5,18 @@
 /// Every file hullcover writes (hull OBJ, JSON reports, `.hcw` runtime files,
 /// bench tables and plots) goes through `write_file_atomically`: the bytes go
 /// to an unnamed temporary file in the destination's folder, which is flushed
-/// to disk and only then renamed over the destination. A run killed by
-/// SIGINT, SIGTERM or SIGKILL, or stopped by a full disk, leaves the
-/// destination as it was (absent, or its previous content) and, on Linux
-/// file systems with O_TMPFILE (ext4, xfs, btrfs, tmpfs), no temporary file
-/// either: an unnamed file vanishes with the process. Elsewhere the temporary
-/// file is named `.NAME.hullcover-XXXXXX` beside the destination and a kill
-/// can leave it behind (never the destination half written).
+/// to disk and only then named and renamed over the destination. A run
+/// killed by SIGINT, SIGTERM or SIGKILL, or stopped by a full disk, leaves
+/// the destination as it was (absent, or its previous content) or complete
+/// and, on Linux file systems with O_TMPFILE (ext4, xfs, btrfs, tmpfs), no
+/// temporary file either: an unnamed file vanishes with the process, and
+/// SIGINT, SIGTERM, SIGHUP and SIGQUIT are held back on the writing thread
+/// from naming the file to the rename (microseconds), then delivered. Only
+/// SIGKILL in those microseconds, or such a signal taken by another thread
+/// that does not hold it back, can leave the name `.NAME.hullcover-PID-N`.
+/// Elsewhere the temporary file is named `.NAME.hullcover-XXXXXX` from the
+/// start and a kill during the write can leave it behind (never the
+/// destination half written).
 ///
 /// It lives in the geometry layer because that is the one layer every writer
 /// (the decomposer, the runtime's `.hcw` writer, the apps) links.
