@@ -220,6 +220,24 @@ TEST(AabbTree, BoxesSpreadEachTwiceAsFarAsTheLastKeepTheTreeShallow) {
   for (int i = 0; i < kBoxes; ++i) EXPECT_EQ(asked[i], i);
 }
 
+TEST(AabbTree, BoxesWithInfiniteCornersOrCentresASubnormalApartAreStillFound) {
+  // A box reaching to infinity has a NaN centre, and centres a subnormal
+  // apart give an infinite bin scale: the surface-area split must not turn
+  // either into a bin index (found in review: it cast them to int).
+  std::vector<Aabb> boxes;
+  for (int i = 0; i < 8; ++i) boxes.push_back(box(V(i, 0, 0), V(i + 0.5, 1, 1)));
+  boxes.push_back(box(V::Constant(-kInf), V::Constant(kInf)));
+  for (int i = 0; i < 8; ++i) boxes.push_back(box(V(5e-324 * i, 2, 2), V(5e-324 * i, 3, 3)));
+  const AabbTree tree(boxes);
+  for (size_t q = 0; q < boxes.size(); ++q) {
+    std::vector<int> got, expected;
+    tree.overlapping(boxes[q], got);
+    for (size_t i = 0; i < boxes.size(); ++i)
+      if (boxes_overlap(boxes[i], boxes[q])) expected.push_back(static_cast<int>(i));
+    ASSERT_EQ(sorted(got), expected) << "query " << q;
+  }
+}
+
 // Where segment from-to (s in [0, 1]) enters `b` grown by `margin`, 0 when
 // it starts inside, infinity when it misses: clipped by division per axis.
 double reference_entry(const V& from, const V& to, const Aabb& b, double margin) {

@@ -10,6 +10,7 @@
 #include <csignal>
 #include <fcntl.h>
 #include <fstream>
+#include <pthread.h>
 #include <set>
 #include <sstream>
 #include <sys/resource.h>
@@ -149,6 +150,12 @@ TEST(AtomicFile, AStopSignalWhileTheFileHasItsTemporaryNameWaitsForTheRename) {
   const TempDir dir;
   const std::string path = dir.write("out.txt", "old\n");
   const int status = in_child([&] {
+    // SIGTERM as a plain program gets it, whatever the runner set.
+    std::signal(SIGTERM, SIG_DFL);
+    sigset_t term;
+    sigemptyset(&term);
+    sigaddset(&term, SIGTERM);
+    pthread_sigmask(SIG_UNBLOCK, &term, nullptr);
     terminate_before_next_rename = true;
     const Status s = write_file_atomically(path, std::string("new\n"));
     return s.ok() ? 0 : 1;

@@ -80,13 +80,18 @@ int AabbTree::surface_area_split(int begin, int end, const std::vector<Aabb>& bo
   int best_axis = -1, best_bin = -1;
   const Eigen::Vector3d extent = centre_box.max - centre_box.min;
   const Eigen::Vector3d scale = Eigen::Vector3d::Constant(kSplitBins).cwiseQuotient(extent);
-  // The bin of an item's centre on an axis; the top edge goes to the last bin.
+  // The bin of an item's centre on an axis; the top edge goes to the last
+  // bin. Never cast outside an int's range: a box with infinite corners has
+  // a NaN centre (left out of centre_box), and an extent below 16 / DBL_MAX
+  // an infinite scale; both go to an end bin, the same in every pass.
   const auto bin_of = [&](int item, int axis) {
-    return std::min(kSplitBins - 1, static_cast<int>((centres[item][axis] - centre_box.min[axis]) * scale[axis]));
+    const double at = (centres[item][axis] - centre_box.min[axis]) * scale[axis];
+    if (at >= kSplitBins - 1) return kSplitBins - 1;
+    return at > 0.0 ? static_cast<int>(at) : 0;
   };
   for (int axis = 0; axis < 3; ++axis) {
     // No plane along an axis the centres do not spread on, nor along one
-    // too long for a double (its scale would be 0).
+    // too long for a double.
     if (!(extent[axis] > 0.0) || !std::isfinite(extent[axis])) continue;
     Aabb bin_box[kSplitBins];
     int bin_count[kSplitBins] = {};

@@ -8,6 +8,7 @@
 #include <pthread.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <utility>
 
 namespace hullcover {
 namespace {
@@ -117,9 +118,9 @@ private:
     const std::string descriptor = "/proc/self/fd/" + std::to_string(fileno(stream_));
     const std::string prefix = sibling_prefix() + std::to_string(::getpid()) + "-";
     for (int attempt = 0; attempt < kTemporaryNameAttempts; ++attempt) {
-      const std::string candidate = prefix + std::to_string(attempt);
+      std::string candidate = prefix + std::to_string(attempt);
       if (::linkat(AT_FDCWD, descriptor.c_str(), AT_FDCWD, candidate.c_str(), AT_SYMLINK_FOLLOW) == 0) {
-        named_path_ = candidate;
+        named_path_ = std::move(candidate);  // no allocation between naming the file and recording it
         const bool closed = std::fclose(stream_) == 0;
         stream_ = nullptr;
         return closed;

@@ -116,8 +116,8 @@ private:
   template <class Box>
   static double segment_box_entry(const Eigen::Vector3d& from, const Eigen::Vector3d& inverse, const Box& box,
                                   double margin);
-  /// Deepest traversal stack: a walk holds at most one entry per level
-  /// more than the tree's depth.
+  /// Deepest traversal stack: a walk holds at most the tree's depth + 1
+  /// entries.
   static constexpr int kMaxDepth = 128;
 
   /// Below this depth nodes split where the surface-area cost is least;

@@ -11,9 +11,11 @@
 /// and, on Linux file systems with O_TMPFILE (ext4, xfs, btrfs, tmpfs), no
 /// temporary file either: an unnamed file vanishes with the process, and
 /// SIGINT, SIGTERM, SIGHUP and SIGQUIT are held back on the writing thread
-/// from naming the file to the rename (microseconds), then delivered. Only
-/// SIGKILL in those microseconds, or such a signal taken by another thread
-/// that does not hold it back, can leave the name `.NAME.hullcover-PID-N`.
+/// from naming the file to the rename (microseconds), then delivered. In
+/// those microseconds, SIGKILL or another signal that ends a program, or one
+/// of those four taken by another thread of the process (a parallel bake
+/// writing its cell cache from worker threads), can still leave the name
+/// `.NAME.hullcover-PID-N` beside the destination.
 /// Elsewhere the temporary file is named `.NAME.hullcover-XXXXXX` from the
 /// start and a kill during the write can leave it behind (never the
 /// destination half written).
