@@ -69,13 +69,6 @@ constexpr std::uint64_t kSmallInputBytes = 1u << 20;
 constexpr const char* kCli11Footer = "Run with --help for more information.";
 constexpr const char* kRefusal = "outside the scene file's folder";
 
-std::string read_all(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::vector<std::string> message_lines(const std::string& err) {
   std::vector<std::string> lines;
   std::istringstream in(err);
@@ -150,7 +143,7 @@ std::vector<std::string> judge(const HostileCase& c, const ChildOutcome& o, cons
     for (const auto& entry : std::filesystem::recursive_directory_iterator(folder)) {
       // Regular files only: never a FIFO (the read would block) nor a link out.
       if (std::filesystem::is_regular_file(std::filesystem::symlink_status(entry.path())))
-        texts.emplace_back(entry.path().string(), read_all(entry.path().string()));
+        texts.emplace_back(entry.path().string(), slurp(entry.path().string()));
     }
   for (const auto& [where, text] : texts) {
     if (text.find(kCanarySecret) != std::string::npos) wrong.push_back("the canary's secret is in " + where);
@@ -263,7 +256,7 @@ TEST(HostileCorpus, NoCrashHangReadOutsideOrMemoryBlowUp) {
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const HostileCase& c = cases[i];
     const ChildOutcome& o = outcomes[i];
-    const std::string out = read_all(c.folder + "/stdout.txt"), err = read_all(c.folder + "/stderr.txt");
+    const std::string out = slurp(c.folder + "/stdout.txt"), err = slurp(c.folder + "/stderr.txt");
     const std::vector<std::string> wrong = judge(c, o, out, err, touched[i], passwd_line);
     const std::vector<std::string> lines = message_lines(err);
     std::string first = lines.empty() ? std::string() : lines.front();

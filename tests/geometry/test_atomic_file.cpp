@@ -9,10 +9,8 @@
 
 #include <csignal>
 #include <fcntl.h>
-#include <fstream>
 #include <pthread.h>
 #include <set>
-#include <sstream>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -21,13 +19,6 @@ namespace hullcover {
 namespace {
 
 using test::TempDir;
-
-std::string read_whole(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 
 // Whether the folder's file system makes unnamed files; where it does not,
@@ -62,7 +53,7 @@ TEST(AtomicFile, WritesTheContentAndNothingElse) {
   const TempDir dir;
   const std::string path = dir.path("out.txt");
   ASSERT_TRUE(write_file_atomically(path, std::string("hull 1\n")).ok());
-  EXPECT_EQ(read_whole(path), "hull 1\n");
+  EXPECT_EQ(test::slurp(path), "hull 1\n");
   EXPECT_EQ(test::folder_entries(dir.path("")), std::set<std::string>{"out.txt"});
 }
 
@@ -70,7 +61,7 @@ TEST(AtomicFile, ReplacesAnExistingFileWhole) {
   const TempDir dir;
   const std::string path = dir.write("out.txt", "old content that is longer than the new\n");
   ASSERT_TRUE(write_file_atomically(path, std::string("new\n")).ok());
-  EXPECT_EQ(read_whole(path), "new\n");
+  EXPECT_EQ(test::slurp(path), "new\n");
   EXPECT_EQ(test::folder_entries(dir.path("")), std::set<std::string>{"out.txt"});
 }
 
@@ -82,7 +73,7 @@ TEST(AtomicFile, AWriterThatGivesUpLeavesTheOldFileAndNoTemporary) {
     return false;
   });
   EXPECT_EQ(s.code(), StatusCode::unwritable_file);
-  EXPECT_EQ(read_whole(path), "old\n");
+  EXPECT_EQ(test::slurp(path), "old\n");
   EXPECT_EQ(test::folder_entries(dir.path("")), std::set<std::string>{"out.txt"});
 }
 
@@ -114,7 +105,7 @@ TEST(AtomicFile, AFullDiskLeavesTheOldFileAndNoTemporary) {
   });
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 0) << "3: no limit, 4: the write succeeded, 5: another message";
-  EXPECT_EQ(read_whole(path), "old\n");
+  EXPECT_EQ(test::slurp(path), "old\n");
   EXPECT_EQ(test::folder_entries(dir.path("")), std::set<std::string>{"out.txt"});
 }
 
@@ -132,7 +123,7 @@ TEST(AtomicFile, AKillDuringTheWriteLeavesTheOldFile) {
     return s.ok() ? 0 : 1;
   });
   ASSERT_TRUE(WIFSIGNALED(status));
-  EXPECT_EQ(read_whole(path), "old\n");
+  EXPECT_EQ(test::slurp(path), "old\n");
   const std::set<std::string> left = test::folder_entries(dir.path(""));
   if (makes_unnamed_files(dir.path(""))) {
     EXPECT_EQ(left, std::set<std::string>{"out.txt"});
@@ -161,7 +152,7 @@ TEST(AtomicFile, AStopSignalWhileTheFileHasItsTemporaryNameWaitsForTheRename) {
     return s.ok() ? 0 : 1;
   });
   ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << "the signal was never delivered";
-  EXPECT_EQ(read_whole(path), "new\n");
+  EXPECT_EQ(test::slurp(path), "new\n");
   EXPECT_EQ(test::folder_entries(dir.path("")), std::set<std::string>{"out.txt"});
 }
 

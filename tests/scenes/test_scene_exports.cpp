@@ -21,20 +21,8 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 namespace hullcover {
-namespace {
-
-std::string file_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-} // namespace
 
 void check_engine_exports(const std::string& scene, const PreparedMesh& prepared, const Covering& covering) {
   const std::vector<bvh::RuntimeHull> hulls = bvh::runtime_hulls(covering);
@@ -61,7 +49,7 @@ void check_engine_exports(const std::string& scene, const PreparedMesh& prepared
     const std::string command = "node " + (tools / "validate_glb.mjs").string() + " " + out.path("hulls.glb") + " >" +
                                 out.path("report.json");
     ASSERT_EQ(std::system(command.c_str()), 0);
-    const auto report = nlohmann::json::parse(file_text(out.path("report.json")));
+    const auto report = nlohmann::json::parse(test::slurp(out.path("report.json")));
     EXPECT_EQ(report["issues"]["numErrors"].get<int>(), 0) << scene;
     EXPECT_EQ(report["issues"]["numWarnings"].get<int>(), 0) << scene;
   } else {

@@ -5,8 +5,6 @@
 #include "temp_dir.h"
 
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <sys/wait.h>
 
@@ -16,14 +14,6 @@ struct CommandRun {
   int status = -1;  ///< exit status; -1 when it did not exit (a signal)
   std::string out, err;
 };
-
-/// The whole of a file ("" when unreadable).
-inline std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 /// `hullcover ARGUMENTS`, its output kept in `dir`.
 inline CommandRun run_hullcover(const TempDir& dir, const std::string& arguments) {

@@ -8,8 +8,6 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
-#include <fstream>
-#include <sstream>
 
 namespace hullcover::test {
 
@@ -54,10 +52,7 @@ std::string covering_obj_bytes(const Covering& covering) {
   TempDir dir;
   const std::string path = dir.path("hulls.obj");
   EXPECT_TRUE(write_covering_obj(covering, path).ok());
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
+  return slurp(path);
 }
 
 Mesh grooved_floor() {

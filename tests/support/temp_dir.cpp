@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 namespace hullcover::test {
 
@@ -25,6 +26,13 @@ std::string TempDir::write(const std::string& name, const std::string& content) 
   const std::string p = path(name);
   std::ofstream(p, std::ios::binary) << content;
   return p;
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
 }
 
 std::set<std::string> folder_entries(const std::string& folder) {

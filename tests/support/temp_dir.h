@@ -22,6 +22,9 @@ private:
   std::string dir_;
 };
 
+/// The whole of a file, byte for byte ("" when unreadable).
+std::string slurp(const std::string& path);
+
 /// Every name in `folder` (not "." or ".."); empty when it cannot be read.
 std::set<std::string> folder_entries(const std::string& folder);
 

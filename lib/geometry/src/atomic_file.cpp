@@ -170,15 +170,11 @@ Status write_file_atomically(const std::string& path, const FileContentWriter& w
   // From naming the file to the rename, or to removing the name again, a
   // stop signal waits.
   const TerminationSignalsHeld held;
-  if (!file.name_and_close()) {
+  const bool named = file.name_and_close();
+  if (!named || !file.replace(path)) {
     const int error_number = errno;
     file.discard();
-    return failure(path, "write failed", error_number);
-  }
-  if (!file.replace(path)) {
-    const int error_number = errno;
-    file.discard();
-    return failure(path, "cannot replace it", error_number);
+    return failure(path, named ? "cannot replace it" : "write failed", error_number);
   }
   return Status::success();
 }
