@@ -1,0 +1,338 @@
+#!/usr/bin/env python3
+"""An independent, sampled cross-check of a covering against the strict
+free-space definition (../shared/DESIGN.md; docs/definitions-and-proofs.md).
+
+It shares no code with hullcover: numpy only, its own OBJ reading and
+triangulation, its own ray-triangle and ray-hull tests. Ray origins are drawn
+at random (seeded) on every face and every open edge, so it can find space
+lost between the audit's own rays. It can never prove a covering clean: that
+is the audit's job (`hullcover audit`), which judges every face and edge.
+Each drawn ray is decided exactly:
+
+- front rays: from a point of a face along its normal (every face gets one,
+  the rest go by area);
+- opening rays: from a point of an open edge (used by one face, or the rim
+  of two faces back to back), outward in the face's plane and tilted by
+  OPENING_TILT_SINE to either side;
+- a ray runs from `stand_off` tol off its start (default a thousandth of tol:
+  stricter than the audit's 2 tol) to its first mesh hit, or forever. Faces
+  it runs along are not met. It is enclosed, and skipped, when every face it
+  meets within tol of the first hit is met from behind;
+- an open ray is lost where its segment enters a hull shrunk by tol (its
+  planes moved in by tol); a hull thinner than 2 tol has no inside.
+
+Usage: cross_check_free_space.py SCENE.obj HULLS.obj [--tol T] [--rays N]
+Exit 0 when no drawn ray is lost, 1 when one is, 2 on bad input.
+"""
+
+import argparse
+import sys
+from dataclasses import dataclass, field
+
+import numpy as np
+
+OPENING_TILT_SINE = 0.1  # DESIGN.md's "tilted a little": hullcover's kOpeningTiltSine
+DEFAULT_STAND_OFF_IN_TOLERANCES = 1e-3
+PARALLEL_SINE = 1e-9  # |normal . direction| at or below this: the ray runs along the face
+TRIANGLES_PER_BLOCK = 4096  # keeps the rays x triangles arrays to a few MB
+RAYS_PER_BLOCK = 64
+
+
+def newell_normal(points):
+    """The area-weighted normal of a polygon, however it bends."""
+    following = np.roll(points, -1, axis=0)
+    return np.array([
+        np.sum((points[:, 1] - following[:, 1]) * (points[:, 2] + following[:, 2])),
+        np.sum((points[:, 2] - following[:, 2]) * (points[:, 0] + following[:, 0])),
+        np.sum((points[:, 0] - following[:, 0]) * (points[:, 1] + following[:, 1])),
+    ])
+
+
+def triangulate(positions, polygon):
+    """Triangles of a polygon (vertex indices), winding kept: a fan for a
+    convex one, ears clipped for a concave one, as Assimp (which hullcover
+    reads files with) does, so a concave polygon gives no folded triangles."""
+    if len(polygon) == 3:
+        return [list(polygon)]
+    points = np.array([positions[i] for i in polygon])
+    normal = newell_normal(points)
+    axis = int(np.argmax(np.abs(normal)))
+    flat = points[:, [k for k in range(3) if k != axis]]
+    if (normal[axis] < 0) != (axis == 1):  # dropping y swaps the handedness of (z, x) into (x, z)
+        flat = flat[:, ::-1]
+
+    def turn(o, a, b):
+        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+    def inside(q, i, j, m):
+        return turn(flat[i], flat[j], flat[q]) >= 0 and turn(flat[j], flat[m], flat[q]) >= 0 and \
+            turn(flat[m], flat[i], flat[q]) >= 0
+
+    left = list(range(len(polygon)))
+    out = []
+    while len(left) > 3:
+        for k in range(1, len(left) + 1):
+            i, j, m = left[k - 1], left[k % len(left)], left[(k + 1) % len(left)]
+            if turn(flat[i], flat[j], flat[m]) <= 0 or any(inside(q, i, j, m) for q in left if q not in (i, j, m)):
+                continue
+            out.append([polygon[i], polygon[j], polygon[m]])
+            left.remove(j)
+            break
+        else:  # no ear (a degenerate or self-crossing polygon): a fan of what is left
+            out.extend([polygon[left[0]], polygon[left[k]], polygon[left[k + 1]]] for k in range(1, len(left) - 1))
+            return out
+    out.append([polygon[q] for q in left])
+    return out
+
+
+def read_obj(path):
+    """Positions, triangles and, per triangle, the index of its `o`/`g` group (-1 before any)."""
+    positions, triangles, groups = [], [], []
+    group = -1
+    with open(path, "r", encoding="utf-8", errors="replace") as stream:
+        for line in stream:
+            parts = line.split()
+            if not parts:
+                continue
+            if parts[0] == "v":
+                positions.append([float(c) for c in parts[1:4]])
+            elif parts[0] in ("o", "g"):
+                group += 1
+            elif parts[0] == "f":
+                polygon = []
+                for token in parts[1:]:
+                    i = int(token.split("/")[0])
+                    polygon.append(i - 1 if i > 0 else len(positions) + i)
+                for triangle in triangulate(positions, polygon):
+                    triangles.append(triangle)
+                    groups.append(group)
+    return (np.array(positions, dtype=np.float64).reshape(-1, 3), np.array(triangles, dtype=np.int64).reshape(-1, 3),
+            np.array(groups, dtype=np.int64))
+
+
+def tolerance_in_header(hull_path):
+    """The tolerance hullcover writes in a covering's first line, if there."""
+    with open(hull_path, "r", encoding="utf-8", errors="replace") as stream:
+        first = stream.readline()
+    if "tolerance" not in first:
+        return None
+    return float(first.rsplit("tolerance", 1)[1].split()[0])
+
+
+@dataclass
+class ShrunkHull:
+    normals: np.ndarray  # outward unit normals
+    offsets: np.ndarray  # moved in by tol
+    low: np.ndarray  # box corners
+    high: np.ndarray
+    group: int  # the hull's group in its file (hull_N is group N)
+
+
+def shrunk_hulls(positions, triangles, groups, tol):
+    """Each hull with an inside, its planes moved in by tol; the planes are
+    its triangles' (outward whatever their winding: the hull's centre lies
+    behind each)."""
+    hulls = []
+    for group in np.unique(groups):
+        tris = triangles[groups == group]
+        points = positions[np.unique(tris)]
+        centre = points.mean(axis=0)
+        a = positions[tris[:, 0]]
+        normals = np.cross(positions[tris[:, 1]] - a, positions[tris[:, 2]] - a)
+        lengths = np.linalg.norm(normals, axis=1)
+        kept = lengths > 0
+        if not kept.any():
+            continue
+        normals = normals[kept] / lengths[kept, None]
+        offsets = np.einsum("ij,ij->i", normals, a[kept])
+        flip = normals @ centre > offsets
+        normals[flip] *= -1
+        offsets[flip] *= -1
+        if np.min(offsets - normals @ centre) <= tol:  # no point deeper than tol: flat, or thinner than 2 tol
+            continue
+        hulls.append(ShrunkHull(normals, offsets - tol, points.min(axis=0), points.max(axis=0), int(group)))
+    return hulls
+
+
+def first_hits(origins, dirs, a, e1, e2, normals, t_min, tol):
+    """Per ray: the first hit distance (inf for none) and whether every face
+    met within tol of it is met from behind (Moller-Trumbore; random rays
+    meet edges with probability zero)."""
+    blocks = []
+    for start in range(0, len(a), TRIANGLES_PER_BLOCK):
+        end = start + TRIANGLES_PER_BLOCK
+        sa, s1, s2 = a[start:end], e1[start:end], e2[start:end]
+        p = np.cross(dirs[:, None, :], s2[None, :, :])
+        det = np.einsum("rfk,fk->rf", p, s1)
+        along = np.abs(dirs @ normals[start:end].T) <= PARALLEL_SINE
+        with np.errstate(divide="ignore", invalid="ignore"):
+            inv = 1.0 / det
+            s = origins[:, None, :] - sa[None, :, :]
+            u = np.einsum("rfk,rfk->rf", s, p) * inv
+            q = np.cross(s, s1[None, :, :])
+            v = np.einsum("rk,rfk->rf", dirs, q) * inv
+            t = np.einsum("fk,rfk->rf", s2, q) * inv
+            met = ~along & (u >= 0) & (v >= 0) & (u + v <= 1) & (t > t_min)
+        blocks.append(np.where(met, t, np.inf))
+    t_all = np.concatenate(blocks, axis=1)
+    first = t_all.min(axis=1)
+    met_from_front = (t_all <= (first + tol)[:, None]) & (dirs @ normals.T <= 0)
+    return first, np.isfinite(first) & ~met_from_front.any(axis=1)
+
+
+def segment_inside(hull, origin, direction, enter, leave):
+    """The stretch [enter, leave] of the ray inside the shrunk hull, if any."""
+    start = hull.offsets - hull.normals @ origin  # > 0: behind the plane
+    rate = hull.normals @ direction
+    if np.any((rate == 0) & (start <= 0)):
+        return None
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = start / rate
+    if np.any(rate < 0):
+        enter = max(enter, float(np.max(t[rate < 0])))
+    if np.any(rate > 0):
+        leave = min(leave, float(np.min(t[rate > 0])))
+    return (enter, leave) if enter < leave else None
+
+
+@dataclass
+class CheckResult:
+    front_rays: int = 0
+    opening_rays: int = 0
+    enclosed: int = 0
+    hulls_with_inside: int = 0
+    lost: list = field(default_factory=list)  # (kind, face, origin, direction, hull group, enter, leave, first hit)
+
+
+def open_edge_uses(positions, triangles, faces, normals):
+    """(face, corner) of each open edge: used by one face, or by two faces
+    back to back (the rim of a double-sided sheet). Positions are welded as
+    float32, the files' own precision (an exporter may write one corner
+    twice with digits differing in the 16th place)."""
+    welded = [tuple(p) for p in positions.astype(np.float32)]
+    uses_of = {}
+    for f in faces:
+        for k in range(3):
+            ends = (welded[triangles[f, k]], welded[triangles[f, (k + 1) % 3]])
+            uses_of.setdefault((min(ends), max(ends)), []).append((f, k))
+    uses = []
+    for edge_uses in uses_of.values():
+        if len(edge_uses) == 1:
+            uses.append(edge_uses[0])
+        elif len(edge_uses) == 2 and np.dot(normals[edge_uses[0][0]], normals[edge_uses[1][0]]) < -1 + 1e-9:
+            uses.extend(edge_uses)
+    return uses
+
+
+def check_covering(positions, triangles, hull_positions, hull_triangles, hull_groups, tol, rays=20000, seed=1,
+                   stand_off=DEFAULT_STAND_OFF_IN_TOLERANCES):
+    """Draws `rays` front rays and as many opening rays (when there are open
+    edges) and decides each against the covering."""
+    rng = np.random.default_rng(seed)
+    hulls = shrunk_hulls(hull_positions, hull_triangles, hull_groups, tol)
+    a = positions[triangles[:, 0]]
+    e1 = positions[triangles[:, 1]] - a
+    e2 = positions[triangles[:, 2]] - a
+    cross = np.cross(e1, e2)
+    area2 = np.linalg.norm(cross, axis=1)
+    faces = np.nonzero(area2 > 0)[0]
+    normals = np.zeros_like(cross)
+    normals[faces] = cross[faces] / area2[faces, None]
+
+    picks = np.concatenate([faces, rng.choice(faces, size=max(0, rays - len(faces)),
+                                              p=area2[faces] / area2[faces].sum())])
+    u, v = rng.random(len(picks)), rng.random(len(picks))
+    folded = u + v > 1
+    u[folded], v[folded] = 1 - u[folded], 1 - v[folded]
+    origins = [a[picks] + u[:, None] * e1[picks] + v[:, None] * e2[picks]]
+    dirs = [normals[picks]]
+    sources = [picks]
+
+    uses = open_edge_uses(positions, triangles, faces, normals)
+    if uses:
+        chosen = rng.integers(0, len(uses), size=rays)
+        chosen[:min(len(uses), rays)] = np.arange(min(len(uses), rays))  # every open edge first
+        edge_origins, edge_dirs = [], []
+        for c in chosen:
+            f, k = uses[c]
+            p0, p1 = positions[triangles[f, k]], positions[triangles[f, (k + 1) % 3]]
+            inner = positions[triangles[f, (k + 2) % 3]]
+            out = np.cross(p1 - p0, normals[f])
+            out /= np.linalg.norm(out)
+            if np.dot(out, inner - p0) > 0:
+                out = -out
+            side = rng.integers(-1, 2)
+            d = np.sqrt(1 - OPENING_TILT_SINE**2) * out + side * OPENING_TILT_SINE * normals[f] if side else out
+            edge_origins.append(p0 + rng.random() * (p1 - p0))
+            edge_dirs.append(d / np.linalg.norm(d))
+        origins.append(np.array(edge_origins))
+        dirs.append(np.array(edge_dirs))
+        sources.append(np.array([uses[c][0] for c in chosen]))
+    origins, dirs, sources = np.vstack(origins), np.vstack(dirs), np.concatenate(sources)
+
+    result = CheckResult(front_rays=len(picks), opening_rays=len(origins) - len(picks), hulls_with_inside=len(hulls))
+    first = np.empty(len(origins))
+    enclosed = np.empty(len(origins), dtype=bool)
+    for s in range(0, len(origins), RAYS_PER_BLOCK):
+        block = slice(s, s + RAYS_PER_BLOCK)
+        # A face met within a thousandth of tol of the start is the start's own.
+        first[block], enclosed[block] = first_hits(origins[block], dirs[block], a[faces], e1[faces], e2[faces],
+                                                   normals[faces], 1e-3 * tol, tol)
+    result.enclosed = int(enclosed.sum())
+    if not hulls:
+        return result
+    low = np.array([h.low for h in hulls])
+    high = np.array([h.high for h in hulls])
+    t0 = stand_off * tol
+    for r in np.nonzero(~enclosed)[0]:
+        o, d = origins[r], dirs[r]
+        end = first[r] if np.isfinite(first[r]) else np.inf
+        with np.errstate(divide="ignore", invalid="ignore"):
+            near_side, far_side = (low - o) / d, (high - o) / d
+        box_enter = np.nanmax(np.minimum(near_side, far_side), axis=1)
+        box_leave = np.nanmin(np.maximum(near_side, far_side), axis=1)
+        for h in np.nonzero(np.maximum(box_enter, t0) <= np.minimum(box_leave, end))[0]:
+            stretch = segment_inside(hulls[h], o, d, t0, end)
+            if stretch:
+                kind = "front" if r < result.front_rays else "opening"
+                result.lost.append((kind, int(sources[r]), o, d, hulls[h].group, stretch[0], stretch[1], first[r]))
+                break
+    return result
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("scene", help="the scene, OBJ")
+    parser.add_argument("hulls", help="the covering, OBJ with one o or g group per hull")
+    parser.add_argument("--tol", type=float, help="tolerance, scene units (default: the hull file's header)")
+    parser.add_argument("--rays", type=int, default=20000, help="front rays to draw; opening rays as many again")
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--stand-off", type=float, default=DEFAULT_STAND_OFF_IN_TOLERANCES,
+                        help="where rays start, in tolerances off their surface (default %(default)s)")
+    args = parser.parse_args()
+    try:
+        tol = args.tol if args.tol is not None else tolerance_in_header(args.hulls)
+        if tol is None or not tol > 0:
+            print(f"error: {args.hulls}: no tolerance in its first line; give --tol", file=sys.stderr)
+            return 2
+        positions, triangles, _ = read_obj(args.scene)
+        hull_positions, hull_triangles, hull_groups = read_obj(args.hulls)
+    except (OSError, ValueError, IndexError) as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 2
+    if len(triangles) == 0 or args.rays < 1:
+        print("error: the scene has no faces" if len(triangles) == 0 else "error: --rays must be >= 1",
+              file=sys.stderr)
+        return 2
+    result = check_covering(positions, triangles, hull_positions, hull_triangles, hull_groups, tol, args.rays,
+                            args.seed, args.stand_off)
+    print(f"{result.front_rays} front and {result.opening_rays} opening rays, {result.enclosed} enclosed; "
+          f"{result.hulls_with_inside} hulls with an inside; tol {tol:g}: {len(result.lost)} lost")
+    for kind, face, o, d, group, enter, leave, hit in result.lost[:20]:
+        print(f"  {kind} ray of face {face} from {o.tolist()} along {d.tolist()}: inside hull {group} "
+              f"for t in [{enter:.6g}, {leave:.6g}] (first hit {hit:.6g})")
+    return 1 if result.lost else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
