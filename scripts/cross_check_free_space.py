@@ -22,7 +22,8 @@ Each drawn ray is decided exactly:
   planes moved in by tol); a hull thinner than 2 tol has no inside.
 
 Usage: cross_check_free_space.py SCENE.obj HULLS.obj [--tol T] [--rays N]
-Exit 0 when no drawn ray is lost, 1 when one is, 2 on bad input.
+Exit 0 when nothing is found, 1 when a ray is lost, an edge lies in a hull or a
+point of a face on no hull, 2 on bad input.
 """
 
 import argparse
@@ -120,18 +121,19 @@ def tolerance_in_header(hull_path):
 
 
 @dataclass
-class ShrunkHull:
-    normals: np.ndarray  # outward unit normals
-    offsets: np.ndarray  # moved in by tol
+class Hull:
+    normals: np.ndarray  # outward unit normals of its planes
+    offsets: np.ndarray  # the hull is every x with normals @ x <= offsets
     low: np.ndarray  # box corners
     high: np.ndarray
     group: int  # the hull's group in its file (hull_N is group N)
 
 
-def shrunk_hulls(positions, triangles, groups, tol):
-    """Each hull with an inside, its planes moved in by tol; the planes are
-    its triangles' (outward whatever their winding: the hull's centre lies
-    behind each)."""
+def hulls_of(positions, triangles, groups, tol):
+    """Each hull as planes: a solid's are its triangles' (outward whatever
+    their winding: its centre lies behind each); a flat polygon's are its
+    plane both ways and a side plane on each outline edge (shrunk by tol it
+    is empty: a flat hull has no inside)."""
     hulls = []
     for group in np.unique(groups):
         tris = triangles[groups == group]
@@ -148,9 +150,24 @@ def shrunk_hulls(positions, triangles, groups, tol):
         flip = normals @ centre > offsets
         normals[flip] *= -1
         offsets[flip] *= -1
-        if np.min(offsets - normals @ centre) <= tol:  # no point deeper than tol: flat, or thinner than 2 tol
-            continue
-        hulls.append(ShrunkHull(normals, offsets - tol, points.min(axis=0), points.max(axis=0), int(group)))
+        if np.all(np.abs(normals @ normals[0]) > 1 - 1e-9):
+            # A flat polygon (every triangle in one plane, either way): that
+            # plane both ways, and the outline of its triangles facing the
+            # way its largest does.
+            n = np.cross(positions[tris[:, 1]] - a, positions[tris[:, 2]] - a)
+            widest = int(np.argmax(np.linalg.norm(n, axis=1)))
+            plane = n[widest] / np.linalg.norm(n[widest])
+            facing = tris[n @ plane > 0]
+            edges = {}
+            for t in facing:
+                for k in range(3):
+                    edges[(t[k], t[(k + 1) % 3])] = True
+            sides = [np.cross(positions[j] - positions[i], plane) for (i, j) in edges if (j, i) not in edges]
+            sides = [d / np.linalg.norm(d) for d in sides if np.linalg.norm(d) > 0]
+            outline = [positions[i] for (i, j) in edges if (j, i) not in edges]
+            normals = np.array([plane, -plane] + sides)
+            offsets = np.array([plane @ centre, -plane @ centre] + [d @ q for d, q in zip(sides, outline)])
+        hulls.append(Hull(normals, offsets, points.min(axis=0), points.max(axis=0), int(group)))
     return hulls
 
 
@@ -180,9 +197,9 @@ def first_hits(origins, dirs, a, e1, e2, normals, t_min, tol):
     return first, np.isfinite(first) & ~met_from_front.any(axis=1)
 
 
-def segment_inside(hull, origin, direction, enter, leave):
-    """The stretch [enter, leave] of the ray inside the shrunk hull, if any."""
-    start = hull.offsets - hull.normals @ origin  # > 0: behind the plane
+def segment_inside(hull, origin, direction, enter, leave, tol):
+    """The stretch [enter, leave] of the ray inside the hull shrunk by tol, if any."""
+    start = hull.offsets - tol - hull.normals @ origin  # > 0: behind the plane moved in
     rate = hull.normals @ direction
     if np.any((rate == 0) & (start <= 0)):
         return None
@@ -200,23 +217,19 @@ class CheckResult:
     front_rays: int = 0
     opening_rays: int = 0
     enclosed: int = 0
-    hulls_with_inside: int = 0
+    hulls: int = 0
     lost: list = field(default_factory=list)  # (kind, face, origin, direction, hull group, enter, leave, first hit)
+    edges: int = 0
+    edges_inside: list = field(default_factory=list)  # (edge's two positions, hull group)
+    surface_points: int = 0
+    uncovered: list = field(default_factory=list)  # (face, point)
 
 
 def open_edge_uses(positions, triangles, faces, normals):
     """(face, corner) of each open edge: used by one face, or by two faces
-    back to back (the rim of a double-sided sheet). Positions are welded as
-    float32, the files' own precision (an exporter may write one corner
-    twice with digits differing in the 16th place)."""
-    welded = [tuple(p) for p in positions.astype(np.float32)]
-    uses_of = {}
-    for f in faces:
-        for k in range(3):
-            ends = (welded[triangles[f, k]], welded[triangles[f, (k + 1) % 3]])
-            uses_of.setdefault((min(ends), max(ends)), []).append((f, k))
+    back to back (the rim of a double-sided sheet)."""
     uses = []
-    for edge_uses in uses_of.values():
+    for edge_uses in edge_uses_by_ends(positions, triangles, faces).values():
         if len(edge_uses) == 1:
             uses.append(edge_uses[0])
         elif len(edge_uses) == 2 and np.dot(normals[edge_uses[0][0]], normals[edge_uses[1][0]]) < -1 + 1e-9:
@@ -224,21 +237,43 @@ def open_edge_uses(positions, triangles, faces, normals):
     return uses
 
 
-def check_covering(positions, triangles, hull_positions, hull_triangles, hull_groups, tol, rays=20000, seed=1,
-                   stand_off=DEFAULT_STAND_OFF_IN_TOLERANCES):
-    """Draws `rays` front rays and as many opening rays (when there are open
-    edges) and decides each against the covering."""
-    rng = np.random.default_rng(seed)
-    hulls = shrunk_hulls(hull_positions, hull_triangles, hull_groups, tol)
-    a = positions[triangles[:, 0]]
-    e1 = positions[triangles[:, 1]] - a
-    e2 = positions[triangles[:, 2]] - a
-    cross = np.cross(e1, e2)
-    area2 = np.linalg.norm(cross, axis=1)
-    faces = np.nonzero(area2 > 0)[0]
-    normals = np.zeros_like(cross)
-    normals[faces] = cross[faces] / area2[faces, None]
+def edge_uses_by_ends(positions, triangles, faces):
+    """Each edge's (face, corner) uses, keyed by its two ends welded as
+    float32, the files' own precision (an exporter may write one corner twice
+    with digits differing in the 16th place)."""
+    welded = [tuple(p) for p in positions.astype(np.float32)]
+    uses_of = {}
+    for f in faces:
+        for k in range(3):
+            ends = (welded[triangles[f, k]], welded[triangles[f, (k + 1) % 3]])
+            uses_of.setdefault((min(ends), max(ends)), []).append((f, k))
+    return uses_of
 
+
+class BoxIndex:
+    """Hull boxes, for the hulls a segment may meet."""
+
+    def __init__(self, hulls, grow):
+        self.low = np.array([h.low for h in hulls]) - grow
+        self.high = np.array([h.high for h in hulls]) + grow
+
+    def along(self, origin, direction, enter, leave):
+        with np.errstate(divide="ignore", invalid="ignore"):
+            near_side, far_side = (self.low - origin) / direction, (self.high - origin) / direction
+        box_enter = np.nanmax(np.minimum(near_side, far_side), axis=1)
+        box_leave = np.nanmin(np.maximum(near_side, far_side), axis=1)
+        return np.nonzero(np.maximum(box_enter, enter) <= np.minimum(box_leave, leave))[0]
+
+    def holding(self, point):
+        return np.nonzero(np.all((self.low <= point) & (point <= self.high), axis=1))[0]
+
+
+def draw_rays(rng, positions, triangles, faces, normals, area2, rays):
+    """Origins, directions and source faces of `rays` front rays (every face
+    one, the rest by area) followed by as many opening rays (every open edge
+    one first), and the number of front rays."""
+    a = positions[triangles[:, 0]]
+    e1, e2 = positions[triangles[:, 1]] - a, positions[triangles[:, 2]] - a
     picks = np.concatenate([faces, rng.choice(faces, size=max(0, rays - len(faces)),
                                               p=area2[faces] / area2[faces].sum())])
     u, v = rng.random(len(picks)), rng.random(len(picks))
@@ -247,11 +282,10 @@ def check_covering(positions, triangles, hull_positions, hull_triangles, hull_gr
     origins = [a[picks] + u[:, None] * e1[picks] + v[:, None] * e2[picks]]
     dirs = [normals[picks]]
     sources = [picks]
-
     uses = open_edge_uses(positions, triangles, faces, normals)
     if uses:
         chosen = rng.integers(0, len(uses), size=rays)
-        chosen[:min(len(uses), rays)] = np.arange(min(len(uses), rays))  # every open edge first
+        chosen[:min(len(uses), rays)] = np.arange(min(len(uses), rays))
         edge_origins, edge_dirs = [], []
         for c in chosen:
             f, k = uses[c]
@@ -268,9 +302,33 @@ def check_covering(positions, triangles, hull_positions, hull_triangles, hull_gr
         origins.append(np.array(edge_origins))
         dirs.append(np.array(edge_dirs))
         sources.append(np.array([uses[c][0] for c in chosen]))
-    origins, dirs, sources = np.vstack(origins), np.vstack(dirs), np.concatenate(sources)
+    return np.vstack(origins), np.vstack(dirs), np.concatenate(sources), len(picks)
 
-    result = CheckResult(front_rays=len(picks), opening_rays=len(origins) - len(picks), hulls_with_inside=len(hulls))
+
+def check_covering(positions, triangles, hull_positions, hull_triangles, hull_groups, tol, rays=20000, seed=1,
+                   stand_off=DEFAULT_STAND_OFF_IN_TOLERANCES):
+    """Draws `rays` front rays and as many opening rays (when there are open
+    edges) and decides each against the covering; checks every mesh edge
+    (accessibility: no point of it deeper than tol inside a hull) and every
+    front ray's origin and face centroid (coverage: within tol of some
+    hull's boundary; a point outside a hull is taken as within tol when it
+    is within tol of each of its planes, which near a corner may pass a
+    point a little farther: coverage is checked leniently there)."""
+    rng = np.random.default_rng(seed)
+    hulls = hulls_of(hull_positions, hull_triangles, hull_groups, tol)
+    # Every hull is tested shrunk by tol, exactly: one with no inside (flat,
+    # or thinner than 2 tol) then meets no segment.
+    a = positions[triangles[:, 0]]
+    e1, e2 = positions[triangles[:, 1]] - a, positions[triangles[:, 2]] - a
+    cross = np.cross(e1, e2)
+    area2 = np.linalg.norm(cross, axis=1)
+    faces = np.nonzero(area2 > 0)[0]
+    normals = np.zeros_like(cross)
+    normals[faces] = cross[faces] / area2[faces, None]
+    origins, dirs, sources, front_count = draw_rays(rng, positions, triangles, faces, normals, area2, rays)
+
+    result = CheckResult(front_rays=front_count, opening_rays=len(origins) - front_count,
+                         hulls=len(hulls))
     first = np.empty(len(origins))
     enclosed = np.empty(len(origins), dtype=bool)
     for s in range(0, len(origins), RAYS_PER_BLOCK):
@@ -281,22 +339,36 @@ def check_covering(positions, triangles, hull_positions, hull_triangles, hull_gr
     result.enclosed = int(enclosed.sum())
     if not hulls:
         return result
-    low = np.array([h.low for h in hulls])
-    high = np.array([h.high for h in hulls])
+
+    boxes = BoxIndex(hulls, 0.0)
     t0 = stand_off * tol
     for r in np.nonzero(~enclosed)[0]:
         o, d = origins[r], dirs[r]
         end = first[r] if np.isfinite(first[r]) else np.inf
-        with np.errstate(divide="ignore", invalid="ignore"):
-            near_side, far_side = (low - o) / d, (high - o) / d
-        box_enter = np.nanmax(np.minimum(near_side, far_side), axis=1)
-        box_leave = np.nanmin(np.maximum(near_side, far_side), axis=1)
-        for h in np.nonzero(np.maximum(box_enter, t0) <= np.minimum(box_leave, end))[0]:
-            stretch = segment_inside(hulls[h], o, d, t0, end)
+        for h in boxes.along(o, d, t0, end):
+            stretch = segment_inside(hulls[h], o, d, t0, end, tol)
             if stretch:
-                kind = "front" if r < result.front_rays else "opening"
+                kind = "front" if r < front_count else "opening"
                 result.lost.append((kind, int(sources[r]), o, d, hulls[h].group, stretch[0], stretch[1], first[r]))
                 break
+
+    for f, k in (uses[0] for uses in edge_uses_by_ends(positions, triangles, faces).values()):
+        p0, p1 = positions[triangles[f, k]], positions[triangles[f, (k + 1) % 3]]
+        length = np.linalg.norm(p1 - p0)
+        result.edges += 1
+        for h in boxes.along(p0, (p1 - p0) / length, 0.0, length):
+            if segment_inside(hulls[h], p0, (p1 - p0) / length, 0.0, length, tol):
+                result.edges_inside.append(((p0, p1), hulls[h].group))
+                break
+
+    all_boxes = BoxIndex(hulls, tol)
+    centroids = a[faces] + (e1[faces] + e2[faces]) / 3
+    points = np.vstack([origins[:front_count], centroids])
+    owners = np.concatenate([sources[:front_count], faces])
+    result.surface_points = len(points)
+    for p, f in zip(points, owners):
+        if not any(-tol <= np.max(hulls[h].normals @ p - hulls[h].offsets) <= tol for h in all_boxes.holding(p)):
+            result.uncovered.append((int(f), p))
     return result
 
 
@@ -327,11 +399,17 @@ def main():
     result = check_covering(positions, triangles, hull_positions, hull_triangles, hull_groups, tol, args.rays,
                             args.seed, args.stand_off)
     print(f"{result.front_rays} front and {result.opening_rays} opening rays, {result.enclosed} enclosed; "
-          f"{result.hulls_with_inside} hulls with an inside; tol {tol:g}: {len(result.lost)} lost")
+          f"{result.hulls} hulls; tol {tol:g}: {len(result.lost)} lost")
     for kind, face, o, d, group, enter, leave, hit in result.lost[:20]:
         print(f"  {kind} ray of face {face} from {o.tolist()} along {d.tolist()}: inside hull {group} "
               f"for t in [{enter:.6g}, {leave:.6g}] (first hit {hit:.6g})")
-    return 1 if result.lost else 0
+    print(f"{result.edges} mesh edges: {len(result.edges_inside)} reach deeper than tol into a hull")
+    for (p0, p1), group in result.edges_inside[:20]:
+        print(f"  edge {p0.tolist()} - {p1.tolist()}: inside hull {group}")
+    print(f"{result.surface_points} points of faces: {len(result.uncovered)} on no hull's boundary (within tol)")
+    for face, p in result.uncovered[:20]:
+        print(f"  face {face} at {p.tolist()}")
+    return 1 if result.lost or result.edges_inside or result.uncovered else 0
 
 
 if __name__ == "__main__":

@@ -61,8 +61,14 @@ def test_a_hull_in_a_rooms_air_loses_front_rays_and_the_covering_alone_none():
     d = hullcover.decompose(room_v, room_f)
     hv, hf, hg = covering_arrays(d)
     clean = cross_check.check_covering(room_v, room_f, hv, hf, hg, d.tolerance, rays=2000)
-    assert clean.lost == []
+    assert clean.lost == [] and clean.edges_inside == [] and clean.uncovered == []
+    assert clean.edges == 18 and clean.surface_points == 2000 + 12
     assert clean.enclosed == 0  # every ray of a closed room ends on a wall's front
+
+    # Without its first hull, the faces that hull covered are on no hull.
+    rest = hg != hg.min()
+    missing = cross_check.check_covering(room_v, room_f, hv, hf[rest], hg[rest], d.tolerance, rays=2000)
+    assert missing.lost == [] and len(missing.uncovered) > 0
 
     crate_v, crate_f = box((1.5, 1.5, 1.0), (2.5, 2.5, 2.0))
     hv2, hf2, _ = joined((hv, hf), (crate_v, crate_f))
@@ -85,6 +91,17 @@ def test_a_hull_beside_an_open_edge_loses_only_opening_rays():
     for _, _, origin, direction, *_ in result.lost:
         assert origin[0] == pytest.approx(1.0)
         assert direction[0] > 0.99
+
+
+def test_a_hull_round_a_plates_edge_holds_that_edge():
+    v, f = plate(0.0)
+    hull_v, hull_f = box((0.9, 0.2, -0.05), (1.2, 0.8, 0.05))  # across the edge x = 1
+    result = cross_check.check_covering(v, f, hull_v, hull_f, np.zeros(len(hull_f), dtype=np.int64), 1e-5,
+                                        rays=500)
+    assert result.edges == 5
+    assert len(result.edges_inside) == 1
+    (p0, p1), _ = result.edges_inside[0]
+    assert p0[0] == 1.0 and p1[0] == 1.0
 
 
 def test_space_under_a_one_sided_table_top_is_enclosed_and_under_a_downward_face_open():
