@@ -226,6 +226,21 @@ TEST(StrictFreeSpace, HullFloatingFarAboveAFloorTakesItsSpace) {
   EXPECT_EQ(exact_verdict(m, box_hull(V(4, 8, 4), V(5, 8.5, 5))), Validity::front_space_inside);
 }
 
+// A slab hovering just over a floor, within the rays' stand-off: the floor's
+// rays are judged from the floor itself (DESIGN.md's 0 < t), so a slab whose
+// inside (shrunk by tol) lies within 2 tol of the floor takes their space
+// (judged from the stand-off, it passed: Red Eclipse's biolytic had one
+// beyond an open edge). One reaching at most tol over the floor, no deeper
+// than tol anywhere along them, takes nothing.
+TEST(StrictFreeSpace, ASlabHoveringWithinTheStandOffTakesTheFloorsSpace) {
+  Mesh m;
+  add_quad_facing(m, V(0, 0, 0), V(10, 0, 0), V(10, 0, 10), V(0, 0, 10), V(0, 1, 0));
+  const double tol = prepare_mesh(m, std::nullopt).value().tolerance.length;
+  // Beside the quad's diagonal (x = z), so no mesh edge runs under it.
+  EXPECT_EQ(exact_verdict(m, box_hull(V(6, 0.2 * tol, 1), V(8, 2.8 * tol, 3))), Validity::front_space_inside);
+  EXPECT_EQ(exact_verdict(m, box_hull(V(6, 0.2 * tol, 1), V(8, 1.9 * tol, 3))), Validity::valid);
+}
+
 TEST(StrictFreeSpace, HullUnderAOneSidedTableTopIsEnclosed) {
   Mesh m;
   add_quad_facing(m, V(-2, 0, -2), V(3, 0, -2), V(3, 0, 3), V(-2, 0, 3), V(0, 1, 0));

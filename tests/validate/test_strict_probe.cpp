@@ -98,6 +98,20 @@ TEST(StrictProbe, AHullFloatingFarAboveAFloorIsLostWithItsDeepestPoint) {
   EXPECT_EQ(strict_probe(m, {box_hull(V(4, 400, 4), V(6, 402, 6))}, capped).front.lost, 0);
 }
 
+// The probe judges hulls from the ray's origin on the surface (DESIGN.md's
+// 0 < t), not from its stand-off: a slab hovering 0.2 tol over a floor,
+// 2.6 tol thick, has an inside the floor's rays cross within 2 tol of it.
+// One 1.7 tol thick has no inside.
+TEST(StrictProbe, ASlabHoveringWithinTheStandOffLosesSpace) {
+  Mesh m;
+  add_quad_facing(m, V(0, 0, 0), V(10, 0, 0), V(10, 0, 10), V(0, 0, 10), kUpward);
+  const double tol = 1e-3;
+  const ProbeReport r = strict_probe(m, {box_hull(V(6, 0.2 * tol, 1), V(8, 2.8 * tol, 3))}, {}, tol);
+  EXPECT_GT(r.front.lost, 0);
+  EXPECT_NEAR(r.front.deepest.depth, 1.3 * tol, 1e-9);  // half its thickness
+  EXPECT_EQ(strict_probe(m, {box_hull(V(6, 0.2 * tol, 1), V(8, 1.9 * tol, 3))}, {}, tol).front.lost, 0);
+}
+
 // A one-sided table top (facing up) over a floor, its hull reaching down to
 // the floor: the floor's rays under it meet the top's back: enclosed.
 TEST(StrictProbe, AHullUnderAOneSidedTableTopIsEnclosed) {

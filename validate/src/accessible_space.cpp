@@ -97,8 +97,12 @@ public:
     ++out.rays;
     const double tol = prepared_.face_tolerance(ray.face);
     const double stand_off = kRayStandOffInTolerances * tol;
-    // Off the surface it leaves, and as far short of the one it hits: the
-    // surfaces themselves are not free (the decomposer's witness rays too).
+    // Faces count as met only past the stand-off (a neighbour in the plane
+    // of the face the ray leaves, within rounding of it, is not a wall in
+    // front of it), as the decomposer's witness rays meet them. The hulls
+    // are judged from the ray's origin to that first hit, exactly
+    // (DESIGN.md's 0 < t < first hit): a hull entered and left within the
+    // stand-off takes free space too.
     const Eigen::Vector3d start = ray.origin + ray.direction * stand_off;
     const double out_of_world = exit_distance(world_, start, ray.direction);
     if (out_of_world <= 0.0) return;
@@ -109,11 +113,11 @@ public:
         ++out.enclosed;
         return;
       }
-      length = hit.first.t - stand_off;
+      length = hit.first.t;
     }
     if (cap_) length = std::min(length, *cap_);
     if (length <= 0.0) return;
-    decide(ray, start, length, out, stretches);
+    decide(ray, ray.origin, stand_off + length, out, stretches);
     if (judge_) judge_->judge(ray, start, length, stand_off, stretches, out.allowance);
   }
 

@@ -136,8 +136,10 @@ void AllowanceJudge::judge(const ProbeRay& ray, const Eigen::Vector3d& start, do
                            const std::vector<std::pair<std::pair<double, double>, int>>& stretches,
                            AllowanceReport& out) const {
   const double tol = prepared_.face_tolerance(ray.face);
+  // The stretches run from the ray's origin (the strict probe judges hulls
+  // from there); the balls from `start`, the stand-off.
   for (const auto& [stretch, hull] : stretches)
-    farthest_lost(ray, start, stretch.first, stretch.second, hull, tol, out);
+    farthest_lost(ray, ray.origin, stretch.first, stretch.second, hull, tol, out);
   if (const std::optional<double> r = options_.agent_radius) {
     // Nearer than r - stand-off to its own face, no point of the ray has
     // clearance r.

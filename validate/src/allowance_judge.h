@@ -51,8 +51,9 @@ public:
                  const std::vector<double>& hull_tolerance, const AllowanceOptions& options);
 
   /// Judges one open ray: `start` (off the surface by the stand-off) along
-  /// unit `ray.direction` for `length`, with `stretches` the parts of it
-  /// deeper than tol inside hull `second` (distances along the ray). Adds
+  /// unit `ray.direction` for `length`, with `stretches` the parts of the
+  /// ray from `ray.origin` deeper than tol inside hull `second` (distances
+  /// from the origin: the strict probe judges hulls from there). Adds
   /// its figures to `out` (counts added, extremes kept when strictly beyond
   /// out's), whose options it does not read.
   void judge(const ProbeRay& ray, const Eigen::Vector3d& start, double length, double stand_off,

@@ -62,18 +62,19 @@ struct WitnessRay {
 };
 
 // The probe's verdict on the sweep's ray through `point`: it starts on the
-// base (standing off it like the probe's rays), runs to its first mesh hit
-// or the reach, and loses space when it lies deeper than tol inside the
-// hull on the way - unless it first meets a face from behind (enclosed
-// space).
+// base, runs to its first mesh hit (faces count as met only past the
+// stand-off, as the probe's rays meet them) or the reach, and loses space
+// when it lies deeper than tol inside the hull on the way - unless it first
+// meets a face from behind (enclosed space). The hull is judged from the
+// base itself, not from the stand-off (DESIGN.md's 0 < t): a hull entered
+// and left within the stand-off takes free space too.
 WitnessRay witness_ray(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
                        const Eigen::Vector3d& point, std::vector<int>& scratch) {
   const Eigen::Vector3d& dir = sweep.direction;
   const Eigen::Vector3d base = ray_base(sweep, point);
-  const double stand_off = kRayStandOffInTolerances * index.tol();
-  const std::optional<double> inside_from = ray_entry(interior.planes, base + stand_off * dir, dir);
+  const std::optional<double> inside_from = ray_entry(interior.planes, base, dir);
   if (!inside_from) return {};
-  const double enter = stand_off + *inside_from;
+  const double enter = *inside_from;
   if (enter > sweep.reach) return {};
   // The first face at or before the entry ends the free space before the
   // hull (exactly: one met within tol beyond it would leave the ray up to
@@ -86,9 +87,9 @@ WitnessRay witness_ray(const SceneIndex& index, const FreeSpaceSweep& sweep, con
 
 // How a face settles a piece inside its shadow (grown as rays meet faces).
 // Blocked: the face lies between the ray's stand-off and the hull for every
-// ray. Enclosed: the face lies beyond the entry, met from behind, and no
-// face met from the front stands between the entry and it (faces met from
-// behind there enclose the space as well). The distances are affine over
+// ray. Enclosed: the face lies beyond the entry and the stand-off, met from
+// behind, and no face met from the front stands between the entry and it
+// (faces met from behind there enclose the space as well). The distances are affine over
 // the piece, so its corners decide; where a condition holds over part of
 // the piece only, the piece is cut where it changes.
 struct Settling {
@@ -113,8 +114,10 @@ Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, co
   // Each condition is an affine margin that must not be negative anywhere
   // on the piece: its corners decide. Where it holds on part of the piece,
   // the piece is cut where the margin is zero.
-  const std::vector<Affine> margins =
-      enclosed ? std::vector<Affine>{to_face - to_entry} : std::vector<Affine>{to_face - stand_off, to_entry - to_face};
+  // Either way the face must lie past the stand-off, where rays meet faces:
+  // a hull is judged from the surface on, so its entry may lie nearer.
+  const std::vector<Affine> margins = enclosed ? std::vector<Affine>{to_face - to_entry, to_face - stand_off}
+                                               : std::vector<Affine>{to_face - stand_off, to_entry - to_face};
   for (const Affine& margin : margins) {
     const auto [lowest, highest] = range_over(margin, piece);
     if (lowest >= 0.0) continue;

@@ -10,10 +10,11 @@
 /// - openings: rays from points along every open edge (boundary edge, or
 ///   the rim of a double-sided sheet), outward in the face's plane and
 ///   tilted by kOpeningTiltSine to either side of it.
-/// Each ray starts kRayStandOffInTolerances x tol off the surface and runs,
-/// with no distance cap, to as far short of its first mesh hit, or, when it
-/// meets nothing, out of the box of the scene and every hull (beyond which
-/// no hull lies). A ray whose first hit is the BACK of every face met there
+/// Each ray runs from its origin on the surface, with no distance cap, to its
+/// first mesh hit past kRayStandOffInTolerances x tol (nearer faces, within
+/// rounding of the surface it leaves, are not met), or, when it meets
+/// nothing, out of the box of the scene and every hull (beyond which no hull
+/// lies). A ray whose first hit is the BACK of every face met there
 /// is *enclosed* (the floor under a one-sided table top): allowed, counted.
 /// Every other ray is open: its segment is clipped exactly against every
 /// hull whose box it meets (Cyrus-Beck on the hull's planes moved inward by

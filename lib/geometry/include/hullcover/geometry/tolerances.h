@@ -36,9 +36,11 @@ inline constexpr double kRoundingErrorsPerPlaneTest = 8.0;
 // ---- Named multiples of tol ------------------------------------------------
 
 /// Rays of free space (the decomposer's witness rays, the audit's probe
-/// rays) start this many tolerances off the surface they leave, and the
-/// audit's stop as many short of the surface they hit: surfaces themselves
-/// are not free.
+/// rays) meet faces only this many tolerances past the surface they leave:
+/// a neighbour in that surface's plane, within rounding of it, is no wall
+/// in front of it. Hulls are judged along the whole ray, from the surface
+/// itself (DESIGN.md's 0 < t < first hit): a hull entered and left within
+/// the stand-off takes free space too.
 inline constexpr double kRayStandOffInTolerances = 2.0;
 
 /// The decomposer's rays meet a face only inside its bounding box grown by
