@@ -1,6 +1,9 @@
 #include "segment_in_hull.h"
 
+#include "hullcover/geometry/tolerances.h"
+
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace hullcover::validate::probe {
@@ -84,7 +87,14 @@ std::optional<InsideStretch> stretch_inside(const std::vector<Plane>& planes, co
   stretch.from = lo;
   stretch.to = hi;
   stretch.depth = deepest_over(falling, rising, flat, lo, hi, stretch.deepest_at);
-  if (!(stretch.depth > tol)) return std::nullopt;  // a stretch of rounding width at exactly tol
+  // Deeper than tol by more than the rounding of the depths themselves: a
+  // ray from an open edge along the middle plane of a slab 2 tol thick lies
+  // exactly tol deep, and rounding gave such rays stretches of 1e-14 on
+  // pandora once rays were judged from their origin.
+  double magnitude = start.norm() + length;
+  for (const Plane& plane : planes) magnitude = std::max(magnitude, std::abs(plane.offset));
+  const double rounding = kRoundingErrorsPerPlaneTest * std::numeric_limits<double>::epsilon() * magnitude;
+  if (!(stretch.depth > tol + rounding)) return std::nullopt;
   return stretch;
 }
 
