@@ -14,10 +14,11 @@ Each drawn ray is decided exactly:
 - opening rays: from a point of an open edge (used by one face, or the rim
   of two faces back to back), outward in the face's plane and tilted by
   OPENING_TILT_SINE to either side;
-- a ray runs from `stand_off` tol off its start (default a thousandth of tol:
-  stricter than the audit's 2 tol) to its first mesh hit, or forever. Faces
-  it runs along are not met. It is enclosed, and skipped, when every face it
-  meets within tol of the first hit is met from behind;
+- a ray runs from `stand_off` tol off its start (default a thousandth of
+  tol) to its first mesh hit, or forever: it meets faces from there (the
+  audit from 2 tol, judging hulls from the surface). Faces it runs along are
+  not met. It is enclosed, and skipped, when every face it meets within tol
+  of the first hit is met from behind;
 - an open ray is lost where its segment enters a hull shrunk by tol (its
   planes moved in by tol); a hull thinner than 2 tol has no inside.
 
