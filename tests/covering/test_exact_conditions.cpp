@@ -230,8 +230,7 @@ TEST(StrictFreeSpace, HullFloatingFarAboveAFloorTakesItsSpace) {
 // rays are judged from the floor itself (DESIGN.md's 0 < t), so a slab whose
 // inside (shrunk by tol) lies within 2 tol of the floor takes their space
 // (judged from the stand-off, it passed: Red Eclipse's biolytic had one
-// beyond an open edge). One reaching at most tol over the floor, no deeper
-// than tol anywhere along them, takes nothing.
+// beyond an open edge). A slab 1.7 tol thick has no inside and takes nothing.
 TEST(StrictFreeSpace, ASlabHoveringWithinTheStandOffTakesTheFloorsSpace) {
   Mesh m;
   add_quad_facing(m, V(0, 0, 0), V(10, 0, 0), V(10, 0, 10), V(0, 0, 10), V(0, 1, 0));
