@@ -228,12 +228,22 @@ class CheckResult:
 
 def open_edge_uses(positions, triangles, faces, normals):
     """(face, corner) of each open edge: used by one face, or by two faces
-    back to back (the rim of a double-sided sheet)."""
+    back to back (the rim of a double-sided sheet: opposite normals, and
+    each face's far corner on the same side of the edge). Two faces side by
+    side in one plane facing opposite ways (a flipped triangle) close their
+    edge."""
+    def inward(f, k):
+        p0, p1 = positions[triangles[f, k]], positions[triangles[f, (k + 1) % 3]]
+        along = (p1 - p0) / np.linalg.norm(p1 - p0)
+        inner = positions[triangles[f, (k + 2) % 3]] - p0
+        return inner - (inner @ along) * along
+
     uses = []
     for edge_uses in edge_uses_by_ends(positions, triangles, faces).values():
         if len(edge_uses) == 1:
             uses.append(edge_uses[0])
-        elif len(edge_uses) == 2 and np.dot(normals[edge_uses[0][0]], normals[edge_uses[1][0]]) < -1 + 1e-9:
+        elif len(edge_uses) == 2 and np.dot(normals[edge_uses[0][0]], normals[edge_uses[1][0]]) < -1 + 1e-9 \
+                and np.dot(inward(*edge_uses[0]), inward(*edge_uses[1])) > 0:
             uses.extend(edge_uses)
     return uses
 

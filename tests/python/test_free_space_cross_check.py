@@ -116,6 +116,21 @@ def test_space_under_a_one_sided_table_top_is_enclosed_and_under_a_downward_face
             assert result.enclosed > 0  # the floor's rays under the top end on its back
 
 
+def test_the_rim_of_a_double_sided_sheet_is_open_and_a_flipped_neighbours_edge_is_not():
+    v = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, -1.0, 0.0]])
+    normals = lambda f: np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])  # noqa: E731
+    # Back to back: the same triangle both ways; every edge is a rim.
+    sheet = np.array([[0, 1, 2], [1, 0, 2]])
+    n = normals(sheet)
+    assert len(cross_check.open_edge_uses(v, sheet, np.arange(2), n / np.linalg.norm(n, axis=1)[:, None])) == 6
+    # Side by side in one plane, the second listing the shared edge 0-1 the
+    # same way (so it faces down): that edge is closed, the four others open.
+    flipped = np.array([[0, 1, 2], [0, 1, 3]])
+    n = normals(flipped)
+    uses = cross_check.open_edge_uses(v, flipped, np.arange(2), n / np.linalg.norm(n, axis=1)[:, None])
+    assert len(uses) == 4 and (0, 0) not in uses and (1, 0) not in uses
+
+
 def test_a_concave_polygon_is_cut_into_ears_that_keep_its_winding(tmp_path):
     # An L, counter-clockwise seen from +z; a fan from its first corner
     # would fold a triangle over the notch.
