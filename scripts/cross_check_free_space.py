@@ -141,12 +141,12 @@ def hulls_of(positions, triangles, groups, tol):
         points = positions[np.unique(tris)]
         centre = points.mean(axis=0)
         a = positions[tris[:, 0]]
-        normals = np.cross(positions[tris[:, 1]] - a, positions[tris[:, 2]] - a)
-        lengths = np.linalg.norm(normals, axis=1)
+        areas = np.cross(positions[tris[:, 1]] - a, positions[tris[:, 2]] - a)
+        lengths = np.linalg.norm(areas, axis=1)
         kept = lengths > 0
         if not kept.any():
             continue
-        normals = normals[kept] / lengths[kept, None]
+        normals = areas[kept] / lengths[kept, None]
         offsets = np.einsum("ij,ij->i", normals, a[kept])
         flip = normals @ centre > offsets
         normals[flip] *= -1
@@ -155,19 +155,17 @@ def hulls_of(positions, triangles, groups, tol):
             # A flat polygon (every triangle in one plane, either way): that
             # plane both ways, and the outline of its triangles facing the
             # way its largest does.
-            n = np.cross(positions[tris[:, 1]] - a, positions[tris[:, 2]] - a)
-            widest = int(np.argmax(np.linalg.norm(n, axis=1)))
-            plane = n[widest] / np.linalg.norm(n[widest])
-            facing = tris[n @ plane > 0]
-            edges = {}
-            for t in facing:
-                for k in range(3):
-                    edges[(t[k], t[(k + 1) % 3])] = True
-            sides = [np.cross(positions[j] - positions[i], plane) for (i, j) in edges if (j, i) not in edges]
-            sides = [d / np.linalg.norm(d) for d in sides if np.linalg.norm(d) > 0]
-            outline = [positions[i] for (i, j) in edges if (j, i) not in edges]
+            widest = int(np.argmax(lengths))
+            plane = areas[widest] / lengths[widest]
+            edges = {(t[k], t[(k + 1) % 3]) for t in tris[areas @ plane > 0] for k in range(3)}
+            sides, side_offsets = [], []
+            for i, j in edges:
+                side = np.cross(positions[j] - positions[i], plane)
+                if (j, i) not in edges and np.linalg.norm(side) > 0:  # on the outline, and not a point
+                    sides.append(side / np.linalg.norm(side))
+                    side_offsets.append(sides[-1] @ positions[i])
             normals = np.array([plane, -plane] + sides)
-            offsets = np.array([plane @ centre, -plane @ centre] + [d @ q for d, q in zip(sides, outline)])
+            offsets = np.array([plane @ centre, -plane @ centre] + side_offsets)
         hulls.append(Hull(normals, offsets, points.min(axis=0), points.max(axis=0), int(group)))
     return hulls
 
@@ -232,20 +230,24 @@ def open_edge_uses(positions, triangles, faces, normals):
     each face's far corner on the same side of the edge). Two faces side by
     side in one plane facing opposite ways (a flipped triangle) close their
     edge."""
-    def inward(f, k):
-        p0, p1 = positions[triangles[f, k]], positions[triangles[f, (k + 1) % 3]]
-        along = (p1 - p0) / np.linalg.norm(p1 - p0)
-        inner = positions[triangles[f, (k + 2) % 3]] - p0
-        return inner - (inner @ along) * along
-
     uses = []
     for edge_uses in edge_uses_by_ends(positions, triangles, faces).values():
         if len(edge_uses) == 1:
             uses.append(edge_uses[0])
         elif len(edge_uses) == 2 and np.dot(normals[edge_uses[0][0]], normals[edge_uses[1][0]]) < -1 + 1e-9 \
-                and np.dot(inward(*edge_uses[0]), inward(*edge_uses[1])) > 0:
+                and np.dot(edge_inward(positions, triangles, *edge_uses[0]),
+                           edge_inward(positions, triangles, *edge_uses[1])) > 0:
             uses.extend(edge_uses)
     return uses
+
+
+def edge_inward(positions, triangles, f, k):
+    """Across edge k of face f (from corner k), in the face's plane, toward
+    its far corner: the way into the face (not of unit length)."""
+    p0, p1 = positions[triangles[f, k]], positions[triangles[f, (k + 1) % 3]]
+    along = (p1 - p0) / np.linalg.norm(p1 - p0)
+    inner = positions[triangles[f, (k + 2) % 3]] - p0
+    return inner - (inner @ along) * along
 
 
 def edge_uses_by_ends(positions, triangles, faces):
@@ -301,11 +303,8 @@ def draw_rays(rng, positions, triangles, faces, normals, area2, rays):
         for c in chosen:
             f, k = uses[c]
             p0, p1 = positions[triangles[f, k]], positions[triangles[f, (k + 1) % 3]]
-            inner = positions[triangles[f, (k + 2) % 3]]
-            out = np.cross(p1 - p0, normals[f])
+            out = -edge_inward(positions, triangles, f, k)
             out /= np.linalg.norm(out)
-            if np.dot(out, inner - p0) > 0:
-                out = -out
             side = rng.integers(-1, 2)
             d = np.sqrt(1 - OPENING_TILT_SINE**2) * out + side * OPENING_TILT_SINE * normals[f] if side else out
             edge_origins.append(p0 + rng.random() * (p1 - p0))
