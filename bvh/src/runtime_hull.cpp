@@ -27,13 +27,7 @@ RuntimeHull make_runtime_hull(ConvexPolytope shape, int material) {
 }
 
 RuntimeHull flat_triangle_hull(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  FlatPolygon triangle;
-  triangle.corners = {a, b, c};
-  triangle.corner_vertices = {-1, -1, -1};
-  const Eigen::Vector3d n = (b - a).cross(c - a).normalized();
-  triangle.plane = {n, n.dot(a)};
-  triangle.sides = polygon_side_planes(triangle.corners, n);
-  return make_runtime_hull(flat_polytope(triangle, true), 0);
+  return make_runtime_hull(flat_polytope(flat_triangle(a, b, c), true), 0);
 }
 
 } // namespace hullcover::bvh

@@ -161,14 +161,15 @@ public:
     }
   }
 
-  // Coverage of face f (its area counted, when it has a surface, into
-  // `out`): claimed by some hull (`claimed`), or, claimed by none, lying on
-  // some hull's boundary with its normal out.
+  // Coverage of face f (its area counted into `out`; every face with three
+  // distinct corners, those thinner than tol too): claimed by some hull
+  // (`claimed`), or, claimed by none, lying on some hull's boundary with its
+  // normal out (a thin face: within tol of it, thin_face_covered).
   void check_face_coverage(int f, bool claimed, const std::vector<HullUnderCheck>& hulls,
                            const std::vector<CheckedHull>& checked, const CandidateGrid& hull_grid,
                            CheckReport& out) const {
-    if (!facts_.has_surface[f]) return;
     const Eigen::Vector3i& t = mesh_.triangles[f];
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) return;
     const Eigen::Vector3d &a = mesh_.positions[t[0]], &b = mesh_.positions[t[1]], &c = mesh_.positions[t[2]];
     const double area = 0.5 * (b - a).cross(c - a).norm();
     out.total_area += area;
@@ -195,10 +196,25 @@ private:
   // or on a flat one that condition 2 would refuse.
   bool face_covered(const Eigen::Vector3d& normal, const Eigen::Vector3i& t, const HullUnderCheck& hull,
                     const CheckedHull& c, CheckReport& out) const {
+    if (normal.squaredNorm() == 0.0) return thin_face_covered(t, hull, c);
     const FaceOffHull off = face_off_hull(mesh_, normal, t, hull, c);
     if (off.on_hull(on_hull(c))) return true;
     if (!inside_allowed_ || !off.on_or_inside(on_hull(c))) return false;
     if (!c.flat) ++out.faces_inside;
+    return true;
+  }
+
+  // A face thinner than tol (no surface, read_mesh_facts) has no reliable
+  // normal, so condition 2 means nothing for it; coverage still does: each
+  // corner within tol of the hull's facets (a distance never below the
+  // true one, convex_polytope.h), or, where faces may lie inside hulls, in
+  // it. Within tol of one hull at every corner, all of the face is.
+  bool thin_face_covered(const Eigen::Vector3i& t, const HullUnderCheck& hull, const CheckedHull& c) const {
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d& p = mesh_.positions[t[k]];
+      if (inside_allowed_ && !c.flat && depth_inside(c.facets, p) > 0.0) continue;
+      if (distance_to_facet_fans(*hull.shape, p) > c.tol) return false;
+    }
     return true;
   }
 

@@ -2,6 +2,7 @@
 
 #include "hullcover/geometry/aabb.h"
 #include "hullcover/geometry/tolerances.h"
+#include "hullcover/geometry/triangle_distance.h"
 
 #include <Eigen/Geometry>
 
@@ -15,6 +16,17 @@ double deepest_signed_distance(const std::vector<Plane>& planes, const Eigen::Ve
   double deepest = -std::numeric_limits<double>::infinity();
   for (const Plane& plane : planes) deepest = std::max(deepest, plane.signed_distance(p));
   return deepest;
+}
+
+double distance_to_facet_fans(const ConvexPolytope& polytope, const Eigen::Vector3d& p) {
+  double nearest_squared = std::numeric_limits<double>::infinity();
+  for (const std::vector<int>& facet : polytope.facets)
+    for (size_t i = 1; i + 1 < facet.size(); ++i) {
+      const Eigen::Vector3d q = closest_point_on_triangle(p, polytope.vertices[facet[0]], polytope.vertices[facet[i]],
+                                                          polytope.vertices[facet[i + 1]]);
+      nearest_squared = std::min(nearest_squared, (q - p).squaredNorm());
+    }
+  return std::sqrt(nearest_squared);
 }
 
 bool segment_enters_interior(const std::vector<Plane>& planes, const Eigen::Vector3d& a, const Eigen::Vector3d& b,

@@ -134,6 +134,16 @@ FlatPolygon make_flat_polygon(const std::vector<Eigen::Vector3d>& positions, con
   return polygon;
 }
 
+FlatPolygon flat_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  FlatPolygon triangle;
+  triangle.corners = {a, b, c};
+  triangle.corner_vertices = {-1, -1, -1};
+  const Eigen::Vector3d n = (b - a).cross(c - a).normalized();
+  triangle.plane = {n, n.dot(a)};
+  triangle.sides = polygon_side_planes(triangle.corners, n);
+  return triangle;
+}
+
 bool meets_polygon_interior(const FlatPolygon& polygon, const std::vector<Eigen::Vector3d>& part, double tol) {
   std::vector<Eigen::Vector3d> on_plane = clip_polygon(part, polygon.plane, -tol);
   on_plane = clip_polygon(on_plane, polygon.plane.flipped(), -tol);

@@ -67,6 +67,9 @@ struct CheckReport {
 /// whatever crosses it crosses the mesh. A face no hull claims counts as
 /// covered when it lies on some hull's boundary with its normal out ("on":
 /// within `kOnHullInTolerances` tolerances, hullcover/geometry/tolerances.h).
+/// A face thinner than tol (its height over its longest edge) has no
+/// reliable normal: it counts as covered when its corners all lie within
+/// tol of one hull's facets (or, with `inside_allowed`, inside a solid one).
 /// With `inside_allowed`, condition 2 gives way: a face (claimed or not) is
 /// also covered when its corners all lie inside one solid hull, or on one
 /// flat hull, not farther than that distance outside it (the hull's far

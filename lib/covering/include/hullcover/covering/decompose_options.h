@@ -128,7 +128,13 @@ inline bool has_allowance(const DecomposeOptions& options) {
 /// Counts and timings of a decomposition.
 struct CoveringStatistics {
   int faces = 0;
-  int zero_area_faces_skipped = 0;  ///< faces without a normal: covered by no hull
+  int zero_area_faces_skipped = 0;  ///< faces without a reliable normal (height <= tol): in no patch
+  /// Of those, faces with area that no patch's hull covered within tol: each
+  /// got a flat triangle hull of its own (coverage, DESIGN.md).
+  int thin_faces_covered = 0;
+  /// Faces no hull covers within tol and too thin for even a flat triangle
+  /// (smallest angle's sine under kParallelSine); 0 on every scene measured.
+  int thin_faces_bare = 0;
   int merges = 0;
   int order_tries = 1;             ///< merging runs made; the statistics are the kept run's, times the total
   int kept_try = 0;                ///< which run was kept (0: the given order)

@@ -44,6 +44,14 @@ struct ConvexPolytope {
 /// inside, > tol strictly outside.
 double deepest_signed_distance(const std::vector<Plane>& planes, const Eigen::Vector3d& p);
 
+/// Distance from `p` to the facets of `polytope` (its boundary, inside or
+/// out), each facet fanned into triangles from its first corner, scene
+/// units. The fans lie in the polytope (their corners are its vertices), so
+/// for a point outside this is never less than its true distance to the
+/// polytope: "within tol of the hull" by this measure is within tol. A
+/// polytope without facets gives infinity. Cannot fail.
+double distance_to_facet_fans(const ConvexPolytope& polytope, const Eigen::Vector3d& p);
+
 /// True when some point of segment a-b lies deeper than `tol` behind every
 /// plane, i.e. the segment enters the polytope's interior shrunk by `tol`.
 bool segment_enters_interior(const std::vector<Plane>& planes, const Eigen::Vector3d& a, const Eigen::Vector3d& b,

@@ -75,6 +75,12 @@ std::pair<double, double> extent_along(const std::vector<Eigen::Vector3d>& posit
 FlatPolygon make_flat_polygon(const std::vector<Eigen::Vector3d>& positions, const std::vector<int>& vertex_ids,
                               const Eigen::Vector3d& normal, double tol);
 
+/// Triangle a, b, c as a flat polygon facing the way it winds: corners in
+/// that order, no mesh vertex ids (-1). The corners must not be collinear
+/// (a zero normal gives NaN planes); callers check the triangle's height
+/// first. Cannot fail otherwise.
+FlatPolygon flat_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
 /// True when the part of convex polygon `part` (a triangle, a sheet) lying
 /// within `tol` of `polygon`'s plane reaches the polygon's relative interior
 /// shrunk by `tol`.

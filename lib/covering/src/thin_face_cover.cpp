@@ -1,0 +1,182 @@
+#include "thin_face_cover.h"
+
+#include "surface_facets.h"
+#include "validity_conditions.h"
+
+#include "hullcover/geometry/aabb_tree.h"
+#include "hullcover/geometry/planar_hull.h"
+#include "hullcover/geometry/tolerances.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <numeric>
+
+namespace hullcover::detail {
+namespace {
+
+// How far `p` is from `polytope`: 0 inside it, else the distance to its
+// facets (never nearer than the true distance, convex_polytope.h): a face
+// this calls covered is covered.
+double distance_to_polytope(const ConvexPolytope& polytope, const Eigen::Vector3d& p) {
+  if (deepest_signed_distance(polytope.planes, p) <= 0.0) return 0.0;
+  return distance_to_facet_fans(polytope, p);
+}
+
+// Within tol of one hull, every corner of a face: so is all of it, the hull
+// being convex.
+bool covers_face(const ConvexPolytope& polytope, const Mesh& mesh, int f, double tol) {
+  const Eigen::Vector3i& t = mesh.triangles[f];
+  return distance_to_polytope(polytope, mesh.positions[t[0]]) <= tol &&
+         distance_to_polytope(polytope, mesh.positions[t[1]]) <= tol &&
+         distance_to_polytope(polytope, mesh.positions[t[2]]) <= tol;
+}
+
+// Whether a thin triangle still has a plane to make a flat hull on: the
+// sine of its smallest angle (its doubled area, the norm of its area
+// vector, over the product of the two sides meeting there; at least that
+// over the longest side squared) above kParallelSine.
+bool has_plane(const Mesh& mesh, int f) {
+  const Eigen::Vector3i& t = mesh.triangles[f];
+  const Eigen::Vector3d &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+  const double longest_squared = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+  return triangle_area_vector(mesh, f).norm() > kParallelSine * longest_squared;
+}
+
+// Thin faces joined by a shared edge, each group in face order, groups in
+// the order of their first face.
+std::vector<std::vector<int>> edge_joined_groups(const Mesh& mesh, const std::vector<int>& faces) {
+  std::vector<int> parent(faces.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto root = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::map<std::pair<int, int>, int> first_with_edge;
+  for (int i = 0; i < static_cast<int>(faces.size()); ++i) {
+    const Eigen::Vector3i& t = mesh.triangles[faces[i]];
+    for (int k = 0; k < 3; ++k) {
+      const auto edge = std::minmax(t[k], t[(k + 1) % 3]);
+      const auto [at, added] = first_with_edge.emplace(edge, i);
+      if (!added) parent[root(i)] = root(at->second);
+    }
+  }
+  std::map<int, std::vector<int>> by_root;
+  for (int i = 0; i < static_cast<int>(faces.size()); ++i) by_root[root(i)].push_back(faces[i]);
+  std::vector<std::vector<int>> groups;
+  for (auto& [r, group] : by_root) groups.push_back(std::move(group));
+  std::sort(groups.begin(), groups.end(), [](const auto& x, const auto& y) { return x.front() < y.front(); });
+  return groups;
+}
+
+// One flat polygon for a group of thin faces, when it is exactly their union:
+// they face one way, the convex polygon of their corners has their summed
+// area (to tol times its rim), covers each within tol, and passes the
+// conditions a flat patch does (nothing crosses it). A strip of slivers
+// fanned between two straight lines (a Cube map's trimmed wall) is one.
+std::optional<FlatPolygon> group_polygon(const SceneIndex& index, const Mesh& mesh, const std::vector<int>& group,
+                                         double tol, std::vector<int>& scratch) {
+  if (group.size() < 2) return std::nullopt;
+  Eigen::Vector3d area_vector = Eigen::Vector3d::Zero();
+  double area = 0.0;
+  for (int f : group) {  // triangle_area_vector is twice the area
+    area_vector += triangle_area_vector(mesh, f);
+    area += 0.5 * triangle_area_vector(mesh, f).norm();
+  }
+  if (area_vector.norm() == 0.0) return std::nullopt;
+  const Eigen::Vector3d normal = area_vector.normalized();
+  for (int f : group)
+    if (triangle_area_vector(mesh, f).dot(normal) <= 0.0) return std::nullopt;
+  std::vector<int> vertices;
+  for (int f : group)
+    for (int k = 0; k < 3; ++k) vertices.push_back(mesh.triangles[f][k]);
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  FlatPolygon polygon = make_flat_polygon(mesh.positions, vertices, normal, tol);
+  if (polygon.corners.size() < 3) return std::nullopt;
+  double polygon_area = 0.0, rim = 0.0;
+  for (size_t i = 0; i < polygon.corners.size(); ++i) {
+    const Eigen::Vector3d& p = polygon.corners[i];
+    const Eigen::Vector3d& q = polygon.corners[(i + 1) % polygon.corners.size()];
+    polygon_area += 0.5 * (p - polygon.corners[0]).cross(q - polygon.corners[0]).dot(normal);
+    rim += (q - p).norm();
+  }
+  if (std::abs(polygon_area - area) > tol * rim) return std::nullopt;
+  const ConvexPolytope flat = flat_polytope(polygon, true);
+  for (int f : group)
+    if (!covers_face(flat, mesh, f, tol)) return std::nullopt;
+  const auto in_group = [&](int f) { return std::binary_search(group.begin(), group.end(), f); };
+  if (check_flat_polygon(index, polygon, in_group, scratch) != Validity::valid) return std::nullopt;
+  return polygon;
+}
+
+CoveringHull flat_hull(const SceneIndex& index, const Mesh& mesh, const FlatPolygon& polygon,
+                       std::vector<int> faces, std::vector<int>& scratch) {
+  CoveringHull hull;
+  hull.polytope = flat_polytope(polygon, true);
+  hull.faces = std::move(faces);
+  hull.planar = true;
+  hull.material = mesh.material_ids[hull.faces.front()];
+  for (int f : hull.faces) hull.material = std::min(hull.material, mesh.material_ids[f]);
+  hull.surface_planes = surface_planes(index, hull.polytope, scratch);
+  return hull;
+}
+
+} // namespace
+
+ThinFaceCount cover_thin_faces(const DecompositionStages& stages, Covering& covering) {
+  ThinFaceCount count;
+  const PreparedMesh& prepared = stages.prepared;
+  const Mesh& mesh = prepared.mesh;
+  const auto tol_of = [&](int f) { return stages.island_tolerance[prepared.islands.island_of_face[f]]; };
+  std::vector<int> thin;
+  for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f)
+    if (prepared.connectivity.zero_area[f] && !triangle_has_repeated_vertex(mesh, f)) thin.push_back(f);
+  if (thin.empty()) return count;
+  std::vector<Aabb> boxes;
+  boxes.reserve(covering.hulls.size());
+  for (const CoveringHull& hull : covering.hulls) {
+    Aabb box;
+    for (const Eigen::Vector3d& v : hull.polytope.vertices) box.extend(v);
+    boxes.push_back(box);
+  }
+  const AabbTree tree(boxes);
+  std::vector<int> uncovered, near;
+  for (int f : thin) {
+    Aabb box;
+    for (int k = 0; k < 3; ++k) box.extend(mesh.positions[mesh.triangles[f][k]]);
+    near.clear();
+    tree.overlapping(grown(box, tol_of(f)), near);
+    if (std::none_of(near.begin(), near.end(),
+                     [&](int h) { return covers_face(covering.hulls[h].polytope, mesh, f, tol_of(f)); }))
+      uncovered.push_back(f);
+  }
+  std::vector<int> scratch;
+  for (std::vector<int>& group : edge_joined_groups(mesh, uncovered)) {
+    // A group spans one island (its faces share edges).
+    const int island = prepared.islands.island_of_face[group.front()];
+    const SceneIndex& index = stages.index_of_island(island);
+    if (const std::optional<FlatPolygon> polygon = group_polygon(index, mesh, group, tol_of(group.front()), scratch)) {
+      count.covered += static_cast<int>(group.size());
+      covering.hulls.push_back(flat_hull(index, mesh, *polygon, std::move(group), scratch));
+      continue;
+    }
+    for (int f : group) {
+      if (!has_plane(mesh, f)) {
+        ++count.bare;
+        continue;
+      }
+      const Eigen::Vector3i& t = mesh.triangles[f];
+      FlatPolygon triangle = flat_triangle(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
+      triangle.corner_vertices = {t[0], t[1], t[2]};
+      covering.hulls.push_back(flat_hull(index, mesh, triangle, {f}, scratch));
+      ++count.covered;
+    }
+  }
+  return count;
+}
+
+} // namespace hullcover::detail
