@@ -46,31 +46,55 @@ bool is_single_face(const HullUnderCheck& hull) {
 
 // How far a face is from lying on a hull's boundary with its normal out.
 struct FaceOffHull {
-  double in_front = 0.0;    // the farthest hull vertex in front of the face's plane
-  double corner_off = 0.0;  // the face's farthest corner off the hull's surface, deep inside or outside
-  double corner_outside = 0.0;  // the face's farthest corner outside the hull (0 when all are in or on it)
-  bool on_hull(double limit) const { return in_front <= limit && corner_off <= limit; }
+  double in_front = 0.0;  // the farthest hull vertex in front of the face's plane (0 for a thin face: no plane)
+  // The face's farthest corner from the hull's surface, inside or outside;
+  // and from the hull itself (0 for a corner in it).
+  double corner_off = 0.0;
+  double corner_outside = 0.0;
+  // Condition 2 within `front_limit`, coverage within tol: every corner,
+  // and so (the hull being convex) every point of the face, within tol of
+  // the hull.
+  bool on_hull(double front_limit, double tol) const { return in_front <= front_limit && corner_off <= tol; }
   // Covered with an allowance, which lifts condition 2 (the face's plane
-  // need not support the hull): every corner, and so (the hull being convex)
-  // every point of the face, on the hull or in it. A flat hull has no
-  // inside: there it is the face lying on the polygon, however far the
-  // polygon rises beyond the face's own plane. A planar patch of faces
-  // within a slab of tol but not coplanar (a sloped triangle beside level
-  // strips, recast-dungeon) rises more than 2 tol above a small face's
-  // plane a few metres away, and the face is on it all the same.
-  bool on_or_inside(double limit) const { return corner_outside <= limit; }
+  // need not support the hull): every corner, and so every point of the
+  // face, in the hull or within tol of it. A flat hull has no inside: there
+  // it is the face lying on the polygon, however far the polygon rises
+  // beyond the face's own plane. A planar patch of faces within a slab of
+  // tol but not coplanar (a sloped triangle beside level strips,
+  // recast-dungeon) rises more than 2 tol above a small face's plane a few
+  // metres away, and the face is on it all the same.
+  bool on_or_inside(double tol) const { return corner_outside <= tol; }
 };
 
+// How far corner `p` is from the hull's surface. At a hull vertex (most
+// corners are), no farther than from it. Else the distance to the hull's
+// facets, fanned into triangles (never below the true distance for a point
+// outside, convex_polytope.h): not the planes alone, which past a thin
+// hull's sharp edge can all lie within tol of a point far from the hull
+// (recast-dungeon: a stair rail's corner 140 tol from its hull, within
+// 0.06 tol of every plane). A point more than `far` from a plane's side
+// (outside, or inside) is at least that far less the planes' fitting error
+// (under tol): its plane distance is returned, which fails any test within
+// tol that `far` exceeds by tol.
+double corner_off_surface(const HullUnderCheck& hull, const CheckedHull& c, const Eigen::Vector3d& p, double depth,
+                          double far) {
+  for (const Eigen::Vector3d& v : hull.shape->vertices)
+    if ((v - p).squaredNorm() <= c.tol * c.tol) return (v - p).norm();
+  if (std::abs(depth) > far) return std::abs(depth);
+  return distance_to_facet_fans(*hull.shape, p);
+}
+
 FaceOffHull face_off_hull(const Mesh& mesh, const Eigen::Vector3d& normal, const Eigen::Vector3i& t,
-                          const HullUnderCheck& hull, const CheckedHull& c) {
+                          const HullUnderCheck& hull, const CheckedHull& c, double far) {
   FaceOffHull off;
   const Eigen::Vector3d& a = mesh.positions[t[0]];
   for (const auto& p : hull.shape->vertices) off.in_front = std::max(off.in_front, normal.dot(p - a));
   // A flat hull has a facet either way: faces of either side lie on it.
   for (int k = 0; k < 3; ++k) {
     const double depth = depth_inside(c.facets, mesh.positions[t[k]]);
-    off.corner_off = std::max(off.corner_off, std::abs(depth));
-    off.corner_outside = std::max(off.corner_outside, -depth);
+    const double off_surface = corner_off_surface(hull, c, mesh.positions[t[k]], depth, far);
+    off.corner_off = std::max(off.corner_off, off_surface);
+    if (depth < 0.0) off.corner_outside = std::max(off.corner_outside, off_surface);
   }
   return off;
 }
@@ -164,7 +188,7 @@ public:
   // Coverage of face f (its area counted into `out`; every face with three
   // distinct corners, those thinner than tol too): claimed by some hull
   // (`claimed`), or, claimed by none, lying on some hull's boundary with its
-  // normal out (a thin face: within tol of it, thin_face_covered).
+  // normal out (a thin face: within tol of it, face_covered).
   void check_face_coverage(int f, bool claimed, const std::vector<HullUnderCheck>& hulls,
                            const std::vector<CheckedHull>& checked, const CandidateGrid& hull_grid,
                            CheckReport& out) const {
@@ -193,28 +217,15 @@ private:
   }
 
   // On the hull; with an allowance, or inside a solid one (counted apart),
-  // or on a flat one that condition 2 would refuse.
+  // or on a flat one that condition 2 would refuse. A face thinner than tol
+  // (no surface, read_mesh_facts) has no reliable normal, so condition 2
+  // means nothing for it; its coverage still does.
   bool face_covered(const Eigen::Vector3d& normal, const Eigen::Vector3i& t, const HullUnderCheck& hull,
                     const CheckedHull& c, CheckReport& out) const {
-    if (normal.squaredNorm() == 0.0) return thin_face_covered(t, hull, c);
-    const FaceOffHull off = face_off_hull(mesh_, normal, t, hull, c);
-    if (off.on_hull(on_hull(c))) return true;
-    if (!inside_allowed_ || !off.on_or_inside(on_hull(c))) return false;
+    const FaceOffHull off = face_off_hull(mesh_, normal, t, hull, c, on_hull(c));
+    if (off.on_hull(on_hull(c), c.tol)) return true;
+    if (!inside_allowed_ || !off.on_or_inside(c.tol)) return false;
     if (!c.flat) ++out.faces_inside;
-    return true;
-  }
-
-  // A face thinner than tol (no surface, read_mesh_facts) has no reliable
-  // normal, so condition 2 means nothing for it; coverage still does: each
-  // corner within tol of the hull's facets (a distance never below the
-  // true one, convex_polytope.h), or, where faces may lie inside hulls, in
-  // it. Within tol of one hull at every corner, all of the face is.
-  bool thin_face_covered(const Eigen::Vector3i& t, const HullUnderCheck& hull, const CheckedHull& c) const {
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d& p = mesh_.positions[t[k]];
-      if (inside_allowed_ && !c.flat && depth_inside(c.facets, p) > 0.0) continue;
-      if (distance_to_facet_fans(*hull.shape, p) > c.tol) return false;
-    }
     return true;
   }
 
@@ -237,7 +248,7 @@ private:
                            CheckReport& out) const {
     for (int f : hull.faces) {
       if (!face_covered(facts_.normal[f], mesh_.triangles[f], hull, c, out)) {
-        const FaceOffHull off = face_off_hull(mesh_, facts_.normal[f], mesh_.triangles[f], hull, c);
+        const FaceOffHull off = face_off_hull(mesh_, facts_.normal[f], mesh_.triangles[f], hull, c, on_hull(c));
         ++out.faces_off_hull;
         note(out, where + "face " + std::to_string(f) + " not on the hull with its normal out (" +
              std::to_string(off.in_front) + " in front, a corner " + std::to_string(off.corner_off) +

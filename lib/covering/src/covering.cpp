@@ -7,7 +7,7 @@
 #include "cell_merging.h"
 #include "patch_merging.h"
 #include "patch_hulls.h"
-#include "thin_face_cover.h"
+#include "face_coverage.h"
 
 #include <algorithm>
 #include <chrono>
@@ -213,9 +213,10 @@ Covering finish_stages(const DecompositionStages& stages, std::vector<CellResult
     }
   });
   for (const CoveringStatistics& s : output_stats) add_counts(stats, s);
-  const ThinFaceCount thin = cover_thin_faces(stages, covering);
-  stats.thin_faces_covered = thin.covered;
-  stats.thin_faces_bare = thin.bare;
+  const FaceCoverageCount coverage = cover_uncovered_faces(stages, covering, threads);
+  stats.faces_given_flat_hulls = coverage.covered;
+  stats.thin_faces_given_flat_hulls = coverage.thin_covered;
+  stats.faces_left_uncovered = coverage.bare;
   std::sort(covering.hulls.begin(), covering.hulls.end(),
             [](const CoveringHull& x, const CoveringHull& y) { return x.faces.front() < y.faces.front(); });
   for (CoveringHull& hull : covering.hulls) hull.cell = cells.cell_of_face[hull.faces.front()];

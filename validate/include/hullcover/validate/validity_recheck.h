@@ -65,15 +65,16 @@ struct CheckReport {
 /// given half-length. Conditions 3 and 4 are skipped for a flat hull that
 /// is one face (claims exactly one, or is a bare triangle claiming none):
 /// whatever crosses it crosses the mesh. A face no hull claims counts as
-/// covered when it lies on some hull's boundary with its normal out ("on":
-/// within `kOnHullInTolerances` tolerances, hullcover/geometry/tolerances.h).
-/// A face thinner than tol (its height over its longest edge) has no
-/// reliable normal: it counts as covered when its corners all lie within
-/// tol of one hull's facets (or, with `inside_allowed`, inside a solid one).
-/// With `inside_allowed`, condition 2 gives way: a face (claimed or not) is
-/// also covered when its corners all lie inside one solid hull, or on one
-/// flat hull, not farther than that distance outside it (the hull's far
-/// vertices may rise above the face's own plane), and condition 1 is
+/// covered when it lies on some hull's boundary with its normal out: every
+/// corner within tol of the hull's facets (the distance to them, fanned into
+/// triangles; a plane test can pass a point far past a thin hull's sharp
+/// edge) and no hull vertex more than `kOnHullInTolerances` tolerances in
+/// front of the face's plane (hullcover/geometry/tolerances.h). A face
+/// thinner than tol (its height over its longest edge) has no reliable
+/// normal: only its corners are checked. With `inside_allowed`, condition 2
+/// gives way: a face (claimed or not) is also covered when its corners all
+/// lie inside one solid hull, or on one flat hull, or within tol of it (the
+/// hull's far vertices may rise above the face's own plane), and condition 1 is
 /// reported without counting as a violation (CheckReport::inside_allowed).
 /// Hulls, then faces, are checked on `threads` threads (0: every core;
 /// negative: one), each into a part of its own added in hull and face

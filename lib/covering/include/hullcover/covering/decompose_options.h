@@ -129,12 +129,14 @@ inline bool has_allowance(const DecomposeOptions& options) {
 struct CoveringStatistics {
   int faces = 0;
   int zero_area_faces_skipped = 0;  ///< faces without a reliable normal (height <= tol): in no patch
-  /// Of those, faces with area that no patch's hull covered within tol: each
-  /// got a flat triangle hull of its own (coverage, DESIGN.md).
-  int thin_faces_covered = 0;
+  /// Faces no patch's hull covered within tol (thin ones, and faces a hull
+  /// grown through a thin slab missed), each given a flat hull of its own:
+  /// coverage, DESIGN.md (face_coverage.h in the sources).
+  int faces_given_flat_hulls = 0;
+  int thin_faces_given_flat_hulls = 0;  ///< of those, faces thinner than tol
   /// Faces no hull covers within tol and too thin for even a flat triangle
   /// (smallest angle's sine under kParallelSine); 0 on every scene measured.
-  int thin_faces_bare = 0;
+  int faces_left_uncovered = 0;
   int merges = 0;
   int order_tries = 1;             ///< merging runs made; the statistics are the kept run's, times the total
   int kept_try = 0;                ///< which run was kept (0: the given order)

@@ -189,10 +189,10 @@ inline constexpr double kSweepSameRotation = 1e-12;
 // ---- Audit ------------------------------------------------------------------
 
 /// The independent re-check (hullcover/validate/validity_recheck.h) takes a
-/// point within this many tolerances of a hull's surface as ON it: a face is
-/// on a hull (condition 2, and coverage of faces no hull claims) when its
-/// corners lie within 2 tol of the hull's surface and no hull vertex is
-/// more than 2 tol in front of the face's plane; a face within 2 tol of a
+/// point within this many tolerances of a hull's planes as ON them: a face
+/// is on a hull (condition 2) when no hull vertex is more than 2 tol in
+/// front of the face's plane (its corners, for coverage, must lie within 1
+/// tol of the hull's facets: a distance, not a plane test); a face within 2 tol of a
 /// flat hull's plane is that hull's own (condition 4); a point within 2 tol
 /// of a flat polygon's rim is on the rim, not in the interior a face below
 /// must not reach. Twice the base: the face may be up to tol off a facet

@@ -1,4 +1,4 @@
-// Faces thinner than tol join no patch (lib/covering/src/thin_face_cover.h),
+// Faces thinner than tol join no patch (lib/covering/src/face_coverage.h),
 // yet coverage (DESIGN.md: every point of every face on a hull, within tol)
 // holds for them too. The fan below is how a Cube map trims a wall: slivers
 // between two straight lines, each thinner than tol, together a strip with
@@ -63,7 +63,7 @@ int claiming_hull(const Covering& covering, int f) {
   return -1;
 }
 
-TEST(ThinFaceCover, EveryThinFaceIsWithinTolOfAHull) {
+TEST(FaceCoverage, EveryThinFaceIsWithinTolOfAHull) {
   const ThinScene s = thin_scene();
   // decompose_and_check also runs the audit's re-check, which counts a
   // thin face no hull covers.
@@ -86,7 +86,7 @@ TEST(ThinFaceCover, EveryThinFaceIsWithinTolOfAHull) {
   }
 }
 
-TEST(ThinFaceCover, AFanThatIsOneTriangleGetsOneFlatHull) {
+TEST(FaceCoverage, AFanThatIsOneTriangleGetsOneFlatHull) {
   const ThinScene s = thin_scene();
   const auto d = decompose_and_check(s.mesh, {}, kTol);
   ASSERT_TRUE(d);
@@ -102,14 +102,14 @@ TEST(ThinFaceCover, AFanThatIsOneTriangleGetsOneFlatHull) {
   EXPECT_EQ(d->covering.hulls[lone_hull].faces, std::vector<int>{s.lone});
   // The floor's hull is within tol of the sliver along its edge: no hull of its own.
   EXPECT_EQ(claiming_hull(d->covering, s.along_floor), -1);
-  EXPECT_EQ(d->covering.statistics.thin_faces_covered, 11);
-  EXPECT_EQ(d->covering.statistics.thin_faces_bare, 0);
+  EXPECT_EQ(d->covering.statistics.faces_given_flat_hulls, 11);
+  EXPECT_EQ(d->covering.statistics.faces_left_uncovered, 0);
   EXPECT_EQ(d->covering.hulls.size(), 3u);  // floor, fan, lone sliver
 }
 
 // Without the thin faces' hulls the audit's re-check finds them uncovered:
 // the check above can fail.
-TEST(ThinFaceCover, TheRecheckFindsThinFacesLeftUncovered) {
+TEST(FaceCoverage, TheRecheckFindsThinFacesLeftUncovered) {
   const ThinScene s = thin_scene();
   const auto d = decompose_and_check(s.mesh, {}, kTol);
   ASSERT_TRUE(d);

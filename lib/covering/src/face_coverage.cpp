@@ -1,9 +1,10 @@
-#include "thin_face_cover.h"
+#include "face_coverage.h"
 
 #include "surface_facets.h"
 #include "validity_conditions.h"
 
 #include "hullcover/geometry/aabb_tree.h"
+#include "hullcover/geometry/parallel_for.h"
 #include "hullcover/geometry/planar_hull.h"
 #include "hullcover/geometry/tolerances.h"
 
@@ -18,21 +19,23 @@
 namespace hullcover::detail {
 namespace {
 
-// How far `p` is from `polytope`: 0 inside it, else the distance to its
-// facets (never nearer than the true distance, convex_polytope.h): a face
-// this calls covered is covered.
-double distance_to_polytope(const ConvexPolytope& polytope, const Eigen::Vector3d& p) {
-  if (deepest_signed_distance(polytope.planes, p) <= 0.0) return 0.0;
-  return distance_to_facet_fans(polytope, p);
+// Whether `p` lies within `tol` of `polytope`: at one of its vertices (most
+// face corners are), in it, or within tol of its facets (a distance never
+// nearer than the true one, convex_polytope.h). Not the planes alone: past
+// a thin hull's sharp edge a point can lie within tol of every plane and
+// far from the hull.
+bool within_tol(const ConvexPolytope& polytope, const Eigen::Vector3d& p, double tol) {
+  for (const Eigen::Vector3d& v : polytope.vertices)
+    if ((v - p).squaredNorm() <= tol * tol) return true;
+  return deepest_signed_distance(polytope.planes, p) <= 0.0 || distance_to_facet_fans(polytope, p) <= tol;
 }
 
-// Within tol of one hull, every corner of a face: so is all of it, the hull
-// being convex.
+// Within tol of one hull at every corner of a face: so is all of it, the
+// hull being convex.
 bool covers_face(const ConvexPolytope& polytope, const Mesh& mesh, int f, double tol) {
   const Eigen::Vector3i& t = mesh.triangles[f];
-  return distance_to_polytope(polytope, mesh.positions[t[0]]) <= tol &&
-         distance_to_polytope(polytope, mesh.positions[t[1]]) <= tol &&
-         distance_to_polytope(polytope, mesh.positions[t[2]]) <= tol;
+  return within_tol(polytope, mesh.positions[t[0]], tol) && within_tol(polytope, mesh.positions[t[1]], tol) &&
+         within_tol(polytope, mesh.positions[t[2]], tol);
 }
 
 // Whether a thin triangle still has a plane to make a flat hull on: the
@@ -127,40 +130,63 @@ CoveringHull flat_hull(const SceneIndex& index, const Mesh& mesh, const FlatPoly
 
 } // namespace
 
-ThinFaceCount cover_thin_faces(const DecompositionStages& stages, Covering& covering) {
-  ThinFaceCount count;
+FaceCoverageCount cover_uncovered_faces(const DecompositionStages& stages, Covering& covering, int threads) {
+  FaceCoverageCount count;
   const PreparedMesh& prepared = stages.prepared;
   const Mesh& mesh = prepared.mesh;
+  const int face_count = static_cast<int>(mesh.triangles.size());
   const auto tol_of = [&](int f) { return stages.island_tolerance[prepared.islands.island_of_face[f]]; };
-  std::vector<int> thin;
-  for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f)
-    if (prepared.connectivity.zero_area[f] && !triangle_has_repeated_vertex(mesh, f)) thin.push_back(f);
-  if (thin.empty()) return count;
+  std::vector<int> owner(face_count, -1);
   std::vector<Aabb> boxes;
   boxes.reserve(covering.hulls.size());
-  for (const CoveringHull& hull : covering.hulls) {
+  for (size_t h = 0; h < covering.hulls.size(); ++h) {
+    for (int f : covering.hulls[h].faces) owner[f] = static_cast<int>(h);
     Aabb box;
-    for (const Eigen::Vector3d& v : hull.polytope.vertices) box.extend(v);
+    for (const Eigen::Vector3d& v : covering.hulls[h].polytope.vertices) box.extend(v);
     boxes.push_back(box);
   }
   const AabbTree tree(boxes);
-  std::vector<int> uncovered, near;
-  for (int f : thin) {
+  // Per face: 1 when no hull covers it. A face off its own hull is not
+  // given to another it lies within tol of: that hull was never checked to
+  // keep the face's front (condition 2; the audit holds a face's hull to
+  // it), so it gets its own. Each thread writes only its faces' entries.
+  std::vector<char> uncovered_face(face_count, 0);
+  parallel_for(face_count, threads, [&](int f) {
+    if (triangle_has_repeated_vertex(mesh, f)) return;
+    const double tol = tol_of(f);
+    if (owner[f] >= 0) {
+      uncovered_face[f] = !covers_face(covering.hulls[owner[f]].polytope, mesh, f, tol);
+      return;
+    }
+    // A face in no patch: thinner than tol, no front to keep.
     Aabb box;
     for (int k = 0; k < 3; ++k) box.extend(mesh.positions[mesh.triangles[f][k]]);
-    near.clear();
-    tree.overlapping(grown(box, tol_of(f)), near);
-    if (std::none_of(near.begin(), near.end(),
-                     [&](int h) { return covers_face(covering.hulls[h].polytope, mesh, f, tol_of(f)); }))
-      uncovered.push_back(f);
+    std::vector<int> near;
+    tree.overlapping(grown(box, tol), near);
+    uncovered_face[f] = std::none_of(near.begin(), near.end(), [&](int h) {
+      return covers_face(covering.hulls[h].polytope, mesh, f, tol);
+    });
+  });
+  std::vector<int> uncovered;
+  for (int f = 0; f < face_count; ++f) {
+    if (!uncovered_face[f]) continue;
+    if (owner[f] >= 0) {
+      std::vector<int>& claims = covering.hulls[owner[f]].faces;
+      claims.erase(std::lower_bound(claims.begin(), claims.end(), f));
+    }
+    uncovered.push_back(f);
   }
   std::vector<int> scratch;
   for (std::vector<int>& group : edge_joined_groups(mesh, uncovered)) {
     // A group spans one island (its faces share edges).
     const int island = prepared.islands.island_of_face[group.front()];
     const SceneIndex& index = stages.index_of_island(island);
+    const auto count_covered = [&](int f) {
+      ++count.covered;
+      count.thin_covered += prepared.connectivity.zero_area[f] != 0;
+    };
     if (const std::optional<FlatPolygon> polygon = group_polygon(index, mesh, group, tol_of(group.front()), scratch)) {
-      count.covered += static_cast<int>(group.size());
+      for (int f : group) count_covered(f);
       covering.hulls.push_back(flat_hull(index, mesh, *polygon, std::move(group), scratch));
       continue;
     }
@@ -173,9 +199,13 @@ ThinFaceCount cover_thin_faces(const DecompositionStages& stages, Covering& cove
       FlatPolygon triangle = flat_triangle(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
       triangle.corner_vertices = {t[0], t[1], t[2]};
       covering.hulls.push_back(flat_hull(index, mesh, triangle, {f}, scratch));
-      ++count.covered;
+      count_covered(f);
     }
   }
+  // A hull that covers none of its faces keeps none.
+  covering.hulls.erase(std::remove_if(covering.hulls.begin(), covering.hulls.end(),
+                                      [](const CoveringHull& hull) { return hull.faces.empty(); }),
+                       covering.hulls.end());
   return count;
 }
 
