@@ -38,7 +38,7 @@ bool covers_face(const ConvexPolytope& polytope, const Mesh& mesh, int f, double
          within_tol(polytope, mesh.positions[t[2]], tol);
 }
 
-// Whether a thin triangle still has a plane to make a flat hull on: the
+// Whether a triangle (thinner than tol, perhaps) still has a plane to make a flat hull on: the
 // sine of its smallest angle (its doubled area, the norm of its area
 // vector, over the product of the two sides meeting there; at least that
 // over the longest side squared) above kParallelSine.
@@ -49,8 +49,8 @@ bool has_plane(const Mesh& mesh, int f) {
   return triangle_area_vector(mesh, f).norm() > kParallelSine * longest_squared;
 }
 
-// Thin faces joined by a shared edge, each group in face order, groups in
-// the order of their first face.
+// Faces joined by a shared edge, each group in face order, groups in the
+// order of their first face.
 std::vector<std::vector<int>> edge_joined_groups(const Mesh& mesh, const std::vector<int>& faces) {
   std::vector<int> parent(faces.size());
   std::iota(parent.begin(), parent.end(), 0);
@@ -75,7 +75,7 @@ std::vector<std::vector<int>> edge_joined_groups(const Mesh& mesh, const std::ve
   return groups;
 }
 
-// One flat polygon for a group of thin faces, when it is exactly their union:
+// One flat polygon for a group of faces, when it is exactly their union:
 // they face one way, the convex polygon of their corners has their summed
 // area (to tol times its rim), covers each within tol, and passes the
 // conditions a flat patch does (nothing crosses it). A strip of slivers
@@ -146,25 +146,32 @@ FaceCoverageCount cover_uncovered_faces(const DecompositionStages& stages, Cover
     boxes.push_back(box);
   }
   const AabbTree tree(boxes);
-  // Per face: 1 when no hull covers it. A face off its own hull is not
-  // given to another it lies within tol of: that hull was never checked to
-  // keep the face's front (condition 2; the audit holds a face's hull to
-  // it), so it gets its own. Each thread writes only its faces' entries.
+  // Per face: 1 when no hull covers it. First the faces hulls claim, each
+  // against its own hull. A face off its own hull is not given to another
+  // it lies within tol of: that hull was never checked to keep the face's
+  // front (condition 2; the audit holds a face's hull to it), so it gets
+  // its own. Each thread writes only its faces' entries.
   std::vector<char> uncovered_face(face_count, 0);
   parallel_for(face_count, threads, [&](int f) {
-    if (triangle_has_repeated_vertex(mesh, f)) return;
+    if (owner[f] >= 0 && !triangle_has_repeated_vertex(mesh, f))
+      uncovered_face[f] = !covers_face(covering.hulls[owner[f]].polytope, mesh, f, tol_of(f));
+  });
+  // A hull that covers none of its faces is dropped below: it covers no
+  // face in no patch either.
+  std::vector<int> claims_kept(covering.hulls.size(), 0);
+  for (int f = 0; f < face_count; ++f)
+    if (owner[f] >= 0 && !uncovered_face[f]) ++claims_kept[owner[f]];
+  // Then the faces in no patch (thinner than tol: no front to keep),
+  // against every hull near them.
+  parallel_for(face_count, threads, [&](int f) {
+    if (owner[f] >= 0 || triangle_has_repeated_vertex(mesh, f)) return;
     const double tol = tol_of(f);
-    if (owner[f] >= 0) {
-      uncovered_face[f] = !covers_face(covering.hulls[owner[f]].polytope, mesh, f, tol);
-      return;
-    }
-    // A face in no patch: thinner than tol, no front to keep.
     Aabb box;
     for (int k = 0; k < 3; ++k) box.extend(mesh.positions[mesh.triangles[f][k]]);
     std::vector<int> near;
     tree.overlapping(grown(box, tol), near);
     uncovered_face[f] = std::none_of(near.begin(), near.end(), [&](int h) {
-      return covers_face(covering.hulls[h].polytope, mesh, f, tol);
+      return claims_kept[h] > 0 && covers_face(covering.hulls[h].polytope, mesh, f, tol);
     });
   });
   std::vector<int> uncovered;
