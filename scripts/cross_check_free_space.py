@@ -128,6 +128,7 @@ class Hull:
     low: np.ndarray  # box corners
     high: np.ndarray
     group: int  # the hull's group in its file (hull_N is group N)
+    corners: np.ndarray = None  # its triangles' corners, (k, 3, 3): its surface
 
 
 def hulls_of(positions, triangles, groups, tol):
@@ -166,8 +167,46 @@ def hulls_of(positions, triangles, groups, tol):
                     side_offsets.append(sides[-1] @ positions[i])
             normals = np.array([plane, -plane] + sides)
             offsets = np.array([plane @ centre, -plane @ centre] + side_offsets)
-        hulls.append(Hull(normals, offsets, points.min(axis=0), points.max(axis=0), int(group)))
+        hulls.append(Hull(normals, offsets, points.min(axis=0), points.max(axis=0), int(group), positions[tris]))
     return hulls
+
+
+def distance_to_triangles(p, corners):
+    """Distance from point p to the nearest of the triangles `corners`
+    ((k, 3, 3) array): to the plane where p projects inside a triangle, else
+    to its nearest side. Exact up to rounding."""
+    a, b, c = corners[:, 0], corners[:, 1], corners[:, 2]
+
+    def to_segments(s0, s1):
+        d = s1 - s0
+        length2 = np.einsum("ij,ij->i", d, d)
+        s = np.clip(np.einsum("ij,ij->i", p - s0, d) / np.where(length2 > 0, length2, 1.0), 0.0, 1.0)
+        return np.linalg.norm(p - (s0 + s[:, None] * d), axis=1)
+
+    nearest = np.minimum(np.minimum(to_segments(a, b), to_segments(b, c)), to_segments(c, a))
+    ab, ac, ap = b - a, c - a, p - a
+    d00, d01, d11 = (np.einsum("ij,ij->i", x, y) for x, y in ((ab, ab), (ab, ac), (ac, ac)))
+    d20, d21 = np.einsum("ij,ij->i", ap, ab), np.einsum("ij,ij->i", ap, ac)
+    denominator = d00 * d11 - d01 * d01
+    flat = denominator > 0
+    safe = np.where(flat, denominator, 1.0)
+    v, w = (d11 * d20 - d01 * d21) / safe, (d00 * d21 - d01 * d20) / safe
+    inside = flat & (v >= 0) & (w >= 0) & (v + w <= 1)
+    normal = np.cross(ab, ac)
+    norm = np.linalg.norm(normal, axis=1)
+    to_plane = np.abs(np.einsum("ij,ij->i", ap, normal)) / np.where(norm > 0, norm, 1.0)
+    return float(np.min(np.where(inside, np.minimum(to_plane, nearest), nearest)))
+
+
+def within_tol_of_surface(hull, p, tol):
+    """Whether p lies within tol of the hull's boundary: inside, no deeper
+    than tol (the nearest plane is the nearest facet); outside, by the
+    distance to its triangles (not its planes alone, which past a sharp
+    edge pass a point far from the hull)."""
+    outside = np.max(hull.normals @ p - hull.offsets)
+    if outside <= 0.0:
+        return -outside <= tol
+    return outside <= tol and distance_to_triangles(p, hull.corners) <= tol
 
 
 def first_hits(origins, dirs, a, e1, e2, normals, t_min, tol):
@@ -320,10 +359,8 @@ def check_covering(positions, triangles, hull_positions, hull_triangles, hull_gr
     """Draws `rays` front rays and as many opening rays (when there are open
     edges) and decides each against the covering; checks every mesh edge
     (accessibility: no point of it deeper than tol inside a hull) and every
-    front ray's origin and face centroid (coverage: within tol of some
-    hull's boundary; a point outside a hull is taken as within tol when it
-    is within tol of each of its planes, which near a corner may pass a
-    point a little farther: coverage is checked leniently there)."""
+    front ray's origin, face centroid and mesh vertex (coverage: within tol
+    of some hull's boundary, by distance, within_tol_of_surface)."""
     rng = np.random.default_rng(seed)
     hulls = hulls_of(hull_positions, hull_triangles, hull_groups, tol)
     # Every hull is tested shrunk by tol, exactly: one with no inside (flat,
@@ -373,11 +410,13 @@ def check_covering(positions, triangles, hull_positions, hull_triangles, hull_gr
 
     all_boxes = BoxIndex(hulls, tol)
     centroids = a[faces] + (e1[faces] + e2[faces]) / 3
-    points = np.vstack([origins[:front_count], centroids])
-    owners = np.concatenate([sources[:front_count], faces])
+    # Each corner of a face with area, once, with one face it is a corner of.
+    corner_ids, first_use = np.unique(triangles[faces].ravel(), return_index=True)
+    points = np.vstack([origins[:front_count], centroids, positions[corner_ids]])
+    owners = np.concatenate([sources[:front_count], faces, faces[first_use // 3]])
     result.surface_points = len(points)
     for p, f in zip(points, owners):
-        if not any(-tol <= np.max(hulls[h].normals @ p - hulls[h].offsets) <= tol for h in all_boxes.holding(p)):
+        if not any(within_tol_of_surface(hulls[h], p, tol) for h in all_boxes.holding(p)):
             result.uncovered.append((int(f), p))
     return result
 

@@ -62,7 +62,7 @@ def test_a_hull_in_a_rooms_air_loses_front_rays_and_the_covering_alone_none():
     hv, hf, hg = covering_arrays(d)
     clean = cross_check.check_covering(room_v, room_f, hv, hf, hg, d.tolerance, rays=2000)
     assert clean.lost == [] and clean.edges_inside == [] and clean.uncovered == []
-    assert clean.edges == 18 and clean.surface_points == 2000 + 12
+    assert clean.edges == 18 and clean.surface_points == 2000 + 12 + 8  # ray origins, centroids, corners
     assert clean.enclosed == 0  # every ray of a closed room ends on a wall's front
 
     # Without its first hull, the faces that hull covered are on no hull.
@@ -129,6 +129,21 @@ def test_the_rim_of_a_double_sided_sheet_is_open_and_a_flipped_neighbours_edge_i
     n = normals(flipped)
     uses = cross_check.open_edge_uses(v, flipped, np.arange(2), n / np.linalg.norm(n, axis=1)[:, None])
     assert len(uses) == 4 and (0, 0) not in uses and (1, 0) not in uses
+
+
+def test_a_point_past_a_thin_hulls_sharp_edge_is_far_from_it_though_near_every_plane():
+    # A prism on a sliver 10 long and 0.2 wide at its far end: its tip at the
+    # origin is 0.01 radians sharp either side.
+    v = np.array([[0, 0, 0], [10, 0.1, 0], [10, -0.1, 0], [0, 0, 1], [10, 0.1, 1], [10, -0.1, 1]], dtype=float)
+    f = np.array([[0, 1, 2], [3, 5, 4], [0, 4, 1], [0, 3, 4], [1, 5, 2], [1, 4, 5], [2, 3, 0], [2, 5, 3]])
+    tol = 0.01
+    [hull] = cross_check.hulls_of(v, f, np.zeros(len(f), dtype=np.int64), tol)
+    past_the_tip = np.array([-0.5, 0.0, 0.5])  # 0.5 from the hull
+    assert 0.0 < np.max(hull.normals @ past_the_tip - hull.offsets) < tol  # yet within tol of every plane
+    assert not cross_check.within_tol_of_surface(hull, past_the_tip, tol)
+    assert cross_check.within_tol_of_surface(hull, np.array([5.0, 0.0, 1.005]), tol)  # just above the top
+    assert cross_check.within_tol_of_surface(hull, np.array([5.0, 0.0, 0.995]), tol)  # just under it
+    assert not cross_check.within_tol_of_surface(hull, np.array([5.0, 0.0, 0.5]), tol)  # deep inside
 
 
 def test_a_concave_polygon_is_cut_into_ears_that_keep_its_winding(tmp_path):
