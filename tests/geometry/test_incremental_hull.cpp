@@ -17,6 +17,7 @@
 #include "hullcover/geometry/incremental_hull.h"
 #include "hullcover/geometry/planar_hull.h"
 #include "hullcover/geometry/point_hull.h"
+#include "hullcover/geometry/tolerances.h"
 
 #include <gtest/gtest.h>
 
@@ -212,6 +213,26 @@ TEST(IncrementalHull, PointInsideOrWithinASliverLeavesTheHullUnchanged) {
     ASSERT_TRUE(grown);
     EXPECT_EQ(std::count(grown->vertex_ids.begin(), grown->vertex_ids.end(), 99), 1);
     EXPECT_GT(polytope_volume(*grown), polytope_volume(hull));
+  }
+}
+
+// Past a sharp edge a point can lie within a sliver of every plane and
+// still far from the hull (recast-dungeon: a hull grown through a stair rail
+// thinner than tol lost a vertex 79 tol away). It must not be taken as on
+// the hull: the update adds it, or gives way to a rebuild.
+TEST(IncrementalHull, APointFarPastASharpEdgeIsNotTakenAsOnTheHull) {
+  // A wedge 10 long whose edge at the origin is 0.01 radians sharp either side.
+  const std::vector<V> points = {V(0, 0, 0), V(10, 0.1, 0), V(10, -0.1, 0), V(0, 0, 1), V(10, 0.1, 1), V(10, -0.1, 1)};
+  ConvexHullBuilder qhull;
+  const ConvexPolytope wedge = qhull.build(points, iota_ids(points.size())).value();
+  const double tol = 1e-3;
+  const V past_the_edge(-0.005, 0.0, 0.5);  // 5 tol from the wedge
+  ASSERT_GT(outside_by(wedge, past_the_edge), 0.0);
+  ASSERT_LT(outside_by(wedge, past_the_edge), kVisibleBeyondTolerances * tol);  // within a sliver of every plane
+  ASSERT_GT(distance_to_facet_fans(wedge, past_the_edge), 4 * tol);
+  const std::optional<ConvexPolytope> grown = add_point_to_hull(wedge, past_the_edge, 6, tol);
+  if (grown) {
+    EXPECT_LE(distance_to_facet_fans(*grown, past_the_edge), tol);
   }
 }
 

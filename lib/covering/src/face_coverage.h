@@ -7,9 +7,11 @@
 //   for the validity conditions. Most lie along a neighbour's edge, within
 //   tol of its hull. Some do not: a fan of slivers 1 unit wide and 40 long
 //   (a Cube map's trimmed wall) has real area, and nothing else covers it.
-// - A face can lie off its own patch's hull: a hull grown through thin
-//   slabs can miss a corner of one of its faces by several tol (recast's
-//   dungeon: a stair rail 0.56 tol thick, 6 faces, up to 140 tol off).
+// - A face can lie off its own patch's hull. On recast's dungeon a hull
+//   grown through a stair rail 0.56 tol thick missed corners of 6 faces by
+//   up to 140 tol: growing a hull took a point within a sliver of every
+//   plane as on it, though it lay far past a sharp edge. That growth is
+//   fixed (incremental_hull.h); this pass stays, as the guarantee.
 // Such faces get flat hulls of their own, which have no inside and so take
 // no free space: one convex polygon for a group of them that is exactly
 // their union, else each its own triangle.

@@ -19,7 +19,13 @@ std::optional<ConvexPolytope> add_point_to_hull(const ConvexPolytope& hull, cons
     visible[f] = distance[f] > kVisibleBeyondTolerances * tol;
     any_visible |= visible[f] != 0;
   }
-  if (!any_visible) return hull;  // inside, or within a sliver of the boundary
+  if (!any_visible) {
+    // Within a sliver of every plane, yet perhaps far past a sharp edge.
+    if (*std::max_element(distance.begin(), distance.end()) <= 0.0 ||
+        distance_to_facet_fans(hull, p) <= kVisibleBeyondTolerances * tol)
+      return hull;
+    return std::nullopt;
+  }
 
   // Which facet owns each directed edge u -> v: a sorted list, not a map,
   // as this runs for most merges and a map allocates per edge.

@@ -14,7 +14,10 @@ namespace hullcover {
 
 /// `hull` with point `p` (mesh vertex id `id`) added: the facets `p` sees
 /// are replaced by triangles from `p` to their horizon. A point less than
-/// kVisibleBeyondTolerances x tol in front of every facet leaves the hull unchanged. New facets
+/// kVisibleBeyondTolerances x tol in front of every facet leaves the hull
+/// unchanged when it is also that near its facets (past a sharp edge a point
+/// can be that near every plane and far from the hull: then nothing is
+/// returned, and the caller rebuilds). New facets
 /// are triangles even where nearly coplanar with a neighbour (a rebuild by
 /// Qhull merges those).
 ///
