@@ -72,27 +72,26 @@ struct FaceOffHull {
 // outside, convex_polytope.h): not the planes alone, which past a thin
 // hull's sharp edge can all lie within tol of a point far from the hull
 // (recast-dungeon: a stair rail's corner 140 tol from its hull, within
-// 0.06 tol of every plane). A point more than `far` from a plane's side
-// (outside, or inside) is at least that far less the planes' fitting error
-// (under tol): its plane distance is returned, which fails any test within
-// tol that `far` exceeds by tol.
-double corner_off_surface(const HullUnderCheck& hull, const CheckedHull& c, const Eigen::Vector3d& p, double depth,
-                          double far) {
+// 0.06 tol of every plane). A point more than kOnHullInTolerances tol from
+// a plane's side (outside, or inside) is at least that far less the
+// planes' fitting error (under tol): its plane distance is returned, which
+// fails any test within tol.
+double corner_off_surface(const HullUnderCheck& hull, const CheckedHull& c, const Eigen::Vector3d& p, double depth) {
   for (const Eigen::Vector3d& v : hull.shape->vertices)
     if ((v - p).squaredNorm() <= c.tol * c.tol) return (v - p).norm();
-  if (std::abs(depth) > far) return std::abs(depth);
+  if (std::abs(depth) > kOnHullInTolerances * c.tol) return std::abs(depth);
   return distance_to_facet_fans(*hull.shape, p);
 }
 
 FaceOffHull face_off_hull(const Mesh& mesh, const Eigen::Vector3d& normal, const Eigen::Vector3i& t,
-                          const HullUnderCheck& hull, const CheckedHull& c, double far) {
+                          const HullUnderCheck& hull, const CheckedHull& c) {
   FaceOffHull off;
   const Eigen::Vector3d& a = mesh.positions[t[0]];
   for (const auto& p : hull.shape->vertices) off.in_front = std::max(off.in_front, normal.dot(p - a));
   // A flat hull has a facet either way: faces of either side lie on it.
   for (int k = 0; k < 3; ++k) {
     const double depth = depth_inside(c.facets, mesh.positions[t[k]]);
-    const double off_surface = corner_off_surface(hull, c, mesh.positions[t[k]], depth, far);
+    const double off_surface = corner_off_surface(hull, c, mesh.positions[t[k]], depth);
     off.corner_off = std::max(off.corner_off, off_surface);
     if (depth < 0.0) off.corner_outside = std::max(off.corner_outside, off_surface);
   }
@@ -222,7 +221,7 @@ private:
   // means nothing for it; its coverage still does.
   bool face_covered(const Eigen::Vector3d& normal, const Eigen::Vector3i& t, const HullUnderCheck& hull,
                     const CheckedHull& c, CheckReport& out) const {
-    const FaceOffHull off = face_off_hull(mesh_, normal, t, hull, c, on_hull(c));
+    const FaceOffHull off = face_off_hull(mesh_, normal, t, hull, c);
     if (off.on_hull(on_hull(c), c.tol)) return true;
     if (!inside_allowed_ || !off.on_or_inside(c.tol)) return false;
     if (!c.flat) ++out.faces_inside;
@@ -248,7 +247,7 @@ private:
                            CheckReport& out) const {
     for (int f : hull.faces) {
       if (!face_covered(facts_.normal[f], mesh_.triangles[f], hull, c, out)) {
-        const FaceOffHull off = face_off_hull(mesh_, facts_.normal[f], mesh_.triangles[f], hull, c, on_hull(c));
+        const FaceOffHull off = face_off_hull(mesh_, facts_.normal[f], mesh_.triangles[f], hull, c);
         ++out.faces_off_hull;
         note(out, where + "face " + std::to_string(f) + " not on the hull with its normal out (" +
              std::to_string(off.in_front) + " in front, a corner " + std::to_string(off.corner_off) +

@@ -83,16 +83,18 @@ std::vector<std::vector<int>> edge_joined_groups(const Mesh& mesh, const std::ve
 std::optional<FlatPolygon> group_polygon(const SceneIndex& index, const Mesh& mesh, const std::vector<int>& group,
                                          double tol, std::vector<int>& scratch) {
   if (group.size() < 2) return std::nullopt;
+  std::vector<Eigen::Vector3d> area_vectors;  // each twice its face's area
   Eigen::Vector3d area_vector = Eigen::Vector3d::Zero();
   double area = 0.0;
-  for (int f : group) {  // triangle_area_vector is twice the area
-    area_vector += triangle_area_vector(mesh, f);
-    area += 0.5 * triangle_area_vector(mesh, f).norm();
+  for (int f : group) {
+    area_vectors.push_back(triangle_area_vector(mesh, f));
+    area_vector += area_vectors.back();
+    area += 0.5 * area_vectors.back().norm();
   }
   if (area_vector.norm() == 0.0) return std::nullopt;
   const Eigen::Vector3d normal = area_vector.normalized();
-  for (int f : group)
-    if (triangle_area_vector(mesh, f).dot(normal) <= 0.0) return std::nullopt;
+  for (const Eigen::Vector3d& v : area_vectors)
+    if (v.dot(normal) <= 0.0) return std::nullopt;
   std::vector<int> vertices;
   for (int f : group)
     for (int k = 0; k < 3; ++k) vertices.push_back(mesh.triangles[f][k]);
