@@ -173,12 +173,12 @@ struct WallLookingIntoBox {
     const auto s = indexed(mesh);
     const double tol = s->index.tol();
     const HullInterior interior = hull_interior(box, tol);
-    std::vector<int> scratch;
+    detail::SweepJudgeStorage storage;
     for (int f : {0, 1}) {
       std::vector<V> triangle;
       for (int k = 0; k < 3; ++k) triangle.push_back(s->prepared.mesh.positions[s->prepared.mesh.triangles[f][k]]);
       if (sweep_enters_hull(s->index, front_space_sweep(triangle, s->index.face_normals[f], 2.0, tol), interior,
-                            scratch))
+                            storage))
         return true;
     }
     return false;

@@ -8,6 +8,9 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <random>
 
 namespace hullcover::detail {
@@ -48,6 +51,60 @@ TEST(ShadowColumn, MissesOnlyPiecesItsSplitLeavesNothingInside) {
   // Both answers occur, so the property above was put to the test.
   EXPECT_GT(missed, 300);
   EXPECT_GT(shadowed, 300);
+}
+
+// The narrowest width of convex polygon `polygon` over its edges'
+// directions, measured plainly: what negligible() compares with its
+// threshold.
+double least_width(const std::vector<V>& polygon) {
+  V normal = V::Zero();
+  for (size_t i = 1; i + 1 < polygon.size(); ++i)
+    normal += (polygon[i] - polygon[0]).cross(polygon[i + 1] - polygon[0]);
+  double least = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const V across = normal.cross(polygon[(i + 1) % polygon.size()] - polygon[i]).normalized();
+    double widest = 0.0;
+    for (const V& p : polygon) widest = std::max(widest, std::abs(across.dot(p - polygon[i])));
+    least = std::min(least, widest);
+  }
+  return least;
+}
+
+TEST(Negligible, AgreesWithThePolygonsWidthFarFromItsOrigin) {
+  // Slivers and fat pieces alike, far from the origin (where an area taken
+  // about the origin would be lost to cancellation): the quick bound for
+  // fat pieces must never call a sliver fat, nor the other way round.
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const double tol = 1e-3;
+  const double threshold = kNegligibleWidthInTolerances * tol;
+  int slivers = 0, fat = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const V centre = V(1e3, -2e3, 5e2) + 100.0 * V(unit(rng), unit(rng), unit(rng));
+    const V u = V(unit(rng), unit(rng), unit(rng)).normalized();
+    const V v = u.cross(V(unit(rng), unit(rng), unit(rng))).normalized();
+    // Widths from a hundredth to a hundred times the threshold.
+    const double width = threshold * std::pow(10.0, -2.0 + 4.0 * (0.5 + 0.5 * unit(rng)));
+    const double length = 0.01 + std::abs(unit(rng));
+    const int n = 3 + trial % 4;
+    std::vector<V> polygon;
+    for (int i = 0; i < n; ++i) {
+      const double angle = 2.0 * 3.141592653589793 * i / n;
+      polygon.push_back(centre + 0.5 * length * std::cos(angle) * u + 0.5 * width * std::sin(angle) * v);
+    }
+    const double measured = least_width(polygon);
+    // Away from the threshold (rounding at these coordinates is far below
+    // a tenth of it), the verdict follows the width.
+    if (measured < 0.9 * threshold) {
+      ++slivers;
+      EXPECT_TRUE(negligible(polygon, tol)) << "trial " << trial << ": width " << measured;
+    } else if (measured > 1.1 * threshold) {
+      ++fat;
+      EXPECT_FALSE(negligible(polygon, tol)) << "trial " << trial << ": width " << measured;
+    }
+  }
+  EXPECT_GT(slivers, 1000);
+  EXPECT_GT(fat, 1000);
 }
 
 } // namespace

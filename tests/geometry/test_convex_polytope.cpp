@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <random>
 
 namespace hullcover {
@@ -109,6 +110,41 @@ TEST(ClipPolygonInto, ReusesItsOutputAndMatchesClipPolygon) {
   for (const auto& p : out) EXPECT_LE(p.x(), 0.75 + 1e-12);
   clip_polygon_into({}, x_below_one, 0.0, out);
   EXPECT_TRUE(out.empty());
+}
+
+TEST(ClipPolygonInPlace, GivesWhatClipPolygonGivesBitForBit) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const auto random_vector = [&] { return Eigen::Vector3d(unit(rng), unit(rng), unit(rng)); };
+  std::vector<Eigen::Vector3d> spare;
+  int untouched = 0, cut = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const int n = 3 + trial % 5;
+    const Eigen::Vector3d centre = 100.0 * random_vector();
+    const Eigen::Vector3d u = random_vector(), v = random_vector();
+    std::vector<Eigen::Vector3d> polygon;
+    for (int i = 0; i < n; ++i) {
+      const double angle = 2.0 * 3.141592653589793 * i / n;
+      polygon.push_back(centre + std::cos(angle) * u + std::sin(angle) * v);
+    }
+    const Eigen::Vector3d normal = random_vector().normalized();
+    // Planes through a corner (a corner exactly on it), near the middle,
+    // and far off either way (nothing cut, or nothing left).
+    const double shift = trial % 4 == 0 ? 0.0 : 3.0 * unit(rng);
+    const Eigen::Vector3d through = (trial % 4 == 0 ? polygon[trial % n] : centre) + shift * normal;
+    const Plane plane{normal, normal.dot(through)};
+    const double inset = trial % 2 == 0 ? 0.0 : 0.1 * unit(rng);
+    const std::vector<Eigen::Vector3d> expected = clip_polygon(polygon, plane, inset);
+    std::vector<Eigen::Vector3d> clipped = polygon;
+    clip_polygon_in_place(clipped, plane, inset, spare);
+    ASSERT_EQ(clipped.size(), expected.size()) << "trial " << trial;
+    for (size_t i = 0; i < expected.size(); ++i) EXPECT_TRUE(clipped[i] == expected[i]) << "trial " << trial;
+    untouched += expected.size() == polygon.size() && std::equal(expected.begin(), expected.end(), polygon.begin());
+    cut += !expected.empty() && expected.size() != polygon.size();
+  }
+  // Both the shortcut (wholly inside) and real cuts were put to the test.
+  EXPECT_GT(untouched, 300);
+  EXPECT_GT(cut, 300);
 }
 
 } // namespace

@@ -30,56 +30,56 @@ bool separated(const FreeSpaceSweep& sweep, const HullInterior& interior) {
   return false;
 }
 
-// The part of `region` from which rays along `dir` leave the interior
-// through its facet j: `region` clipped to facet j's column along dir.
-std::vector<Eigen::Vector3d> leaving_through(const std::vector<Eigen::Vector3d>& region, const HullInterior& interior,
-                                             size_t j, const Eigen::Vector3d& dir) {
-  return clip_polygon_to_planes(region, detail::column_planes(interior.facets[j], dir), 0.0);
+// Whether the rays of `sweep` through `region` (where they are inside the
+// interior) lose space: rays leaving through different facets may end
+// differently, so each way out is judged as a region of its own (the part
+// of `region` in that facet's column along the rays).
+bool leaves_through_some_facet_losing_space(const SceneIndex& index, const FreeSpaceSweep& sweep,
+                                            const HullInterior& interior, const std::vector<Eigen::Vector3d>& region,
+                                            detail::SweepJudgeStorage& storage) {
+  for (size_t j = 0; j < interior.facets.size(); ++j) {
+    if (interior.facets[j].empty() || interior.planes[j].normal.dot(sweep.direction) <= 0.0) continue;
+    detail::clip_to_column(region, interior.facets[j], sweep.direction, storage.through, storage.spare);
+    if (!storage.through.empty() && detail::region_loses_space(index, sweep, interior, storage.through, storage))
+      return true;
+  }
+  return false;
 }
 
 } // namespace
 
 bool sweep_enters_hull(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
-                       std::vector<int>& scratch) {
+                       detail::SweepJudgeStorage& storage) {
   if (interior.empty() || separated(sweep, interior)) return false;
   const Eigen::Vector3d& dir = sweep.direction;
-  std::vector<Eigen::Vector3d> part, clipped;
+  std::vector<Eigen::Vector3d>& part = storage.part;
   for (size_t k = 0; k < interior.facets.size(); ++k) {
     // The sweep enters through facets it meets from their outer side.
     if (interior.facets[k].empty() || interior.planes[k].normal.dot(dir) >= 0.0) continue;
     part = interior.facets[k];
-    for (size_t i = 0; i < sweep.planes.size() && !part.empty(); ++i) {
-      clip_polygon_into(part, sweep.planes[i], sweep.insets[i], clipped);
-      part.swap(clipped);
-    }
+    for (size_t i = 0; i < sweep.planes.size() && !part.empty(); ++i)
+      clip_polygon_in_place(part, sweep.planes[i], sweep.insets[i], storage.spare);
     if (part.empty()) continue;
-    // Rays leaving through different facets may end differently: one
-    // witness grid per way out.
-    for (size_t j = 0; j < interior.facets.size(); ++j) {
-      if (interior.facets[j].empty() || interior.planes[j].normal.dot(dir) <= 0.0) continue;
-      const std::vector<Eigen::Vector3d> through = leaving_through(part, interior, j, dir);
-      if (!through.empty() && detail::region_loses_space(index, sweep, interior, through, scratch)) return true;
-    }
+    if (leaves_through_some_facet_losing_space(index, sweep, interior, part, storage)) return true;
   }
   return false;
 }
 
 bool crossing_face_leaks(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
-                         std::vector<int>& scratch) {
+                         detail::SweepJudgeStorage& storage) {
   if (interior.empty()) return false;
   for (const Plane& plane : interior.planes) {
     bool beyond = true;
     for (const Eigen::Vector3d& c : sweep.base) beyond &= plane.signed_distance(c) > 0.0;
     if (beyond) return false;
   }
-  const std::vector<Eigen::Vector3d> inside = clip_polygon_to_planes(sweep.base, interior.planes, 0.0);
-  if (inside.empty()) return false;
-  for (size_t j = 0; j < interior.facets.size(); ++j) {
-    if (interior.facets[j].empty() || interior.planes[j].normal.dot(sweep.direction) <= 0.0) continue;
-    const std::vector<Eigen::Vector3d> through = leaving_through(inside, interior, j, sweep.direction);
-    if (!through.empty() && detail::region_loses_space(index, sweep, interior, through, scratch)) return true;
+  std::vector<Eigen::Vector3d>& inside = storage.part;
+  inside = sweep.base;
+  for (const Plane& plane : interior.planes) {
+    if (inside.empty()) return false;
+    clip_polygon_in_place(inside, plane, 0.0, storage.spare);
   }
-  return false;
+  return !inside.empty() && leaves_through_some_facet_losing_space(index, sweep, interior, inside, storage);
 }
 
 bool sheet_enters_interior(const std::vector<Plane>& planes, const std::vector<Eigen::Vector3d>& sheet, double tol) {

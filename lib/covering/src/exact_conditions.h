@@ -35,6 +35,7 @@
 #include "free_space_sweep.h"
 #include "hullcover/geometry/planar_hull.h"
 #include "scene_index.h"
+#include "witness_rays.h"
 
 namespace hullcover {
 
@@ -45,9 +46,9 @@ namespace hullcover {
 /// ray from the base loses space when it is inside before its first mesh
 /// hit; a ray whose first hit is the back of a face runs through enclosed
 /// space, which hulls may fill. Exact, and conservative where the work
-/// bound runs out.
+/// bound runs out. `storage` is reused storage.
 bool sweep_enters_hull(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
-                       std::vector<int>& scratch);
+                       detail::SweepJudgeStorage& storage);
 
 /// E2 (and the paper's condition 3) for a flat polygon: true when the bar or
 /// sheet crosses the polygon's relative interior shrunk by `tol`. One lying
@@ -63,8 +64,8 @@ bool sheet_enters_interior(const std::vector<Plane>& planes, const std::vector<E
 
 /// E3: true when part of the front sweep's base (a face) lies deeper than
 /// `tol` inside the solid hull and its front space from there, judged like
-/// `sweep_enters_hull`'s, is lost.
+/// `sweep_enters_hull`'s, is lost. `storage` is reused storage.
 bool crossing_face_leaks(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
-                         std::vector<int>& scratch);
+                         detail::SweepJudgeStorage& storage);
 
 } // namespace hullcover

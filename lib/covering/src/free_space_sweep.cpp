@@ -19,6 +19,15 @@ Plane plane_through(const Eigen::Vector3d& normal, const Eigen::Vector3d& point)
 FreeSpaceSweep front_space_sweep(const std::vector<Eigen::Vector3d>& corners, const Eigen::Vector3d& normal,
                                  double reach, double tol) {
   FreeSpaceSweep sweep;
+  front_space_sweep(corners, normal, reach, tol, sweep);
+  return sweep;
+}
+
+void front_space_sweep(const std::vector<Eigen::Vector3d>& corners, const Eigen::Vector3d& normal, double reach,
+                       double tol, FreeSpaceSweep& sweep) {
+  sweep.planes.clear();
+  sweep.insets.clear();
+  sweep.corners.clear();
   sweep.direction = normal;
   // The probe's rays start a stand-off from the face and run the reach
   // from there.
@@ -42,17 +51,15 @@ FreeSpaceSweep front_space_sweep(const std::vector<Eigen::Vector3d>& corners, co
   sweep.insets.push_back(-tol);
   sweep.planes.push_back(plane_through(normal, corners[0] + reach * normal));
   sweep.insets.push_back(0.0);
-  sweep.base = corners;
+  sweep.base.assign(corners.begin(), corners.end());
   for (const Eigen::Vector3d& c : corners) {
     sweep.corners.push_back(c);
     sweep.corners.push_back(c + reach * normal);
   }
-  return sweep;
 }
 
-FreeSpaceSweep opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
-                             const Eigen::Vector3d& face_normal, double reach, double tol) {
-  FreeSpaceSweep sweep;
+void opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
+                   const Eigen::Vector3d& face_normal, double reach, double tol, FreeSpaceSweep& sweep) {
   const Eigen::Vector3d along = (p1 - p0).normalized();
   Eigen::Vector3d out = along.cross(face_normal).normalized();
   if (out.dot(inner - p0) > 0.0) out = -out;
@@ -68,12 +75,18 @@ FreeSpaceSweep opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p
   sweep.insets = {-tol, -tol, 0.0, 0.0, -tol, 0.0};
   sweep.base = {p0, p1};
   sweep.corners = {p0, p1, p1 + reach * out, p0 + reach * out};
+}
+
+FreeSpaceSweep opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
+                             const Eigen::Vector3d& face_normal, double reach, double tol) {
+  FreeSpaceSweep sweep;
+  opening_sweep(p0, p1, inner, face_normal, reach, tol, sweep);
   return sweep;
 }
 
-FreeSpaceSweep opening_fan(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
-                           const Eigen::Vector3d& face_normal, int fan, double reach, double tol) {
-  if (fan == 0) return opening_sweep(p0, p1, inner, face_normal, reach, tol);
+void opening_fan(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
+                 const Eigen::Vector3d& face_normal, int fan, double reach, double tol, FreeSpaceSweep& sweep) {
+  if (fan == 0) return opening_sweep(p0, p1, inner, face_normal, reach, tol, sweep);
   // Turning the plane about the edge turns its normal with it: a fan
   // tilted by s toward the front runs along c out + s n, in the plane whose
   // normal is c n - s out.
@@ -81,7 +94,14 @@ FreeSpaceSweep opening_fan(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
   if (out.dot(inner - p0) > 0.0) out = -out;
   const double s = fan == 1 ? kOpeningTiltSine : -kOpeningTiltSine;
   const double c = std::sqrt(1.0 - s * s);
-  return opening_sweep(p0, p1, inner, c * face_normal - s * out, reach, tol);
+  opening_sweep(p0, p1, inner, c * face_normal - s * out, reach, tol, sweep);
+}
+
+FreeSpaceSweep opening_fan(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
+                           const Eigen::Vector3d& face_normal, int fan, double reach, double tol) {
+  FreeSpaceSweep sweep;
+  opening_fan(p0, p1, inner, face_normal, fan, reach, tol, sweep);
+  return sweep;
 }
 
 } // namespace hullcover

@@ -29,11 +29,18 @@ struct FreeSpaceSweep {
 /// `tol` behind the face, so faces coincident with it are met.
 FreeSpaceSweep front_space_sweep(const std::vector<Eigen::Vector3d>& corners, const Eigen::Vector3d& normal,
                                  double reach, double tol);
+/// The same, into `sweep` (its storage reused: checks build one for every
+/// piece of free space a hull meets).
+void front_space_sweep(const std::vector<Eigen::Vector3d>& corners, const Eigen::Vector3d& normal, double reach,
+                       double tol, FreeSpaceSweep& sweep);
 /// The opening beyond the edge p0-p1 of a face with unit normal
 /// `face_normal`, whose far corner is `inner` (the sweep runs away from it),
 /// in the plane through the edge normal to `face_normal`.
 FreeSpaceSweep opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
                              const Eigen::Vector3d& face_normal, double reach, double tol);
+/// The same, into `sweep` (its storage reused).
+void opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
+                   const Eigen::Vector3d& face_normal, double reach, double tol, FreeSpaceSweep& sweep);
 /// How many fans an opening has (DESIGN.md): in the face's plane, then
 /// tilted by kOpeningTiltSine to its front and to its back.
 inline constexpr int kOpeningFans = 3;
@@ -41,5 +48,8 @@ inline constexpr int kOpeningFans = 3;
 /// (as opening_sweep).
 FreeSpaceSweep opening_fan(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
                            const Eigen::Vector3d& face_normal, int fan, double reach, double tol);
+/// The same, into `sweep` (its storage reused).
+void opening_fan(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
+                 const Eigen::Vector3d& face_normal, int fan, double reach, double tol, FreeSpaceSweep& sweep);
 
 } // namespace hullcover

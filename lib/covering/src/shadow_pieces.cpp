@@ -13,9 +13,10 @@ namespace hullcover::detail {
 
 namespace {
 
-// column_planes, appended to `planes`.
-void append_column_planes(const std::vector<Eigen::Vector3d>& outline, const Eigen::Vector3d& dir,
-                          std::vector<Plane>& planes) {
+// The outward planes of the column of `outline` along `dir`, one by one
+// to `emit` (column_planes).
+template <class Emit>
+void for_each_column_plane(const std::vector<Eigen::Vector3d>& outline, const Eigen::Vector3d& dir, Emit&& emit) {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& v : outline) centre += v;
   centre /= static_cast<double>(outline.size());
@@ -23,10 +24,12 @@ void append_column_planes(const std::vector<Eigen::Vector3d>& outline, const Eig
     const Eigen::Vector3d& u = outline[i];
     const Eigen::Vector3d& v = outline[(i + 1) % outline.size()];
     const Eigen::Vector3d side = (v - u).cross(dir);
-    if (side.norm() <= kParallelSine * (v - u).norm()) continue;
-    Plane plane{side.normalized(), side.normalized().dot(u)};
+    const double length = side.norm();
+    if (length <= kParallelSine * (v - u).norm()) continue;
+    const Eigen::Vector3d normal = side / length;
+    Plane plane{normal, normal.dot(u)};
     if (plane.signed_distance(centre) > 0.0) plane = plane.flipped();
-    planes.push_back(plane);
+    emit(plane);
   }
 }
 
@@ -35,22 +38,41 @@ void append_column_planes(const std::vector<Eigen::Vector3d>& outline, const Eig
 std::vector<Plane> column_planes(const std::vector<Eigen::Vector3d>& outline, const Eigen::Vector3d& dir) {
   std::vector<Plane> planes;
   planes.reserve(outline.size());
-  append_column_planes(outline, dir, planes);
+  for_each_column_plane(outline, dir, [&](const Plane& plane) { planes.push_back(plane); });
   return planes;
+}
+
+void clip_to_column(const std::vector<Eigen::Vector3d>& polygon, const std::vector<Eigen::Vector3d>& outline,
+                    const Eigen::Vector3d& dir, std::vector<Eigen::Vector3d>& out,
+                    std::vector<Eigen::Vector3d>& spare) {
+  out.assign(polygon.begin(), polygon.end());
+  for_each_column_plane(outline, dir, [&](const Plane& plane) {
+    if (!out.empty()) clip_polygon_in_place(out, plane, 0.0, spare);
+  });
 }
 
 bool negligible(const std::vector<Eigen::Vector3d>& polygon, double tol) {
   if (polygon.size() < 3) return true;
-  const Eigen::Vector3d normal = [&] {
-    Eigen::Vector3d twice = Eigen::Vector3d::Zero();
-    for (size_t i = 0; i < polygon.size(); ++i) twice += polygon[i].cross(polygon[(i + 1) % polygon.size()]);
-    return twice;
-  }();
+  // Twice the area, as a vector along the normal. Taken about a corner:
+  // about the origin, a piece far smaller than its coordinates would lose
+  // its area, and its normal with it, to cancellation.
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  double perimeter = 0.0;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const Eigen::Vector3d& next = polygon[(i + 1) % polygon.size()];
+    normal += (polygon[i] - polygon[0]).cross(next - polygon[0]);
+    perimeter += (next - polygon[i]).norm();
+  }
   if (!(normal.norm() > 0.0)) return true;
+  const double width = kNegligibleWidthInTolerances * tol;
+  // Most pieces are far wider, and a bound tells at once: a convex
+  // polygon's width is at least its area over its diameter, and its
+  // diameter at most half its perimeter, so width >= twice its area over
+  // its perimeter. Twice the threshold leaves rounding no say in it.
+  if (normal.norm() > 2.0 * width * perimeter) return false;
   // Negligible when the polygon lies within the width of some edge's line
   // (its narrowest width). Each edge is dropped at its first point beyond:
   // the checks on the hot path of every judged piece stay near linear.
-  const double width = kNegligibleWidthInTolerances * tol;
   for (size_t i = 0; i < polygon.size(); ++i) {
     const Eigen::Vector3d edge = polygon[(i + 1) % polygon.size()] - polygon[i];
     const Eigen::Vector3d across = normal.cross(edge);
@@ -73,7 +95,7 @@ namespace {
 // planes per axis; none for an axis the plane is perpendicular to (every
 // point of it lies inside that slab).
 void append_grown_box_column_planes(const std::vector<Eigen::Vector3d>& triangle, const Eigen::Vector3d& normal,
-                                    const Eigen::Vector3d& dir, double tol, std::vector<Plane>& planes) {
+                                    const Eigen::Vector3d& dir, double tol, ShadowColumn& column) {
   const double box_margin = kFaceBoxMarginInTolerances * tol;
   const double rate = normal.dot(dir);
   const double on_plane = normal.dot(triangle[0]);
@@ -86,8 +108,8 @@ void append_grown_box_column_planes(const std::vector<Eigen::Vector3d>& triangle
     const double constant = dir[k] * on_plane / rate;
     const double highest = std::max({triangle[0][k], triangle[1][k], triangle[2][k]}) + box_margin;
     const double lowest = std::min({triangle[0][k], triangle[1][k], triangle[2][k]}) - box_margin;
-    planes.push_back({gradient / scale, (highest - constant) / scale});
-    planes.push_back({-gradient / scale, (constant - lowest) / scale});
+    column.side_planes[column.side_count++] = {gradient / scale, (highest - constant) / scale};
+    column.side_planes[column.side_count++] = {-gradient / scale, (constant - lowest) / scale};
   }
 }
 
@@ -96,21 +118,20 @@ void append_grown_box_column_planes(const std::vector<Eigen::Vector3d>& triangle
 ShadowColumn shadow_column(const std::vector<Eigen::Vector3d>& triangle, const Eigen::Vector3d& dir, double tol) {
   const Eigen::Vector3d normal = (triangle[1] - triangle[0]).cross(triangle[2] - triangle[0]).normalized();
   ShadowColumn column;
-  column.sides.reserve(9);  // three sides and two planes per axis of the box
-  append_column_planes(triangle, dir, column.sides);
-  for (Plane& plane : column.sides) {
+  for_each_column_plane(triangle, dir, [&](Plane plane) {
     // The side's edge moved out by tol in the triangle's plane moves the
     // column's side by tol times the cosine between the two outward
     // normals (the edge's, in the plane, is the side's projected into it).
     const double across = plane.normal.dot(normal);
     plane.offset += tol * std::sqrt(std::max(0.0, 1.0 - across * across));
-  }
-  append_grown_box_column_planes(triangle, normal, dir, tol, column.sides);
+    column.side_planes[column.side_count++] = plane;
+  });
+  append_grown_box_column_planes(triangle, normal, dir, tol, column);
   return column;
 }
 
 bool ShadowColumn::misses(const std::vector<Eigen::Vector3d>& region) const {
-  for (const Plane& plane : sides) {
+  for (const Plane& plane : *this) {
     bool all_beyond = true;
     for (const Eigen::Vector3d& p : region) all_beyond &= plane.signed_distance(p) > 0.0;
     if (all_beyond) return true;
@@ -118,16 +139,25 @@ bool ShadowColumn::misses(const std::vector<Eigen::Vector3d>& region) const {
   return false;
 }
 
-ShadowSplit split_by_shadow(const std::vector<Eigen::Vector3d>& region, const ShadowColumn& column, double tol) {
-  ShadowSplit split;
-  split.inside = region;
-  std::vector<Eigen::Vector3d> beside, clipped;
-  for (const Plane& plane : column.sides) {
-    split_polygon(split.inside, plane, clipped, beside);
-    if (!negligible(beside, tol)) split.beside.push_back(beside);
-    split.inside.swap(clipped);
+void split_by_shadow(const std::vector<Eigen::Vector3d>& region, const ShadowColumn& column, double tol,
+                     ShadowSplit& split) {
+  split.inside.assign(region.begin(), region.end());
+  split.beside.clear();
+  for (const Plane& plane : column) {
+    // Every corner strictly inside: nothing beside, the inside unchanged.
+    bool all_inside = true;
+    for (const Eigen::Vector3d& p : split.inside) all_inside &= plane.signed_distance(p) < 0.0;
+    if (all_inside) continue;
+    split_polygon(split.inside, plane, split.cut, split.off_cut);
+    if (!negligible(split.off_cut, tol)) split.beside.push_back(split.off_cut);
+    split.inside.swap(split.cut);
   }
   if (negligible(split.inside, tol)) split.inside.clear();
+}
+
+ShadowSplit split_by_shadow(const std::vector<Eigen::Vector3d>& region, const ShadowColumn& column, double tol) {
+  ShadowSplit split;
+  split_by_shadow(region, column, tol, split);
   return split;
 }
 

@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -26,6 +27,14 @@ inline constexpr double kNegligibleWidthInTolerances = 1e-6;
 /// along unit `dir`; edges running along dir (their sine with it within
 /// kParallelSine) bound nothing and give no plane.
 std::vector<Plane> column_planes(const std::vector<Eigen::Vector3d>& outline, const Eigen::Vector3d& dir);
+
+/// `polygon` clipped to the column of `outline` along `dir` (the planes of
+/// column_planes, no inset), written to `out`; `spare` is reused storage.
+/// The same polygon as clip_polygon_to_planes with column_planes, made
+/// without building the plane list (on the exact checks' hot path).
+void clip_to_column(const std::vector<Eigen::Vector3d>& polygon, const std::vector<Eigen::Vector3d>& outline,
+                    const Eigen::Vector3d& dir, std::vector<Eigen::Vector3d>& out,
+                    std::vector<Eigen::Vector3d>& spare);
 
 /// True for a piece no wider than kNegligibleWidthInTolerances x `tol`
 /// (scene units; its least width over its edges' directions), or with
@@ -42,6 +51,9 @@ bool negligible(const std::vector<Eigen::Vector3d>& polygon, double tol);
 struct ShadowSplit {
   std::vector<Eigen::Vector3d> inside;
   std::vector<std::vector<Eigen::Vector3d>> beside;
+  /// Storage the cutting reuses: a split kept from call to call (as the
+  /// judges keep theirs) allocates only the pieces it hands out.
+  std::vector<Eigen::Vector3d> cut, off_cut;
 };
 ShadowSplit split_by_shadow(const std::vector<Eigen::Vector3d>& region, const std::vector<Eigen::Vector3d>& triangle,
                             const Eigen::Vector3d& dir, double tol);
@@ -50,7 +62,13 @@ ShadowSplit split_by_shadow(const std::vector<Eigen::Vector3d>& region, const st
 /// planes of its column along a direction, the triangle grown by tol in
 /// its plane and kept inside its grown box (as rays meet it).
 struct ShadowColumn {
-  std::vector<Plane> sides;
+  /// Three sides and two planes per axis of the box, at most: held in
+  /// place, as a column is made for every face near every judged piece.
+  static constexpr int kMaxSides = 9;
+  std::array<Plane, kMaxSides> side_planes;
+  int side_count = 0;
+  const Plane* begin() const { return side_planes.data(); }
+  const Plane* end() const { return side_planes.data() + side_count; }
   /// True when one side has every corner of `region` strictly beyond it:
   /// then no part of the region lies inside the shadow (split_by_shadow's
   /// `inside` is empty), found without cutting anything.
@@ -59,6 +77,9 @@ struct ShadowColumn {
 ShadowColumn shadow_column(const std::vector<Eigen::Vector3d>& triangle, const Eigen::Vector3d& dir, double tol);
 /// split_by_shadow along a column made once.
 ShadowSplit split_by_shadow(const std::vector<Eigen::Vector3d>& region, const ShadowColumn& column, double tol);
+/// The same, into `split` (its old contents dropped, its storage reused).
+void split_by_shadow(const std::vector<Eigen::Vector3d>& region, const ShadowColumn& column, double tol,
+                     ShadowSplit& split);
 
 /// The base of the sweep's ray through `point`: where it crosses the
 /// sweep's start.

@@ -15,18 +15,19 @@ bool planes_support_points(const std::vector<Plane>& planes, const std::vector<E
 
 namespace {
 
-// E1-E3 of one piece of free space against a hull's interior. `triangle`
-// is reused storage (three corners).
+// E1-E3 of one piece of free space against a hull's interior. `sweep` and
+// `storage` are reused storage.
 Validity judge_sweep(const SceneIndex& index, const SweepRef& ref, const HullInterior& interior,
-                     std::vector<Eigen::Vector3d>& triangle, std::vector<int>& ray_scratch) {
+                     FreeSpaceSweep& sweep, detail::SweepJudgeStorage& storage) {
   const double tol = index.tol();
   const Mesh& mesh = index.mesh();
   if (ref.fan < 0) {
     const int f = ref.item;
+    std::vector<Eigen::Vector3d>& triangle = storage.triangle;
     triangle_corners(mesh, f, triangle);
-    const FreeSpaceSweep front = front_space_sweep(triangle, index.face_normals[f], index.front_reach[f], tol);
-    if (crossing_face_leaks(index, front, interior, ray_scratch)) return Validity::face_crosses_hull;
-    if (sweep_enters_hull(index, front, interior, ray_scratch)) return Validity::front_space_inside;
+    front_space_sweep(triangle, index.face_normals[f], index.front_reach[f], tol, sweep);
+    if (crossing_face_leaks(index, sweep, interior, storage)) return Validity::face_crosses_hull;
+    if (sweep_enters_hull(index, sweep, interior, storage)) return Validity::front_space_inside;
     return Validity::valid;
   }
   // The use names the face and where the edge sits in it: its far corner
@@ -37,9 +38,8 @@ Validity judge_sweep(const SceneIndex& index, const SweepRef& ref, const HullInt
   const Eigen::Vector3d& p1 = mesh.positions[t[(use.corner + 1) % 3]];
   const Eigen::Vector3d& inner = mesh.positions[t[(use.corner + 2) % 3]];
   const double reach = index.opening_reach[ref.item][ref.fan];
-  if (sweep_enters_hull(index, opening_fan(p0, p1, inner, index.face_normals[use.face], ref.fan, reach, tol), interior,
-                        ray_scratch))
-    return Validity::opening_inside;
+  opening_fan(p0, p1, inner, index.face_normals[use.face], ref.fan, reach, tol, sweep);
+  if (sweep_enters_hull(index, sweep, interior, storage)) return Validity::opening_inside;
   return Validity::valid;
 }
 
@@ -57,8 +57,9 @@ void sweep_owners(const AabbTree& tree, const std::vector<int>& owner_of_item, c
 // E1-E3 (exact_conditions.h) for a solid hull whose box grown by tol is `box`.
 Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, const Aabb& box,
                                 std::vector<int>& scratch, RecentRejections* recent) {
-  std::vector<int> ray_scratch;
-  std::vector<Eigen::Vector3d> triangle(3);
+  // Kept for every piece this hull's check judges.
+  FreeSpaceSweep sweep;
+  detail::SweepJudgeStorage storage;
   const HullInterior interior = hull_interior(hull, index.tol());
   if (interior.empty()) return Validity::valid;  // thinner than 2 tol: nothing is strictly inside
   std::vector<int>& fronts = scratch;
@@ -72,7 +73,7 @@ Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& h
     return ref.item >= 0 && std::binary_search(owners.begin(), owners.end(), ref.item);
   };
   const auto rejects = [&](const SweepRef& ref, Validity& validity) {
-    validity = judge_sweep(index, ref, interior, triangle, ray_scratch);
+    validity = judge_sweep(index, ref, interior, sweep, storage);
     if (validity == Validity::valid) return false;
     if (recent) recent->note(ref);
     return true;

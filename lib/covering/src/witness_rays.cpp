@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -95,13 +96,14 @@ WitnessRay witness_ray(const SceneIndex& index, const FreeSpaceSweep& sweep, con
 struct Settling {
   bool settled = false;
   /// Unsettled by a face met from the front in part of the piece: the piece
-  /// cut along that face's shadow (inside and beside), to judge each part.
-  std::optional<ShadowSplit> obstacle;
+  /// is cut along that face's shadow (inside and beside) in the storage's
+  /// near_split, to judge each part.
+  bool obstacle = false;
   std::optional<Plane> cut;    ///< unsettled: cut the piece here (the face decides the side behind it) and judge both sides
 };
 
 Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, const std::vector<Eigen::Vector3d>& piece,
-                        int f, bool enclosed) {
+                        int f, bool enclosed, SweepJudgeStorage& storage) {
   const Mesh& mesh = index.mesh();
   const double tol = index.tol();
   const Plane face{index.face_normals[f], index.face_normals[f].dot(mesh.positions[mesh.triangles[f][0]])};
@@ -116,17 +118,17 @@ Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, co
   // the piece is cut where the margin is zero.
   // Either way the face must lie past the stand-off, where rays meet faces:
   // a hull is judged from the surface on, so its entry may lie nearer.
-  const std::vector<Affine> margins = enclosed ? std::vector<Affine>{to_face - to_entry, to_face - stand_off}
-                                               : std::vector<Affine>{to_face - stand_off, to_entry - to_face};
+  const std::array<Affine, 2> margins = enclosed ? std::array<Affine, 2>{to_face - to_entry, to_face - stand_off}
+                                                 : std::array<Affine, 2>{to_face - stand_off, to_entry - to_face};
   for (const Affine& margin : margins) {
     const auto [lowest, highest] = range_over(margin, piece);
     if (lowest >= 0.0) continue;
     if (highest <= 0.0) return {};
     const std::optional<Plane> cut = splitting_cut(piece, margin, tol);
     if (!cut) continue;  // negative only by rounding
-    return {false, std::nullopt, cut};
+    return {false, false, cut};
   }
-  if (!enclosed) return {true, std::nullopt, std::nullopt};
+  if (!enclosed) return {true, false, std::nullopt};
   double farthest = 0.0;
   for (const Eigen::Vector3d& p : piece) farthest = std::max(farthest, to_face(p));
   Aabb column;
@@ -134,9 +136,10 @@ Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, co
     column.extend(p);
     column.extend(p + (farthest + sweep.start.signed_distance(p)) * sweep.direction);
   }
-  std::vector<int> near;
+  std::vector<int>& near = storage.near;
+  near.clear();
   index.face_tree.overlapping(grown(column, kFaceBoxMarginInTolerances * tol), near);  // where shadows reach
-  std::vector<Eigen::Vector3d> triangle(3);
+  std::vector<Eigen::Vector3d>& triangle = storage.triangle;
   const Affine one_tol{Eigen::Vector3d::Zero(), tol};
   for (int g : near) {
     if (g == f || index.face_normals[g].dot(sweep.direction) >= 0.0) continue;  // met from behind, or zero area
@@ -145,7 +148,8 @@ Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, co
     // their column tells, before any cutting.
     const ShadowColumn shadow = shadow_column(triangle, sweep.direction, tol);
     if (shadow.misses(piece)) continue;
-    const ShadowSplit split = split_by_shadow(piece, shadow, tol);
+    ShadowSplit& split = storage.near_split;
+    split_by_shadow(piece, shadow, tol, split);
     if (split.inside.empty()) continue;
     // One running along the rays is not met (mesh_ray.h).
     const Plane other{index.face_normals[g], index.face_normals[g].dot(triangle[0])};
@@ -163,15 +167,15 @@ Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, co
     };
     if (clear(beyond, beyond_low, beyond_high) || clear(before, before_low, before_high)) continue;
     // g shadows part of the piece: cut along its shadow first.
-    if (!split.beside.empty()) return {false, split, std::nullopt};
+    if (!split.beside.empty()) return {false, true, std::nullopt};
     // g shadows it all, clear of it in part: cut where that changes.
     if (beyond_high > 0.0)
-      if (const std::optional<Plane> cut = splitting_cut(split.inside, beyond, tol)) return {false, std::nullopt, cut};
+      if (const std::optional<Plane> cut = splitting_cut(split.inside, beyond, tol)) return {false, false, cut};
     if (before_high > 0.0)
-      if (const std::optional<Plane> cut = splitting_cut(split.inside, before, tol)) return {false, std::nullopt, cut};
+      if (const std::optional<Plane> cut = splitting_cut(split.inside, before, tol)) return {false, false, cut};
     return {};  // between the entry and f everywhere: not enclosed by f
   }
-  return {true, std::nullopt, std::nullopt};
+  return {true, false, std::nullopt};
 }
 
 // Judges regions exactly, piece by piece: each piece's middle ray names the
@@ -185,30 +189,24 @@ Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, co
 class RegionJudge {
 public:
   RegionJudge(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
-              std::vector<int>& scratch)
-      : index_(index), sweep_(sweep), interior_(interior), scratch_(scratch) {}
+              SweepJudgeStorage& storage)
+      : index_(index), sweep_(sweep), interior_(interior), storage_(storage), pending_(storage.pending) {}
 
   bool loses_space(const std::vector<Eigen::Vector3d>& region) {
     pending_.clear();
     pending_.push_back({region, -1, false});
     while (!pending_.empty()) {
-      Work work = std::move(pending_.back());
+      Piece work = std::move(pending_.back());
       pending_.pop_back();
-      const bool loses = work.settling_face >= 0 ? !settles(work.piece, work.settling_face, work.enclosed)
-                                                 : piece_loses_space(work.piece);
+      const bool loses = work.settling_face >= 0 ? !settles(work.corners, work.settling_face, work.enclosed)
+                                                 : piece_loses_space(work.corners);
       if (loses) return true;
     }
     return false;
   }
 
 private:
-  // A piece to judge (settling_face -1), or one inside a face's shadow for
-  // that face to settle.
-  struct Work {
-    std::vector<Eigen::Vector3d> piece;
-    int settling_face = -1;
-    bool enclosed = false;
-  };
+  using Piece = SweepJudgeStorage::Piece;
 
   // Whether `region` loses space by its own rays; the pieces it is cut into
   // wait on the stack, the part the deciding face settles first.
@@ -217,23 +215,24 @@ private:
     const double tol = index_.tol();
     if (negligible(region, tol)) return false;
     if (--budget_ < 0) return true;
-    WitnessRay ray = witness_ray(index_, sweep_, interior_, centroid_of(region), scratch_);
-    if (ray.loses) return !piece_loss_allowed(index_, sweep_, interior_, region, scratch_);
+    std::vector<int>& faces = storage_.faces;
+    WitnessRay ray = witness_ray(index_, sweep_, interior_, centroid_of(region), faces);
+    if (ray.loses) return !piece_loss_allowed(index_, sweep_, interior_, region, faces);
     if (ray.deciding_face < 0) {
       // The middle ray misses the interior (a piece where the sweep only
       // grazes it): its corners' rays, pulled in a little, tell.
       const Eigen::Vector3d middle = centroid_of(region);
       for (const Eigen::Vector3d& corner : region) {
-        ray = witness_ray(index_, sweep_, interior_, corner + kWitnessInset * (middle - corner), scratch_);
-        if (ray.loses) return !piece_loss_allowed(index_, sweep_, interior_, region, scratch_);
+        ray = witness_ray(index_, sweep_, interior_, corner + kWitnessInset * (middle - corner), faces);
+        if (ray.loses) return !piece_loss_allowed(index_, sweep_, interior_, region, faces);
         if (ray.deciding_face >= 0) break;
       }
       if (ray.deciding_face < 0) return false;
     }
-    const Mesh& mesh = index_.mesh();
-    std::vector<Eigen::Vector3d> triangle(3);
-    triangle_corners(mesh, ray.deciding_face, triangle);
-    ShadowSplit split = split_by_shadow(region, triangle, sweep_.direction, tol);
+    std::vector<Eigen::Vector3d>& triangle = storage_.triangle;
+    triangle_corners(index_.mesh(), ray.deciding_face, triangle);
+    ShadowSplit& split = storage_.split;
+    split_by_shadow(region, shadow_column(triangle, sweep_.direction, tol), tol, split);
     for (auto piece = split.beside.rbegin(); piece != split.beside.rend(); ++piece)
       pending_.push_back({std::move(*piece), -1, false});
     if (split.inside.size() >= 3) pending_.push_back({std::move(split.inside), ray.deciding_face, ray.enclosed});
@@ -244,7 +243,7 @@ private:
   // or cuts it into pieces (left on the stack) that will be judged; false
   // when it can do neither.
   bool settles(const std::vector<Eigen::Vector3d>& piece, int f, bool enclosed) {
-    const Settling settling = settle_by_face(index_, sweep_, piece, f, enclosed);
+    const Settling settling = settle_by_face(index_, sweep_, piece, f, enclosed, storage_);
     if (settling.settled) return true;
     if (settling.cut) {
       const Plane& cut = *settling.cut;
@@ -257,9 +256,10 @@ private:
       return true;
     }
     if (settling.obstacle) {
-      pending_.push_back({settling.obstacle->inside, -1, false});
-      const auto& beside = settling.obstacle->beside;
-      for (auto part = beside.rbegin(); part != beside.rend(); ++part) pending_.push_back({*part, -1, false});
+      ShadowSplit& split = storage_.near_split;
+      pending_.push_back({std::move(split.inside), -1, false});
+      for (auto part = split.beside.rbegin(); part != split.beside.rend(); ++part)
+        pending_.push_back({std::move(*part), -1, false});
       return true;
     }
     return false;
@@ -268,16 +268,16 @@ private:
   const SceneIndex& index_;
   const FreeSpaceSweep& sweep_;
   const HullInterior& interior_;
-  std::vector<int>& scratch_;
-  std::vector<Work> pending_;
+  SweepJudgeStorage& storage_;
+  std::vector<Piece>& pending_;
   int budget_ = kMaxJudgedPieces;
 };
 
 } // namespace
 
 bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
-                        const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch) {
-  RegionJudge judge(index, sweep, interior, scratch);
+                        const std::vector<Eigen::Vector3d>& region, SweepJudgeStorage& storage) {
+  RegionJudge judge(index, sweep, interior, storage);
   return judge.loses_space(region);
 }
 

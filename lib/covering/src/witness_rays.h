@@ -5,10 +5,32 @@
 
 #include "free_space_sweep.h"
 #include "scene_index.h"
+#include "shadow_pieces.h"
 
 #include <vector>
 
 namespace hullcover::detail {
+
+/// Storage region_loses_space and the exact checks around it reuse from
+/// call to call, so that their hot path allocates only the pieces it cuts
+/// once this has grown. One per thread, never shared; nothing in it
+/// carries meaning from one call to the next.
+struct SweepJudgeStorage {
+  /// A piece waiting to be judged (settling_face -1), or one inside a
+  /// face's shadow for that face to settle.
+  struct Piece {
+    std::vector<Eigen::Vector3d> corners;
+    int settling_face = -1;
+    bool enclosed = false;
+  };
+  std::vector<Piece> pending;
+  std::vector<int> faces;  ///< tree look-ups
+  std::vector<int> near;   ///< faces near a piece's column
+  ShadowSplit split, near_split;
+  std::vector<Eigen::Vector3d> triangle = std::vector<Eigen::Vector3d>(3);
+  /// Polygons sweep_enters_hull cuts on the way to a region.
+  std::vector<Eigen::Vector3d> part, through, spare;
+};
 
 /// How many pieces one region may be cut into before it counts as losing
 /// space: a bound on the work, where giving up is conservative.
@@ -26,9 +48,10 @@ inline constexpr int kMaxJudgedPieces = 1024;
 /// allowance (agent radius, max deviation), a piece whose rays lose space
 /// loses none when piece_loss_allowed (loss_allowance.h) proves its loss
 /// harmless. A region
-/// not settled in kMaxJudgedPieces pieces counts as losing space. `scratch` is
-/// reused storage.
+/// not settled in kMaxJudgedPieces pieces counts as losing space. `storage`
+/// is reused storage (its `part`, `through` and `spare` are left alone, so
+/// `region` may be one of them).
 bool region_loses_space(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
-                        const std::vector<Eigen::Vector3d>& region, std::vector<int>& scratch);
+                        const std::vector<Eigen::Vector3d>& region, SweepJudgeStorage& storage);
 
 } // namespace hullcover::detail

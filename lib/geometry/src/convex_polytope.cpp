@@ -67,6 +67,16 @@ void clip_polygon_into(const std::vector<Eigen::Vector3d>& polygon, const Plane&
   }
 }
 
+void clip_polygon_in_place(std::vector<Eigen::Vector3d>& polygon, const Plane& plane, double inset,
+                           std::vector<Eigen::Vector3d>& spare) {
+  // Every corner strictly inside keeps every corner and makes no crossing.
+  bool all_inside = true;
+  for (const Eigen::Vector3d& p : polygon) all_inside &= plane.signed_distance(p) + inset < 0.0;
+  if (all_inside) return;
+  clip_polygon_into(polygon, plane, inset, spare);
+  polygon.swap(spare);
+}
+
 void split_polygon(const std::vector<Eigen::Vector3d>& polygon, const Plane& plane, std::vector<Eigen::Vector3d>& inner,
                    std::vector<Eigen::Vector3d>& outer) {
   inner.clear();
@@ -106,8 +116,7 @@ std::vector<Eigen::Vector3d> clip_polygon_to_planes(std::vector<Eigen::Vector3d>
   std::vector<Eigen::Vector3d> clipped;
   for (const Plane& plane : planes) {
     if (polygon.empty()) break;
-    clip_polygon_into(polygon, plane, inset, clipped);
-    polygon.swap(clipped);
+    clip_polygon_in_place(polygon, plane, inset, clipped);
   }
   return polygon;
 }

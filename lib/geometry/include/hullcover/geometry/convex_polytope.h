@@ -69,6 +69,13 @@ std::vector<Eigen::Vector3d> clip_polygon(const std::vector<Eigen::Vector3d>& po
 void clip_polygon_into(const std::vector<Eigen::Vector3d>& polygon, const Plane& plane, double inset,
                        std::vector<Eigen::Vector3d>& out);
 
+/// `clip_polygon` in place: `polygon` becomes its part on the inner side
+/// (`spare` is reused storage). One wholly on that side (every corner
+/// strictly, as most are when a piece is clipped to many planes) is left
+/// as it is, uncopied: the same polygon clip_polygon gives.
+void clip_polygon_in_place(std::vector<Eigen::Vector3d>& polygon, const Plane& plane, double inset,
+                           std::vector<Eigen::Vector3d>& spare);
+
 /// `polygon` cut by `plane` into its part on the inner side (`inner`, as
 /// clip_polygon with no inset) and on the outer side (`outer`, as
 /// clip_polygon by the flipped plane), bit for bit, in one pass. Neither
