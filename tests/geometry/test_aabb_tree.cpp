@@ -97,6 +97,38 @@ TEST(AabbTree, OverlappingMatchesBruteForceOnGridBoxes) {
   }
 }
 
+TEST(AabbTree, AnyOverlappingVisitsWhatOverlappingListsAndStopsAtTheFirstYes) {
+  std::mt19937 rng(29);
+  std::vector<Aabb> boxes;
+  for (int i = 0; i < 2000; ++i) boxes.push_back(random_grid_box(rng, true));
+  const AabbTree tree(boxes);
+  int stopped_early = 0;
+  for (int q = 0; q < 300; ++q) {
+    const Aabb query = random_grid_box(rng, false);
+    std::vector<int> listed;
+    tree.overlapping(query, listed);
+    // Never stopping: every listed box, in the listed order.
+    std::vector<int> visited;
+    EXPECT_FALSE(tree.any_overlapping(query, [&](int i) {
+      visited.push_back(i);
+      return false;
+    }));
+    ASSERT_EQ(visited, listed) << "query " << q;
+    // Stopping at items divisible by 7: yes exactly when one is listed, and
+    // nothing visited after it.
+    visited.clear();
+    const bool any = tree.any_overlapping(query, [&](int i) {
+      visited.push_back(i);
+      return i % 7 == 0;
+    });
+    const auto first = std::find_if(listed.begin(), listed.end(), [](int i) { return i % 7 == 0; });
+    EXPECT_EQ(any, first != listed.end());
+    ASSERT_EQ(visited, std::vector<int>(listed.begin(), first == listed.end() ? first : first + 1)) << "query " << q;
+    stopped_early += first != listed.end() && first + 1 != listed.end();
+  }
+  EXPECT_GT(stopped_early, 30);  // the early stop was put to the test
+}
+
 TEST(AabbTree, OverlappingMatchesBruteForceOnContinuousBoxes) {
   std::mt19937 rng(22);
   std::uniform_real_distribution<double> u(-10.0, 10.0), size(0.0, 2.0);

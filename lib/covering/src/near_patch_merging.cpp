@@ -52,6 +52,32 @@ bool PatchMerger::face_near_patch(int f, int q) const {
   return false;
 }
 
+void PatchMerger::keep_patches_near_face(int f, std::vector<int>& patches) const {
+  if (patches.empty()) return;
+  const Mesh& mesh = index_.mesh();
+  Eigen::Vector3d face[3], other[3];
+  corners_of_face(mesh, f, face);
+  const Aabb reach = grown(box_of_face(face), near_merge_distance_);
+  // face_near_patch for each, from one look-up of the faces around f: a
+  // large face among many patches would otherwise look them up once per
+  // patch.
+  std::vector<int> around;
+  index_.face_tree.overlapping(reach, around);
+  std::vector<char> near(patches.size(), 0);
+  for (int g : around) {
+    const int q = patch_of(g);
+    const auto at = std::lower_bound(patches.begin(), patches.end(), q);
+    if (at == patches.end() || *at != q || near[at - patches.begin()]) continue;
+    corners_of_face(mesh, g, other);
+    if (boxes_overlap(reach, box_of_face(other)) && triangles_within(face, other, near_merge_distance_))
+      near[at - patches.begin()] = 1;
+  }
+  size_t kept = 0;
+  for (size_t i = 0; i < patches.size(); ++i)
+    if (near[i]) patches[kept++] = patches[i];
+  patches.resize(kept);
+}
+
 bool PatchMerger::patches_near(int a, int b) const {
   const Aabb reach = grown(bounding_box_of(positions_of(index_.mesh(), patches_[b].hull_vertices)),
                            near_merge_distance_);

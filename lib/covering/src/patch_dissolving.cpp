@@ -34,9 +34,13 @@ std::vector<int> PatchMerger::receivers_of(int f, int h, const AabbTree& near_tr
     std::vector<int> near;
     near_tree.overlapping(box, near);
     std::sort(near.begin(), near.end());
-    for (int q : near)
-      if (q != h && patches_[q].alive && std::find(out.begin(), out.end(), q) == out.end() && face_near_patch(f, q))
-        out.push_back(q);
+    near.erase(std::remove_if(near.begin(), near.end(),
+                              [&](int q) {
+                                return q == h || !patches_[q].alive || std::find(out.begin(), out.end(), q) != out.end();
+                              }),
+               near.end());
+    keep_patches_near_face(f, near);
+    out.insert(out.end(), near.begin(), near.end());
   }
   return out;
 }

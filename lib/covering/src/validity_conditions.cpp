@@ -109,19 +109,18 @@ Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, s
   // Condition 1 keeps mesh elements out of hulls; with an allowance a hull
   // may swallow them where the exact conditions prove the space around them
   // harmless.
+  // The walks stop at the first element inside: most candidates that fail
+  // fail here, and a large hull's box holds thousands of elements.
   if (!index.has_allowance()) {
-    scratch.clear();
-    index.vertex_tree.overlapping(box, scratch);
-    for (int v : scratch)
-      if (deepest_signed_distance(hull.planes, mesh.positions[v]) < -tol) return Validity::vertex_inside;
-
-    scratch.clear();
-    index.edge_tree.overlapping(box, scratch);
-    for (int e : scratch) {
-      const MeshEdge& edge = index.prepared->connectivity.edges[e];
-      if (segment_enters_interior(hull.planes, mesh.positions[edge.v0], mesh.positions[edge.v1], tol))
-        return Validity::edge_inside;
-    }
+    if (index.vertex_tree.any_overlapping(box, [&](int v) {
+          return deepest_signed_distance(hull.planes, mesh.positions[v]) < -tol;
+        }))
+      return Validity::vertex_inside;
+    if (index.edge_tree.any_overlapping(box, [&](int e) {
+          const MeshEdge& edge = index.prepared->connectivity.edges[e];
+          return segment_enters_interior(hull.planes, mesh.positions[edge.v0], mesh.positions[edge.v1], tol);
+        }))
+      return Validity::edge_inside;
   }
 
   scratch.clear();

@@ -32,6 +32,13 @@ public:
   /// query.
   void overlapping(const Aabb& query, std::vector<int>& out) const;
 
+  /// Calls `stop(i)` for the boxes overlapping `query`, as `overlapping`
+  /// lists them and in that order, until one returns true; returns whether
+  /// one did. For "is any of them ...?" questions: the walk ends at the
+  /// first yes instead of listing every box first.
+  template <class Stop>
+  bool any_overlapping(const Aabb& query, Stop&& stop) const;
+
   /// Calls `meet(i)` for the boxes that, grown by `margin`, the segment
   /// from-to passes through, nearest first as far as the tree tells, and
   /// skips boxes it enters later than the nearest meeting so far plus
@@ -165,6 +172,27 @@ inline double AabbTree::segment_box_entry(const Eigen::Vector3d& from, const Eig
     if (enter > leave) return kMiss;
   }
   return enter;
+}
+
+template <class Stop>
+bool AabbTree::any_overlapping(const Aabb& query, Stop&& stop) const {
+  if (items_.empty() || query.empty() || !overlaps(root_box_, query)) return false;
+  ChildRef stack[kMaxDepth];
+  int top = 0;
+  stack[top++] = root_;
+  while (top > 0) {
+    const ChildRef ref = stack[--top];
+    if (ref.count > 0) {
+      for (int i = ref.index; i < ref.index + ref.count; ++i)
+        if (boxes_overlap(leaf_boxes_[i], query) && stop(items_[i])) return true;
+      continue;
+    }
+    const Node& node = nodes_[ref.index];
+    assert(top + 2 <= kMaxDepth);
+    if (overlaps(node.box[0], query)) stack[top++] = node.child[0];
+    if (overlaps(node.box[1], query)) stack[top++] = node.child[1];
+  }
+  return false;
 }
 
 template <class Meet>
