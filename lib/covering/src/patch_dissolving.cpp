@@ -34,11 +34,10 @@ std::vector<int> PatchMerger::receivers_of(int f, int h, const AabbTree& near_tr
     std::vector<int> near;
     near_tree.overlapping(box, near);
     std::sort(near.begin(), near.end());
-    near.erase(std::remove_if(near.begin(), near.end(),
-                              [&](int q) {
-                                return q == h || !patches_[q].alive || std::find(out.begin(), out.end(), q) != out.end();
-                              }),
-               near.end());
+    const auto not_a_receiver = [&](int q) {
+      return q == h || !patches_[q].alive || std::find(out.begin(), out.end(), q) != out.end();
+    };
+    near.erase(std::remove_if(near.begin(), near.end(), not_a_receiver), near.end());
     keep_patches_near_face(f, near);
     out.insert(out.end(), near.begin(), near.end());
   }

@@ -129,8 +129,8 @@ private:
   /// patch `q` (nearest points of the triangles, not boxes: the same pairs
   /// however the scene is turned; boxes only pick the candidates).
   bool face_near_patch(int f, int q) const;
-  /// Keeps of `patches` (ascending, none holding f) those face_near_patch
-  /// finds near face `f`, in the same order.
+  /// Keeps of `patches` (distinct and ascending, none holding f) those
+  /// face_near_patch finds near face `f`, in the same order.
   void keep_patches_near_face(int f, std::vector<int>& patches) const;
   /// Whether patches `a` and `b` come within the near-merge distance.
   bool patches_near(int a, int b) const;

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -116,6 +117,9 @@ void append_grown_box_column_planes(const std::vector<Eigen::Vector3d>& triangle
 } // namespace
 
 ShadowColumn shadow_column(const std::vector<Eigen::Vector3d>& triangle, const Eigen::Vector3d& dir, double tol) {
+  // Three sides and six box planes fill the column's array: more corners
+  // would overrun it.
+  assert(triangle.size() == 3);
   const Eigen::Vector3d normal = (triangle[1] - triangle[0]).cross(triangle[2] - triangle[0]).normalized();
   ShadowColumn column;
   for_each_column_plane(triangle, dir, [&](Plane plane) {

@@ -30,6 +30,7 @@ std::vector<Plane> column_planes(const std::vector<Eigen::Vector3d>& outline, co
 
 /// `polygon` clipped to the column of `outline` along `dir` (the planes of
 /// column_planes, no inset), written to `out`; `spare` is reused storage.
+/// Neither may be `polygon` or `outline`.
 /// The same polygon as clip_polygon_to_planes with column_planes, made
 /// without building the plane list (on the exact checks' hot path).
 void clip_to_column(const std::vector<Eigen::Vector3d>& polygon, const std::vector<Eigen::Vector3d>& outline,
@@ -41,7 +42,7 @@ void clip_to_column(const std::vector<Eigen::Vector3d>& polygon, const std::vect
 /// fewer than 3 corners or no area: a sliver of rounding, which cutting
 /// would only shave again. Far below anything a ray could be aimed at: an
 /// opening's strip alone is 2 tol wide. Corners are finite (a NaN corner
-/// would make no edge's width hold the piece: kept, never dropped).
+/// makes the area NaN, and the piece counts as negligible).
 bool negligible(const std::vector<Eigen::Vector3d>& polygon, double tol);
 
 /// `region` cut along the shadow (the column along `dir`) of a triangle:
@@ -65,8 +66,10 @@ struct ShadowColumn {
   /// Three sides and two planes per axis of the box, at most: held in
   /// place, as a column is made for every face near every judged piece.
   static constexpr int kMaxSides = 9;
+  /// The first side_count hold the column's outward planes.
   std::array<Plane, kMaxSides> side_planes;
   int side_count = 0;
+  /// The planes, for range-for.
   const Plane* begin() const { return side_planes.data(); }
   const Plane* end() const { return side_planes.data() + side_count; }
   /// True when one side has every corner of `region` strictly beyond it:
@@ -74,10 +77,12 @@ struct ShadowColumn {
   /// `inside` is empty), found without cutting anything.
   bool misses(const std::vector<Eigen::Vector3d>& region) const;
 };
+/// `triangle` has exactly three corners.
 ShadowColumn shadow_column(const std::vector<Eigen::Vector3d>& triangle, const Eigen::Vector3d& dir, double tol);
 /// split_by_shadow along a column made once.
 ShadowSplit split_by_shadow(const std::vector<Eigen::Vector3d>& region, const ShadowColumn& column, double tol);
-/// The same, into `split` (its old contents dropped, its storage reused).
+/// The same, into `split` (its old contents dropped, its storage reused);
+/// `region` must not be one of split's own vectors.
 void split_by_shadow(const std::vector<Eigen::Vector3d>& region, const ShadowColumn& column, double tol,
                      ShadowSplit& split);
 

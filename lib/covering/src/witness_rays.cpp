@@ -99,7 +99,7 @@ struct Settling {
   /// is cut along that face's shadow (inside and beside) in the storage's
   /// near_split, to judge each part.
   bool obstacle = false;
-  std::optional<Plane> cut;    ///< unsettled: cut the piece here (the face decides the side behind it) and judge both sides
+  std::optional<Plane> cut;  ///< unsettled: cut the piece here (the face decides the side behind it) and judge both sides
 };
 
 Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, const std::vector<Eigen::Vector3d>& piece,

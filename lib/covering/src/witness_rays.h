@@ -12,9 +12,10 @@
 namespace hullcover::detail {
 
 /// Storage region_loses_space and the exact checks around it reuse from
-/// call to call, so that their hot path allocates only the pieces it cuts
-/// once this has grown. One per thread, never shared; nothing in it
-/// carries meaning from one call to the next.
+/// call to call: one is made for each hull check and serves every sweep
+/// and piece that check judges, so that their hot path allocates only the
+/// pieces it cuts. Never shared between threads; nothing in it carries
+/// meaning from one call to the next.
 struct SweepJudgeStorage {
   /// A piece waiting to be judged (settling_face -1), or one inside a
   /// face's shadow for that face to settle.
@@ -23,10 +24,17 @@ struct SweepJudgeStorage {
     int settling_face = -1;
     bool enclosed = false;
   };
+  /// The judge's stack of pieces still to judge.
   std::vector<Piece> pending;
   std::vector<int> faces;  ///< tree look-ups
   std::vector<int> near;   ///< faces near a piece's column
-  ShadowSplit split, near_split;
+  /// A piece cut along its deciding face's shadow.
+  ShadowSplit split;
+  /// A piece cut along the shadow of a face met from the front between the
+  /// entry and the settling face: settle_by_face leaves it here for the
+  /// judge to stack.
+  ShadowSplit near_split;
+  /// One face's corners.
   std::vector<Eigen::Vector3d> triangle = std::vector<Eigen::Vector3d>(3);
   /// Polygons sweep_enters_hull cuts on the way to a region.
   std::vector<Eigen::Vector3d> part, through, spare;
