@@ -18,6 +18,13 @@ namespace {
 
 using V = Eigen::Vector3d;
 
+// A piece of a sweep along `dir`: a quad across the rays about `centre`.
+std::vector<V> piece_across(const V& dir, const V& centre) {
+  const V u = dir.unitOrthogonal(), v = dir.cross(u);
+  return {centre - 0.3 * u - 0.2 * v, centre + 0.3 * u - 0.2 * v, centre + 0.3 * u + 0.2 * v,
+          centre - 0.3 * u + 0.2 * v};
+}
+
 TEST(ShadowColumn, MissesOnlyPiecesItsSplitLeavesNothingInside) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -27,10 +34,7 @@ TEST(ShadowColumn, MissesOnlyPiecesItsSplitLeavesNothingInside) {
   for (int trial = 0; trial < 3000; ++trial) {
     const V dir = random_vector().normalized();
     // A piece: a quad across the rays, a triangle somewhere along them.
-    const V u = dir.unitOrthogonal(), v = dir.cross(u);
-    const V centre = 0.5 * random_vector();
-    const std::vector<V> piece = {centre - 0.3 * u - 0.2 * v, centre + 0.3 * u - 0.2 * v,
-                                  centre + 0.3 * u + 0.2 * v, centre - 0.3 * u + 0.2 * v};
+    const std::vector<V> piece = piece_across(dir, 0.5 * random_vector());
     const V at = 2.0 * dir + 1.2 * random_vector();
     std::vector<V> triangle = {at + 0.4 * random_vector(), at + 0.4 * random_vector(), at + 0.4 * random_vector()};
     if ((triangle[1] - triangle[0]).cross(triangle[2] - triangle[0]).norm() < 1e-3) continue;
@@ -66,10 +70,7 @@ TEST(ShadowSplit, ASplitReusedFromCallToCallGivesWhatAFreshOneGives) {
   int cut = 0;
   for (int trial = 0; trial < 2000; ++trial) {
     const V dir = random_vector().normalized();
-    const V u = dir.unitOrthogonal(), v = dir.cross(u);
-    const V centre = 0.5 * random_vector();
-    const std::vector<V> piece = {centre - 0.3 * u - 0.2 * v, centre + 0.3 * u - 0.2 * v,
-                                  centre + 0.3 * u + 0.2 * v, centre - 0.3 * u + 0.2 * v};
+    const std::vector<V> piece = piece_across(dir, 0.5 * random_vector());
     const V at = 2.0 * dir + 0.6 * random_vector();
     const std::vector<V> triangle = {at + 0.5 * random_vector(), at + 0.5 * random_vector(),
                                      at + 0.5 * random_vector()};

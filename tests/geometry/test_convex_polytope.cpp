@@ -67,6 +67,18 @@ TEST(ClipPolygon, KeepsTheInnerPart) {
   EXPECT_TRUE(clip_polygon(square, {{1, 0, 0}, -1.0}, 0.0).empty());
 }
 
+// A regular n-gon about `centre`, turned and stretched in its plane by the
+// axes u and v.
+std::vector<Eigen::Vector3d> regular_polygon(int n, const Eigen::Vector3d& centre, const Eigen::Vector3d& u,
+                                             const Eigen::Vector3d& v) {
+  std::vector<Eigen::Vector3d> polygon;
+  for (int i = 0; i < n; ++i) {
+    const double angle = 2.0 * 3.141592653589793 * i / n;
+    polygon.push_back(centre + std::cos(angle) * u + std::sin(angle) * v);
+  }
+  return polygon;
+}
+
 // Random convex polygons (regular n-gons, turned and stretched in their
 // plane) cut by random planes, some through a corner exactly.
 TEST(SplitPolygon, EachSideIsTheClipBitForBit) {
@@ -79,11 +91,7 @@ TEST(SplitPolygon, EachSideIsTheClipBitForBit) {
     const int n = 3 + trial % 6;
     const Eigen::Vector3d centre = 100.0 * random_vector();
     const Eigen::Vector3d u = random_vector(), v = random_vector();
-    std::vector<Eigen::Vector3d> polygon;
-    for (int i = 0; i < n; ++i) {
-      const double angle = 2.0 * 3.141592653589793 * i / n;
-      polygon.push_back(centre + std::cos(angle) * u + std::sin(angle) * v);
-    }
+    const std::vector<Eigen::Vector3d> polygon = regular_polygon(n, centre, u, v);
     const Eigen::Vector3d normal = random_vector().normalized();
     const Eigen::Vector3d through = trial % 3 == 0 ? polygon[trial % n] : centre + 0.7 * random_vector();
     const Plane plane{normal, normal.dot(through)};
@@ -122,11 +130,7 @@ TEST(ClipPolygonInPlace, GivesWhatClipPolygonGivesBitForBit) {
     const int n = 3 + trial % 5;
     const Eigen::Vector3d centre = 100.0 * random_vector();
     const Eigen::Vector3d u = random_vector(), v = random_vector();
-    std::vector<Eigen::Vector3d> polygon;
-    for (int i = 0; i < n; ++i) {
-      const double angle = 2.0 * 3.141592653589793 * i / n;
-      polygon.push_back(centre + std::cos(angle) * u + std::sin(angle) * v);
-    }
+    const std::vector<Eigen::Vector3d> polygon = regular_polygon(n, centre, u, v);
     const Eigen::Vector3d normal = random_vector().normalized();
     // Planes through a corner (a corner exactly on it), near the middle,
     // and far off either way (nothing cut, or nothing left).

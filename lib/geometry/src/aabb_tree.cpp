@@ -167,24 +167,12 @@ AabbTree::ChildRef AabbTree::build(int begin, int end, int depth, const std::vec
 }
 
 void AabbTree::overlapping(const Aabb& query, std::vector<int>& out) const {
-  if (items_.empty() || query.empty() || !overlaps(root_box_, query)) return;
-  ChildRef stack[kMaxDepth];
-  int top = 0;
-  stack[top++] = root_;
-  while (top > 0) {
-    const ChildRef ref = stack[--top];
-    if (ref.count > 0) {
-      for (int i = ref.index; i < ref.index + ref.count; ++i)
-        if (boxes_overlap(leaf_boxes_[i], query)) out.push_back(items_[i]);
-      continue;
-    }
-    // Children in the order the walk has always taken them (right first),
-    // so that callers see the same list.
-    const Node& node = nodes_[ref.index];
-    assert(top + 2 <= kMaxDepth);
-    if (overlaps(node.box[0], query)) stack[top++] = node.child[0];
-    if (overlaps(node.box[1], query)) stack[top++] = node.child[1];
-  }
+  // The walk of any_overlapping, never stopped: the same boxes in the same
+  // order (right child first, as the walk has always taken them).
+  any_overlapping(query, [&out](int i) {
+    out.push_back(i);
+    return false;
+  });
 }
 
 } // namespace hullcover

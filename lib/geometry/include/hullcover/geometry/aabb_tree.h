@@ -187,6 +187,8 @@ bool AabbTree::any_overlapping(const Aabb& query, Stop&& stop) const {
         if (boxes_overlap(leaf_boxes_[i], query) && stop(items_[i])) return true;
       continue;
     }
+    // Children in the order the walk has always taken them (right first),
+    // so that callers see the same list.
     const Node& node = nodes_[ref.index];
     assert(top + 2 <= kMaxDepth);
     if (overlaps(node.box[0], query)) stack[top++] = node.child[0];
