@@ -75,10 +75,7 @@ bool crossing_face_leaks(const SceneIndex& index, const FreeSpaceSweep& sweep, c
   }
   std::vector<Eigen::Vector3d>& inside = storage.part;
   inside = sweep.base;
-  for (const Plane& plane : interior.planes) {
-    if (inside.empty()) return false;
-    clip_polygon_in_place(inside, plane, 0.0, storage.spare);
-  }
+  clip_polygon_to_planes_in_place(inside, interior.planes, 0.0, storage.spare);
   return !inside.empty() && leaves_through_some_facet_losing_space(index, sweep, interior, inside, storage);
 }
 

@@ -149,9 +149,7 @@ void split_by_shadow(const std::vector<Eigen::Vector3d>& region, const ShadowCol
   split.beside.clear();
   for (const Plane& plane : column) {
     // Every corner strictly inside: nothing beside, the inside unchanged.
-    bool all_inside = true;
-    for (const Eigen::Vector3d& p : split.inside) all_inside &= plane.signed_distance(p) < 0.0;
-    if (all_inside) continue;
+    if (corners_strictly_inside(split.inside, plane, 0.0)) continue;
     split_polygon(split.inside, plane, split.cut, split.off_cut);
     if (!negligible(split.off_cut, tol)) split.beside.push_back(split.off_cut);
     split.inside.swap(split.cut);

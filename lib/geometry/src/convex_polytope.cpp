@@ -67,12 +67,16 @@ void clip_polygon_into(const std::vector<Eigen::Vector3d>& polygon, const Plane&
   }
 }
 
+bool corners_strictly_inside(const std::vector<Eigen::Vector3d>& polygon, const Plane& plane, double inset) {
+  bool all_inside = true;
+  for (const Eigen::Vector3d& p : polygon) all_inside &= plane.signed_distance(p) + inset < 0.0;
+  return all_inside;
+}
+
 void clip_polygon_in_place(std::vector<Eigen::Vector3d>& polygon, const Plane& plane, double inset,
                            std::vector<Eigen::Vector3d>& spare) {
   // Every corner strictly inside keeps every corner and makes no crossing.
-  bool all_inside = true;
-  for (const Eigen::Vector3d& p : polygon) all_inside &= plane.signed_distance(p) + inset < 0.0;
-  if (all_inside) return;
+  if (corners_strictly_inside(polygon, plane, inset)) return;
   clip_polygon_into(polygon, plane, inset, spare);
   polygon.swap(spare);
 }
@@ -113,12 +117,17 @@ std::vector<Eigen::Vector3d> clip_polygon(const std::vector<Eigen::Vector3d>& po
 
 std::vector<Eigen::Vector3d> clip_polygon_to_planes(std::vector<Eigen::Vector3d> polygon,
                                                     const std::vector<Plane>& planes, double inset) {
-  std::vector<Eigen::Vector3d> clipped;
-  for (const Plane& plane : planes) {
-    if (polygon.empty()) break;
-    clip_polygon_in_place(polygon, plane, inset, clipped);
-  }
+  std::vector<Eigen::Vector3d> spare;
+  clip_polygon_to_planes_in_place(polygon, planes, inset, spare);
   return polygon;
+}
+
+void clip_polygon_to_planes_in_place(std::vector<Eigen::Vector3d>& polygon, const std::vector<Plane>& planes,
+                                     double inset, std::vector<Eigen::Vector3d>& spare) {
+  for (const Plane& plane : planes) {
+    if (polygon.empty()) return;
+    clip_polygon_in_place(polygon, plane, inset, spare);
+  }
 }
 
 double polytope_volume(const ConvexPolytope& polytope) {

@@ -69,6 +69,11 @@ std::vector<Eigen::Vector3d> clip_polygon(const std::vector<Eigen::Vector3d>& po
 void clip_polygon_into(const std::vector<Eigen::Vector3d>& polygon, const Plane& plane, double inset,
                        std::vector<Eigen::Vector3d>& out);
 
+/// True when every corner of `polygon` lies strictly on the inner side of
+/// `plane` offset inward by `inset` (signed distance < -inset): a cut by it
+/// keeps the polygon whole. True for an empty polygon.
+bool corners_strictly_inside(const std::vector<Eigen::Vector3d>& polygon, const Plane& plane, double inset);
+
 /// `clip_polygon` in place: `polygon` becomes its part on the inner side
 /// (`spare` is reused storage). One wholly on that side (every corner
 /// strictly, as most are when a piece is clipped to many planes) is left
@@ -87,6 +92,9 @@ void split_polygon(const std::vector<Eigen::Vector3d>& polygon, const Plane& pla
 /// stops early once nothing is left.
 std::vector<Eigen::Vector3d> clip_polygon_to_planes(std::vector<Eigen::Vector3d> polygon,
                                                     const std::vector<Plane>& planes, double inset);
+/// The same in place (`spare` is reused storage, not `polygon`).
+void clip_polygon_to_planes_in_place(std::vector<Eigen::Vector3d>& polygon, const std::vector<Plane>& planes,
+                                     double inset, std::vector<Eigen::Vector3d>& spare);
 
 /// A solid hull's interior: the hull shrunk by tol (what "strictly inside"
 /// means), as planes and facet polygons. Empty for a hull thinner than 2 tol.
