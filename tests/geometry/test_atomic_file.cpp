@@ -12,6 +12,7 @@
 #include <pthread.h>
 #include <set>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -154,6 +155,50 @@ TEST(AtomicFile, AStopSignalWhileTheFileHasItsTemporaryNameWaitsForTheRename) {
   ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << "the signal was never delivered";
   EXPECT_EQ(test::slurp(path), "new\n");
   EXPECT_EQ(test::folder_entries(dir.path("")), std::set<std::string>{"out.txt"});
+}
+
+TEST(AtomicFile, ANewFileIsLinkedInPlaceWithNoTemporaryNameToLeave) {
+  // A parallel bake writes its cell cache from worker threads, where a stop
+  // signal taken by another thread does not wait for the rename: a new file
+  // must never have a temporary name at all. With the rename interposed to
+  // raise SIGTERM, a write that renamed would be stopped (the test above).
+  const TempDir dir;
+  if (!makes_unnamed_files(dir.path(""))) GTEST_SKIP() << "no O_TMPFILE here: a new file has a temporary name";
+  const std::string path = dir.path("new.cell");
+  const int status = in_child([&] {
+    std::signal(SIGTERM, SIG_DFL);
+    sigset_t term;
+    sigemptyset(&term);
+    sigaddset(&term, SIGTERM);
+    pthread_sigmask(SIG_UNBLOCK, &term, nullptr);
+    terminate_before_next_rename = true;
+    const Status s = write_file_atomically(path, std::string("cell\n"));
+    return s.ok() ? 0 : 1;
+  });
+  ASSERT_TRUE(WIFEXITED(status)) << "stopped: the new file went through a temporary name and a rename";
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_EQ(test::slurp(path), "cell\n");
+  EXPECT_EQ(test::folder_entries(dir.path("")), std::set<std::string>{"new.cell"});
+}
+
+TEST(AtomicFile, ASymlinkAtTheDestinationIsReplacedNotWrittenThrough) {
+  // The link in place refuses an existing name, a symlink's too (dangling
+  // or not): the rename then replaces the link itself.
+  const TempDir dir;
+  const std::string target = dir.write("target.txt", "target\n");
+  const std::string path = dir.path("out.txt");
+  ASSERT_EQ(symlink(target.c_str(), path.c_str()), 0);
+  const std::string dangling = dir.path("dangling.txt");
+  ASSERT_EQ(symlink(dir.path("nothing").c_str(), dangling.c_str()), 0);
+  ASSERT_TRUE(write_file_atomically(path, std::string("new\n")).ok());
+  ASSERT_TRUE(write_file_atomically(dangling, std::string("also new\n")).ok());
+  EXPECT_EQ(test::slurp(target), "target\n");
+  EXPECT_EQ(test::slurp(path), "new\n");
+  EXPECT_EQ(test::slurp(dangling), "also new\n");
+  struct stat info {};
+  ASSERT_EQ(lstat(path.c_str(), &info), 0);
+  EXPECT_TRUE(S_ISREG(info.st_mode));
+  EXPECT_EQ(test::folder_entries(dir.path("")), (std::set<std::string>{"dangling.txt", "out.txt", "target.txt"}));
 }
 
 } // namespace

@@ -83,13 +83,26 @@ public:
     return true;
   }
 
-  // Gives the finished file its temporary name (an unnamed file gets one
-  // now) and closes the stream; errno tells why when it returns false.
-  bool name_and_close() {
-    if (named_path_.empty()) return give_name();  // the name comes from the open descriptor
-    const bool closed = std::fclose(stream_) == 0;
-    stream_ = nullptr;
-    return closed;
+  // Gives the finished file its name and closes the stream; errno tells why
+  // when it returns false. An unnamed file with nothing at `path` yet is
+  // linked there at once, complete (a link never replaces a file, so that
+  // is atomic too), and never has a temporary name a stop could leave
+  // behind: the cell cache's entries, written from worker threads that a
+  // stop signal may not wait for, are all new files. Otherwise it gets a
+  // temporary name, which replace() renames over `path`.
+  bool name_and_close(const std::string& path) {
+    if (named_path_.empty()) {  // the name comes from the open descriptor
+      if (::linkat(AT_FDCWD, descriptor_path().c_str(), AT_FDCWD, path.c_str(), AT_SYMLINK_FOLLOW) == 0) {
+        if (close_stream()) return in_place_ = true;
+        const int saved = errno;  // a failure leaves no file where there was none
+        ::unlink(path.c_str());
+        errno = saved;
+        return false;
+      }
+      if (errno != EEXIST) return false;
+      return give_name();
+    }
+    return close_stream();
   }
 
   // Closes the stream and removes the temporary name, if any, now.
@@ -100,8 +113,10 @@ public:
     named_path_.clear();
   }
 
-  // Renames the finished file over `path`; errno tells why when it fails.
+  // Renames the finished file over `path`, unless it was linked there
+  // already; errno tells why when it fails.
   bool replace(const std::string& path) {
+    if (in_place_) return true;
     if (::rename(named_path_.c_str(), path.c_str()) != 0) return false;
     named_path_.clear();
     return true;
@@ -112,18 +127,25 @@ private:
     return destination_.folder + "/." + destination_.name + kTemporaryInfix;
   }
 
+  // The unnamed file, as a path linkat can link from.
+  std::string descriptor_path() const { return "/proc/self/fd/" + std::to_string(fileno(stream_)); }
+
+  bool close_stream() {
+    const bool closed = std::fclose(stream_) == 0;
+    stream_ = nullptr;
+    return closed;
+  }
+
   // Links the unnamed file into the folder under a free temporary name (a
   // link cannot replace an existing file; the rename that follows can).
   bool give_name() {
-    const std::string descriptor = "/proc/self/fd/" + std::to_string(fileno(stream_));
+    const std::string descriptor = descriptor_path();
     const std::string prefix = sibling_prefix() + std::to_string(::getpid()) + "-";
     for (int attempt = 0; attempt < kTemporaryNameAttempts; ++attempt) {
       std::string candidate = prefix + std::to_string(attempt);
       if (::linkat(AT_FDCWD, descriptor.c_str(), AT_FDCWD, candidate.c_str(), AT_SYMLINK_FOLLOW) == 0) {
         named_path_ = std::move(candidate);  // no allocation between naming the file and recording it
-        const bool closed = std::fclose(stream_) == 0;
-        stream_ = nullptr;
-        return closed;
+        return close_stream();
       }
       if (errno != EEXIST) return false;
     }
@@ -133,6 +155,7 @@ private:
   DestinationParts destination_;
   std::FILE* stream_ = nullptr;
   std::string named_path_;
+  bool in_place_ = false;  ///< linked at the destination itself: nothing to rename
 };
 
 // Holds back, on this thread, the signals that stop a program by default
@@ -170,7 +193,7 @@ Status write_file_atomically(const std::string& path, const FileContentWriter& w
   // From naming the file to the rename, or to removing the name again, a
   // stop signal waits.
   const TerminationSignalsHeld held;
-  const bool named = file.name_and_close();
+  const bool named = file.name_and_close(path);
   if (!named || !file.replace(path)) {
     const int error_number = errno;
     file.discard();

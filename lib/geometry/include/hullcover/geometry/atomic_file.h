@@ -5,17 +5,20 @@
 /// Every file hullcover writes (hull OBJ, JSON reports, `.hcw` runtime files,
 /// bench tables and plots) goes through `write_file_atomically`: the bytes go
 /// to an unnamed temporary file in the destination's folder, which is flushed
-/// to disk and only then named and renamed over the destination. A run
+/// to disk and only then named: linked at the destination itself when
+/// nothing is there yet, else named and renamed over the destination. A run
 /// killed by SIGINT, SIGTERM or SIGKILL, or stopped by a full disk, leaves
 /// the destination as it was (absent, or its previous content) or complete
 /// and, on Linux file systems with O_TMPFILE (ext4, xfs, btrfs, tmpfs), no
-/// temporary file either: an unnamed file vanishes with the process, and
+/// temporary file either: an unnamed file vanishes with the process, a new
+/// file never has a temporary name, and when one replaces an old file
 /// SIGINT, SIGTERM, SIGHUP and SIGQUIT are held back on the writing thread
-/// from naming the file to the rename (microseconds), then delivered. In
-/// those microseconds, SIGKILL or another signal that ends a program, or one
-/// of those four taken by another thread of the process (a parallel bake
-/// writing its cell cache from worker threads), can still leave the name
-/// `.NAME.hullcover-PID-N` beside the destination.
+/// from naming it to the rename (microseconds), then delivered. In those
+/// microseconds, SIGKILL or another signal that ends a program, or one of
+/// those four taken by another thread of the process, can still leave the
+/// name `.NAME.hullcover-PID-N` beside the destination. (The cell cache,
+/// written from worker threads, writes new files, unless it replaces an
+/// entry that did not read back.)
 /// Elsewhere the temporary file is named `.NAME.hullcover-XXXXXX` from the
 /// start and a kill during the write can leave it behind (never the
 /// destination half written).
