@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
+
 namespace hullcover {
 namespace {
 
@@ -69,6 +72,44 @@ TEST(ConvexPolygon2d, APieceApartFromTheCutterComesBackWhole) {
   double area = 0.0;
   for (const P& p : overlapping) area += polygon_area(p);
   EXPECT_NEAR(area, 0.75, 1e-12);
+}
+
+// A random convex polygon: corners on a circle at increasing angles.
+P random_convex(std::mt19937& rng) {
+  std::uniform_real_distribution<double> centre(-2.0, 2.0), radius(0.2, 2.0), gap(0.3, 2.0);
+  std::uniform_int_distribution<int> corners(3, 7);
+  const Eigen::Vector2d c(centre(rng), centre(rng));
+  const double r = radius(rng);
+  P out;
+  double angle = 0.0;
+  for (int i = 0, n = corners(rng); i < n && angle < 6.0; ++i, angle += gap(rng))
+    out.push_back(c + r * Eigen::Vector2d(std::cos(angle), std::sin(angle)));
+  return out;
+}
+
+// The coverage check carries pieces apart from a cutter whole and subtracts
+// the others with reused storage: together that is subtract_convex_polygon,
+// bit for bit, piece for piece.
+TEST(ConvexPolygon2d, ApartAndOverlappingSubtractionAreTheWholeSubtraction) {
+  std::mt19937 rng(47);
+  PolygonSubtractionStorage storage;
+  std::vector<P> pieces;
+  int apart = 0, overlapping = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const P piece = random_convex(rng), cutter = random_convex(rng);
+    const std::vector<P> whole = subtract_convex_polygon(piece, cutter);
+    if (convex_polygons_apart(piece, cutter)) {
+      ++apart;
+      ASSERT_EQ(whole, std::vector<P>{piece}) << "trial " << trial;
+      continue;
+    }
+    ++overlapping;
+    pieces.assign(1, P{{9, 9}});  // appended to, never cleared
+    subtract_overlapping_convex_polygon(piece, cutter, pieces, storage);
+    ASSERT_EQ(std::vector<P>(pieces.begin() + 1, pieces.end()), whole) << "trial " << trial;
+  }
+  EXPECT_GT(apart, 200);
+  EXPECT_GT(overlapping, 200);
 }
 
 } // namespace

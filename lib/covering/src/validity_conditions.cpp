@@ -111,12 +111,15 @@ Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, s
   // harmless.
   // The walks stop at the first element inside: most candidates that fail
   // fail here, and a large hull's box holds thousands of elements.
+  // A large hull's box holds many nodes wholly outside one of its planes
+  // (a slab's box, most of it off the slab): those are passed over whole.
   if (!index.has_allowance()) {
-    if (index.vertex_tree.any_overlapping(box, [&](int v) {
+    const auto outside = [&](const Aabb& region) { return region_outside_interior(hull.planes, region, tol); };
+    if (index.vertex_tree.any_overlapping_pruned(box, outside, [&](int v) {
           return deepest_signed_distance(hull.planes, mesh.positions[v]) < -tol;
         }))
       return Validity::vertex_inside;
-    if (index.edge_tree.any_overlapping(box, [&](int e) {
+    if (index.edge_tree.any_overlapping_pruned(box, outside, [&](int e) {
           const MeshEdge& edge = index.prepared->connectivity.edges[e];
           return segment_enters_interior(hull.planes, mesh.positions[edge.v0], mesh.positions[edge.v1], tol);
         }))

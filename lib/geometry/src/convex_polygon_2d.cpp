@@ -6,10 +6,10 @@ namespace {
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // The part of `in` left of the line through p along `edge` (right of it
-// when `keep_left` is false).
-std::vector<Eigen::Vector2d> clip_to_side(const std::vector<Eigen::Vector2d>& in, const Eigen::Vector2d& p,
-                                          const Eigen::Vector2d& edge, bool keep_left) {
-  std::vector<Eigen::Vector2d> out;
+// when `keep_left` is false), into `out` (not `in`; its storage reused).
+void clip_to_side(const std::vector<Eigen::Vector2d>& in, const Eigen::Vector2d& p, const Eigen::Vector2d& edge,
+                  bool keep_left, std::vector<Eigen::Vector2d>& out) {
+  out.clear();
   const double sign = keep_left ? 1.0 : -1.0;
   for (size_t i = 0, m = in.size(); i < m; ++i) {
     const Eigen::Vector2d &x = in[i], &y = in[(i + 1) % m];
@@ -17,7 +17,6 @@ std::vector<Eigen::Vector2d> clip_to_side(const std::vector<Eigen::Vector2d>& in
     if (sx >= 0.0) out.push_back(x);
     if ((sx >= 0.0) != (sy >= 0.0)) out.push_back(x + (y - x) * (sx / (sx - sy)));
   }
-  return out;
 }
 
 // Whether the line of some edge of `polygon` separates it from `other`:
@@ -63,14 +62,39 @@ double polygon_perimeter(const std::vector<Eigen::Vector2d>& corners) {
 // convex `b`.
 std::vector<Eigen::Vector2d> intersect_convex_polygons(const std::vector<Eigen::Vector2d>& a,
                                                        const std::vector<Eigen::Vector2d>& b) {
-  std::vector<Eigen::Vector2d> out = a;
-  for (size_t e = 0, n = b.size(); e < n && !out.empty(); ++e) out = clip_to_side(out, b[e], b[(e + 1) % n] - b[e], true);
+  std::vector<Eigen::Vector2d> out = a, spare;
+  for (size_t e = 0, n = b.size(); e < n && !out.empty(); ++e) {
+    clip_to_side(out, b[e], b[(e + 1) % n] - b[e], true, spare);
+    out.swap(spare);
+  }
   return out;
 }
 
 // What lies right of the cutter's first edge is one piece; of the rest,
 // what lies right of its second edge is the next, and so on: what is left
 // after every edge is inside the cutter.
+bool convex_polygons_apart(const std::vector<Eigen::Vector2d>& piece, const std::vector<Eigen::Vector2d>& cutter) {
+  return piece.size() >= 3 &&
+         (cutter.size() < 3 || separated_by_an_edge(cutter, piece) || separated_by_an_edge(piece, cutter));
+}
+
+void subtract_overlapping_convex_polygon(const std::vector<Eigen::Vector2d>& piece,
+                                         const std::vector<Eigen::Vector2d>& cutter,
+                                         std::vector<std::vector<Eigen::Vector2d>>& pieces,
+                                         PolygonSubtractionStorage& storage) {
+  std::vector<Eigen::Vector2d>& rest = storage.rest;
+  std::vector<Eigen::Vector2d>& inside = storage.inside;
+  rest = piece;
+  for (size_t e = 0, n = cutter.size(); e < n && rest.size() >= 3; ++e) {
+    const Eigen::Vector2d &p = cutter[e], edge = cutter[(e + 1) % n] - cutter[e];
+    pieces.emplace_back();
+    clip_to_side(rest, p, edge, false, pieces.back());
+    if (pieces.back().size() < 3 || !(polygon_area(pieces.back()) > 0.0)) pieces.pop_back();
+    clip_to_side(rest, p, edge, true, inside);
+    rest.swap(inside);
+  }
+}
+
 std::vector<std::vector<Eigen::Vector2d>> subtract_convex_polygon(const std::vector<Eigen::Vector2d>& piece,
                                                                   const std::vector<Eigen::Vector2d>& cutter) {
   // Apart (an edge of either separates them): the piece comes back whole.
@@ -78,17 +102,10 @@ std::vector<std::vector<Eigen::Vector2d>> subtract_convex_polygon(const std::vec
   // an edge that does not separate them would break into pieces for
   // nothing, and a coverage test subtracting hundreds of faces multiplies
   // them (Red Eclipse's keystone2k spent 80% of its bake there).
-  if (piece.size() >= 3 &&
-      (cutter.size() < 3 || separated_by_an_edge(cutter, piece) || separated_by_an_edge(piece, cutter)))
-    return {piece};
+  if (convex_polygons_apart(piece, cutter)) return {piece};
   std::vector<std::vector<Eigen::Vector2d>> pieces;
-  std::vector<Eigen::Vector2d> rest = piece;
-  for (size_t e = 0, n = cutter.size(); e < n && rest.size() >= 3; ++e) {
-    const Eigen::Vector2d &p = cutter[e], edge = cutter[(e + 1) % n] - cutter[e];
-    std::vector<Eigen::Vector2d> outside = clip_to_side(rest, p, edge, false);
-    if (outside.size() >= 3 && polygon_area(outside) > 0.0) pieces.push_back(std::move(outside));
-    rest = clip_to_side(rest, p, edge, true);
-  }
+  PolygonSubtractionStorage storage;
+  subtract_overlapping_convex_polygon(piece, cutter, pieces, storage);
   return pieces;
 }
 

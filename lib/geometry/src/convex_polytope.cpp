@@ -29,6 +29,23 @@ double distance_to_facet_fans(const ConvexPolytope& polytope, const Eigen::Vecto
   return std::sqrt(nearest_squared);
 }
 
+bool region_outside_interior(const std::vector<Plane>& planes, const Aabb& box, double tol) {
+  if (box.empty()) return false;
+  const Eigen::Vector3d centre = 0.5 * (box.min + box.max);
+  const Eigen::Vector3d half = 0.5 * (box.max - box.min);
+  for (const Plane& plane : planes) {
+    // The box's point deepest behind the plane is at its centre less the
+    // half extents along the normal's signs.
+    const double deepest = plane.normal.dot(centre) - plane.offset - plane.normal.cwiseAbs().dot(half);
+    // Every term above, and the point tests it stands for, round at the
+    // magnitude of what they add up.
+    const double magnitude = std::abs(plane.offset) + plane.normal.cwiseAbs().dot(centre.cwiseAbs() + half);
+    const double rounding = 2.0 * kRoundingErrorsPerPlaneTest * std::numeric_limits<double>::epsilon() * magnitude;
+    if (deepest >= -tol + kRegionOutsideSlackInTolerances * tol + rounding) return true;
+  }
+  return false;
+}
+
 bool segment_enters_interior(const std::vector<Plane>& planes, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                              double tol) {
   // Cyrus-Beck clipping of the parameter interval against each shrunk plane.

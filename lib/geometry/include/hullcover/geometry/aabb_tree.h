@@ -39,6 +39,16 @@ public:
   template <class Stop>
   bool any_overlapping(const Aabb& query, Stop&& stop) const;
 
+  /// any_overlapping, which also passes over every subtree whose box (an
+  /// inner node's, rounded outward) `outside(box)` says holds no item
+  /// `stop` could say yes to: for questions with a test on a region that is
+  /// cheaper than the test on each item in it (region_outside_interior:
+  /// no vertex in a box outside a hull's plane is inside the hull). `stop`
+  /// is then called for a subsequence of any_overlapping's calls, and the
+  /// answer is the same whenever `outside` keeps its promise.
+  template <class Outside, class Stop>
+  bool any_overlapping_pruned(const Aabb& query, Outside&& outside, Stop&& stop) const;
+
   /// Calls `meet(i)` for the boxes that, grown by `margin`, the segment
   /// from-to passes through, nearest first as far as the tree tells, and
   /// skips boxes it enters later than the nearest meeting so far plus
@@ -193,6 +203,33 @@ bool AabbTree::any_overlapping(const Aabb& query, Stop&& stop) const {
     assert(top + 2 <= kMaxDepth);
     if (overlaps(node.box[0], query)) stack[top++] = node.child[0];
     if (overlaps(node.box[1], query)) stack[top++] = node.child[1];
+  }
+  return false;
+}
+
+template <class Outside, class Stop>
+bool AabbTree::any_overlapping_pruned(const Aabb& query, Outside&& outside, Stop&& stop) const {
+  if (items_.empty() || query.empty() || !overlaps(root_box_, query)) return false;
+  const auto open = [&](const FloatBox& box) {
+    return overlaps(box, query) &&
+           !outside(Aabb{Eigen::Vector3d(box.min[0], box.min[1], box.min[2]),
+                         Eigen::Vector3d(box.max[0], box.max[1], box.max[2])});
+  };
+  if (!open(root_box_)) return false;
+  ChildRef stack[kMaxDepth];
+  int top = 0;
+  stack[top++] = root_;
+  while (top > 0) {
+    const ChildRef ref = stack[--top];
+    if (ref.count > 0) {
+      for (int i = ref.index; i < ref.index + ref.count; ++i)
+        if (boxes_overlap(leaf_boxes_[i], query) && stop(items_[i])) return true;
+      continue;
+    }
+    const Node& node = nodes_[ref.index];
+    assert(top + 2 <= kMaxDepth);
+    if (open(node.box[0])) stack[top++] = node.child[0];
+    if (open(node.box[1])) stack[top++] = node.child[1];
   }
   return false;
 }

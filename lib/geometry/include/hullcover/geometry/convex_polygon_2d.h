@@ -30,4 +30,24 @@ std::vector<Eigen::Vector2d> intersect_convex_polygons(const std::vector<Eigen::
 std::vector<std::vector<Eigen::Vector2d>> subtract_convex_polygon(const std::vector<Eigen::Vector2d>& piece,
                                                                   const std::vector<Eigen::Vector2d>& cutter);
 
+/// Whether subtract_convex_polygon gives `piece` back whole: it has 3 or
+/// more corners and the cutter fewer, or an edge of either has the other on
+/// its outer side (on the line counts as outside).
+bool convex_polygons_apart(const std::vector<Eigen::Vector2d>& piece, const std::vector<Eigen::Vector2d>& cutter);
+
+/// Storage subtract_overlapping_convex_polygon reuses from call to call; it
+/// carries no meaning between calls.
+struct PolygonSubtractionStorage {
+  std::vector<Eigen::Vector2d> rest, inside;
+};
+
+/// subtract_convex_polygon for a piece and cutter that are not
+/// convex_polygons_apart, its pieces appended to `pieces` (for a caller
+/// subtracting many cutters, which keeps the pieces' storage): the same
+/// pieces, in the same order.
+void subtract_overlapping_convex_polygon(const std::vector<Eigen::Vector2d>& piece,
+                                         const std::vector<Eigen::Vector2d>& cutter,
+                                         std::vector<std::vector<Eigen::Vector2d>>& pieces,
+                                         PolygonSubtractionStorage& storage);
+
 } // namespace hullcover

@@ -8,6 +8,8 @@
 /// "Strictly inside" always means deeper than the tolerance `tol` behind
 /// every plane (../shared/DESIGN.md).
 
+#include "hullcover/geometry/aabb.h"
+
 #include <Eigen/Core>
 
 #include <vector>
@@ -56,6 +58,15 @@ double distance_to_facet_fans(const ConvexPolytope& polytope, const Eigen::Vecto
 /// plane, i.e. the segment enters the polytope's interior shrunk by `tol`.
 bool segment_enters_interior(const std::vector<Plane>& planes, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                              double tol);
+
+/// True when no point of `box` lies deeper than `tol` behind every plane,
+/// with room to spare: some plane has the whole box in front of its
+/// tol-shrunk copy by kRegionOutsideSlackInTolerances tol plus the
+/// rounding of this test and of deepest_signed_distance. So no point in
+/// the box is then found inside by deepest_signed_distance (< -tol) and no
+/// segment in it by segment_enters_interior: a box tree's walk may skip
+/// the box. False for an empty box or no planes; never true in doubt.
+bool region_outside_interior(const std::vector<Plane>& planes, const Aabb& box, double tol);
 
 /// Keeps the part of convex polygon `polygon` (any winding) on the inner
 /// side of `plane` offset inward by `inset` (signed distance <= -inset).

@@ -201,4 +201,12 @@ inline constexpr double kSweepSameRotation = 1e-12;
 /// the decomposer's planes). "Strictly inside" stays deeper than one tol.
 inline constexpr double kOnHullInTolerances = 2.0;
 
+/// A region (a box-tree node's box) that lies this many tolerances short of
+/// being deeper than tol behind one of a hull's planes, beyond the rounding
+/// of that test, holds no mesh vertex or edge point the hull's own tests
+/// would find deeper than tol inside: condition 1's walks pass it over
+/// (region_outside_interior in convex_polytope.h). Half a tol: the data's
+/// floor (kRoundingErrorsPerPlaneTest) already makes a tol many roundings.
+inline constexpr double kRegionOutsideSlackInTolerances = 0.5;
+
 } // namespace hullcover
