@@ -95,10 +95,12 @@ int PatchMerger::push_near_pairs() {
   const std::vector<Aabb> boxes = near_boxes();
   const AabbTree tree(boxes);
   int pushed = 0;
-  // A pair of patches both unchanged since the last pass was listed then as
-  // it is now (the same boxes, the same shared edges) and so is among the
-  // pairs tried: passed over before the tried set is asked, which on a
-  // large cell is a cache miss or two per pair.
+  // A pair of patches both unchanged since the last listing was listed then
+  // as it is now (the same boxes, the same shared edges), and tried: passed
+  // over. Any other pair was never listed as it is now: a patch that changed
+  // since has a version no listing saw (versions only rise between
+  // listings; dissolving puts back a patch it changed before any listing
+  // can see it), so it is listed now, once (b > a).
   const long listed_at = near_pairs_listed_at_;
   near_pairs_listed_at_ = changes_;
   std::vector<int> near;
@@ -111,7 +113,6 @@ int PatchMerger::push_near_pairs() {
     for (int b : near) {
       const Patch& pb = patches_[b];
       if (b <= a || (a_unchanged && pb.changed_at <= listed_at) || pa.shared_length.count(b)) continue;
-      if (!near_pairs_tried_.insert({a, pa.version, b, pb.version}).second) continue;
       if (!patches_support_each_other(index_, pa, pb) || !patches_near(a, b)) continue;
       push_pair(a, b);
       ++pushed;

@@ -7,11 +7,9 @@
 #include "validity_conditions.h"
 #include "scene_index.h"
 
-#include <array>
 #include <cstdint>
 #include <map>
 #include <optional>
-#include <unordered_set>
 #include <vector>
 
 namespace hullcover::detail {
@@ -172,8 +170,8 @@ private:
   void run_pairs();
   /// Queues every pair of patches sharing no edge whose boxes, grown by half
   /// the near-merge distance, overlap, whose faces come within that distance
-  /// (patches_near), and that pass condition 2, unless
-  /// tried before as they are; returns how many.
+  /// (patches_near), and that pass condition 2, unless listed before as
+  /// they are; returns how many.
   int push_near_pairs();
 
   struct QueueEntry {
@@ -202,17 +200,12 @@ private:
   RecentRejections recent_rejections_;  // judged first in each candidate's exact checks
   std::vector<int> scratch_;
   double near_merge_distance_;
-  /// {a, version a, b, version b}: hashed, as it grows to millions on a
-  /// large cell and is asked for every near pair on every pass.
-  struct TriedPairHash {
-    std::size_t operator()(const std::array<int, 4>& k) const {
-      std::uint64_t h = 0;
-      for (int x : k) h = (h ^ static_cast<std::uint32_t>(x)) * 0x100000001b3ull;  // an FNV-style mix of the four ints
-      return static_cast<std::size_t>(h ^ (h >> 29));
-    }
-  };
-  std::unordered_set<std::array<int, 4>, TriedPairHash> near_pairs_tried_;
-  long near_pairs_listed_at_ = -1;  // changes_ when push_near_pairs last listed pairs; -1 before the first
+  /// changes_ when push_near_pairs last listed pairs; -1 before the first.
+  /// A pair of which one patch changed since was never listed as it is now
+  /// (push_near_pairs), so no set of the pairs tried is kept: on a dense
+  /// cell it grew to tens of millions of entries, gigabytes, and never
+  /// turned a pair away.
+  long near_pairs_listed_at_ = -1;
   long changes_ = 0;  // counts changes to patches, for Patch::changed_at
   std::vector<int> cell_of_patch_;  // seam pass: the cell each starting patch came from
 };
