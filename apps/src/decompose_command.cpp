@@ -150,8 +150,8 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
   cmd->add_option("--cell-size", o->decompose.cell_size,
                   "Patches merge only within cells of this side, scene units, laid out per island (pieces of the "
                   "scene set apart from the rest); every hull is still checked against the whole scene. Default: "
-                  "automatic, one cell per island of up to 8192 faces, a centred grid over larger ones; 0: one cell "
-                  "for the whole scene")
+                  "automatic, one cell per island of up to 8192 faces, a centred grid over larger ones (a cube of it "
+                  "holding over 16384 faces cut into the eight of half its side); 0: one cell for the whole scene")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--cell-cache", o->cell_cache,
                   "Re-bake only what changed: keep each cell's result in this folder under a hash of its faces and "

@@ -207,6 +207,56 @@ TEST(MergeCells, AQuarterTurnKeepsTheCells) {
   EXPECT_GT(partition(floor).size(), 4u);
 }
 
+// A floor over [0, 64]^2, sparse (a tick every 4) but for 20,000 small
+// triangles over [0, 4]^2: a dense cluster of detail in a sparse map.
+Mesh floor_with_a_dense_corner() {
+  std::vector<double> ticks;
+  for (int i = 0; i < 100; ++i) ticks.push_back(0.04 * i);
+  for (int i = 1; i <= 16; ++i) ticks.push_back(4.0 * i);
+  Mesh m;
+  add_height_field(m, ticks, ticks, [](double, double) { return 0.0; });
+  return m;
+}
+
+TEST(MergeCells, ACrowdedCellIsCutIntoTheEightOfHalfItsSide) {
+  const Mesh floor = floor_with_a_dense_corner();
+  const Result<PreparedMesh> p = prepare_mesh(floor, std::nullopt);
+  ASSERT_TRUE(p.ok());
+  const MeshIslands islands = find_mesh_islands(p.value().mesh);
+  ASSERT_EQ(islands.boxes.size(), 1u);
+  const CellLayout automatic = lay_out_cells(p.value(), islands, std::nullopt);
+  const double side = automatic.island_cell_size[0];
+  ASSERT_GT(side, 0.0);
+  // The grid alone, at the side the automatic layout chose, has a cell over
+  // the bound: the dense corner's.
+  const CellLayout grid = lay_out_cells(p.value(), islands, side);
+  size_t largest = 0;
+  for (const std::vector<int>& cell : grid.faces_of_cell) largest = std::max(largest, cell.size());
+  ASSERT_GT(largest, static_cast<size_t>(kMostFacesPerAutomaticCell));
+  EXPECT_GT(automatic.faces_of_cell.size(), grid.faces_of_cell.size());
+  // No cell over the bound, every face in one cell, and each cell inside one
+  // cell of the grid (halves nest in the cube they were cut from).
+  std::vector<int> seen(floor.triangles.size(), 0);
+  for (const std::vector<int>& cell : automatic.faces_of_cell) {
+    EXPECT_LE(cell.size(), static_cast<size_t>(kMostFacesPerAutomaticCell));
+    for (int f : cell) {
+      ++seen[f];
+      EXPECT_EQ(grid.cell_of_face[f], grid.cell_of_face[cell.front()]);
+    }
+  }
+  for (int count : seen) EXPECT_EQ(count, 1);
+  // Cut alike when the map is turned a quarter about the up axis.
+  Mesh turned = floor;
+  for (Eigen::Vector3d& v : turned.positions) v = Eigen::Vector3d(-v.z(), v.y(), v.x());
+  const Result<PreparedMesh> q = prepare_mesh(turned, std::nullopt);
+  ASSERT_TRUE(q.ok());
+  const CellLayout turned_cells = lay_out_cells(q.value(), find_mesh_islands(q.value().mesh), std::nullopt);
+  EXPECT_EQ(std::set<std::vector<int>>(automatic.faces_of_cell.begin(), automatic.faces_of_cell.end()),
+            std::set<std::vector<int>>(turned_cells.faces_of_cell.begin(), turned_cells.faces_of_cell.end()));
+  // A side the user gives is kept as it is: no cell is cut.
+  EXPECT_EQ(lay_out_cells(p.value(), islands, side).faces_of_cell.size(), grid.faces_of_cell.size());
+}
+
 TEST(Decompose, TheSeamPassJoinsPatchesAcrossCellBorders) {
   // One flat floor: a single polygon, however it is cut into cells.
   DecomposeOptions o;

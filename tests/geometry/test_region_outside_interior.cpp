@@ -76,6 +76,44 @@ TEST(RegionOutsideInterior, NoPointOfABoxSaidOutsideTestsInside) {
   EXPECT_GT(not_outside, 500);
 }
 
+// The walks' test asks only the largest facets' planes, and only of hulls
+// that leave most of their box outside: a thin tilted slab is worth it, a
+// cube is not; what it calls outside the full test calls outside too.
+TEST(InteriorRegionTest, AsksTheLargestFacetsOfAHullThatFillsLittleOfItsBox) {
+  const double tol = 1e-3;
+  const ConvexPolytope block = cube(V::Zero());
+  const Aabb block_box = region_box(V::Constant(-tol), V::Constant(1 + tol));
+  EXPECT_FALSE(InteriorRegionTest(block, block_box, tol).worthwhile());
+  // A slab 0.05 thick, tilted across the diagonal of a 10 x 10 x 10 box.
+  std::vector<V> slab;
+  for (const V& corner : {V(0, 0, 0), V(10, 0, 10), V(0, 10, 0), V(10, 10, 10)}) {
+    slab.push_back(corner);
+    slab.push_back(corner + V(0.05, 0, -0.05));
+  }
+  ConvexHullBuilder builder;
+  const Result<ConvexPolytope> tilted = builder.build(slab);
+  ASSERT_TRUE(tilted.ok());
+  Aabb slab_box;
+  for (const V& p : slab) slab_box.extend(p);
+  const InteriorRegionTest test(tilted.value(), slab_box, tol);
+  EXPECT_TRUE(test.worthwhile());
+  // The box's far corners are off the slab: outside, by its big faces.
+  EXPECT_TRUE(test.outside(region_box(V(0, 0, 6), V(3, 10, 10))));
+  EXPECT_TRUE(test.outside(region_box(V(6, 0, 0), V(10, 10, 3))));
+  EXPECT_FALSE(test.outside(region_box(V(4, 4, 4), V(6, 6, 6))));  // across the slab
+  std::mt19937 rng(53);
+  std::uniform_real_distribution<double> coordinate(0.0, 10.0), extent(0.0, 3.0);
+  int outside = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const V low(coordinate(rng), coordinate(rng), coordinate(rng));
+    const Aabb region = region_box(low, low + V(extent(rng), extent(rng), extent(rng)));
+    if (!test.outside(region)) continue;
+    ++outside;
+    ASSERT_TRUE(region_outside_interior(tilted.value().planes, region, tol)) << "trial " << trial;
+  }
+  EXPECT_GT(outside, 1000);
+}
+
 // The pruned walk, told to skip nodes outside the hull, finds a point inside
 // exactly when the full walk does, over points spread round the hull.
 TEST(AabbTreePruned, AnswersAsTheFullWalkWhenThePromiseHolds) {

@@ -23,13 +23,19 @@ CellKey cell_key(const Eigen::Vector3d& p, const Eigen::Vector3d& centre, double
   return key;
 }
 
-// Faces of one island per occupied cell of side `size`, in key order.
-std::map<CellKey, std::vector<int>> cells_of_island(const Mesh& mesh, const std::vector<int>& faces,
-                                                    const Aabb& box, double size) {
+// Faces per occupied cell of side `size` of the grid through `centre`, in
+// key order.
+std::map<CellKey, std::vector<int>> cells_of_grid(const Mesh& mesh, const std::vector<int>& faces,
+                                                  const Eigen::Vector3d& centre, double size) {
   std::map<CellKey, std::vector<int>> cells;
-  const Eigen::Vector3d centre = 0.5 * (box.min + box.max);
   for (int f : faces) cells[cell_key(centroid(mesh, f), centre, size)].push_back(f);
   return cells;
+}
+
+// The same for one island's grid, centred on its box.
+std::map<CellKey, std::vector<int>> cells_of_island(const Mesh& mesh, const std::vector<int>& faces,
+                                                    const Aabb& box, double size) {
+  return cells_of_grid(mesh, faces, 0.5 * (box.min + box.max), size);
 }
 
 // Finer grids than this many cells along an island's longest side are not
@@ -51,6 +57,24 @@ double automatic_cell_size(const Mesh& mesh, const std::vector<int>& faces, cons
     if (faces.size() <= occupied * static_cast<size_t>(kFacesPerAutomaticCell)) return size;
   }
   return size;
+}
+
+// Appends island `island`'s cells of `faces` on the grid of side `size`
+// through `centre`, in key order. With `finest` > 0, a cell holding more
+// than kMostFacesPerAutomaticCell faces is replaced by its cells on the
+// grid of half the side (the same centre: halving a side splits each cube
+// into eight, to the bit, since halving a quotient is exact), down to sides
+// of `finest`.
+void append_cells(const Mesh& mesh, const std::vector<int>& faces, const Eigen::Vector3d& centre, double size,
+                  double finest, int island, CellLayout& layout) {
+  for (auto& [key, cell] : cells_of_grid(mesh, faces, centre, size)) {
+    if (finest > 0.0 && static_cast<int>(cell.size()) > kMostFacesPerAutomaticCell && 0.5 * size >= finest) {
+      append_cells(mesh, cell, centre, 0.5 * size, finest, island, layout);
+      continue;
+    }
+    layout.faces_of_cell.push_back(std::move(cell));
+    layout.island_of_cell.push_back(island);
+  }
 }
 
 // Fills cell_of_face and slot_in_cell from faces_of_cell.
@@ -96,17 +120,18 @@ CellLayout lay_out_cells(const PreparedMesh& prepared, const MeshIslands& island
   for (int f = 0; f < face_count; ++f) faces_of_island[islands.island_of_face[f]].push_back(f);
   for (size_t i = 0; i < faces_of_island.size(); ++i) {
     const std::vector<int>& faces = faces_of_island[i];
-    const double size = cell_size ? *cell_size : automatic_cell_size(mesh, faces, islands.boxes[i]);
+    const Aabb& box = islands.boxes[i];
+    const double size = cell_size ? *cell_size : automatic_cell_size(mesh, faces, box);
     layout.island_cell_size.push_back(size);
     if (!(size > 0.0)) {
       layout.faces_of_cell.push_back(faces);
       layout.island_of_cell.push_back(static_cast<int>(i));
       continue;
     }
-    for (auto& [key, cell] : cells_of_island(mesh, faces, islands.boxes[i], size)) {
-      layout.faces_of_cell.push_back(std::move(cell));
-      layout.island_of_cell.push_back(static_cast<int>(i));
-    }
+    // A user's side is kept as given; the automatic grid halves its crowded
+    // cubes, down to the finest grid automatic_cell_size tries.
+    const double finest = cell_size ? 0.0 : (box.max - box.min).maxCoeff() / static_cast<double>(kMostCellsAlongAnIsland);
+    append_cells(mesh, faces, 0.5 * (box.min + box.max), size, finest, static_cast<int>(i), layout);
   }
   index_faces(layout);
   return layout;

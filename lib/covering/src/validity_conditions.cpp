@@ -111,18 +111,23 @@ Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, s
   // harmless.
   // The walks stop at the first element inside: most candidates that fail
   // fail here, and a large hull's box holds thousands of elements.
-  // A large hull's box holds many nodes wholly outside one of its planes
-  // (a slab's box, most of it off the slab): those are passed over whole.
+  // A hull that fills little of its box (a slab's box, most of it off the
+  // slab) leaves whole nodes of the trees outside one of its planes: those
+  // are passed over. The same answers either way.
   if (!index.has_allowance()) {
-    const auto outside = [&](const Aabb& region) { return region_outside_interior(hull.planes, region, tol); };
-    if (index.vertex_tree.any_overlapping_pruned(box, outside, [&](int v) {
-          return deepest_signed_distance(hull.planes, mesh.positions[v]) < -tol;
-        }))
+    const InteriorRegionTest region_test(hull, box, tol);
+    const auto outside = [&](const Aabb& region) { return region_test.outside(region); };
+    const auto vertex_inside = [&](int v) { return deepest_signed_distance(hull.planes, mesh.positions[v]) < -tol; };
+    const auto edge_inside = [&](int e) {
+      const MeshEdge& edge = index.prepared->connectivity.edges[e];
+      return segment_enters_interior(hull.planes, mesh.positions[edge.v0], mesh.positions[edge.v1], tol);
+    };
+    const bool prune = region_test.worthwhile();
+    if (prune ? index.vertex_tree.any_overlapping_pruned(box, outside, vertex_inside)
+              : index.vertex_tree.any_overlapping(box, vertex_inside))
       return Validity::vertex_inside;
-    if (index.edge_tree.any_overlapping_pruned(box, outside, [&](int e) {
-          const MeshEdge& edge = index.prepared->connectivity.edges[e];
-          return segment_enters_interior(hull.planes, mesh.positions[edge.v0], mesh.positions[edge.v1], tol);
-        }))
+    if (prune ? index.edge_tree.any_overlapping_pruned(box, outside, edge_inside)
+              : index.edge_tree.any_overlapping(box, edge_inside))
       return Validity::edge_inside;
   }
 

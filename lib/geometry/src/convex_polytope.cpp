@@ -29,20 +29,64 @@ double distance_to_facet_fans(const ConvexPolytope& polytope, const Eigen::Vecto
   return std::sqrt(nearest_squared);
 }
 
+namespace {
+
+// Whether `box` (centre and half extents) lies in front of the plane's copy
+// shrunk by tol, with the slack region_outside_interior promises.
+bool box_outside_plane(const Plane& plane, const Eigen::Vector3d& magnitude, const Eigen::Vector3d& centre,
+                       const Eigen::Vector3d& half, double tol) {
+  // The box's point deepest behind the plane is at its centre less the
+  // half extents along the normal's signs.
+  const double deepest = plane.normal.dot(centre) - plane.offset - magnitude.dot(half);
+  const double needed = -tol + kRegionOutsideSlackInTolerances * tol;
+  if (deepest < needed) return false;  // most boxes a walk opens: no need to bound the rounding
+  // Every term above, and the point tests it stands for, round at the
+  // magnitude of what they add up.
+  const double size = std::abs(plane.offset) + magnitude.dot(centre.cwiseAbs() + half);
+  const double rounding = 2.0 * kRoundingErrorsPerPlaneTest * std::numeric_limits<double>::epsilon() * size;
+  return deepest >= needed + rounding;
+}
+
+} // namespace
+
 bool region_outside_interior(const std::vector<Plane>& planes, const Aabb& box, double tol) {
   if (box.empty()) return false;
-  const Eigen::Vector3d centre = 0.5 * (box.min + box.max);
-  const Eigen::Vector3d half = 0.5 * (box.max - box.min);
-  for (const Plane& plane : planes) {
-    // The box's point deepest behind the plane is at its centre less the
-    // half extents along the normal's signs.
-    const double deepest = plane.normal.dot(centre) - plane.offset - plane.normal.cwiseAbs().dot(half);
-    // Every term above, and the point tests it stands for, round at the
-    // magnitude of what they add up.
-    const double magnitude = std::abs(plane.offset) + plane.normal.cwiseAbs().dot(centre.cwiseAbs() + half);
-    const double rounding = 2.0 * kRoundingErrorsPerPlaneTest * std::numeric_limits<double>::epsilon() * magnitude;
-    if (deepest >= -tol + kRegionOutsideSlackInTolerances * tol + rounding) return true;
+  const Eigen::Vector3d centre = 0.5 * (box.min + box.max), half = 0.5 * (box.max - box.min);
+  for (const Plane& plane : planes)
+    if (box_outside_plane(plane, plane.normal.cwiseAbs(), centre, half, tol)) return true;
+  return false;
+}
+
+InteriorRegionTest::InteriorRegionTest(const ConvexPolytope& hull, const Aabb& box, double tol) : tol_(tol) {
+  // Facet areas, each about its first corner (far from the origin an area
+  // about the origin loses its digits), and the volume, as the cones from
+  // the hull's first vertex over its facets.
+  std::vector<std::pair<double, int>> by_area;
+  double six_volumes = 0.0;
+  for (size_t f = 0; f < hull.facets.size() && f < hull.planes.size(); ++f) {
+    const std::vector<int>& facet = hull.facets[f];
+    if (facet.empty()) continue;
+    Eigen::Vector3d twice = Eigen::Vector3d::Zero();
+    for (size_t i = 1; i + 1 < facet.size(); ++i)
+      twice += (hull.vertices[facet[i]] - hull.vertices[facet[0]]).cross(hull.vertices[facet[i + 1]] - hull.vertices[facet[0]]);
+    by_area.push_back({-twice.norm(), static_cast<int>(f)});
+    six_volumes += std::abs(twice.dot(hull.vertices[facet[0]] - hull.vertices.front()));
   }
+  const Eigen::Vector3d extent = box.empty() ? Eigen::Vector3d::Zero() : Eigen::Vector3d(box.max - box.min);
+  worthwhile_ = six_volumes / 6.0 <= kMostFilledFraction * extent.prod();
+  const size_t kept = std::min<size_t>(kPlanes, by_area.size());
+  std::partial_sort(by_area.begin(), by_area.begin() + static_cast<std::ptrdiff_t>(kept), by_area.end());
+  for (size_t i = 0; i < kept; ++i) {
+    const Plane& plane = hull.planes[by_area[i].second];
+    planes_[count_++] = {plane, plane.normal.cwiseAbs()};
+  }
+}
+
+bool InteriorRegionTest::outside(const Aabb& box) const {
+  if (box.empty()) return false;
+  const Eigen::Vector3d centre = 0.5 * (box.min + box.max), half = 0.5 * (box.max - box.min);
+  for (int i = 0; i < count_; ++i)
+    if (box_outside_plane(planes_[i].plane, planes_[i].magnitude, centre, half, tol_)) return true;
   return false;
 }
 

@@ -108,7 +108,8 @@ struct DecomposeOptions {
   /// cell, while every hull is still checked against the whole scene.
   /// Scene units, >= 0. Unset: automatic, per island (a grid centred on
   /// each island, fine enough that its occupied cells hold
-  /// kFacesPerAutomaticCell faces on average; one cell for a smaller
+  /// kFacesPerAutomaticCell faces on average, a cube holding more than
+  /// kMostFacesPerAutomaticCell cut into eighths; one cell for a smaller
   /// island). 0: one cell for the whole scene (no cells).
   std::optional<double> cell_size;
   /// Threads that merge cells at once (>= 0; 0 = every core). The covering
