@@ -182,7 +182,7 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
   cmd->add_option("--near-merge", o->decompose.near_merge_distance,
                   "After the paper's merging, also try patches that share no edge but come within this distance, "
                   "scene units, under the same conditions; 0 = off, the paper's algorithm alone (default: exact "
-                  "0.02 x diagonal, paper 0)")
+                  "0.02 x each island's diagonal, halved in a cell cut from a crowded cube per halving; paper 0)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--dissolve", o->dissolve,
                   "After merging, empty each patch whose faces can each join a patch around it (across an edge or "

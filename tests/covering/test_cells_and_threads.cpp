@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 
 namespace hullcover {
@@ -245,6 +246,25 @@ TEST(MergeCells, ACrowdedCellIsCutIntoTheEightOfHalfItsSide) {
     }
   }
   for (int count : seen) EXPECT_EQ(count, 1);
+  // Each cut cell says how often its cube was halved (the near-merge reach
+  // halves with it), and its faces' centroids lie within a cube that small;
+  // the sparse cells were not cut.
+  ASSERT_EQ(automatic.cell_halvings.size(), automatic.faces_of_cell.size());
+  int deepest = 0, uncut = 0;
+  for (size_t c = 0; c < automatic.faces_of_cell.size(); ++c) {
+    const int halvings = automatic.cell_halvings[c];
+    deepest = std::max(deepest, halvings);
+    Aabb centroids;
+    for (int f : automatic.faces_of_cell[c]) {
+      const Eigen::Vector3i& t = floor.triangles[f];
+      centroids.extend((floor.positions[t[0]] + floor.positions[t[1]] + floor.positions[t[2]]) / 3.0);
+    }
+    EXPECT_LE((centroids.max - centroids.min).maxCoeff(), std::ldexp(side, -halvings)) << "cell " << c;
+    uncut += halvings == 0;
+  }
+  EXPECT_GE(deepest, 2);
+  EXPECT_GT(uncut, 0);
+  for (int halvings : grid.cell_halvings) EXPECT_EQ(halvings, 0);
   // Cut alike when the map is turned a quarter about the up axis.
   Mesh turned = floor;
   for (Eigen::Vector3d& v : turned.positions) v = Eigen::Vector3d(-v.z(), v.y(), v.x());

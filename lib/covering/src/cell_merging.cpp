@@ -8,6 +8,7 @@
 #include "hullcover/geometry/parallel_for.h"
 
 #include <algorithm>
+#include <cmath>
 #include <mutex>
 #include <numeric>
 
@@ -35,8 +36,11 @@ double cell_near_merge_distance(const DecompositionStages& stages, int cell) {
   const DecomposeOptions& options = covering.options;
   const int island = stages.cells.island_of_cell[cell];
   if (options.near_merge_distance || island < 0) return covering.near_merge_distance;
-  return options.conditions == ValidityMode::exact ? kDefaultNearMergeRelative * covering.island_extents[island]
-                                                   : 0.0;
+  // A cell cut from a crowded cube reaches as far as its own side allows
+  // (merge_cells.h, cell_halvings): halving is exact.
+  return options.conditions == ValidityMode::exact
+             ? std::ldexp(kDefaultNearMergeRelative * covering.island_extents[island], -stages.cells.cell_halvings[cell])
+             : 0.0;
 }
 
 double island_bar_half_length(const DecompositionStages& stages, int island) {

@@ -66,19 +66,22 @@ double automatic_cell_size(const Mesh& mesh, const std::vector<int>& faces, cons
 // into eight, to the bit, since halving a quotient is exact), down to sides
 // of `finest`.
 void append_cells(const Mesh& mesh, const std::vector<int>& faces, const Eigen::Vector3d& centre, double size,
-                  double finest, int island, CellLayout& layout) {
+                  double finest, int island, int halvings, CellLayout& layout) {
   for (auto& [key, cell] : cells_of_grid(mesh, faces, centre, size)) {
     if (finest > 0.0 && static_cast<int>(cell.size()) > kMostFacesPerAutomaticCell && 0.5 * size >= finest) {
-      append_cells(mesh, cell, centre, 0.5 * size, finest, island, layout);
+      append_cells(mesh, cell, centre, 0.5 * size, finest, island, halvings + 1, layout);
       continue;
     }
     layout.faces_of_cell.push_back(std::move(cell));
     layout.island_of_cell.push_back(island);
+    layout.cell_halvings.push_back(halvings);
   }
 }
 
-// Fills cell_of_face and slot_in_cell from faces_of_cell.
+// Fills cell_of_face and slot_in_cell from faces_of_cell, and the halvings
+// of cells laid out without any.
 void index_faces(CellLayout& layout) {
+  layout.cell_halvings.resize(layout.faces_of_cell.size(), 0);
   for (int c = 0; c < static_cast<int>(layout.faces_of_cell.size()); ++c)
     for (int slot = 0; slot < static_cast<int>(layout.faces_of_cell[c].size()); ++slot) {
       const int f = layout.faces_of_cell[c][slot];
@@ -114,6 +117,7 @@ CellLayout lay_out_cells(const PreparedMesh& prepared, const MeshIslands& island
     for (int f = 0; f < face_count; ++f) layout.faces_of_cell[0][f] = f, layout.slot_in_cell[f] = f;
     layout.island_cell_size.assign(islands.boxes.size(), 0.0);
     layout.island_of_cell = {islands.boxes.size() == 1 ? 0 : -1};
+    layout.cell_halvings = {0};
     return layout;
   }
   std::vector<std::vector<int>> faces_of_island(islands.boxes.size());
@@ -131,7 +135,7 @@ CellLayout lay_out_cells(const PreparedMesh& prepared, const MeshIslands& island
     // A user's side is kept as given; the automatic grid halves its crowded
     // cubes, down to the finest grid automatic_cell_size tries.
     const double finest = cell_size ? 0.0 : (box.max - box.min).maxCoeff() / static_cast<double>(kMostCellsAlongAnIsland);
-    append_cells(mesh, faces, 0.5 * (box.min + box.max), size, finest, static_cast<int>(i), layout);
+    append_cells(mesh, faces, 0.5 * (box.min + box.max), size, finest, static_cast<int>(i), 0, layout);
   }
   index_faces(layout);
   return layout;

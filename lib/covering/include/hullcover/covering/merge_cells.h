@@ -47,6 +47,11 @@ struct CellLayout {
   std::vector<int> cell_of_face;   ///< per face
   std::vector<int> slot_in_cell;   ///< per face: its index in its cell's list
   std::vector<int> island_of_cell; ///< per cell; -1 for the one cell of --cell-size 0 (every island)
+  /// Per cell: how many times its cube was halved from the island's grid
+  /// (0 but where the automatic layout cut a crowded cube). The default
+  /// near-merge distance halves with it: where detail is that much denser,
+  /// a patch meets as many others within half the reach.
+  std::vector<int> cell_halvings;
   /// Cell side used per island, scene units (the grid's, before any crowded
   /// cube is halved); 0 where the island is one cell.
   std::vector<double> island_cell_size;
