@@ -99,9 +99,6 @@ void index_sweeps(SceneIndexData& index, double hull_margin, const std::vector<A
   for (const Aabb& zone : hull_zones) zones.push_back(grown(zone, largest_tol));
   if (zones.empty()) zones.push_back(grown(referenced_bounding_box(mesh), hull_margin + largest_tol));
   const AabbTree zone_tree(zones);
-  std::vector<int> near;
-  std::vector<Eigen::Vector3d> triangle(3);
-  std::vector<Aabb> boxes;
   // The reaches, each face's and edge's alone, on `threads` threads; the
   // boxes then in order, so the trees do not depend on the thread count.
   index.front_reach.assign(mesh.triangles.size(), 0.0);
@@ -130,48 +127,57 @@ void index_sweeps(SceneIndexData& index, double hull_margin, const std::vector<A
       index.opening_reach[e][fan] = std::min(reach, detail::first_hit_bound(at_edge, full, own_scratch));
     }
   });
-  for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) {
-    if (c.zero_area[f]) continue;
-    const double tol = prepared.face_tolerance(f);
-    triangle_corners(mesh, f, triangle);
-    const FreeSpaceSweep sweep = front_space_sweep(triangle, index.face_normals[f], index.front_reach[f], tol);
-    add_sweep_boxes(sweep, f, zones, zone_tree, tol, near, boxes, index.front_sweep_face);
-  }
-  index.front_sweep_tree = AabbTree(boxes);
-  boxes.clear();
-  for (int e = 0; e < static_cast<int>(c.edges.size()); ++e) {
-    if (index.open_edge_use[e] < 0) continue;
-    const EdgeUse& use = c.edge_uses[index.open_edge_use[e]];
-    const double tol = prepared.face_tolerance(use.face);
-    const Eigen::Vector3i& t = mesh.triangles[use.face];
-    const Eigen::Vector3d& p0 = mesh.positions[t[use.corner]];
-    const Eigen::Vector3d& p1 = mesh.positions[t[(use.corner + 1) % 3]];
-    const Eigen::Vector3d& inner = mesh.positions[t[(use.corner + 2) % 3]];
-    // The three fans together, each cut to the zones it crosses; an edge
-    // with parts of several fans in one zone keeps one box there.
-    std::vector<Aabb> fan_boxes;
-    std::vector<int> fan_items;
-    for (int fan = 0; fan < kOpeningFans; ++fan) {
-      const Eigen::Vector3d& n = index.face_normals[use.face];
-      const FreeSpaceSweep sweep = opening_fan(p0, p1, inner, n, fan, index.opening_reach[e][fan], tol);
-      add_sweep_boxes(sweep, e, zones, zone_tree, tol, near, fan_boxes, fan_items);
+  // The two sweep trees, each from its boxes in face or edge order, side by
+  // side: each job writes only its own tree and item list.
+  parallel_for(2, threads, [&](int job) {
+    std::vector<int> near;
+    std::vector<Aabb> boxes;
+    if (job == 0) {
+      std::vector<Eigen::Vector3d> triangle(3);
+      for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) {
+        if (c.zero_area[f]) continue;
+        const double tol = prepared.face_tolerance(f);
+        triangle_corners(mesh, f, triangle);
+        const FreeSpaceSweep sweep = front_space_sweep(triangle, index.face_normals[f], index.front_reach[f], tol);
+        add_sweep_boxes(sweep, f, zones, zone_tree, tol, near, boxes, index.front_sweep_face);
+      }
+      index.front_sweep_tree = AabbTree(boxes);
+      return;
     }
-    Aabb box;
-    for (const Aabb& part : fan_boxes) box.extend(part.min), box.extend(part.max);
-    // One box over the fans' parts is the simplest superset; kept per zone
-    // only when the parts lie in several zones far apart.
-    if (fan_boxes.size() <= 1 || zones.size() == 1) {
-      if (box.empty()) continue;
-      boxes.push_back(box);
-      index.opening_sweep_edge.push_back(e);
-      continue;
+    for (int e = 0; e < static_cast<int>(c.edges.size()); ++e) {
+      if (index.open_edge_use[e] < 0) continue;
+      const EdgeUse& use = c.edge_uses[index.open_edge_use[e]];
+      const double tol = prepared.face_tolerance(use.face);
+      const Eigen::Vector3i& t = mesh.triangles[use.face];
+      const Eigen::Vector3d& p0 = mesh.positions[t[use.corner]];
+      const Eigen::Vector3d& p1 = mesh.positions[t[(use.corner + 1) % 3]];
+      const Eigen::Vector3d& inner = mesh.positions[t[(use.corner + 2) % 3]];
+      // The three fans together, each cut to the zones it crosses; an edge
+      // with parts of several fans in one zone keeps one box there.
+      std::vector<Aabb> fan_boxes;
+      std::vector<int> fan_items;
+      for (int fan = 0; fan < kOpeningFans; ++fan) {
+        const Eigen::Vector3d& n = index.face_normals[use.face];
+        const FreeSpaceSweep sweep = opening_fan(p0, p1, inner, n, fan, index.opening_reach[e][fan], tol);
+        add_sweep_boxes(sweep, e, zones, zone_tree, tol, near, fan_boxes, fan_items);
+      }
+      Aabb box;
+      for (const Aabb& part : fan_boxes) box.extend(part.min), box.extend(part.max);
+      // One box over the fans' parts is the simplest superset; kept per zone
+      // only when the parts lie in several zones far apart.
+      if (fan_boxes.size() <= 1 || zones.size() == 1) {
+        if (box.empty()) continue;
+        boxes.push_back(box);
+        index.opening_sweep_edge.push_back(e);
+        continue;
+      }
+      for (const Aabb& part : fan_boxes) {
+        boxes.push_back(part);
+        index.opening_sweep_edge.push_back(e);
+      }
     }
-    for (const Aabb& part : fan_boxes) {
-      boxes.push_back(part);
-      index.opening_sweep_edge.push_back(e);
-    }
-  }
-  index.opening_sweep_tree = AabbTree(boxes);
+    index.opening_sweep_tree = AabbTree(boxes);
+  });
 }
 
 } // namespace
@@ -255,32 +261,43 @@ SceneIndexData build_scene_index(const PreparedMesh& prepared, const BarOptions&
     }
   }
 
-  std::vector<Aabb> boxes;
-  boxes.reserve(mesh.positions.size());
-  for (const Eigen::Vector3d& p : mesh.positions) boxes.push_back(box_of({p}));
-  index.vertex_tree = AabbTree(boxes);
-  boxes.clear();
-  for (const MeshEdge& e : c.edges) boxes.push_back(box_of({mesh.positions[e.v0], mesh.positions[e.v1]}));
-  index.edge_tree = AabbTree(boxes);
-  boxes.clear();
-  for (const Eigen::Vector3i& t : mesh.triangles)
-    boxes.push_back(box_of({mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]}));
-  index.face_tree = AabbTree(boxes);
-  boxes.clear();
-  const double piece_length = prepared.tolerance.diagonal / kBarPiecesPerDiagonal;
-  for (int b = 0; b < static_cast<int>(index.bars.size()); ++b) {
-    const BoundaryBar& bar = index.bars[b];
-    const int pieces = std::max(1, static_cast<int>(std::ceil((bar.b - bar.a).norm() / piece_length)));
-    for (int k = 0; k < pieces; ++k) {
-      const Eigen::Vector3d from = bar.a + (bar.b - bar.a) * (static_cast<double>(k) / pieces);
-      const Eigen::Vector3d to = bar.a + (bar.b - bar.a) * (static_cast<double>(k + 1) / pieces);
-      boxes.push_back(box_of({from, to, from + bar.along, to + bar.along}));
-      index.bar_of_piece.push_back(b);
+  // The four element trees are independent, so they are built side by side
+  // on the bake's threads (a re-bake after a small edit spends much of its
+  // time indexing); a tree is the same whichever thread builds it. The
+  // largest, the edges', goes first.
+  const int threads = threads_to_use(options.threads);
+  parallel_for(4, threads, [&](int tree) {
+    std::vector<Aabb> boxes;
+    if (tree == 0) {
+      boxes.reserve(c.edges.size());
+      for (const MeshEdge& e : c.edges) boxes.push_back(box_of({mesh.positions[e.v0], mesh.positions[e.v1]}));
+      index.edge_tree = AabbTree(boxes);
+    } else if (tree == 1) {
+      boxes.reserve(mesh.triangles.size());
+      for (const Eigen::Vector3i& t : mesh.triangles)
+        boxes.push_back(box_of({mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]}));
+      index.face_tree = AabbTree(boxes);
+    } else if (tree == 2) {
+      boxes.reserve(mesh.positions.size());
+      for (const Eigen::Vector3d& p : mesh.positions) boxes.push_back(box_of({p}));
+      index.vertex_tree = AabbTree(boxes);
+    } else {
+      const double piece_length = prepared.tolerance.diagonal / kBarPiecesPerDiagonal;
+      for (int b = 0; b < static_cast<int>(index.bars.size()); ++b) {
+        const BoundaryBar& bar = index.bars[b];
+        const int pieces = std::max(1, static_cast<int>(std::ceil((bar.b - bar.a).norm() / piece_length)));
+        for (int k = 0; k < pieces; ++k) {
+          const Eigen::Vector3d from = bar.a + (bar.b - bar.a) * (static_cast<double>(k) / pieces);
+          const Eigen::Vector3d to = bar.a + (bar.b - bar.a) * (static_cast<double>(k + 1) / pieces);
+          boxes.push_back(box_of({from, to, from + bar.along, to + bar.along}));
+          index.bar_of_piece.push_back(b);
+        }
+      }
+      index.bar_tree = AabbTree(boxes);
     }
-  }
-  index.bar_tree = AabbTree(boxes);
+  });
   if (index.mode == ValidityMode::exact)
-    index_sweeps(index, options.hull_margin, options.hull_zones, threads_to_use(options.threads));
+    index_sweeps(index, options.hull_margin, options.hull_zones, threads);
   return index;
 }
 
