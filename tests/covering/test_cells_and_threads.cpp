@@ -209,12 +209,12 @@ TEST(MergeCells, AQuarterTurnKeepsTheCells) {
 }
 
 // A floor over [0, 64]^2, sparse (a tick every 4) but for 20,000 small
-// triangles over [0, 4]^2: a dense cluster of detail in a sparse map.
-Mesh floor_with_a_dense_corner() {
+// triangles over [0, 4]^2: a dense cluster of detail in a sparse map;
+// added after whatever `m` holds.
+Mesh floor_with_a_dense_corner(Mesh m = {}) {
   std::vector<double> ticks;
   for (int i = 0; i < 100; ++i) ticks.push_back(0.04 * i);
   for (int i = 1; i <= 16; ++i) ticks.push_back(4.0 * i);
-  Mesh m;
   add_height_field(m, ticks, ticks, [](double, double) { return 0.0; });
   return m;
 }
@@ -275,6 +275,40 @@ TEST(MergeCells, ACrowdedCellIsCutIntoTheEightOfHalfItsSide) {
             std::set<std::vector<int>>(turned_cells.faces_of_cell.begin(), turned_cells.faces_of_cell.end()));
   // A side the user gives is kept as it is: no cell is cut.
   EXPECT_EQ(lay_out_cells(p.value(), islands, side).faces_of_cell.size(), grid.faces_of_cell.size());
+}
+
+TEST(MergeCells, EachCellKeepsItsOwnHalvingsBesideAnIslandLeftWhole) {
+  // A small floor far off, laid out first and kept as one cell, then the
+  // dense floor: each cell of the dense floor must carry the halvings it has
+  // alone (a regression: the whole island's cell once took no entry, and
+  // every later cell read its predecessor's).
+  Mesh small;
+  add_height_field(small, {-20.0, -19.0, -18.0}, {-20.0, -19.0, -18.0}, [](double, double) { return 0.0; });
+  const int offset = static_cast<int>(small.triangles.size());
+  const Mesh both = floor_with_a_dense_corner(small);
+  const auto layout_of = [](const Mesh& m) {
+    const Result<PreparedMesh> p = prepare_mesh(m, std::nullopt);
+    EXPECT_TRUE(p.ok());
+    return lay_out_cells(p.value(), find_mesh_islands(p.value().mesh), std::nullopt);
+  };
+  const CellLayout alone = layout_of(floor_with_a_dense_corner());
+  const CellLayout beside = layout_of(both);
+  ASSERT_EQ(beside.cell_halvings.size(), beside.faces_of_cell.size());
+  std::set<std::pair<std::vector<int>, int>> cut_alone, cut_beside;
+  for (size_t c = 0; c < alone.faces_of_cell.size(); ++c) cut_alone.insert({alone.faces_of_cell[c], alone.cell_halvings[c]});
+  int whole_cells = 0;
+  for (size_t c = 0; c < beside.faces_of_cell.size(); ++c) {
+    std::vector<int> faces = beside.faces_of_cell[c];
+    if (faces.front() < offset) {
+      ++whole_cells;
+      EXPECT_EQ(beside.cell_halvings[c], 0);
+      continue;
+    }
+    for (int& f : faces) f -= offset;
+    cut_beside.insert({faces, beside.cell_halvings[c]});
+  }
+  EXPECT_EQ(whole_cells, 1);
+  EXPECT_EQ(cut_beside, cut_alone);
 }
 
 TEST(Decompose, TheSeamPassJoinsPatchesAcrossCellBorders) {

@@ -59,6 +59,14 @@ double automatic_cell_size(const Mesh& mesh, const std::vector<int>& faces, cons
   return size;
 }
 
+// Appends one cell with every per-cell field, so the fields stay aligned
+// by cell index whichever way a layout is made.
+void add_cell(std::vector<int> faces, int island, int halvings, CellLayout& layout) {
+  layout.faces_of_cell.push_back(std::move(faces));
+  layout.island_of_cell.push_back(island);
+  layout.cell_halvings.push_back(halvings);
+}
+
 // Appends island `island`'s cells of `faces` on the grid of side `size`
 // through `centre`, in key order. With `finest` > 0, a cell holding more
 // than kMostFacesPerAutomaticCell faces is replaced by its cells on the
@@ -72,16 +80,12 @@ void append_cells(const Mesh& mesh, const std::vector<int>& faces, const Eigen::
       append_cells(mesh, cell, centre, 0.5 * size, finest, island, halvings + 1, layout);
       continue;
     }
-    layout.faces_of_cell.push_back(std::move(cell));
-    layout.island_of_cell.push_back(island);
-    layout.cell_halvings.push_back(halvings);
+    add_cell(std::move(cell), island, halvings, layout);
   }
 }
 
-// Fills cell_of_face and slot_in_cell from faces_of_cell, and the halvings
-// of cells laid out without any.
+// Fills cell_of_face and slot_in_cell from faces_of_cell.
 void index_faces(CellLayout& layout) {
-  layout.cell_halvings.resize(layout.faces_of_cell.size(), 0);
   for (int c = 0; c < static_cast<int>(layout.faces_of_cell.size()); ++c)
     for (int slot = 0; slot < static_cast<int>(layout.faces_of_cell[c].size()); ++slot) {
       const int f = layout.faces_of_cell[c][slot];
@@ -97,10 +101,9 @@ CellLayout lay_out_islands(const PreparedMesh& prepared, const MeshIslands& isla
   CellLayout layout;
   layout.cell_of_face.assign(face_count, 0);
   layout.slot_in_cell.assign(face_count, 0);
-  layout.faces_of_cell.resize(islands.boxes.size());
-  for (int f = 0; f < face_count; ++f) layout.faces_of_cell[islands.island_of_face[f]].push_back(f);
-  layout.island_of_cell.resize(islands.boxes.size());
-  std::iota(layout.island_of_cell.begin(), layout.island_of_cell.end(), 0);
+  std::vector<std::vector<int>> faces_of_island(islands.boxes.size());
+  for (int f = 0; f < face_count; ++f) faces_of_island[islands.island_of_face[f]].push_back(f);
+  for (size_t i = 0; i < faces_of_island.size(); ++i) add_cell(std::move(faces_of_island[i]), static_cast<int>(i), 0, layout);
   layout.island_cell_size.assign(islands.boxes.size(), 0.0);
   index_faces(layout);
   return layout;
@@ -113,11 +116,11 @@ CellLayout lay_out_cells(const PreparedMesh& prepared, const MeshIslands& island
   layout.cell_of_face.assign(face_count, 0);
   layout.slot_in_cell.assign(face_count, 0);
   if (cell_size && *cell_size == 0.0) {
-    layout.faces_of_cell.emplace_back(face_count);
-    for (int f = 0; f < face_count; ++f) layout.faces_of_cell[0][f] = f, layout.slot_in_cell[f] = f;
+    std::vector<int> every_face(face_count);
+    std::iota(every_face.begin(), every_face.end(), 0);
+    add_cell(std::move(every_face), islands.boxes.size() == 1 ? 0 : -1, 0, layout);
     layout.island_cell_size.assign(islands.boxes.size(), 0.0);
-    layout.island_of_cell = {islands.boxes.size() == 1 ? 0 : -1};
-    layout.cell_halvings = {0};
+    index_faces(layout);
     return layout;
   }
   std::vector<std::vector<int>> faces_of_island(islands.boxes.size());
@@ -128,8 +131,7 @@ CellLayout lay_out_cells(const PreparedMesh& prepared, const MeshIslands& island
     const double size = cell_size ? *cell_size : automatic_cell_size(mesh, faces, box);
     layout.island_cell_size.push_back(size);
     if (!(size > 0.0)) {
-      layout.faces_of_cell.push_back(faces);
-      layout.island_of_cell.push_back(static_cast<int>(i));
+      add_cell(faces, static_cast<int>(i), 0, layout);
       continue;
     }
     // A user's side is kept as given; the automatic grid halves its crowded
