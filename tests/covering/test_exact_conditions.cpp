@@ -218,6 +218,23 @@ TEST(StrictFreeSpace, HullFillingACappedTubeIsEnclosed) {
   EXPECT_EQ(exact_verdict(m, box_hull(V(0, 0, 0), V(1, 2, 1))), Validity::valid);
 }
 
+// A world of two maps: the open tube on its floor, and far above it another
+// map, a closed room whose walls face in (as a game map's do). The tube's
+// rays leave through its open top into the back of the room's floor: in
+// the world that space is enclosed, in the tube's map alone it is open.
+// Only a face of the ray's own place encloses it, so a hull of one map
+// never takes space that map alone keeps. The room's floor meets the tube
+// map's box: one place, and there it encloses the tube.
+TEST(StrictFreeSpace, AnotherMapAboveEnclosesNothing) {
+  Mesh m = floor_and_open_tube();
+  add_box(m, V(-3, 20, -3), V(4, 30, 4), false);
+  const ConvexPolytope filling = box_hull(V(0, 0, 0), V(1, 2, 1));
+  EXPECT_EQ(exact_verdict(m, filling), Validity::front_space_inside);
+  Mesh touching = floor_and_open_tube();
+  add_box(touching, V(-3, 2, -3), V(4, 12, 4), false);
+  EXPECT_EQ(exact_verdict(touching, filling), Validity::valid);
+}
+
 TEST(StrictFreeSpace, HullFloatingFarAboveAFloorTakesItsSpace) {
   Mesh m;
   add_quad_facing(m, V(0, 0, 0), V(10, 0, 0), V(10, 0, 10), V(0, 0, 10), V(0, 1, 0));

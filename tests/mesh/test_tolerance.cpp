@@ -97,45 +97,59 @@ TEST(ChooseTolerance, EachIslandHasItsOwnAndTheSmallestRulesWhereZonesMeet) {
   EXPECT_DOUBLE_EQ(place.at(bounding_box_of({{0.5, 1, 1}, {102, 2, 2}})), 3.0 * kDefaultRelativeTolerance);
   EXPECT_DOUBLE_EQ(place.at(bounding_box_of({{50, 50, 50}, {51, 51, 51}})), 3.0 * kDefaultRelativeTolerance);
 
-  // Zones meet where an island of several pieces reaches farther than its
-  // pieces: two 10 x 20 x 20 boxes 0.2 apart are one island (each reaches
-  // 0.3 beyond itself), whose zone reaches 1% of its 34.7 diagonal. The
-  // small box 0.05 beyond the second one's reach is an island of its own,
-  // inside that zone: the large island takes the small one's tolerance.
-  const Mesh pair = joined(box_from({100, 0, 0}, {110, 20, 20}), box_from({110.2, 0, 0}, {120.2, 20, 20}));
-  const Mesh near = joined(box_from({120.55, 0, 0}, {121.55, 2, 2}), pair);
-  const Result<Tolerance> n = choose_tolerance(near, std::nullopt);
-  ASSERT_TRUE(n.ok());
-  ASSERT_EQ(n.value().island_lengths.size(), 2u);
-  EXPECT_DOUBLE_EQ(n.value().island_lengths[0], 3.0 * kDefaultRelativeTolerance);
-  EXPECT_DOUBLE_EQ(n.value().island_lengths[1], 3.0 * kDefaultRelativeTolerance);
-  // Moved farther, the large island keeps its own.
-  const Mesh apart = joined(box_from({121.55, 0, 0}, {122.55, 2, 2}), pair);
-  const Result<Tolerance> a = choose_tolerance(apart, std::nullopt);
-  ASSERT_TRUE(a.ok());
-  ASSERT_EQ(a.value().island_lengths.size(), 2u);
-  EXPECT_GT(a.value().island_lengths[1], 10.0 * kDefaultRelativeTolerance);
+  // A small island whose box meets the large one's (a prop inside an
+  // L-shaped map, touching none of its pieces) is one place with it: both
+  // take the small one's tolerance.
+  const Mesh l_shape = joined(box_from({100, 0, 0}, {110, 2, 20}), box_from({100, 2, 0}, {102, 20, 20}));
+  const Mesh prop = joined(box_from({105, 10, 5}, {106, 12, 7}), l_shape);
+  const Result<Tolerance> s = choose_tolerance(prop, std::nullopt);
+  ASSERT_TRUE(s.ok());
+  ASSERT_EQ(s.value().island_lengths.size(), 2u);
+  EXPECT_EQ(s.value().places, 1);
+  EXPECT_DOUBLE_EQ(s.value().island_lengths[0], 3.0 * kDefaultRelativeTolerance);
+  EXPECT_DOUBLE_EQ(s.value().island_lengths[1], 3.0 * kDefaultRelativeTolerance);
 }
 
-TEST(ChooseTolerance, ZonesMeetingAlongAChainShareTheirSmallest) {
-  // Islands A and B (pairs of 10 x 20 x 20 boxes, as above) 0.65 apart:
-  // apart as pieces, their zones meet. C, a small box just beyond B's
-  // pieces' reach, meets B's zone but not A's. A takes C's tolerance through
-  // B: a hull of A reaching B's zone is judged there at C's.
-  const auto pair_at = [](double x) {
-    return joined(box_from({x, 0, 0}, {x + 10, 20, 20}), box_from({x + 10.2, 0, 0}, {x + 20.2, 20, 20}));
-  };
-  const Mesh a_and_b = joined(pair_at(100.0), pair_at(120.85));
-  const Mesh chain = joined(a_and_b, box_from({141.4, 0, 0}, {142.4, 2, 2}));
+TEST(ChooseTolerance, MapsLaidCloseKeepTheirOwnTolerance) {
+  // Two maps as a world lays them: 5,000 and 1,000 units across, 64 units
+  // apart (1.3% of the larger, less than their 1% reaches added up). Each
+  // keeps the tolerance it has alone, and their zones stop short of each
+  // other: no hull of one is judged at the other's tolerance.
+  const Mesh large = box_from({0, 0, 0}, {5000, 500, 3000});
+  const Mesh small = box_from({5064, 0, 0}, {6064, 200, 600});
+  const Result<Tolerance> t = choose_tolerance(joined(large, small), std::nullopt);
+  ASSERT_TRUE(t.ok());
+  ASSERT_EQ(t.value().island_lengths.size(), 2u);
+  EXPECT_EQ(t.value().places, 2);
+  EXPECT_DOUBLE_EQ(t.value().island_lengths[0], choose_tolerance(large, std::nullopt).value().length);
+  EXPECT_DOUBLE_EQ(t.value().island_lengths[1], choose_tolerance(small, std::nullopt).value().length);
+  EXPECT_FALSE(boxes_overlap(t.value().island_zones[0], t.value().island_zones[1]));
+  EXPECT_LE(t.value().island_zones[0].max.x(), 5000 + kZoneShareOfGap * 64 + 1e-9);
+  // Alone, a zone reaches kIslandZoneRelative of the diagonal.
+  const Tolerance alone = choose_tolerance(large, std::nullopt).value();
+  EXPECT_DOUBLE_EQ(alone.island_zones[0].max.x(), 5000 + kIslandZoneRelative * alone.diagonal);
+}
+
+TEST(ChooseTolerance, IslandsWhoseBoxesMeetAlongAChainShareTheirSmallest) {
+  // Two L-shaped islands whose boxes meet, though no piece of one touches
+  // the other, and a small box inside the second's box alone: one place, at
+  // the small box's tolerance. Without it, the two share the smaller of
+  // their own.
+  const Mesh a = joined(box_from({0, 0, 0}, {10, 1, 10}), box_from({0, 1, 0}, {1, 10, 10}));
+  const Mesh b = joined(box_from({5, 5, 0}, {30, 6, 10}), box_from({29, 6, 0}, {30, 30, 10}));
+  const Mesh a_and_b = joined(a, b);
+  const Mesh chain = joined(a_and_b, box_from({20, 20, 4}, {21, 22, 6}));
   const Result<Tolerance> t = choose_tolerance(chain, std::nullopt);
   ASSERT_TRUE(t.ok());
   ASSERT_EQ(t.value().island_lengths.size(), 3u);
+  EXPECT_EQ(t.value().places, 1);
   for (int i = 0; i < 3; ++i) EXPECT_DOUBLE_EQ(t.value().island_lengths[i], 3.0 * kDefaultRelativeTolerance) << i;
-  // Without C, A and B keep their own.
   const Result<Tolerance> two = choose_tolerance(a_and_b, std::nullopt);
   ASSERT_TRUE(two.ok());
   ASSERT_EQ(two.value().island_lengths.size(), 2u);
-  EXPECT_GT(two.value().island_lengths[0], 30.0 * kDefaultRelativeTolerance);
+  EXPECT_EQ(two.value().places, 1);
+  EXPECT_DOUBLE_EQ(two.value().island_lengths[0], choose_tolerance(a, std::nullopt).value().length);
+  EXPECT_DOUBLE_EQ(two.value().island_lengths[1], choose_tolerance(a, std::nullopt).value().length);
 }
 
 TEST(ChooseTolerance, AFloat32IslandFarFromTheOriginGetsTheFloorOfItsOwnMagnitude) {

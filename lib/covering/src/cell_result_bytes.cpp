@@ -11,7 +11,7 @@ namespace hullcover::detail {
 namespace {
 
 constexpr char kMagic[8] = {'H', 'C', 'C', 'E', 'L', 'L', '\0', '\0'};
-constexpr std::uint32_t kVersion = 2;
+constexpr std::uint32_t kVersion = 3;
 // Part of every cell key: raise it whenever a change to the merging or to
 // the making of hulls makes a cell keep other patches or hulls, so caches
 // filled by older builds are not reused.

@@ -87,13 +87,13 @@ Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& 
   for (const Aabb& box : stages->islands.boxes)
     covering.island_extents.push_back(box.diagonal() > 0.0 ? box.diagonal() : prepared.tolerance.local_extent);
   // Each island's checks at the smallest tolerance of the zones its hulls
-  // can reach (its box grown by its prism cap): the audit, judging each hull
-  // at its own box's (PlaceTolerance), is then never stricter than the
+  // can reach: its own zone, which its prisms never leave (patch_hulls.cpp),
+  // and which meets only zones of its own place. The audit, judging each
+  // hull at its own box's (PlaceTolerance), is then never stricter than the
   // merge was.
   const PlaceTolerance place_tolerance(prepared.tolerance);
   for (int island = 0; island < static_cast<int>(stages->islands.boxes.size()); ++island) {
-    const double cap = options.prism_thickness_cap.value_or(kDefaultPrismCapRelative * covering.island_extents[island]);
-    const double reach = place_tolerance.at(grown(stages->islands.boxes[island], cap));
+    const double reach = place_tolerance.at(prepared.tolerance.island_zones[island]);
     stages->island_tolerance.push_back(std::min(prepared.tolerance.island_lengths[island], reach));
   }
   // Patches never span islands unless the whole scene is one cell, so every

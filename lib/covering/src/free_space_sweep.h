@@ -23,6 +23,12 @@ struct FreeSpaceSweep {
   std::vector<Eigen::Vector3d> base;     ///< the face or edge swept
   std::vector<Eigen::Vector3d> corners;  ///< the base at t = 0 and at the reach
   double reach = 0.0;             ///< scene units, from the base (the free-space reach plus the rays' stand-off)
+  /// The place (hullcover/mesh/tolerance.h) of the face swept, or -1 for
+  /// any: only faces of that place enclose its rays. A ray that runs out of
+  /// its map into the back of another map's outer wall is enclosed in the
+  /// world but open in the map alone; judged open, the map's hulls are
+  /// valid in both.
+  int place = -1;
 };
 
 /// The front space of triangle `corners` (unit front `normal`); it starts

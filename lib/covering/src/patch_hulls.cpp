@@ -21,6 +21,17 @@ CoveringHull planar_hull(const SceneIndex& index, const PatchMerger& merger, int
                                                 patch.area_vector.normalized(), index.tol());
   const auto in_patch = [&](int f) { return merger.in_patch(f, patch_id); };
   const std::vector<Plane> sides = beveled_side_planes(index, polygon, in_patch, scratch);
+  // The prism stays in its island's zone, where the tolerance it is checked
+  // at holds (hullcover/mesh/tolerance.h): behind a map's outer wall it
+  // stops short of a neighbouring map's zone.
+  Aabb zone;
+  const Tolerance& tolerance = index.prepared->tolerance;
+  for (int f : patch.faces) {
+    const Aabb& own = tolerance.island_zones[index.prepared->islands.island_of_face[f]];
+    zone.extend(own.min);
+    zone.extend(own.max);
+  }
+  cap = std::min(cap, depth_inside_box(polygon, zone));
   hull.thickness = allowed_prism_thickness(index, polygon, sides, in_patch, cap, scratch);
   hull.polytope = prism_polytope(polygon, sides, hull.thickness, index.tol(), hulls);
   if (hull.thickness > 0.0 && check_solid_hull(index, hull.polytope, scratch) != Validity::valid) {

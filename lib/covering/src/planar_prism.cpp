@@ -1,5 +1,7 @@
 #include "planar_prism.h"
 
+#include <limits>
+
 #include "validity_conditions.h"
 
 #include "hullcover/geometry/triangle_distance.h"
@@ -61,6 +63,18 @@ std::vector<Plane> beveled_side_planes(const SceneIndex& index, const FlatPolygo
     sides[i] = tilted;
   }
   return sides;
+}
+
+double depth_inside_box(const FlatPolygon& polygon, const Aabb& box) {
+  const Eigen::Vector3d down = -polygon.plane.normal;
+  double depth = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& c : polygon.corners)
+    for (int axis = 0; axis < 3; ++axis) {
+      const double room = down[axis] > 0.0 ? box.max[axis] - c[axis] : c[axis] - box.min[axis];
+      if (room < 0.0) return 0.0;
+      if (down[axis] != 0.0) depth = std::min(depth, room / std::abs(down[axis]));
+    }
+  return depth;
 }
 
 double allowed_prism_thickness(const SceneIndex& index, const FlatPolygon& polygon, const std::vector<Plane>& sides,

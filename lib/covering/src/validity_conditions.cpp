@@ -26,6 +26,7 @@ Validity judge_sweep(const SceneIndex& index, const SweepRef& ref, const HullInt
     std::vector<Eigen::Vector3d>& triangle = storage.triangle;
     triangle_corners(mesh, f, triangle);
     front_space_sweep(triangle, index.face_normals[f], index.front_reach[f], tol, sweep);
+    sweep.place = index.prepared->face_place(f);
     if (crossing_face_leaks(index, sweep, interior, storage)) return Validity::face_crosses_hull;
     if (sweep_enters_hull(index, sweep, interior, storage)) return Validity::front_space_inside;
     return Validity::valid;
@@ -39,6 +40,7 @@ Validity judge_sweep(const SceneIndex& index, const SweepRef& ref, const HullInt
   const Eigen::Vector3d& inner = mesh.positions[t[(use.corner + 2) % 3]];
   const double reach = index.opening_reach[ref.item][ref.fan];
   opening_fan(p0, p1, inner, index.face_normals[use.face], ref.fan, reach, tol, sweep);
+  sweep.place = index.prepared->face_place(use.face);
   if (sweep_enters_hull(index, sweep, interior, storage)) return Validity::opening_inside;
   return Validity::valid;
 }

@@ -62,6 +62,14 @@ struct WitnessRay {
   bool enclosed = false;  ///< kept because its first face, beyond the entry, is met from behind
 };
 
+// Whether face f, met from behind as a ray's first hit, encloses the rays
+// of `sweep`: only a face of the sweep's own place does (FreeSpaceSweep::
+// place), so that what a map's hulls may fill never depends on the maps
+// around it.
+bool encloses(const SceneIndex& index, const FreeSpaceSweep& sweep, int f) {
+  return sweep.place < 0 || index.prepared->face_place(f) == sweep.place;
+}
+
 // The probe's verdict on the sweep's ray through `point`: it starts on the
 // base, runs to its first mesh hit (faces count as met only past the
 // stand-off, as the probe's rays meet them) or the reach, and loses space
@@ -82,7 +90,7 @@ WitnessRay witness_ray(const SceneIndex& index, const FreeSpaceSweep& sweep, con
   // 2 tol deep, which is inside).
   const std::optional<MeshRayHit> hit = first_hit_past_stand_off(index, sweep, base, scratch);
   if (hit && hit->t <= enter) return {false, hit->face, false};
-  if (hit && hit->from_behind) return {false, hit->face, true};
+  if (hit && hit->from_behind && encloses(index, sweep, hit->face)) return {false, hit->face, true};
   return {true, -1, false};
 }
 

@@ -86,7 +86,7 @@ MeshIslands find_mesh_islands(const Mesh& mesh) {
   }
   std::vector<Aabb> grown_boxes;
   grown_boxes.reserve(piece_boxes.size());
-  for (const Aabb& box : piece_boxes) grown_boxes.push_back(grown(box, kIslandGapRelative * box.diagonal()));
+  for (const Aabb& box : piece_boxes) grown_boxes.push_back(grown(box, kIslandJoinRelative * box.diagonal()));
   const AabbTree tree(grown_boxes);
   DisjointSets pieces(static_cast<int>(piece_boxes.size()));
   std::vector<int> near;

@@ -21,6 +21,15 @@ double coordinate_error_in(const Mesh& mesh, const Aabb& box) {
   return std::max(input_error, arithmetic_error);
 }
 
+// How far apart two boxes are along the axis that separates them most (0
+// when they meet): boxes each grown by less than half of it do not meet.
+double box_gap(const Aabb& a, const Aabb& b) {
+  double gap = 0.0;
+  for (int axis = 0; axis < 3; ++axis)
+    gap = std::max({gap, b.min[axis] - a.max[axis], a.min[axis] - b.max[axis]});
+  return gap;
+}
+
 } // namespace
 
 PlaceTolerance::PlaceTolerance(const Tolerance& tolerance)
@@ -74,24 +83,44 @@ Result<Tolerance> choose_tolerance(const Mesh& mesh, const MeshIslands& islands,
     tol.floor = std::max(tol.floor, floor);
     tol.raised_to_floor = tol.raised_to_floor || requested < floor;
     own.push_back(std::max(requested, floor));
-    tol.island_zones.push_back(grown(box, kIslandGapRelative * box.diagonal()));
   }
-  // Islands whose zones meet, directly or along a chain, are one group and
-  // all take the group's smallest: a hull of one is judged (PlaceTolerance)
-  // at no smaller a tolerance than the one it was made at.
   const int count = static_cast<int>(own.size());
-  detail::DisjointSets groups(count);
-  const AabbTree zones(tol.island_zones);
+  // Places: islands whose boxes meet, directly or along a chain. Zones: each
+  // box grown by kIslandZoneRelative of its diagonal, but by no more than
+  // kZoneShareOfGap of the gap to any island whose box it does not meet, so
+  // zones meet only within a place and a map's tolerance never depends on
+  // its neighbours.
+  detail::DisjointSets places(count);
+  std::vector<double> margins;
+  for (const Aabb& box : islands.boxes) margins.push_back(kIslandZoneRelative * box.diagonal());
+  const AabbTree boxes(islands.boxes);
   std::vector<int> near;
   for (int i = 0; i < count; ++i) {
     near.clear();
-    zones.overlapping(tol.island_zones[i], near);
-    for (int j : near) groups.join(i, j);
+    // Only islands nearer than margin / kZoneShareOfGap can narrow the zone.
+    boxes.overlapping(grown(islands.boxes[i], margins[i] / kZoneShareOfGap), near);
+    for (int j : near) {
+      if (j == i) continue;
+      const double gap = box_gap(islands.boxes[i], islands.boxes[j]);
+      if (gap > 0.0)
+        margins[i] = std::min(margins[i], kZoneShareOfGap * gap);
+      else
+        places.join(i, j);
+    }
   }
-  std::vector<double> smallest_of_group = own;
+  for (int i = 0; i < count; ++i) tol.island_zones.push_back(grown(islands.boxes[i], margins[i]));
+  // The islands of a place all take its smallest: a hull of one is judged
+  // (PlaceTolerance) at no smaller a tolerance than the one it was made at.
+  std::vector<double> smallest_of_place = own;
   for (int i = 0; i < count; ++i)
-    smallest_of_group[groups.find(i)] = std::min(smallest_of_group[groups.find(i)], own[i]);
-  for (int i = 0; i < count; ++i) tol.island_lengths.push_back(smallest_of_group[groups.find(i)]);
+    smallest_of_place[places.find(i)] = std::min(smallest_of_place[places.find(i)], own[i]);
+  std::vector<int> place_of_root(count, -1);
+  for (int i = 0; i < count; ++i) {
+    const int root = places.find(i);
+    if (place_of_root[root] < 0) place_of_root[root] = tol.places++;
+    tol.island_place.push_back(place_of_root[root]);
+    tol.island_lengths.push_back(smallest_of_place[root]);
+  }
   tol.length = *std::min_element(tol.island_lengths.begin(), tol.island_lengths.end());
   return tol;
 }

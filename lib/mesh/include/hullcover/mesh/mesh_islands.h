@@ -16,10 +16,24 @@
 namespace hullcover {
 
 /// Connected pieces whose boxes, each grown by this fraction of its own
-/// diagonal, overlap belong to one island (transitively). The fraction is
-/// the default prism cap's: what sits closer than a hull may reach is one
-/// place. Far-apart maps (any gap wider than 1% of each map) stay apart.
-inline constexpr double kIslandGapRelative = 0.01;
+/// diagonal, overlap belong to one island (transitively): pieces that touch
+/// but for rounding or a crack (kit pieces, terrain tiles) are one place,
+/// and a map's props inside its box join it. Maps laid side by side stay
+/// apart when the gap between them is wider than 0.1% of each: a world of
+/// maps 7,000 units across laid 64 units apart keeps each map its own
+/// island, so its tolerance, cells and hulls are those it has alone.
+inline constexpr double kIslandJoinRelative = 0.001;
+
+/// How far an island's zone (hullcover/mesh/tolerance.h: where its
+/// tolerance holds and its hulls may lie) reaches beyond its box, as a
+/// fraction of its diagonal: the default prism cap, so a prism behind an
+/// outer wall keeps its thickness.
+inline constexpr double kIslandZoneRelative = 0.01;
+
+/// A zone never reaches further than this share of the gap to the nearest
+/// island whose box its own box does not meet: below one half, so the zones
+/// of islands apart never meet, whatever their sizes.
+inline constexpr double kZoneShareOfGap = 0.45;
 
 /// The islands of a mesh.
 struct MeshIslands {

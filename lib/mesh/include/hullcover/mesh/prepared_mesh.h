@@ -27,6 +27,8 @@ struct PreparedMesh {
   /// The tolerance of tests on face `f` alone: its island's
   /// (Tolerance::island_lengths), scene units.
   double face_tolerance(int f) const { return tolerance.island_lengths[islands.island_of_face[f]]; }
+  /// The place of face f (Tolerance::island_place).
+  int face_place(int f) const { return tolerance.island_place[islands.island_of_face[f]]; }
 };
 
 /// Validates `raw`, finds its islands, chooses the tolerance

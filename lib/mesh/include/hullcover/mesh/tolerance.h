@@ -11,16 +11,18 @@
 /// Default, per island (mesh_islands.h: a map, as opposed to a world of
 /// maps): `kDefaultRelativeTolerance` x the island's diagonal, never below
 /// the floor of its own coordinates. A map laid in a world of others keeps
-/// the tolerance it has alone, and so its hulls. A test is judged at the
-/// tolerance of the place it happens: `island_lengths[i]` inside island i's
-/// zone (its box grown by `kIslandGapRelative` of its diagonal), the
-/// smallest of the zones a test's box meets (PlaceTolerance), and `length`,
-/// the smallest of all, where no place is known. Islands whose zones meet
-/// (directly or along a chain) share their smallest: a larger neighbour's
-/// tolerance would let a small object's hulls take space at the neighbour's
-/// scale. The decomposer checks an island's hulls at the smallest tolerance
-/// of the zones its hulls can reach, so no hull is judged more strictly by
-/// the audit than it was made.
+/// the tolerance it has alone, and so its hulls. Islands whose boxes meet
+/// (directly or along a chain: a prop island straddling a map's wall) form
+/// one *place* and share its smallest tolerance: a larger neighbour's would
+/// let a small object's hulls take space at the neighbour's scale. Each
+/// island's *zone* is its box grown by `kIslandZoneRelative` of its
+/// diagonal, but never by more than `kZoneShareOfGap` of the gap to an
+/// island of another place, so zones of different places never meet. A
+/// test is judged at the tolerance of the place it happens: the smallest of
+/// the zones a test's box meets (PlaceTolerance), and `length`, the
+/// smallest of all, where it meets none. The decomposer keeps every hull of
+/// an island inside its zone (a prism stops at the zone's boundary), so the
+/// audit judges each hull at the tolerance it was made at.
 /// A user may override it with an absolute length, but never below the floor
 /// the data itself imposes (its own rounding error, as Jolt and Manifold do):
 /// a tolerance under the noise of the coordinates would turn rounding into
@@ -46,13 +48,16 @@ struct Tolerance {
   /// Per island (mesh_islands.h numbering), scene units (> 0): the
   /// tolerance of tests in its zone: its own (the user's length, or the
   /// default from its diagonal, raised to its floor), lowered to the
-  /// smallest of the islands whose zones meet its zone, directly or along a
-  /// chain of zones that meet.
+  /// smallest of its place's.
   std::vector<double> island_lengths;
-  /// Per island: its zone, where its tolerance holds: its box grown by
-  /// `kIslandGapRelative` x its diagonal. Zones of islands far apart do not
-  /// meet.
+  /// Per island: its zone, where its tolerance holds and its hulls lie (see
+  /// the file comment). Zones of different places never meet.
   std::vector<Aabb> island_zones;
+  /// Per island: its place (0 .. places - 1, numbered by their lowest
+  /// island): the islands whose boxes meet it, directly or along a chain.
+  std::vector<int> island_place;
+  /// How many places the scene has.
+  int places = 0;
   /// Smallest length the data can support: rounding error of its coordinates
   /// (input error plus double-precision arithmetic at its magnitude), times
   /// `kRoundingErrorsPerPlaneTest`; the largest of the islands' floors (each
