@@ -49,12 +49,14 @@ TEST(MeshIslands, FarApartCopiesAreIslandsOfTheirOwn) {
   for (size_t f = 0; f < building.triangles.size(); ++f) EXPECT_LT(two.island_of_face[f], static_cast<int>(one.boxes.size()));
 }
 
-TEST(MeshIslands, PiecesWithinOnePercentOfEachOtherAreOneIsland) {
+TEST(MeshIslands, PiecesWithinATenthOfAPercentOfEachOtherAreOneIsland) {
   const Mesh floor = flat_floor(4);  // diagonal sqrt(32)
-  // A gap of 1% of the floor's diagonal, minus a little: within reach.
-  const double near_gap = 4.0 + 0.009 * std::sqrt(32.0);
+  // A gap of 0.1% of each floor's diagonal, added up, minus a little:
+  // within reach (a crack between kit pieces).
+  const double near_gap = 4.0 + 0.0019 * std::sqrt(32.0);
   EXPECT_EQ(find_mesh_islands(with_moved_copy(floor, {near_gap, 0.0, 0.0})).boxes.size(), 1u);
-  const double far_gap = 4.0 + 0.03 * std::sqrt(32.0);
+  // A gap of 0.5% apart: two maps laid side by side, two islands.
+  const double far_gap = 4.0 + 0.005 * std::sqrt(32.0);
   EXPECT_EQ(find_mesh_islands(with_moved_copy(floor, {far_gap, 0.0, 0.0})).boxes.size(), 2u);
 }
 

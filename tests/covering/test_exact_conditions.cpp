@@ -138,15 +138,19 @@ ConvexPolytope box_hull(const V& min, const V& max) {
   return ConvexHullBuilder().build(box.positions, {}).value();
 }
 
-Validity exact_verdict(const Mesh& m, const ConvexPolytope& hull) {
+// `hull_place`: the place (hullcover/mesh/tolerance.h) the hull belongs to,
+// as the decomposer's view of an island's cells gives it; -1 for none.
+Validity exact_verdict(const Mesh& m, const ConvexPolytope& hull, int hull_place = -1) {
   Result<PreparedMesh> prepared = prepare_mesh(m, std::nullopt);
   EXPECT_TRUE(prepared.ok());
   const double margin = 0.0;  // the hulls below lie within the scene's box
   BarOptions bars{kExactBarHalfLengthInTolerances * prepared.value().tolerance.length, false, ValidityMode::exact,
                   uncapped_free_space_reach(prepared.value(), margin), margin};
   const auto scene = test::index_scene(m, std::nullopt, bars);
+  SceneIndex view = scene->index;
+  view.place = hull_place;
   std::vector<int> scratch;
-  return check_solid_hull(scene->index, hull, scratch);
+  return check_solid_hull(view, hull, scratch);
 }
 
 // A floor (y = 0, facing up) and, standing on it, a tube x, z in [0, 1] up
@@ -221,18 +225,22 @@ TEST(StrictFreeSpace, HullFillingACappedTubeIsEnclosed) {
 // A world of two maps: the open tube on its floor, and far above it another
 // map, a closed room whose walls face in (as a game map's do). The tube's
 // rays leave through its open top into the back of the room's floor: in
-// the world that space is enclosed, in the tube's map alone it is open.
-// Only a face of the ray's own place encloses it, so a hull of one map
-// never takes space that map alone keeps. The room's floor meets the tube
-// map's box: one place, and there it encloses the tube.
-TEST(StrictFreeSpace, AnotherMapAboveEnclosesNothing) {
+// the world that space is enclosed, in the tube's map alone it is open. A
+// hull of the tube's own place (0) may not fill it, so that map's hulls are
+// valid alone too; a hull of no one place is judged by the world's rule.
+// The room's floor meeting the tube map's box makes one place, and there
+// it encloses the tube.
+TEST(StrictFreeSpace, AnotherMapAboveEnclosesNothingForTheMapsOwnHulls) {
   Mesh m = floor_and_open_tube();
   add_box(m, V(-3, 20, -3), V(4, 30, 4), false);
+  ASSERT_EQ(prepare_mesh(m, std::nullopt).value().tolerance.places, 2);
   const ConvexPolytope filling = box_hull(V(0, 0, 0), V(1, 2, 1));
-  EXPECT_EQ(exact_verdict(m, filling), Validity::front_space_inside);
+  EXPECT_EQ(exact_verdict(m, filling, 0), Validity::front_space_inside);
+  EXPECT_EQ(exact_verdict(m, filling, -1), Validity::valid);
   Mesh touching = floor_and_open_tube();
   add_box(touching, V(-3, 2, -3), V(4, 12, 4), false);
-  EXPECT_EQ(exact_verdict(touching, filling), Validity::valid);
+  ASSERT_EQ(prepare_mesh(touching, std::nullopt).value().tolerance.places, 1);
+  EXPECT_EQ(exact_verdict(touching, filling, 0), Validity::valid);
 }
 
 TEST(StrictFreeSpace, HullFloatingFarAboveAFloorTakesItsSpace) {
@@ -257,14 +265,22 @@ TEST(StrictFreeSpace, ASlabHoveringWithinTheStandOffTakesTheFloorsSpace) {
   EXPECT_EQ(exact_verdict(m, box_hull(V(6, 0.2 * tol, 1), V(8, 1.9 * tol, 3))), Validity::valid);
 }
 
+// A floor with a wall on its edge (the room's box holds the table: one
+// place, hullcover/mesh/tolerance.h; the wall faces out) and a one-sided
+// table top on it.
+void add_floor_and_wall(Mesh& m) {
+  add_quad_facing(m, V(-2, 0, -2), V(3, 0, -2), V(3, 0, 3), V(-2, 0, 3), V(0, 1, 0));
+  add_quad_facing(m, V(-2, 0, -2), V(-2, 0, 3), V(-2, 2, 3), V(-2, 2, -2), V(-1, 0, 0));
+}
+
 TEST(StrictFreeSpace, HullUnderAOneSidedTableTopIsEnclosed) {
   Mesh m;
-  add_quad_facing(m, V(-2, 0, -2), V(3, 0, -2), V(3, 0, 3), V(-2, 0, 3), V(0, 1, 0));
+  add_floor_and_wall(m);
   add_quad_facing(m, V(0, 1, 0), V(1, 1, 0), V(1, 1, 1), V(0, 1, 1), V(0, 1, 0));
   EXPECT_EQ(exact_verdict(m, box_hull(V(0, 0, 0), V(1, 1, 1))), Validity::valid);
   // The same top facing down is a ceiling: the space under it is open.
   Mesh ceiling;
-  add_quad_facing(ceiling, V(-2, 0, -2), V(3, 0, -2), V(3, 0, 3), V(-2, 0, 3), V(0, 1, 0));
+  add_floor_and_wall(ceiling);
   add_quad_facing(ceiling, V(0, 1, 0), V(1, 1, 0), V(1, 1, 1), V(0, 1, 1), V(0, -1, 0));
   EXPECT_NE(exact_verdict(ceiling, box_hull(V(0, 0, 0), V(1, 1, 1))), Validity::valid);
 }

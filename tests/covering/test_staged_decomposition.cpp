@@ -85,13 +85,14 @@ TEST(StagedDecomposition, CellBytesAreCheckedBeforeUse) {
   EXPECT_EQ(s->merge_cell(s->cell_count()).status().code(), StatusCode::invalid_argument);
 }
 
-// A closed box (its 12 faces last) above a floor, cut into cells.
+// A closed box (its 12 faces last) just above a floor, cut into cells.
 Mesh box_on_floor() {
   Mesh m;
   std::vector<double> ticks;
   for (int i = -8; i <= 8; ++i) ticks.push_back(i);
   add_height_field(m, ticks, ticks, [](double, double) { return 0.0; });
-  add_box(m, {2.2, 0.2, 2.2}, {3.8, 1.4, 3.8});
+  // 0.02 above the floor: within kIslandJoinRelative, one island.
+  add_box(m, {2.2, 0.02, 2.2}, {3.8, 1.22, 3.8});
   return m;
 }
 
@@ -105,7 +106,7 @@ TEST(StagedDecomposition, AnEditInvalidatesOnlyTheHullsItReaches) {
   // The edit: a long thin triangle whose centroid lies in the next cell
   // over (x < 0) but whose tip reaches into the box.
   Mesh after = before;
-  test::add_triangle(after, {-6.0, 0.5, 3.0}, {-6.0, 0.6, 3.1}, {3.0, 0.8, 3.0});
+  test::add_triangle(after, {-6.0, 0.3, 3.0}, {-6.0, 0.4, 3.1}, {3.0, 0.5, 3.0});
   const auto new_bake = staged(after, o);
   ASSERT_TRUE(new_bake);
   ASSERT_EQ(new_bake->cell_count(), old_bake->cell_count());

@@ -98,9 +98,9 @@ TEST(ChooseTolerance, EachIslandHasItsOwnAndTheSmallestRulesWhereZonesMeet) {
   EXPECT_DOUBLE_EQ(place.at(bounding_box_of({{50, 50, 50}, {51, 51, 51}})), 3.0 * kDefaultRelativeTolerance);
 
   // A small island whose box meets the large one's (a prop inside an
-  // L-shaped map, touching none of its pieces) is one place with it: both
-  // take the small one's tolerance.
-  const Mesh l_shape = joined(box_from({100, 0, 0}, {110, 2, 20}), box_from({100, 2, 0}, {102, 20, 20}));
+  // L-shaped map of two interpenetrating pieces, touching neither) is one
+  // place with it: both take the small one's tolerance.
+  const Mesh l_shape = joined(box_from({100, 0, 0}, {110, 2, 20}), box_from({100, 1, 0.5}, {102, 20, 19.5}));
   const Mesh prop = joined(box_from({105, 10, 5}, {106, 12, 7}), l_shape);
   const Result<Tolerance> s = choose_tolerance(prop, std::nullopt);
   ASSERT_TRUE(s.ok());
@@ -131,12 +131,12 @@ TEST(ChooseTolerance, MapsLaidCloseKeepTheirOwnTolerance) {
 }
 
 TEST(ChooseTolerance, IslandsWhoseBoxesMeetAlongAChainShareTheirSmallest) {
-  // Two L-shaped islands whose boxes meet, though no piece of one touches
-  // the other, and a small box inside the second's box alone: one place, at
-  // the small box's tolerance. Without it, the two share the smaller of
-  // their own.
-  const Mesh a = joined(box_from({0, 0, 0}, {10, 1, 10}), box_from({0, 1, 0}, {1, 10, 10}));
-  const Mesh b = joined(box_from({5, 5, 0}, {30, 6, 10}), box_from({29, 6, 0}, {30, 30, 10}));
+  // Two L-shaped islands (each of two interpenetrating pieces) whose boxes
+  // meet, though no piece of one touches the other, and a small box inside
+  // the second's box alone: one place, at the small box's tolerance.
+  // Without it, the two share the smaller of their own.
+  const Mesh a = joined(box_from({0, 0, 0}, {10, 1, 10}), box_from({0, 0.5, 0.5}, {1, 10, 9.5}));
+  const Mesh b = joined(box_from({5, 5, 0}, {30, 6, 10}), box_from({29, 5.5, 0.5}, {30, 30, 9.5}));
   const Mesh a_and_b = joined(a, b);
   const Mesh chain = joined(a_and_b, box_from({20, 20, 4}, {21, 22, 6}));
   const Result<Tolerance> t = choose_tolerance(chain, std::nullopt);

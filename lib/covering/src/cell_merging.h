@@ -9,6 +9,7 @@
 #include "hullcover/covering/merge_cells.h"
 #include "hullcover/geometry/parallel_for.h"
 #include "hullcover/mesh/mesh_islands.h"
+#include "hullcover/mesh/tolerance.h"
 
 #include "patch_hulls.h"
 #include "patch_merging.h"
@@ -24,19 +25,21 @@ namespace hullcover::detail {
 /// What the cells share. Holds a reference to `prepared`, which must
 /// outlive it.
 struct DecompositionStages {
-  explicit DecompositionStages(const PreparedMesh& mesh) : prepared(mesh) {}
+  explicit DecompositionStages(const PreparedMesh& mesh) : prepared(mesh), place_tolerance(mesh.tolerance) {}
   // The views in `island_index` refer to `index_data`: never copied or moved.
   DecompositionStages(const DecompositionStages&) = delete;
   DecompositionStages& operator=(const DecompositionStages&) = delete;
   const PreparedMesh& prepared;
+  /// The tolerance of each place, and where each island's zone is.
+  const PlaceTolerance place_tolerance;
   /// Options and resolved lengths; no hulls yet. Statistics: faces, index
   /// time, islands, cells.
   Covering covering;
   MeshIslands islands;
   CellLayout cells;
   /// Per island: the tolerance its cells, seam pass and hulls are checked
-  /// at, scene units: the smallest of the zones its hulls can reach
-  /// (hullcover/mesh/tolerance.h).
+  /// at, scene units: its own (hullcover/mesh/tolerance.h; its hulls stay
+  /// out of every zone of a smaller one).
   std::vector<double> island_tolerance;
   /// What every check reads, built once...
   SceneIndexData index_data;

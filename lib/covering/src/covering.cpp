@@ -86,16 +86,11 @@ Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& 
   covering.island_extents.clear();
   for (const Aabb& box : stages->islands.boxes)
     covering.island_extents.push_back(box.diagonal() > 0.0 ? box.diagonal() : prepared.tolerance.local_extent);
-  // Each island's checks at the smallest tolerance of the zones its hulls
-  // can reach: its own zone, which its prisms never leave (patch_hulls.cpp),
-  // and which meets only zones of its own place. The audit, judging each
-  // hull at its own box's (PlaceTolerance), is then never stricter than the
-  // merge was.
-  const PlaceTolerance place_tolerance(prepared.tolerance);
-  for (int island = 0; island < static_cast<int>(stages->islands.boxes.size()); ++island) {
-    const double reach = place_tolerance.at(prepared.tolerance.island_zones[island]);
-    stages->island_tolerance.push_back(std::min(prepared.tolerance.island_lengths[island], reach));
-  }
+  // Each island's checks at its own tolerance: its hulls lie in its box but
+  // for prisms, which stop short of every zone of a smaller tolerance
+  // (patch_hulls.cpp). The audit, judging each hull at its own box's
+  // (PlaceTolerance), is then never stricter than the merge was.
+  stages->island_tolerance = prepared.tolerance.island_lengths;
   // Patches never span islands unless the whole scene is one cell, so every
   // hull lies in its island's box grown by the prism cap: the sweeps need be
   // indexed only there.
@@ -115,9 +110,11 @@ Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& 
   for (int island = 0; island < static_cast<int>(stages->islands.boxes.size()); ++island)
     bars.half_length_of_island.push_back(island_bar_half_length(*stages, island));
   stages->index_data = build_scene_index(prepared, bars);
-  for (int island = 0; island < static_cast<int>(stages->islands.boxes.size()); ++island)
+  for (int island = 0; island < static_cast<int>(stages->islands.boxes.size()); ++island) {
     stages->island_index.emplace_back(stages->index_data, stages->island_tolerance[island],
                                       covering.island_extents[island]);
+    stages->island_index.back().place = prepared.tolerance.island_place[island];
+  }
   stages->island_index.emplace_back(stages->index_data, prepared.tolerance.length, prepared.tolerance.largest_island);
   covering.cell_sizes = stages->cells.island_cell_size;
   stats.islands = static_cast<int>(stages->islands.boxes.size());

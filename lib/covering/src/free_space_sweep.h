@@ -23,11 +23,13 @@ struct FreeSpaceSweep {
   std::vector<Eigen::Vector3d> base;     ///< the face or edge swept
   std::vector<Eigen::Vector3d> corners;  ///< the base at t = 0 and at the reach
   double reach = 0.0;             ///< scene units, from the base (the free-space reach plus the rays' stand-off)
-  /// The place (hullcover/mesh/tolerance.h) of the face swept, or -1 for
-  /// any: only faces of that place enclose its rays. A ray that runs out of
-  /// its map into the back of another map's outer wall is enclosed in the
-  /// world but open in the map alone; judged open, the map's hulls are
-  /// valid in both.
+  /// When the hull judged belongs to the same place (hullcover/mesh/
+  /// tolerance.h) as the face swept, that place, else -1: only faces of
+  /// that place then enclose the rays. A ray that runs out of its map into
+  /// the back of another map's outer wall is enclosed in the world but open
+  /// in the map alone; judged open against the map's own hulls, they are
+  /// valid in both. Against another map's hulls the world's rule holds (the
+  /// ray does not exist in that map alone).
   int place = -1;
 };
 

@@ -13,25 +13,25 @@ namespace {
 
 // The solid for a planar patch: the thickest allowed beveled prism,
 // re-checked as a solid against conditions 1 and 3, flat if that fails.
-CoveringHull planar_hull(const SceneIndex& index, const PatchMerger& merger, int patch_id, const Patch& patch,
-                         double cap, ConvexHullBuilder& hulls, std::vector<int>& scratch) {
+CoveringHull planar_hull(const SceneIndex& index, const PlaceTolerance& places, const PatchMerger& merger, int patch_id,
+                         const Patch& patch, double cap, ConvexHullBuilder& hulls, std::vector<int>& scratch) {
   CoveringHull hull;
   hull.planar = true;
   const FlatPolygon polygon = make_flat_polygon(index.mesh().positions, vertices_of_faces(index.mesh(), patch.faces),
                                                 patch.area_vector.normalized(), index.tol());
   const auto in_patch = [&](int f) { return merger.in_patch(f, patch_id); };
   const std::vector<Plane> sides = beveled_side_planes(index, polygon, in_patch, scratch);
-  // The prism stays in its island's zone, where the tolerance it is checked
-  // at holds (hullcover/mesh/tolerance.h): behind a map's outer wall it
-  // stops short of a neighbouring map's zone.
-  Aabb zone;
-  const Tolerance& tolerance = index.prepared->tolerance;
-  for (int f : patch.faces) {
-    const Aabb& own = tolerance.island_zones[index.prepared->islands.island_of_face[f]];
-    zone.extend(own.min);
-    zone.extend(own.max);
-  }
-  cap = std::min(cap, depth_inside_box(polygon, zone));
+  // The prism stays out of the zones of islands with a smaller tolerance
+  // than the one it is checked at (hullcover/mesh/tolerance.h), where the
+  // audit would judge it more strictly: behind a map's outer wall, short of
+  // a smaller neighbour.
+  std::vector<int>& zones = scratch;
+  zones.clear();
+  Aabb column = bounding_box_of(polygon.corners);
+  for (const Eigen::Vector3d& c : polygon.corners) column.extend(c - cap * polygon.plane.normal);
+  places.smaller_zones_meeting(column, index.tol(), zones);
+  for (int z : zones)
+    cap = std::min(cap, std::max(0.0, depth_before_box(polygon, index.prepared->tolerance.island_zones[z]) - index.tol()));
   hull.thickness = allowed_prism_thickness(index, polygon, sides, in_patch, cap, scratch);
   hull.polytope = prism_polytope(polygon, sides, hull.thickness, index.tol(), hulls);
   if (hull.thickness > 0.0 && check_solid_hull(index, hull.polytope, scratch) != Validity::valid) {
@@ -62,7 +62,7 @@ PatchHull make_patch_hull(const DecompositionStages& stages, const SceneIndex& i
   PatchHull made;
   CoveringHull& hull = made.hull;
   if (patch.planar) {
-    hull = planar_hull(index, merger, id, patch, prism_cap_of(stages, patch), builder, scratch);
+    hull = planar_hull(index, stages.place_tolerance, merger, id, patch, prism_cap_of(stages, patch), builder, scratch);
   } else {
     // Rebuild once with Qhull: hulls grown during merging keep the
     // triangles they grew by, Qhull merges coplanar facets into polygons.

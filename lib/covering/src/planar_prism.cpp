@@ -65,15 +65,24 @@ std::vector<Plane> beveled_side_planes(const SceneIndex& index, const FlatPolygo
   return sides;
 }
 
-double depth_inside_box(const FlatPolygon& polygon, const Aabb& box) {
+namespace {
+constexpr double kNever = std::numeric_limits<double>::infinity();
+} // namespace
+
+double depth_before_box(const FlatPolygon& polygon, const Aabb& box) {
+  const Aabb own = bounding_box_of(polygon.corners);
   const Eigen::Vector3d down = -polygon.plane.normal;
-  double depth = std::numeric_limits<double>::infinity();
-  for (const Eigen::Vector3d& c : polygon.corners)
-    for (int axis = 0; axis < 3; ++axis) {
-      const double room = down[axis] > 0.0 ? box.max[axis] - c[axis] : c[axis] - box.min[axis];
-      if (room < 0.0) return 0.0;
-      if (down[axis] != 0.0) depth = std::min(depth, room / std::abs(down[axis]));
-    }
+  // The prism's box meets `box` once every axis's interval does; along an
+  // axis the interval grows from the polygon's toward `down`.
+  double depth = 0.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    double meets = 0.0;
+    if (box.min[axis] > own.max[axis])
+      meets = down[axis] > 0.0 ? (box.min[axis] - own.max[axis]) / down[axis] : kNever;
+    else if (box.max[axis] < own.min[axis])
+      meets = down[axis] < 0.0 ? (own.min[axis] - box.max[axis]) / -down[axis] : kNever;
+    depth = std::max(depth, meets);
+  }
   return depth;
 }
 

@@ -38,12 +38,12 @@ inline constexpr double kMaxBevelSlope = 10.0;
 double allowed_prism_thickness(const SceneIndex& index, const FlatPolygon& polygon, const std::vector<Plane>& sides,
                                const std::function<bool(int)>& in_patch, double cap, std::vector<int>& scratch);
 
-/// How deep a prism under `polygon` may reach and stay inside `box` (its
-/// island's zone, hullcover/mesh/tolerance.h): the largest depth at which
-/// every corner moved along the negative normal is still in the box; 0 when
-/// a corner lies outside it. The bevelled sides only narrow the prism, so
-/// its bottom corners stay in the corners' columns.
-double depth_inside_box(const FlatPolygon& polygon, const Aabb& box);
+/// How deep a prism under `polygon` may reach before its bounding box meets
+/// `box` (another island's zone, hullcover/mesh/tolerance.h): infinity when
+/// it never does, 0 when the polygon's own box meets it. The bevelled sides
+/// only narrow the prism, so its box stays in the box of its corners'
+/// columns, which this measures.
+double depth_before_box(const FlatPolygon& polygon, const Aabb& box);
 
 /// The prism under `polygon` of the given thickness (scene units, >= 0)
 /// between the side planes `sides`, built by `hulls`. Where the sides meet

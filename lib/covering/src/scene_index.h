@@ -147,6 +147,11 @@ struct SceneIndex {
   const std::vector<int>& opening_sweep_edge;
   const std::vector<std::array<double, kOpeningFans>>& opening_reach;
   const std::vector<int>& bar_of_piece;
+  /// The place (hullcover/mesh/tolerance.h) whose hulls this view checks,
+  /// or -1 for hulls that may span places (the one cell of --cell-size 0).
+  /// Rays of that place are enclosed only by its own faces, as in the place
+  /// alone (FreeSpaceSweep::place).
+  int place = -1;
 
   /// Appends, once each and ascending, the bars with a piece overlapping `box`.
   void bars_overlapping(const Aabb& box, std::vector<int>& out) const;
@@ -158,6 +163,12 @@ struct SceneIndex {
   bool has_allowance() const { return agent_radius > 0.0 || max_deviation > 0.0; }
   /// The tolerance of this view's tests, scene units.
   double tol() const { return tolerance_; }
+  /// The same data seen at another tolerance (scene units, > 0).
+  SceneIndex at_tolerance(double tolerance) const {
+    SceneIndex view = *this;
+    view.tolerance_ = tolerance;
+    return view;
+  }
   /// How far apart two faces of one patch can lie, scene units.
   double patch_extent() const { return patch_extent_; }
 

@@ -1,6 +1,7 @@
 #include "validity_conditions.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "exact_conditions.h"
 
@@ -16,31 +17,41 @@ bool planes_support_points(const std::vector<Plane>& planes, const std::vector<E
 namespace {
 
 // E1-E3 of one piece of free space against a hull's interior. `sweep` and
-// `storage` are reused storage.
-Validity judge_sweep(const SceneIndex& index, const SweepRef& ref, const HullInterior& interior,
+// `storage` are reused storage. `index` is the hull's view: the interior is
+// shrunk by its tolerance. The rays are judged at their own face's, as the
+// audit judges them (a ray from another place, whose tolerance differs,
+// meets faces and stands off by its own).
+Validity judge_sweep(const SceneIndex& hull_view, const SweepRef& ref, const HullInterior& interior,
                      FreeSpaceSweep& sweep, detail::SweepJudgeStorage& storage) {
+  const PreparedMesh& prepared = *hull_view.prepared;
+  const int face = ref.fan < 0 ? ref.item : prepared.connectivity.edge_uses[hull_view.open_edge_use[ref.item]].face;
+  const double ray_tol = prepared.face_tolerance(face);
+  std::optional<SceneIndex> ray_view;
+  if (ray_tol != hull_view.tol()) ray_view.emplace(hull_view.at_tolerance(ray_tol));
+  const SceneIndex& index = ray_view ? *ray_view : hull_view;
   const double tol = index.tol();
   const Mesh& mesh = index.mesh();
+  const int own_place = prepared.face_place(face) == hull_view.place ? hull_view.place : -1;
   if (ref.fan < 0) {
     const int f = ref.item;
     std::vector<Eigen::Vector3d>& triangle = storage.triangle;
     triangle_corners(mesh, f, triangle);
     front_space_sweep(triangle, index.face_normals[f], index.front_reach[f], tol, sweep);
-    sweep.place = index.prepared->face_place(f);
+    sweep.place = own_place;
     if (crossing_face_leaks(index, sweep, interior, storage)) return Validity::face_crosses_hull;
     if (sweep_enters_hull(index, sweep, interior, storage)) return Validity::front_space_inside;
     return Validity::valid;
   }
   // The use names the face and where the edge sits in it: its far corner
   // is the face's side of the edge.
-  const EdgeUse& use = index.prepared->connectivity.edge_uses[index.open_edge_use[ref.item]];
+  const EdgeUse& use = prepared.connectivity.edge_uses[index.open_edge_use[ref.item]];
   const Eigen::Vector3i& t = mesh.triangles[use.face];
   const Eigen::Vector3d& p0 = mesh.positions[t[use.corner]];
   const Eigen::Vector3d& p1 = mesh.positions[t[(use.corner + 1) % 3]];
   const Eigen::Vector3d& inner = mesh.positions[t[(use.corner + 2) % 3]];
   const double reach = index.opening_reach[ref.item][ref.fan];
   opening_fan(p0, p1, inner, index.face_normals[use.face], ref.fan, reach, tol, sweep);
-  sweep.place = index.prepared->face_place(use.face);
+  sweep.place = own_place;
   if (sweep_enters_hull(index, sweep, interior, storage)) return Validity::opening_inside;
   return Validity::valid;
 }

@@ -1,6 +1,6 @@
 #pragma once
 // Union-find, internal to lib/mesh: islands join pieces with it, the
-// tolerance joins islands whose zones meet.
+// tolerance joins islands whose boxes meet into places.
 
 #include <algorithm>
 #include <numeric>

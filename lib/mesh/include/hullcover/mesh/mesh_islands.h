@@ -19,9 +19,10 @@ namespace hullcover {
 /// diagonal, overlap belong to one island (transitively): pieces that touch
 /// but for rounding or a crack (kit pieces, terrain tiles) are one place,
 /// and a map's props inside its box join it. Maps laid side by side stay
-/// apart when the gap between them is wider than 0.1% of each: a world of
-/// maps 7,000 units across laid 64 units apart keeps each map its own
-/// island, so its tolerance, cells and hulls are those it has alone.
+/// apart when the gap between them is wider than 0.1% of their diagonals
+/// added up: a world of maps 7,000 units across laid 64 units apart keeps
+/// each map its own island, so its tolerance, cells and hulls are those it
+/// has alone.
 inline constexpr double kIslandJoinRelative = 0.001;
 
 /// How far an island's zone (hullcover/mesh/tolerance.h: where its

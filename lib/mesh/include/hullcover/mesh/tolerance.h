@@ -20,9 +20,11 @@
 /// island of another place, so zones of different places never meet. A
 /// test is judged at the tolerance of the place it happens: the smallest of
 /// the zones a test's box meets (PlaceTolerance), and `length`, the
-/// smallest of all, where it meets none. The decomposer keeps every hull of
-/// an island inside its zone (a prism stops at the zone's boundary), so the
-/// audit judges each hull at the tolerance it was made at.
+/// smallest of all, where it meets none. The decomposer checks an island's
+/// hulls at its own tolerance and keeps them out of every zone of a smaller
+/// one (a prism stops short of it), so the audit judges each hull at the
+/// tolerance it was made at, and a map's tolerance never depends on its
+/// neighbours.
 /// A user may override it with an absolute length, but never below the floor
 /// the data itself imposes (its own rounding error, as Jolt and Manifold do):
 /// a tolerance under the noise of the coordinates would turn rounding into
@@ -95,6 +97,9 @@ public:
   PlaceTolerance(Tolerance&&) = delete;  // would refer to a temporary
   /// Scene units (> 0). O(log islands + zones met); thread-safe.
   double at(const Aabb& box) const;
+  /// Appends the islands whose zones `box` meets and whose tolerance is
+  /// below `length`: where a hull judged at `length` must not reach.
+  void smaller_zones_meeting(const Aabb& box, double length, std::vector<int>& out) const;
 
 private:
   const Tolerance* tolerance_;
