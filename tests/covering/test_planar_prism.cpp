@@ -309,5 +309,28 @@ TEST(PlanarPrism, BackToBackCoincidentFaceGivesThicknessZero) {
   }
 }
 
+// How deep a prism may reach before its box meets another island's zone
+// (a prism stops short of a zone of a smaller tolerance, patch_hulls.cpp):
+// where the last axis's interval of the growing box reaches the zone's.
+TEST(PlanarPrism, DepthBeforeABoxIsWhereThePrismsBoxFirstMeetsIt) {
+  const auto polygon = [](const std::vector<V>& corners, const V& normal) {
+    FlatPolygon p;
+    p.corners = corners;
+    p.plane = Plane{normal.normalized(), normal.normalized().dot(corners[0])};
+    return p;
+  };
+  const Aabb behind{V(-3, 0.2, 0.2), V(-2, 0.8, 0.8)}, beside{V(-3, 2, 0), V(-2, 3, 1)};
+  const Aabb touching{V(-0.5, 0.5, 0.5), V(0.5, 2, 2)};
+  const FlatPolygon facing_x = polygon({V(0, 0, 0), V(0, 1, 0), V(0, 1, 1), V(0, 0, 1)}, V(1, 0, 0));
+  EXPECT_DOUBLE_EQ(depth_before_box(facing_x, behind), 2.0);
+  EXPECT_EQ(depth_before_box(facing_x, beside), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(depth_before_box(facing_x, touching), 0.0);
+  // Tilted, the box of the prism grows along x and y at once: a zone beside
+  // the column (y below it) is met once both axes reach it.
+  const FlatPolygon tilted = polygon({V(0, 0, 0), V(-1, 1, 0), V(-1, 1, 1), V(0, 0, 1)}, V(1, 1, 0));
+  const Aabb below{V(-5, -0.5, 0), V(-4, -0.2, 1)};
+  EXPECT_NEAR(depth_before_box(tilted, below), 3.0 * std::sqrt(2.0), 1e-12);
+}
+
 } // namespace
 } // namespace hullcover

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 
 namespace hullcover {
@@ -99,15 +100,17 @@ TEST(ChooseTolerance, EachIslandHasItsOwnAndTheSmallestRulesWhereZonesMeet) {
 
   // A small island whose box meets the large one's (a prop inside an
   // L-shaped map of two interpenetrating pieces, touching neither) is one
-  // place with it: both take the small one's tolerance.
+  // place with it: both take the tolerance the place has as one island, the
+  // default from the L's 10 x 20 x 20 box.
   const Mesh l_shape = joined(box_from({100, 0, 0}, {110, 2, 20}), box_from({100, 1, 0.5}, {102, 20, 19.5}));
   const Mesh prop = joined(box_from({105, 10, 5}, {106, 12, 7}), l_shape);
   const Result<Tolerance> s = choose_tolerance(prop, std::nullopt);
   ASSERT_TRUE(s.ok());
   ASSERT_EQ(s.value().island_lengths.size(), 2u);
   EXPECT_EQ(s.value().places, 1);
-  EXPECT_DOUBLE_EQ(s.value().island_lengths[0], 3.0 * kDefaultRelativeTolerance);
-  EXPECT_DOUBLE_EQ(s.value().island_lengths[1], 3.0 * kDefaultRelativeTolerance);
+  EXPECT_DOUBLE_EQ(s.value().island_lengths[0], 30.0 * kDefaultRelativeTolerance);
+  EXPECT_DOUBLE_EQ(s.value().island_lengths[1], 30.0 * kDefaultRelativeTolerance);
+  EXPECT_DOUBLE_EQ(s.value().island_lengths[0], choose_tolerance(l_shape, std::nullopt).value().length);
 }
 
 TEST(ChooseTolerance, MapsLaidCloseKeepTheirOwnTolerance) {
@@ -130,26 +133,28 @@ TEST(ChooseTolerance, MapsLaidCloseKeepTheirOwnTolerance) {
   EXPECT_DOUBLE_EQ(alone.island_zones[0].max.x(), 5000 + kIslandZoneRelative * alone.diagonal);
 }
 
-TEST(ChooseTolerance, IslandsWhoseBoxesMeetAlongAChainShareTheirSmallest) {
+TEST(ChooseTolerance, IslandsWhoseBoxesMeetAlongAChainAreOnePlace) {
   // Two L-shaped islands (each of two interpenetrating pieces) whose boxes
   // meet, though no piece of one touches the other, and a small box inside
-  // the second's box alone: one place, at the small box's tolerance.
-  // Without it, the two share the smaller of their own.
+  // the second's box alone: one place, with the tolerance of the box of all
+  // three, 30 x 30 x 10, as if they were one island.
   const Mesh a = joined(box_from({0, 0, 0}, {10, 1, 10}), box_from({0, 0.5, 0.5}, {1, 10, 9.5}));
   const Mesh b = joined(box_from({5, 5, 0}, {30, 6, 10}), box_from({29, 5.5, 0.5}, {30, 30, 9.5}));
-  const Mesh a_and_b = joined(a, b);
-  const Mesh chain = joined(a_and_b, box_from({20, 20, 4}, {21, 22, 6}));
+  const Mesh chain = joined(joined(a, b), box_from({20, 20, 4}, {21, 22, 6}));
   const Result<Tolerance> t = choose_tolerance(chain, std::nullopt);
   ASSERT_TRUE(t.ok());
   ASSERT_EQ(t.value().island_lengths.size(), 3u);
   EXPECT_EQ(t.value().places, 1);
-  for (int i = 0; i < 3; ++i) EXPECT_DOUBLE_EQ(t.value().island_lengths[i], 3.0 * kDefaultRelativeTolerance) << i;
-  const Result<Tolerance> two = choose_tolerance(a_and_b, std::nullopt);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_DOUBLE_EQ(t.value().island_lengths[i], std::sqrt(1900.0) * kDefaultRelativeTolerance) << i;
+  // Moved apart (a gap of 1 along x), B and its box are a place of their own.
+  Mesh apart = b;
+  for (Eigen::Vector3d& p : apart.positions) p.x() += 6.0;
+  const Result<Tolerance> two = choose_tolerance(joined(a, apart), std::nullopt);
   ASSERT_TRUE(two.ok());
-  ASSERT_EQ(two.value().island_lengths.size(), 2u);
-  EXPECT_EQ(two.value().places, 1);
+  EXPECT_EQ(two.value().places, 2);
   EXPECT_DOUBLE_EQ(two.value().island_lengths[0], choose_tolerance(a, std::nullopt).value().length);
-  EXPECT_DOUBLE_EQ(two.value().island_lengths[1], choose_tolerance(a, std::nullopt).value().length);
+  EXPECT_DOUBLE_EQ(two.value().island_lengths[1], choose_tolerance(apart, std::nullopt).value().length);
 }
 
 TEST(ChooseTolerance, AFloat32IslandFarFromTheOriginGetsTheFloorOfItsOwnMagnitude) {

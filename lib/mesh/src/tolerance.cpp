@@ -83,17 +83,7 @@ Result<Tolerance> choose_tolerance(const Mesh& mesh, const MeshIslands& islands,
   if (!(tol.largest_island > 0.0)) tol.largest_island = tol.diagonal;
   tol.user_given = user_length.has_value();
 
-  // Each island's own: the user's length or its default, raised to its floor.
-  std::vector<double> own;
-  for (const Aabb& box : islands.boxes) {
-    const double extent = box.diagonal() > 0.0 ? box.diagonal() : tol.local_extent;
-    const double floor = kRoundingErrorsPerPlaneTest * coordinate_error_in(mesh, box);
-    const double requested = user_length ? *user_length : kDefaultRelativeTolerance * extent;
-    tol.floor = std::max(tol.floor, floor);
-    tol.raised_to_floor = tol.raised_to_floor || requested < floor;
-    own.push_back(std::max(requested, floor));
-  }
-  const int count = static_cast<int>(own.size());
+  const int count = static_cast<int>(islands.boxes.size());
   // Places: islands whose boxes meet, directly or along a chain. Zones: each
   // box grown by kIslandZoneRelative of its diagonal, but by no more than
   // kZoneShareOfGap of the gap to any island whose box it does not meet, so
@@ -118,18 +108,32 @@ Result<Tolerance> choose_tolerance(const Mesh& mesh, const MeshIslands& islands,
     }
   }
   for (int i = 0; i < count; ++i) tol.island_zones.push_back(grown(islands.boxes[i], margins[i]));
-  // The islands of a place all take its smallest: a hull of one is judged
-  // (PlaceTolerance) at no smaller a tolerance than the one it was made at.
-  std::vector<double> smallest_of_place = own;
-  for (int i = 0; i < count; ++i)
-    smallest_of_place[places.find(i)] = std::min(smallest_of_place[places.find(i)], own[i]);
+  // Each place's tolerance is what it would have as one island (the map its
+  // islands make): the user's length or the default from the box of its
+  // islands, raised to the floor of its coordinates.
   std::vector<int> place_of_root(count, -1);
+  std::vector<Aabb> place_boxes;
   for (int i = 0; i < count; ++i) {
     const int root = places.find(i);
-    if (place_of_root[root] < 0) place_of_root[root] = tol.places++;
+    if (place_of_root[root] < 0) {
+      place_of_root[root] = tol.places++;
+      place_boxes.emplace_back();
+    }
     tol.island_place.push_back(place_of_root[root]);
-    tol.island_lengths.push_back(smallest_of_place[root]);
+    Aabb& box = place_boxes[place_of_root[root]];
+    box.extend(islands.boxes[i].min);
+    box.extend(islands.boxes[i].max);
   }
+  std::vector<double> place_lengths;
+  for (const Aabb& box : place_boxes) {
+    const double extent = box.diagonal() > 0.0 ? box.diagonal() : tol.local_extent;
+    const double floor = kRoundingErrorsPerPlaneTest * coordinate_error_in(mesh, box);
+    const double requested = user_length ? *user_length : kDefaultRelativeTolerance * extent;
+    tol.floor = std::max(tol.floor, floor);
+    tol.raised_to_floor = tol.raised_to_floor || requested < floor;
+    place_lengths.push_back(std::max(requested, floor));
+  }
+  for (int i = 0; i < count; ++i) tol.island_lengths.push_back(place_lengths[tol.island_place[i]]);
   tol.length = *std::min_element(tol.island_lengths.begin(), tol.island_lengths.end());
   return tol;
 }

@@ -12,9 +12,9 @@
 /// maps): `kDefaultRelativeTolerance` x the island's diagonal, never below
 /// the floor of its own coordinates. A map laid in a world of others keeps
 /// the tolerance it has alone, and so its hulls. Islands whose boxes meet
-/// (directly or along a chain: a prop island straddling a map's wall) form
-/// one *place* and share its smallest tolerance: a larger neighbour's would
-/// let a small object's hulls take space at the neighbour's scale. Each
+/// (directly or along a chain: a prop island inside an L-shaped map's box)
+/// form one *place*, which takes the tolerance it would have as one island:
+/// the default from the box of its islands. Each
 /// island's *zone* is its box grown by `kIslandZoneRelative` of its
 /// diagonal, but never by more than `kZoneShareOfGap` of the gap to an
 /// island of another place, so zones of different places never meet. A
@@ -48,9 +48,9 @@ struct Tolerance {
   /// island's for a scene of one island or a user-given length.
   double length = 0.0;
   /// Per island (mesh_islands.h numbering), scene units (> 0): the
-  /// tolerance of tests in its zone: its own (the user's length, or the
-  /// default from its diagonal, raised to its floor), lowered to the
-  /// smallest of its place's.
+  /// tolerance of tests in its zone: its place's (the user's length, or the
+  /// default from the diagonal of the box of the place's islands, raised to
+  /// the floor of its coordinates).
   std::vector<double> island_lengths;
   /// Per island: its zone, where its tolerance holds and its hulls lie (see
   /// the file comment). Zones of different places never meet.
