@@ -118,7 +118,7 @@ void print_audit(const AuditCommandOptions& o, const PreparedMesh& prepared, con
                         : (allowance ? "VIOLATIONS: more taken than the allowance" : "VIOLATIONS: accessible space lost"));
   std::printf("  %zu hulls against %zu faces; tolerance %.6g%s, ray spacing %.6g", a.hull_count,
               prepared.mesh.triangles.size(), prepared.tolerance.length,
-              prepared.tolerance.largest_length() > prepared.tolerance.length ? " (smallest; each island its own)" : "",
+              prepared.tolerance.largest_length() > prepared.tolerance.length ? " (smallest; each place its own)" : "",
               r.finest_spacing);
   if (r.coarsest_spacing > r.finest_spacing) std::printf(" to %.6g (each island its own)", r.coarsest_spacing);
   std::printf(", ");
@@ -219,7 +219,7 @@ void register_audit_command(CLI::App& app, int& exit_status) {
                   "Hulls: a runtime file (.hcw) or an OBJ with one o/g group per hull (each hull the convex\n"
                   "hull of its group's vertices; a group in one plane is a flat polygon)")
       ->required();
-  cmd->add_option("--tol", o->tolerance, "Tolerance in scene units, for every island (default 1e-5 x each island's diagonal)");
+  cmd->add_option("--tol", o->tolerance, "Tolerance in scene units, for every island (default 1e-5 x each place's diagonal)");
   add_import_limit_options(*cmd, o->limits);
   cmd->add_option("--probe", o->audit.probe.probe_distance,
                   "Optional cap on every ray's length in scene units (default none: the strict definition;\n"

@@ -142,7 +142,7 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
   cmd->add_option("-o,--output", o->obj_path, "Output: the hull OBJ, or with --format an engine export (glb or obj)")->required();
   cmd->add_option("--json", o->json_path, "Also write per-hull figures, totals, options and timing as JSON");
   cmd->add_option("--world", o->world_path, "Also write the runtime file (.hcw) that 'query' and game servers load");
-  cmd->add_option("--tol", o->tolerance, "Tolerance in scene units, for every island (default 1e-5 x each island's diagonal)");
+  cmd->add_option("--tol", o->tolerance, "Tolerance in scene units, for every island (default 1e-5 x each place's diagonal)");
   add_import_limit_options(*cmd, o->limits);
   cmd->add_option("--threads", o->decompose.threads,
                   "Threads merging cells at once (default 0: every core); the output is the same for any count")

@@ -51,7 +51,7 @@ void register_info_command(CLI::App& app, int& exit_status) {
       ->required();
   info->add_option("--tol", options->tolerance,
                    "Tolerance in scene units for welding and zero-area tests\n"
-                   "(default 1e-5 x each island's diagonal; never below the data's rounding floor)");
+                   "(default 1e-5 x each place's diagonal; never below the data's rounding floor)");
   add_import_limit_options(*info, options->limits);
   info->add_flag("--json", options->json, "Print the figures as JSON on standard output");
   info->callback([options, &exit_status] { exit_status = run_info(*options); });

@@ -26,20 +26,23 @@ std::string describe_tolerance(const Tolerance& t) {
   char line[320];
   char lengths[96];
   if (t.largest_length() > t.length)
-    std::snprintf(lengths, sizeof lengths, "%.6g to %.6g (each of %d islands its own)", t.length, t.largest_length(),
-                  t.islands);
+    std::snprintf(lengths, sizeof lengths, "%.6g to %.6g (each of %d places its own)", t.length, t.largest_length(),
+                  t.places);
   else
     std::snprintf(lengths, sizeof lengths, "%.6g", t.length);
   if (t.raised_to_floor)
     std::snprintf(line, sizeof line, "%s (raised to the data's rounding floor; %s was below it%s)", lengths,
-                  t.user_given ? "the given value" : "the default", t.islands > 1 ? " on some island" : "");
+                  t.user_given ? "the given value" : "the default", t.places > 1 ? " in some place" : "");
   else if (t.user_given)
     std::snprintf(line, sizeof line, "%s (given)", lengths);
   else if (t.islands <= 1)
     std::snprintf(line, sizeof line, "%s (default: 1e-5 x the diagonal %.6g)", lengths, t.local_extent);
+  else if (t.places <= 1)
+    std::snprintf(line, sizeof line, "%s (default: 1e-5 x the diagonal of the box of its %d islands)", lengths,
+                  t.islands);
   else
-    std::snprintf(line, sizeof line, "%s (default: 1e-5 x each island's diagonal, %.6g to %.6g)", lengths,
-                  t.local_extent, t.largest_island);
+    std::snprintf(line, sizeof line, "%s (default: 1e-5 x each place's diagonal; %d places, each islands whose boxes meet)",
+                  lengths, t.places);
   return line;
 }
 

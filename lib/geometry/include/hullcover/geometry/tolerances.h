@@ -22,8 +22,8 @@ namespace hullcover {
 
 // ---- The scene tolerance ---------------------------------------------------
 
-/// Default tolerance as a fraction of each island's diagonal (of the
-/// bounding box for a scene of one island). The near-merge distance and the
+/// Default tolerance as a fraction of each place's diagonal (a place: the
+/// islands whose boxes meet, hullcover/mesh/tolerance.h). The near-merge distance and the
 /// prism cap are fractions of it too: a map keeps its defaults, and so its
 /// hulls, in any world.
 inline constexpr double kDefaultRelativeTolerance = 1e-5;
