@@ -91,7 +91,7 @@ int run_decompose(DecomposeCommandOptions& o) {
               o.input.c_str(), faces, c.hulls.size(), 100.0 * reduction,
               faces > 0 ? static_cast<double>(c.hulls.size()) / faces : 0.0, seconds, c.statistics.seconds_merging);
   std::printf("  tolerance %.6g%s, bar half-length %.6g, prism cap %.6g, order %s, conditions %s\n",
-              c.tolerance.length, c.tolerance.largest_length() > c.tolerance.length ? " (the smallest island's)" : "",
+              c.tolerance.length, c.tolerance.largest_length() > c.tolerance.length ? " (the smallest place's)" : "",
               c.bar_half_length, c.prism_thickness_cap, o.order.c_str(), o.conditions.c_str());
   std::printf("  %d island%s, %d cell%s, threads %d\n", c.statistics.islands, c.statistics.islands == 1 ? "" : "s",
               c.statistics.cells, c.statistics.cells == 1 ? "" : "s",
