@@ -8,23 +8,21 @@
 /// lengths as named multiples of it, directions and the runtime's as
 /// dimensionless numbers. See ../shared/DESIGN.md, "tolerance".
 ///
-/// Default, per island (mesh_islands.h: a map, as opposed to a world of
-/// maps): `kDefaultRelativeTolerance` x the island's diagonal, never below
-/// the floor of its own coordinates. A map laid in a world of others keeps
-/// the tolerance it has alone, and so its hulls. Islands whose boxes meet
-/// (directly or along a chain: a prop island inside an L-shaped map's box)
-/// form one *place*, which takes the tolerance it would have as one island:
-/// the default from the box of its islands. Each
-/// island's *zone* is its box grown by `kIslandZoneRelative` of its
-/// diagonal, but never by more than `kZoneShareOfGap` of the gap to an
-/// island of another place, so zones of different places never meet. A
-/// test is judged at the tolerance of the place it happens: the smallest of
-/// the zones a test's box meets (PlaceTolerance), and `length`, the
-/// smallest of all, where it meets none. The decomposer checks an island's
-/// hulls at its own tolerance and keeps them out of every zone of a smaller
-/// one (a prism stops short of it), so the audit judges each hull at the
-/// tolerance it was made at, and a map's tolerance never depends on its
-/// neighbours.
+/// Default, per place: islands (mesh_islands.h) whose boxes meet, directly
+/// or along a chain (a map and a prop island inside its L-shaped box), as
+/// opposed to the maps of a world: `kDefaultRelativeTolerance` x the
+/// diagonal of the box of the place's islands, never below the floor of its
+/// own coordinates. A map laid in a world of others keeps the tolerance it
+/// has alone, and so its hulls. Each island's *zone* is its box grown by
+/// `kIslandZoneRelative` of its diagonal, but never by more than
+/// `kZoneShareOfGap` of the gap to an island of another place, so zones of
+/// different places never meet. A test is judged at the tolerance of the
+/// place it happens: the smallest of the zones a test's box meets
+/// (PlaceTolerance), and `length`, the smallest of all, where it meets
+/// none. The decomposer checks an island's hulls at its place's tolerance
+/// and keeps them out of every zone of a smaller one (a prism stops short
+/// of it), so the audit judges each hull at the tolerance it was made at,
+/// and a map's tolerance never depends on its neighbours.
 /// A user may override it with an absolute length, but never below the floor
 /// the data itself imposes (its own rounding error, as Jolt and Manifold do):
 /// a tolerance under the noise of the coordinates would turn rounding into
