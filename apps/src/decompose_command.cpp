@@ -201,7 +201,7 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--prism-cap", o->decompose.prism_thickness_cap,
                   "Largest thickness of the prisms made from planar patches (default 0.01 x each island's diagonal;\n"
-                  "a prism also stops at its island's zone, short of a neighbouring map)")
+                  "a prism also stops short of a smaller neighbouring map's zone)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--max-hull-vertices", o->decompose.max_hull_vertices,
                   "Largest vertex count of a hull; a merge that exceeds it is not made")
