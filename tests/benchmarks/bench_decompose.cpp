@@ -4,13 +4,17 @@
 // random order, side by side, with faces, hulls, hulls per face, the
 // ratio to the prototype's paper-mode count (../shared/DESIGN.md; issue 6's
 // target for exact mode: <= 1) and the time per 20K faces (the paper: tens
-// of seconds to a minute for 21K faces).
+// of seconds to a minute for 21K faces). Then, without the shared scenes,
+// scattered islands: n separate triangles a unit apart, each its own island
+// (a level of scattered debris or kit pieces), at n = 10K, 30K and 100K;
+// the time per triangle must not grow with n.
 //
 //   build/release/tests/hullcover_bench_decompose [--benchmark_filter=fdm6]
 
 #include "shared_data.h"
 
 #include "hullcover/covering/covering.h"
+#include "hullcover/mesh/prepared_mesh.h"
 
 #include <benchmark/benchmark.h>
 
@@ -73,12 +77,55 @@ void decompose_scene(benchmark::State& state, std::shared_ptr<PreparedMesh> prep
       benchmark::Counter(faces / 20000.0, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
+// n triangles, triangle i in the plane x = i (the row an OBJ of n objects
+// `v i 0 0 / v i 1 0 / v i 0 1` makes).
+Mesh scattered_triangles(int n) {
+  Mesh mesh;
+  for (int i = 0; i < n; ++i) {
+    const double x = i;
+    mesh.positions.insert(mesh.positions.end(), {{x, 0, 0}, {x, 1, 0}, {x, 0, 1}});
+    mesh.triangles.emplace_back(3 * i, 3 * i + 1, 3 * i + 2);
+    mesh.material_ids.push_back(0);
+  }
+  return mesh;
+}
+
+void decompose_scattered_islands(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  Result<PreparedMesh> prepared = prepare_mesh(scattered_triangles(n), std::nullopt);
+  if (!prepared.ok()) {
+    state.SkipWithError(prepared.status().message().c_str());
+    return;
+  }
+  for (auto _ : state) {
+    Result<Covering> covering = decompose(prepared.value(), DecomposeOptions{});
+    if (!covering.ok()) {
+      state.SkipWithError(covering.status().message().c_str());
+      return;
+    }
+    benchmark::DoNotOptimize(covering.value().hulls.size());
+  }
+  state.counters["us_per_triangle"] =
+      benchmark::Counter(n / 1e6, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
+  benchmark::RegisterBenchmark("decompose/scattered_islands", decompose_scattered_islands)
+      ->Arg(10000)
+      ->Arg(30000)
+      ->Arg(100000)
+      ->Unit(benchmark::kMillisecond)
+      ->MeasureProcessCPUTime()
+      ->UseRealTime();
   const std::optional<std::string> dir = hullcover::test::shared_scenes_dir_for_benchmark();
-  if (!dir) return 0;
+  if (!dir) {
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+  }
   for (const char* scene : hullcover::test::kSharedScenes) {
     Result<PreparedMesh> prepared = hullcover::test::prepare_shared_scene(*dir, scene);
     if (!prepared.ok()) {

@@ -11,7 +11,10 @@ extern "C" {
 
 namespace hullcover {
 
-ConvexHullBuilder::ConvexHullBuilder() { error_sink_ = std::fopen("/dev/null", "w"); }
+// The error sink is opened by the first hull asked for: a builder that
+// makes none (a merger of one triangle's island) holds no stream, and a world
+// of many such islands keeps no list of open streams for every close to walk.
+ConvexHullBuilder::ConvexHullBuilder() = default;
 
 ConvexHullBuilder::~ConvexHullBuilder() {
   if (error_sink_ != nullptr) std::fclose(error_sink_);
@@ -43,6 +46,7 @@ Result<ConvexPolytope> ConvexHullBuilder::build(const std::vector<Eigen::Vector3
                                                 const std::vector<int>& ids) {
   ++calls_;
   if (points.size() < 4) return Status{StatusCode::degenerate_scene, "a 3D hull needs at least 4 points"};
+  if (error_sink_ == nullptr) error_sink_ = std::fopen("/dev/null", "w");
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& p : points) centre += p;
   centre /= static_cast<double>(points.size());

@@ -75,7 +75,14 @@ void add_sweep_boxes(const FreeSpaceSweep& sweep, int item, const std::vector<Aa
   Aabb whole;
   for (const Eigen::Vector3d& corner : sweep.corners) whole.extend(corner);
   near.clear();
-  zone_tree.overlapping(grown(whole, tol), near);
+  // Subtrees of zones the swept box misses are passed over whole: a long
+  // sweep (an opening fan that escapes the scene) crosses the boxes of many
+  // far zones while passing through few of them.
+  const auto missed = [&](const Aabb& region) { return sweep_part_in(sweep, region, tol).empty(); };
+  zone_tree.any_overlapping_pruned(grown(whole, tol), missed, [&](int z) {
+    near.push_back(z);
+    return false;
+  });
   std::sort(near.begin(), near.end());
   for (int z : near) {
     const Aabb part = sweep_part_in(sweep, zones[z], tol);
