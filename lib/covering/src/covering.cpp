@@ -86,7 +86,7 @@ Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& 
   covering.island_extents.clear();
   for (const Aabb& box : stages->islands.boxes)
     covering.island_extents.push_back(box.diagonal() > 0.0 ? box.diagonal() : prepared.tolerance.local_extent);
-  // Each island's checks at its own tolerance: its hulls lie in its box but
+  // Each island's checks at its place's tolerance: its hulls lie in its box but
   // for prisms, which stop short of every zone of a smaller tolerance
   // (patch_hulls.cpp). The audit, judging each hull at its own box's
   // (PlaceTolerance), is then never stricter than the merge was.
