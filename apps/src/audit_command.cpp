@@ -1,6 +1,7 @@
 // `hullcover audit MESH HULLS`: does a set of hulls (from hullcover or any
 // other tool) take accessible space away from the scene it stands for?
 
+#include "number_checks.h"
 #include "audit_report_json.h"
 #include "commands.h"
 #include "scene_loading.h"
@@ -224,21 +225,23 @@ void register_audit_command(CLI::App& app, int& exit_status) {
   cmd->add_option("--probe", o->audit.probe.probe_distance,
                   "Optional cap on every ray's length in scene units (default none: the strict definition;\n"
                   "a cap audits less than it)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--resolution", o->audit.probe.resolution,
                   "Ray spacing on faces and open edges, and octree cell size (default 0.0025 x the diagonal of\n"
                   "each face's island for the rays, of the scene for the octree; every face gets rays however small)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--bar-length", o->audit.bar_half_length,
                   "Half-length of the boundary bars of the re-check (default 0.1 x diagonal, the paper-mode default)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--proxies", o->audit.behaviour.proxies,
                   "Character proxies (sphere, capsule, box) compared on both worlds")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   cmd->add_option("--proxy-size", o->audit.behaviour.size, "Proxy radius / half extent (default 0.005 x diagonal)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--seed", o->audit.behaviour.seed, "Seed of the proxy poses")->capture_default_str();
+      ->check(positive_number());
+  cmd->add_option("--seed", o->audit.behaviour.seed, "Seed of the proxy poses (0 or more)")
+      ->check(non_negative_number())
+      ->capture_default_str();
   cmd->add_option("--octree", o->audit.probe.octree_path,
                   "Write the octree of the cells of lost rays' deepest points (.bt, for OctoMap's viewer; origin = box centre)");
   cmd->add_option("--agent-radius", o->audit.probe.allowance.agent_radius,
@@ -246,12 +249,12 @@ void register_audit_command(CLI::App& app, int& exit_status) {
                   "of the mesh, centred on the probe's rays, must stay out of the hulls (within the tolerance);\n"
                   "the proxies take this size (or --proxy-size, not smaller) and spheres and capsules must\n"
                   "neither miss a contact nor make a false one. Faces may lie inside hulls.")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--max-deviation", o->audit.probe.allowance.max_deviation,
                   "Audit a covering allowed to take free space within this distance of the mesh (scene units):\n"
                   "the farthest point any hull takes from a probe ray is found (within the tolerance) and must\n"
                   "lie no farther. With --agent-radius, both are judged.")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--max-ray-evaluations", o->audit.probe.allowance.max_evaluations_per_ray,
                   "With --agent-radius or --max-deviation: distance evaluations one ray may use before it counts\n"
                   "as undecided (a violation; the report says where the first was given up). A ray needs about 2\n"

@@ -1,5 +1,6 @@
 // `hullcover decompose IN -o OUT.obj`: the convex hull covering of a scene.
 
+#include "number_checks.h"
 #include "commands.h"
 #include "export/collider_export.h"
 #include "scene_loading.h"
@@ -146,13 +147,13 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
   add_import_limit_options(*cmd, o->limits);
   cmd->add_option("--threads", o->decompose.threads,
                   "Threads merging cells at once (default 0: every core); the output is the same for any count")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--cell-size", o->decompose.cell_size,
                   "Patches merge only within cells of this side, scene units, laid out per island (pieces of the "
                   "scene set apart from the rest); every hull is still checked against the whole scene. Default: "
                   "automatic, one cell per island of up to 8192 faces, a centred grid over larger ones (a cube of it "
                   "holding over 16384 faces cut into the eight of half its side); 0: one cell for the whole scene")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--cell-cache", o->cell_cache,
                   "Re-bake only what changed: keep each cell's result in this folder under a hash of its faces and "
                   "the options; a later bake reuses a cell whose hash is unchanged once every hull it keeps passes "
@@ -174,22 +175,26 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
                   "Exact mode for agents: hulls may also fill free space no ball of this radius (touching no "
                   "triangle) reaches, scene units; spheres and capsules at least this wide collide as with the "
                   "triangles (default 0: exact)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--max-deviation", o->decompose.max_deviation,
                   "Exact mode for props: hulls may also fill free space within this distance of the mesh, scene "
                   "units; with --agent-radius, a hull takes only space that both allow (default 0: exact)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--near-merge", o->decompose.near_merge_distance,
                   "After the paper's merging, also try patches that share no edge but come within this distance, "
                   "scene units, under the same conditions; 0 = off, the paper's algorithm alone (default: exact "
                   "0.02 x each island's diagonal, halved in a cell cut from a crowded cube per halving; paper 0)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--dissolve", o->dissolve,
                   "After merging, empty each patch whose faces can each join a patch around it (across an edge or "
                   "within the near-merge distance) under the same conditions, then merge again: on or off (default: "
                   "exact on, paper off)")
       ->check(CLI::IsMember({"on", "off"}));
-  cmd->add_option("--seed", o->decompose.seed, "Seed of the random order")->capture_default_str();
+  // A negative seed would wrap to a huge one: refused, like every other
+  // number out of range.
+  cmd->add_option("--seed", o->decompose.seed, "Seed of the random order (0 or more)")
+      ->check(non_negative_number())
+      ->capture_default_str();
   cmd->add_option("--tries", o->decompose.order_tries,
                   "Merge N times: in --order, then in random orders seeded --seed, --seed + 1, ...; keep the "
                   "covering with the fewest hulls (N times the merging time)")
@@ -198,11 +203,11 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
   cmd->add_option("--bar-length", o->decompose.bar_half_length,
                   "Half-length of the boundary constraint bars, scene units (default: paper 0.1 x diagonal, "
                   "exact 4 x tol)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--prism-cap", o->decompose.prism_thickness_cap,
                   "Largest thickness of the prisms made from planar patches (default 0.01 x each island's diagonal;\n"
                   "a prism also stops short of a smaller neighbouring map's zone)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--max-hull-vertices", o->decompose.max_hull_vertices,
                   "Largest vertex count of a hull; a merge that exceeds it is not made")
       ->check(CLI::Range(8, 1 << 20))

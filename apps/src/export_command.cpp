@@ -1,5 +1,6 @@
 // `hullcover export HULLS -o OUT`: a covering's hulls as engines import them.
 
+#include "number_checks.h"
 #include "commands.h"
 #include "export/collider_export.h"
 #include "scene_loading.h"
@@ -80,7 +81,7 @@ void register_export_command(CLI::App& app, int& exit_status) {
                                             "--with-scene");
   cmd->add_option("--tol", o->tolerance, "Tolerance, scene units (default: the scene's, or 1e-5 of the hulls' "
                                          "bounding-box diagonal)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   add_collider_export_options(cmd, o->exported);
   add_import_limit_options(*cmd, o->limits);
   cmd->footer("Exit status: 0 written, 2 unreadable input, bad usage or a hull over the engine's limits.");

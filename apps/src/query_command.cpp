@@ -1,6 +1,7 @@
 // `hullcover query WORLD.hcw --sphere ... | --capsule ... | --box ... | --ray ...`:
 // one query against a runtime file, for trying the runtime by hand.
 
+#include "number_checks.h"
 #include "commands.h"
 
 #include "hullcover/bvh/hull_world.h"
@@ -116,7 +117,7 @@ void register_query_command(CLI::App& app, int& exit_status) {
       ->delimiter(',')
       ->expected(6);
   cmd->add_option("--ray", o->ray, "ox,oy,oz,dx,dy,dz[,max_distance]")->delimiter(',')->expected(6, 7);
-  cmd->add_option("--max-contacts", o->max_contacts, "Most contacts to report")->check(CLI::PositiveNumber);
+  cmd->add_option("--max-contacts", o->max_contacts, "Most contacts to report")->check(positive_number());
   cmd->callback([o, &exit_status] { exit_status = run_query(*o); });
 }
 

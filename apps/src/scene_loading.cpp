@@ -1,4 +1,5 @@
 #include "scene_loading.h"
+#include "number_checks.h"
 
 #include <CLI/CLI.hpp>
 
@@ -27,21 +28,21 @@ void add_import_limit_options(CLI::App& command, ImportLimits& limits) {
                   "Largest scene file, and file it refers to, in bytes (a bound on what a file from anyone may make "
                   "the importer read)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   command
       .add_option("--max-node-depth", limits.max_node_depth,
                   "Deepest node hierarchy (and glTF JSON nesting) a scene may have")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   command
       .add_option("--max-triangles", limits.max_triangles,
                   "Most triangles a scene may place, counting a mesh once per node that places it (default: one per "
                   "8 bytes of the files read, at least 65,536, at most 4,194,304)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   command
       .add_option("--max-materials", limits.max_materials, "Most distinct materials an OBJ file may name (usemtl)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
 }
 
 } // namespace hullcover::app

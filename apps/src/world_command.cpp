@@ -3,6 +3,7 @@
 // of 90 degrees about the up axis (turns and moves by whole grid steps keep
 // every map the same shape to the last bit but for the moves' rounding).
 
+#include "number_checks.h"
 #include "commands.h"
 #include "scene_loading.h"
 
@@ -126,9 +127,9 @@ void register_world_command(CLI::App& app, int& exit_status) {
   cmd->add_option("SCENES", o->scenes, "Scene files, taken in turn; SCENE@N scales one in N units per metre to metres")->required();
   cmd->add_option("-o,--output", o->output, "The world OBJ")->required();
   cmd->add_option("--triangles", o->triangles, "Stop once the world holds at least this many (default: one copy each)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--gap", o->gap, "Space between copies, as a fraction of the largest diagonal")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative_number())
       ->capture_default_str();
   cmd->add_option("--up", o->up, "Up axis (turns are about it; copies lie on its floor plane)")
       ->check(CLI::IsMember({"x", "y", "z"}))

@@ -132,8 +132,14 @@ TEST(CommandLine, DecomposeRejectsBadOptionsWithTwo) {
   const std::string quad = dir.write("quad.obj", kQuadObj);
   const std::string base = "decompose " + quad + " -o " + dir.path("h.obj") + " ";
   for (const std::string bad : {"--order sideways", "--max-hull-vertices 3", "--bar-length -1", "--prism-cap -2",
-                                "--tol 0"})
+                                "--tol 0", "--seed -1"})
     EXPECT_EQ(run(dir, base + bad).status, 2) << bad;
+  // The message names the text given, in a line (not the 309 digits of the
+  // largest double).
+  const CommandRun negative_cap = run(dir, base + "--prism-cap -2");
+  EXPECT_NE(negative_cap.err.find("--prism-cap: must be a finite number, 0 or more, not '-2'"), std::string::npos)
+      << negative_cap.err;
+  EXPECT_LT(negative_cap.err.size(), 160u) << negative_cap.err;
   EXPECT_EQ(run(dir, "decompose " + dir.path("missing.obj") + " -o " + dir.path("h.obj")).status, 2);
   EXPECT_EQ(run(dir, "decompose " + quad + " -o " + dir.path("no/such/dir/h.obj")).status, 2);
 }
@@ -260,6 +266,7 @@ TEST(CommandLine, AuditPrintsAndWritesTheSameOnAnyThreadCount) {
   EXPECT_EQ(negative.status, 2);
   EXPECT_NE(negative.err.find("--threads: the thread count must be 0 (every core)"), std::string::npos) << negative.err;
   EXPECT_EQ(run(dir, "audit " + scene + " " + spoiled + " --threads two").status, 2);
+  EXPECT_EQ(run(dir, "audit " + scene + " " + spoiled + " --seed -1").status, 2);
   const CommandRun help = run(dir, "audit --help");
   EXPECT_NE(help.out.find("--threads"), std::string::npos) << help.out;
 }

@@ -1,4 +1,5 @@
 #include "export/collider_export.h"
+#include "number_checks.h"
 
 #include "export/collider_obj_writer.h"
 #include "export/flat_hull_thickening.h"
@@ -66,9 +67,9 @@ void add_collider_export_options(CLI::App* command, ColliderExportOptions& optio
   command->add_option("--flat-thickness", options.flat_thickness,
                       "Thickness given to flat hulls, scene units (default: 2 mm, the thinnest the engines cook, "
                       "and at least 4 tol); behind the face, or half each side of a double-sided sheet")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   command->add_option("--units-per-metre", options.units_per_metre, "Scene units in a metre (for the default thickness)")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   command->add_flag("--with-scene", options.with_scene, "Also carry the scene's triangles as a render mesh");
 }
