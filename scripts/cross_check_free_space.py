@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """An independent, sampled cross-check of a covering against the strict
-free-space definition (../shared/DESIGN.md; docs/definitions-and-proofs.md).
+free-space definition (docs/definitions-and-proofs.md).
 
 It shares no code with hullcover: numpy only, its own OBJ reading and
 triangulation, its own ray-triangle and ray-hull tests. Ray origins are drawn
@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-OPENING_TILT_SINE = 0.1  # DESIGN.md's "tilted a little": hullcover's kOpeningTiltSine
+OPENING_TILT_SINE = 0.1  # the definition's opening tilt: hullcover's kOpeningTiltSine
 DEFAULT_STAND_OFF_IN_TOLERANCES = 1e-3
 PARALLEL_SINE = 1e-9  # |normal . direction| at or below this: the ray runs along the face
 TRIANGLES_PER_BLOCK = 4096  # keeps the rays x triangles arrays to a few MB

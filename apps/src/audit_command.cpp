@@ -206,7 +206,7 @@ void register_audit_command(CLI::App& app, int& exit_status) {
   auto o = std::make_shared<AuditCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
       "audit",
-      "Check that hulls take no accessible space from the scene (DESIGN.md's strict definition): rays from\n"
+      "Check that hulls take no accessible space from the scene (the strict definition (docs/definitions-and-proofs.md)): rays from\n"
       "points of every face along its normal, and from every open edge outward in the face's plane and tilted\n"
       "to either side, run with no distance cap to the first mesh hit (or out of the box of scene and hulls);\n"
       "each is decided exactly against every hull it meets (the segment against the hull shrunk by the\n"

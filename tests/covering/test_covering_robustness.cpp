@@ -1,5 +1,5 @@
-// Hard inputs for the decomposer (../shared/DESIGN.md, "Numerical
-// robustness"): far from the origin, near-coplanar faces, slivers and
+// Hard inputs for the decomposer (docs/design.md, "Files
+// from anyone"): far from the origin, near-coplanar faces, slivers and
 // zero-area faces, duplicate vertices, T-junctions, flipped and non-manifold
 // faces, very thin slabs. Each must give valid hulls (independent re-check),
 // finite coordinates and no crash.

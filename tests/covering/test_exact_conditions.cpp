@@ -1,6 +1,6 @@
 // The conditions exact mode adds to the paper's (exact_conditions.h), each
-// with a case built from the cause it fixes (../shared/DESIGN.md, "Where the
-// paper's four conditions are not enough"): the paper's conditions alone
+// with a case built from the cause it fixes (docs/definitions-and-proofs.md,
+// "Exact mode: no free space lost"): the paper's conditions alone
 // put a known point of free space inside a hull; exact mode must not, and
 // both coverings must pass the independent re-check.
 
@@ -86,7 +86,7 @@ TEST(ExactConditions, E3FaceCrossingTheHullKeepsItsFrontSpace) {
   expect_paper_loses_exact_keeps(m, V(0.8, 0.4, 0.5));
 }
 
-// Enclosed space stays allowed (DESIGN.md): a closed box resting on a floor
+// Enclosed space stays allowed (docs/definitions-and-proofs.md): a closed box resting on a floor
 // is one hull in exact mode too, though the floor's front space runs into it.
 TEST(ExactConditions, EnclosedSpaceMayBeFilled) {
   Mesh m;
@@ -128,7 +128,7 @@ TEST(ExactConditions, FoldEdgeIsOpen) {
 }
 
 
-// ---- DESIGN.md's strict free space, decided on hand-made hulls ---------------
+// ---- docs/definitions-and-proofs.md's strict free space, decided on hand-made hulls ---------------
 // Each case asks check_solid_hull about one hull over a small scene, at the
 // default (uncapped) reach, as the decomposer asks about a merged patch.
 
@@ -252,7 +252,7 @@ TEST(StrictFreeSpace, HullFloatingFarAboveAFloorTakesItsSpace) {
 }
 
 // A slab hovering just over a floor, within the rays' stand-off: the floor's
-// rays are judged from the floor itself (DESIGN.md's 0 < t), so a slab whose
+// rays are judged from the floor itself (the strict definition's 0 < t), so a slab whose
 // inside (shrunk by tol) lies within 2 tol of the floor takes their space
 // (judged from the stand-off, it passed: Red Eclipse's biolytic had one
 // beyond an open edge). A slab 1.7 tol thick has no inside and takes nothing.

@@ -52,7 +52,7 @@ TEST(MeshRay, TellsWhichSideItMeetsAndACoincidentFrontMakesItOpen) {
   EXPECT_TRUE(from_back->from_behind);
   // A second copy facing the other way (a double-sided sheet): the ray meets
   // one from behind and one from the front at the same distance. Under
-  // DESIGN.md's strict definition it ends on a front: open, from either side.
+  // the strict definition (docs/definitions-and-proofs.md) it ends on a front: open, from either side.
   add_quad(m, V(0, 0, 0), V(0, 0, 1), V(1, 0, 1), V(1, 0, 0));
   const auto two = indexed(m);
   for (const double side : {1.0, -1.0}) {

@@ -34,7 +34,7 @@ struct SceneCase {
   const char* scene;
   /// Probe ray spacing as a multiple of the audit's default.
   double spacing_per_default;
-  /// DESIGN.md's prototype measured the paper's conditions alone losing
+  /// The prototype the project started from measured the paper's conditions alone losing
   /// space here: the test decomposes in paper mode too and shows it.
   bool paper_loses;
 };

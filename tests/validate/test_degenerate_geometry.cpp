@@ -1,5 +1,5 @@
-// Degenerate geometry through the whole pipeline (../shared/DESIGN.md,
-// "Numerical robustness"): each scene is decomposed at the defaults and its
+// Degenerate geometry through the whole pipeline (docs/design.md,
+// "Files from anyone"): each scene is decomposed at the defaults and its
 // hulls audited under the strict definition of free space, which must come
 // out clean (a scene with no surface at all is refused with the documented
 // status instead). tests/covering/test_covering_robustness.cpp runs related
@@ -262,7 +262,7 @@ TEST(DegenerateGeometry, FlippedDuplicatesMakeADoubleSidedSurface) {
 // One face wound the other way among its neighbours (their common edges are
 // orientation conflicts). Across such an edge the space behind the face is
 // the neighbour's front: a proxy standing on the neighbour reaches over the
-// edge (DESIGN.md, "behaviour"), so no hull may stand more than tol out of
+// edge (docs/definitions-and-proofs.md, "behaviour"), so no hull may stand more than tol out of
 // the surface there. A closed block (each triangle flipped in turn) keeps
 // its hulls inside itself; a floor keeps them within tol of its plane.
 TEST(DegenerateGeometry, AFlippedFaceAmongItsNeighbours) {

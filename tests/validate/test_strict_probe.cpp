@@ -1,4 +1,4 @@
-// The probe against DESIGN.md's strict definition of free space, on scenes
+// The probe against the strict definition (docs/definitions-and-proofs.md) of free space, on scenes
 // built here whose answer is known by hand: rays with no cap, decided
 // exactly against each hull; enclosed rays (first hit a back face) allowed;
 // every face probed however small; openings tilted to either side.
@@ -98,7 +98,7 @@ TEST(StrictProbe, AHullFloatingFarAboveAFloorIsLostWithItsDeepestPoint) {
   EXPECT_EQ(strict_probe(m, {box_hull(V(4, 400, 4), V(6, 402, 6))}, capped).front.lost, 0);
 }
 
-// The probe judges hulls from the ray's origin on the surface (DESIGN.md's
+// The probe judges hulls from the ray's origin on the surface (docs/definitions-and-proofs.md's
 // 0 < t), not from its stand-off: a slab hovering 0.2 tol over a floor,
 // 2.6 tol thick, has an inside the floor's rays cross within 2 tol of it.
 // One 1.7 tol thick has no inside.

@@ -101,7 +101,7 @@ public:
     // of the face the ray leaves, within rounding of it, is not a wall in
     // front of it), as the decomposer's witness rays meet them. The hulls
     // are judged from the ray's origin to that first hit, exactly
-    // (DESIGN.md's 0 < t < first hit): a hull entered and left within the
+    // (the strict definition's 0 < t < first hit): a hull entered and left within the
     // stand-off takes free space too.
     const Eigen::Vector3d start = ray.origin + ray.direction * stand_off;
     const double out_of_world = exit_distance(world_, start, ray.direction);

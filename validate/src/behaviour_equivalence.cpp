@@ -115,7 +115,7 @@ Result<BehaviourReport> compare_behaviour(const PreparedMesh& prepared, const bv
       } else if (h_touch) {
         ++report.false_contacts;
         // A proxy clear of every triangle yet deeper than tol in a hull
-        // stands in space the hull takes (DESIGN.md, "behaviour"): lost
+        // stands in space the hull takes (docs/definitions-and-proofs.md, "behaviour"): lost
         // when free, allowed when enclosed. Every hull it reaches into is
         // judged, deepest first.
         const bvh::Contact& deepest = on_hulls.contacts[0];

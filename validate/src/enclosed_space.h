@@ -1,6 +1,6 @@
 #pragma once
 // Whether a point lies in enclosed space under the strict definition
-// (../shared/DESIGN.md, "Accuracy"): on no face's open front ray. Hulls may
+// (docs/definitions-and-proofs.md, "Free space: the strict definition"): on no face's open front ray. Hulls may
 // fill such space; the allowance audit's balls and the behaviour proxies may
 // reach into it without taking free space.
 

@@ -1,6 +1,6 @@
 #pragma once
 // Where the accessible-space probe's rays start and which way they go
-// (../shared/DESIGN.md, "Accuracy"): along the normal from points of every
+// (docs/definitions-and-proofs.md, "Free space: the strict definition"): along the normal from points of every
 // face, however small, and beyond every open edge, in the face's plane and
 // tilted to either side of it.
 
@@ -39,7 +39,7 @@ void opening_rays_of_edge(const PreparedMesh& prepared, double spacing, int edge
                           const std::function<void(const ProbeRay&)>& trace);
 
 /// Whether a ray from `start` along unit `dir` whose first mesh hit lies
-/// `first_hit` along it is enclosed (DESIGN.md): every face at that hit,
+/// `first_hit` along it is enclosed (docs/definitions-and-proofs.md): every face at that hit,
 /// coincident ones within `tol` of it included, is met from behind. One
 /// met from the front there (a ceiling coincident with the floor above)
 /// ends the ray on a front, which is open space.

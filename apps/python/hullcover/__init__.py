@@ -84,7 +84,7 @@ def decompose(vertices, faces, *, tol=None, threads=0, cell_size=None, agent_rad
 
 def audit(vertices, faces, hulls, *, tol=None, agent_radius=None, max_deviation=None, proxies=3000,
           seed=1):
-    """Audit hulls against the mesh (DESIGN.md's strict definition): `hulls`
+    """Audit hulls against the mesh (the strict definition (docs/definitions-and-proofs.md)): `hulls`
     is a Decomposition or the path of a hull file (OBJ, .hcw, .glb). Returns
     the figures `hullcover audit --json` writes, as a dict; 'clean' is the
     verdict."""

@@ -7,7 +7,7 @@
 ///
 ///  - backwards, behind its front face, where nothing faces back at it: the
 ///    space behind a face is free only along rays from other faces, and
-///    rays whose first hit is that back are enclosed (../shared/DESIGN.md);
+///    rays whose first hit is that back are enclosed (docs/definitions-and-proofs.md);
 ///  - split across both sides, half each, where a double-sided sheet leaves
 ///    no room behind (another flat hull lies in the same plane facing the
 ///    other way and overlaps it): the back is the other side's front space.

@@ -70,7 +70,7 @@ Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& 
   covering.bar_half_length = options.bar_half_length.value_or(
       exact ? kExactBarHalfLengthInTolerances * prepared.tolerance.length : kDefaultBarHalfLengthRelative * diagonal);
   covering.prism_thickness_cap = options.prism_thickness_cap.value_or(kDefaultPrismCapRelative * diagonal);
-  // Free space has no distance cap (DESIGN.md) unless the user gives one.
+  // Free space has no distance cap (docs/definitions-and-proofs.md) unless the user gives one.
   const double hull_margin = covering.prism_thickness_cap;
   covering.free_space_capped = options.free_space_reach.has_value();
   covering.free_space_reach = options.free_space_reach.value_or(uncapped_free_space_reach(prepared, hull_margin));

@@ -3,9 +3,9 @@
 /// The conditions hullcover adds to the paper's four (section 4.1) in
 /// `ValidityMode::exact`. The paper's conditions look only at mesh elements
 /// strictly inside a hull and guard an opening with one bar at its edge's
-/// midpoint; on real maps that loses free space (../shared/DESIGN.md, "Where
-/// the paper's four conditions are not enough", causes 1-3). Each condition
-/// below closes one cause. Free space is what DESIGN.md's probe samples:
+/// midpoint; on real maps that loses free space (docs/definitions-and-proofs.md, "Exact mode:
+/// no free space lost"). Each condition
+/// below closes one cause. Free space is what the audit's probe samples:
 /// the space swept from every face along its normal, and from every open
 /// edge outward in its face's plane, up to each ray's first mesh hit, with
 /// no distance cap (the free-space reach is a cap only when a user sets one).
@@ -17,12 +17,12 @@
 ///     except through the hull's own faces met from the front (there the
 ///     face's space ends, as a valley's does at its far slope), or where it
 ///     leaves the hull only through the hull's own faces met from behind (it
-///     is enclosed space, which DESIGN.md allows: a floor under a table top).
+///     is enclosed space, which the strict definition allows: a floor under a table top).
 ///     Catches back-to-back coincident faces, double-sided sheets, a floor
 ///     under a prism's beveled side, a hull reaching over free space.
 ///  E2 openings: the same for the opening beyond every open edge, boundary
 ///     or fold (the rim of a double-sided sheet), along the whole edge, with
-///     the same allowance for enclosed space (DESIGN.md: a doorway stays open
+///     the same allowance for enclosed space (docs/definitions-and-proofs.md: a doorway stays open
 ///     because its rays end on the next room's walls from the front); for
 ///     flat polygons the bar becomes a sheet along the whole edge.
 ///  E3 crossing faces: where a face's interior crosses the hull's interior

@@ -1,5 +1,5 @@
 #pragma once
-// Coverage (DESIGN.md: every point of every face on the boundary of some
+// Coverage (docs/definitions-and-proofs.md: every point of every face on the boundary of some
 // hull, within tol), made sure of once the hulls are made. Two kinds of
 // face can be left off every hull:
 // - Faces thinner than tol (MeshConnectivity::zero_area: their smallest

@@ -1,7 +1,7 @@
 #pragma once
 /// \file flat_polygon_cover.h
 /// Exact mode: a flat polygon may lie only where the mesh has faces. A flat
-/// hull has no inside for the free-space rays (DESIGN.md), yet a ray or a
+/// hull has no inside for the free-space rays (docs/definitions-and-proofs.md), yet a ray or a
 /// shape crossing it collides; the paper's condition 4 catches a polygon
 /// spanning a hole only when a face lies below it (a pit), not a window in
 /// a wall with free space through it.

@@ -49,7 +49,7 @@ FreeSpaceSweep opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p
 /// The same, into `sweep` (its storage reused).
 void opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& inner,
                    const Eigen::Vector3d& face_normal, double reach, double tol, FreeSpaceSweep& sweep);
-/// How many fans an opening has (DESIGN.md): in the face's plane, then
+/// How many fans an opening has (docs/definitions-and-proofs.md): in the face's plane, then
 /// tilted by kOpeningTiltSine to its front and to its back.
 inline constexpr int kOpeningFans = 3;
 /// Fan `fan` (0 <= fan < kOpeningFans) of the opening beyond the edge p0-p1

@@ -1,7 +1,7 @@
 #pragma once
 /// \file mesh_ray.h
 /// The first mesh faces a ray meets, as the accessible-space probe of
-/// ../shared/DESIGN.md sees them: a ray that first meets the BACK of a face
+/// the strict definition (docs/definitions-and-proofs.md) sees them: a ray that first meets the BACK of a face
 /// runs through enclosed space.
 
 #include "scene_index.h"
@@ -24,7 +24,7 @@ struct MeshRayHit {
 /// reach further).
 /// Faces met within tol of the first hit all decide `from_behind`: one met
 /// from the front among them (a ceiling coincident with the floor above)
-/// makes the ray end on a front, as DESIGN.md's strict definition says.
+/// makes the ray end on a front, as the strict definition (docs/definitions-and-proofs.md) says.
 /// Nothing when the ray meets no face; faces the ray runs along
 /// (|normal.dir| x (max_t - min_t) <= tol) are not met.
 std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::Vector3d& origin,

@@ -75,7 +75,7 @@ bool encloses(const SceneIndex& index, const FreeSpaceSweep& sweep, int f) {
 // stand-off, as the probe's rays meet them) or the reach, and loses space
 // when it lies deeper than tol inside the hull on the way - unless it first
 // meets a face from behind (enclosed space). The hull is judged from the
-// base itself, not from the stand-off (DESIGN.md's 0 < t): a hull entered
+// base itself, not from the stand-off (the strict definition's 0 < t): a hull entered
 // and left within the stand-off takes free space too.
 WitnessRay witness_ray(const SceneIndex& index, const FreeSpaceSweep& sweep, const HullInterior& interior,
                        const Eigen::Vector3d& point, std::vector<int>& scratch) {

@@ -3,7 +3,7 @@
 /// Exact narrow phase of a query shape against one convex hull, from the
 /// hull's own facet planes (FCL 0.7's contacts on fcl::Convex come from
 /// libccd's MPR and are often wrong in depth and normal; its EPA can abort
-/// the process: see ../shared/DESIGN.md).
+/// the process: see docs/design.md).
 ///
 /// Normal convention, on every path: the contact normal is a unit vector
 /// pointing OUT of the world hull, towards the query shape; moving the

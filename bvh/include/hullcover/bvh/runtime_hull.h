@@ -2,7 +2,7 @@
 /// \file runtime_hull.h
 /// What the runtime keeps of one hull: only what queries use (vertices,
 /// outward facet planes, facet polygons, edges, material), nothing per
-/// triangle (../shared/DESIGN.md, "Model only what a scene needs").
+/// triangle (docs/design.md, "The runtime").
 
 #include "hullcover/geometry/convex_polytope.h"
 #include "hullcover/geometry/aabb.h"

@@ -1,6 +1,6 @@
 #pragma once
 /// \file accessible_space.h
-/// The accessible-space probe: ../shared/DESIGN.md's strict definition of
+/// The accessible-space probe: the strict definition (docs/definitions-and-proofs.md) of
 /// free space ("Accuracy: what no free space lost means"), decided exactly
 /// along rays.
 ///

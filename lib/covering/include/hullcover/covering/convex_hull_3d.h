@@ -2,7 +2,7 @@
 /// \file convex_hull_3d.h
 /// Three-dimensional convex hulls through Qhull's reentrant C library
 /// (never the C++ wrapper: it replaces qh_fprintf and a Qhull error would
-/// then end the process, see ../shared/DESIGN.md).
+/// then end the process, see docs/design.md).
 
 #include "hullcover/geometry/convex_polytope.h"
 #include "hullcover/geometry/status.h"

@@ -16,7 +16,7 @@
 namespace hullcover {
 
 /// Default bar half-length as a fraction of the bounding-box diagonal (the
-/// value the prototype in ../shared/DESIGN.md measured the paper with).
+/// value the prototype measured the paper with: docs/measurements.md).
 inline constexpr double kDefaultBarHalfLengthRelative = 0.1;
 /// The audit's default probe distance as a fraction of the diagonal (the
 /// decomposer itself keeps free space with no cap unless asked for one).
@@ -62,7 +62,7 @@ struct DecomposeOptions {
   /// x diagonal.
   std::optional<double> bar_half_length;
   /// Exact mode: how far in front of faces and beyond open edges free space
-  /// is kept, scene units (> 0). Unset (the default): no cap, as DESIGN.md
+  /// is kept, scene units (> 0). Unset (the default): no cap, as docs/definitions-and-proofs.md
   /// defines free space; a cap trades exactness for speed.
   std::optional<double> free_space_reach;
   /// Exact mode, relaxed for agents: hulls may also take free space that no
@@ -132,7 +132,7 @@ struct CoveringStatistics {
   int zero_area_faces_skipped = 0;  ///< faces without a reliable normal (height <= tol): in no patch
   /// Faces no patch's hull covered within tol (thin ones, and faces a hull
   /// grown through a thin slab missed), each given a flat hull of its own:
-  /// coverage, DESIGN.md (face_coverage.h in the sources).
+  /// coverage, docs/definitions-and-proofs.md (face_coverage.h in the sources).
   int faces_given_flat_hulls = 0;
   int thin_faces_given_flat_hulls = 0;  ///< of those, faces thinner than tol
   /// Faces no hull covers within tol and too thin for even a flat triangle

@@ -7,8 +7,8 @@
 
 namespace hullcover {
 
-/// Which validity conditions a covering keeps (../shared/DESIGN.md, "Where
-/// the paper's four conditions are not enough").
+/// Which validity conditions a covering keeps (docs/definitions-and-proofs.md, "Exact mode:
+/// no free space lost").
 enum class ValidityMode {
   paper,  ///< the paper's conditions 1-4 alone (bars at edge midpoints)
   exact,  ///< the paper's plus lib/covering/src/exact_conditions.h: no free space lost

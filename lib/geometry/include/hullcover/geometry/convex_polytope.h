@@ -6,7 +6,7 @@
 /// Convention: a plane's normal is a unit vector pointing OUT of the
 /// polytope; a point x is on the inner side when `signed_distance(x) <= 0`.
 /// "Strictly inside" always means deeper than the tolerance `tol` behind
-/// every plane (../shared/DESIGN.md).
+/// every plane (docs/definitions-and-proofs.md).
 
 #include "hullcover/geometry/aabb.h"
 

@@ -4,7 +4,7 @@
 /// material per triangle. Plain data; the functions beside it check and
 /// measure it.
 ///
-/// Conventions (../shared/DESIGN.md): a triangle's front is the side its
+/// Conventions (docs/definitions-and-proofs.md): a triangle's front is the side its
 /// counter-clockwise winding's normal points to; lengths are in scene units.
 
 #include "hullcover/geometry/aabb.h"

@@ -39,7 +39,7 @@ inline constexpr double kRoundingErrorsPerPlaneTest = 8.0;
 /// rays) meet faces only this many tolerances past the surface they leave:
 /// a neighbour in that surface's plane, within rounding of it, is no wall
 /// in front of it. Hulls are judged along the whole ray, from the surface
-/// itself (DESIGN.md's 0 < t < first hit): a hull entered and left within
+/// itself (the strict definition's 0 < t < first hit): a hull entered and left within
 /// the stand-off takes free space too.
 inline constexpr double kRayStandOffInTolerances = 2.0;
 
@@ -55,7 +55,7 @@ inline constexpr double kFaceBoxMarginInTolerances = 1.5;
 /// Patches join as one planar patch only when every vertex of theirs lies in
 /// a slab this many tolerances wide along their normal; the polygon's plane
 /// runs through its middle, so every face lies within half a tol of its
-/// hull's surface: coverage (within tol, DESIGN.md) holds with room to
+/// hull's surface: coverage (within tol, docs/definitions-and-proofs.md) holds with room to
 /// spare for a reader of rounded output.
 inline constexpr double kPlanarSlabInTolerances = 1.0;
 /// A finished planar patch re-checked against an edited scene (a cached
@@ -109,7 +109,7 @@ inline constexpr double kOnePlaneInTolerances = 1.0 / 16.0;
 
 // ---- The free-space definition ----------------------------------------------
 
-/// Openings (../shared/DESIGN.md, "Accuracy") run from every open edge
+/// Openings (docs/definitions-and-proofs.md, "Free space: the strict definition") run from every open edge
 /// outward in its face's plane, and tilted "a little" to either side of
 /// it: by the angle whose sine this is (about 5.7 degrees). The decomposer
 /// keeps the three fans of rays (in the plane, and tilted either way) free,

@@ -2,7 +2,7 @@
 /// \file mesh_connectivity.h
 /// Edges, face adjacency, boundaries and components of a (welded) mesh.
 ///
-/// Definitions (../shared/DESIGN.md): an edge is an unordered vertex pair
+/// Definitions (docs/definitions-and-proofs.md): an edge is an unordered vertex pair
 /// used by at least one triangle. With exactly one incident face it is a
 /// *boundary* edge; with two faces that traverse it in opposite directions it
 /// is *manifold* and the faces are neighbours; two faces traversing it in the

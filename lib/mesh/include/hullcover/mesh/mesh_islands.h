@@ -4,7 +4,7 @@
 /// opposed to a world that lays many of them side by side. The defaults that
 /// scale with a scene follow islands, not the whole world's extent, so a map
 /// keeps its tolerance and its hulls when it is placed in a larger world
-/// (../shared/DESIGN.md, "tolerance"): each island has its own tolerance
+/// (docs/definitions-and-proofs.md, "The tolerance"): each island has its own tolerance
 /// (hullcover/mesh/tolerance.h), near-merge distance and prism cap; and the decomposer lays its cells
 /// out per island (hullcover/covering/merge_cells.h).
 

@@ -6,7 +6,7 @@
 /// the place it happens ("strictly inside" means deeper than it;
 /// "coincident" means closer than it). Every other threshold is declared in hullcover/geometry/tolerances.h:
 /// lengths as named multiples of it, directions and the runtime's as
-/// dimensionless numbers. See ../shared/DESIGN.md, "tolerance".
+/// dimensionless numbers. See docs/definitions-and-proofs.md, "The tolerance".
 ///
 /// Default, per place: islands (mesh_islands.h) whose boxes meet, directly
 /// or along a chain (a map and a prop island inside its L-shaped box), as
