@@ -38,7 +38,7 @@ struct DecompositionStages {
   MeshIslands islands;
   CellLayout cells;
   /// Per island: the tolerance its cells, seam pass and hulls are checked
-  /// at, scene units: its own (hullcover/mesh/tolerance.h; its hulls stay
+  /// at, scene units: its place's (hullcover/mesh/tolerance.h; its hulls stay
   /// out of every zone of a smaller one).
   std::vector<double> island_tolerance;
   /// What every check reads, built once...

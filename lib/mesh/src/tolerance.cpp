@@ -35,21 +35,27 @@ double box_gap(const Aabb& a, const Aabb& b) {
 PlaceTolerance::PlaceTolerance(const Tolerance& tolerance)
     : tolerance_(&tolerance), zones_(tolerance.island_zones) {}
 
-double PlaceTolerance::at(const Aabb& box) const {
+void PlaceTolerance::zones_meeting(const Aabb& box, std::vector<int>& out) const {
   std::vector<int> met;
   zones_.overlapping(box, met);
-  double smallest = std::numeric_limits<double>::infinity();
   // The tree's boxes are rounded outward to float: ask the zones themselves.
   for (int i : met)
-    if (boxes_overlap(tolerance_->island_zones[i], box)) smallest = std::min(smallest, tolerance_->island_lengths[i]);
+    if (boxes_overlap(tolerance_->island_zones[i], box)) out.push_back(i);
+}
+
+double PlaceTolerance::at(const Aabb& box) const {
+  std::vector<int> met;
+  zones_meeting(box, met);
+  double smallest = std::numeric_limits<double>::infinity();
+  for (int i : met) smallest = std::min(smallest, tolerance_->island_lengths[i]);
   return std::isfinite(smallest) ? smallest : tolerance_->length;
 }
 
 void PlaceTolerance::smaller_zones_meeting(const Aabb& box, double length, std::vector<int>& out) const {
   std::vector<int> met;
-  zones_.overlapping(box, met);
+  zones_meeting(box, met);
   for (int i : met)
-    if (tolerance_->island_lengths[i] < length && boxes_overlap(tolerance_->island_zones[i], box)) out.push_back(i);
+    if (tolerance_->island_lengths[i] < length) out.push_back(i);
 }
 
 double Tolerance::largest_length() const {

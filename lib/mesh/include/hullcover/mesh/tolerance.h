@@ -100,6 +100,9 @@ public:
   void smaller_zones_meeting(const Aabb& box, double length, std::vector<int>& out) const;
 
 private:
+  /// Appends the islands whose zones `box` meets.
+  void zones_meeting(const Aabb& box, std::vector<int>& out) const;
+
   const Tolerance* tolerance_;
   AabbTree zones_;
 };
