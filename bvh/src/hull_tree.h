@@ -1,20 +1,25 @@
 #pragma once
 // The broad phase of HullWorld (private to bvh/): FCL's dynamic AABB tree
-// over each hull's exact box, built by FCL (Morton order), then packed into
-// one array in depth-first order for the queries to walk directly: no
-// callback, no virtual or library call, no allocation per query, 32 bytes a
-// node. Boxes are kept as floats rounded outward, so a packed box holds
-// FCL's box and a walk never misses a hull its exact box would find: box
-// walks compare them with the query box rounded outward too, ray walks in
-// double.
+// over each hull's exact box, built by FCL (Morton order), then collapsed
+// into a tree of four-wide nodes packed in one array, depth first. A walk
+// tests a node's four child boxes at once (float4.h) and keeps its pending
+// nodes on the caller's stack: no callback, virtual or library call, and
+// no allocation per query. Boxes are floats rounded outward, and every
+// float comparison is made so that it never drops a box the exact one
+// would meet: box walks compare with the query box rounded outward, ray
+// walks with the origin rounded both ways and the entry and exit widened
+// by their rounding (docs/definitions-and-proofs.md, "The runtime's float
+// pre-tests").
+
+#include "float4.h"
 
 #include "hullcover/bvh/runtime_hull.h"
 #include "hullcover/geometry/tolerances.h"
 
 #include <algorithm>
-#include <cstdint>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -33,7 +38,13 @@ namespace hullcover::bvh::detail {
 /// A node of FCL's dynamic AABB tree (fcl/broadphase/detail/hierarchy_tree.h).
 using FclTreeNode = fcl::detail::NodeBase<fcl::AABB<double>>;
 
-/// The hulls' boxes in FCL's dynamic AABB tree, packed for direct walks.
+/// Relative widening of a float ray-box entry and exit: each is a
+/// difference and a product of floats, with the inverse direction rounded
+/// once, so within 3 u of its exact value (u = 2^-24); 16 u covers that
+/// and the rounding of the widening product itself.
+inline constexpr float kRaySlabWidening = static_cast<float>(1.0 + 16.0 * kFloatUnit);
+
+/// The hulls' boxes in four-wide nodes, packed for direct walks.
 /// Immutable once built: any number of threads may walk it at once.
 class HullTree {
 public:
@@ -44,211 +55,190 @@ public:
   HullTree(const FclTreeNode& root, size_t height);
 
   /// Calls `visit(h)` for each hull h whose box meets the closed box `box`,
-  /// in tree order, until a call returns true. Returns whether one did.
+  /// until a call returns true. Returns whether one did.
   template <typename Visit>
   bool find_in_box(const Aabb& box, Visit&& visit) const {
-    return find_where(box, [](const PackedNode&) { return true; }, visit);
+    return find_where(box, [](const WideNode&) { return 0xf; }, visit);
   }
 
   /// The same for the boxes within `radius` of `centre` (a sphere's
-  /// candidates: tighter than its box at the corners). The leaf test allows
-  /// kTouchingFraction of slack relative to the coordinates' size, far above
-  /// the narrow phase's rounding, so it never drops a hull the sphere's
-  /// contact would find.
+  /// candidates: tighter than its box at the corners), tested at every
+  /// level. The test allows kTouchingFraction of slack relative to the
+  /// coordinates' size, far above the narrow phase's rounding, and float
+  /// rounding on top, so it never drops a hull the sphere's contact would
+  /// find.
   template <typename Visit>
-  bool find_near_point(const Eigen::Vector3d& centre, double radius, Visit&& visit) const {
-    const double reach = radius + kTouchingFraction * (1.0 + radius + centre.cwiseAbs().maxCoeff());
-    Aabb box;
-    box.min = centre.array() - reach;
-    box.max = centre.array() + reach;
-    return find_where(
-        box,
-        [&, reach2 = reach * reach](const PackedNode& leaf) {
-          double d2 = 0.0;
-          for (int k = 0; k < 3; ++k) {
-            const double out = std::max({leaf.min[k] - centre[k], centre[k] - leaf.max[k], 0.0});
-            d2 += out * out;
-          }
-          return d2 <= reach2;
-        },
-        visit);
-  }
+  bool find_near_point(const Eigen::Vector3d& centre, double radius, Visit&& visit) const;
 
   /// Calls `visit(h, reach)` for each hull whose box the ray
-  /// origin + t * direction meets for some t in [0, reach], nearer child
-  /// boxes first. `visit` may shorten `reach` (to the best hit so far), which
+  /// origin + t * direction meets for some t in [0, reach], nearer boxes
+  /// first. `visit` may shorten `reach` (to the best hit so far), which
   /// prunes the rest of the walk. `inverse` is 1 / direction, per axis.
   template <typename Visit>
   void walk_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& inverse, double& reach, Visit&& visit) const;
 
   /// The box of every hull (rounded outward to floats).
-  Aabb bounds() const { return box_of(nodes_.front()); }
+  Aabb bounds() const { return bounds_; }
+
+  /// Bytes held by the nodes.
+  size_t bytes() const { return nodes_.size() * sizeof(WideNode); }
 
 private:
-  // A node of the packed tree. Node i's subtree is nodes i to after - 1; an
-  // inner node's first child is i + 1 and its second starts where the first
-  // child's subtree ends.
-  struct PackedNode {
-    float min[3], max[3];
-    std::int32_t after;  // one past this node's subtree: where a walk goes when it misses the box
-    std::int32_t hull;   // a leaf's hull index; -1 for an inner node
+  // Up to four children, in the first `count` lanes: an inner node's index
+  // (>= 0) or a leaf, as ~number (< 0).
+  struct alignas(64) WideNode {
+    float min_x[4], min_y[4], min_z[4];
+    float max_x[4], max_y[4], max_z[4];
+    std::int32_t child[4];
+    std::int32_t count;
   };
-  // Pending nodes a ray walk keeps without the heap: a depth-first walk holds
-  // at most one pending sibling per level, and FCL's Morton build is at most
-  // about 30 + log2(hulls) high (its codes have 30 bits).
-  static constexpr size_t kStackOnCaller = 96;
+  // Pending nodes a walk keeps without the heap: each step takes one and
+  // adds at most four, so a walk holds at most 3 x height + 1.
+  static constexpr size_t kStackOnCaller = 256;
 
-  std::vector<PackedNode> nodes_;
-
-  void pack(const FclTreeNode& root);
-
-public:
-  /// The float nearest `x` at or below it (at or above it): a box rounded
-  /// outward to floats holds the box. Beyond float's range: its largest
-  /// value or infinity, still outward.
-  static float float_at_or_below(double x) {
-    constexpr float kLargest = std::numeric_limits<float>::max();
-    if (x > kLargest) return kLargest;  // beyond float's range: the cast would not be defined
-    if (x < -kLargest) return -std::numeric_limits<float>::infinity();
-    float f = static_cast<float>(x);
-    if (static_cast<double>(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
-    return f;
-  }
-  /// See float_at_or_below.
-  static float float_at_or_above(double x) {
-    constexpr float kLargest = std::numeric_limits<float>::max();
-    if (x < -kLargest) return -kLargest;
-    if (x > kLargest) return std::numeric_limits<float>::infinity();
-    float f = static_cast<float>(x);
-    if (static_cast<double>(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
-    return f;
-  }
-
-private:
+  std::vector<WideNode> nodes_;
+  Aabb bounds_;
   size_t height_ = 0;
 
-  static Aabb box_of(const PackedNode& n) {
-    Aabb box;
-    box.min = Eigen::Vector3d(n.min[0], n.min[1], n.min[2]);
-    box.max = Eigen::Vector3d(n.max[0], n.max[1], n.max[2]);
-    return box;
-  }
+  void pack(const FclTreeNode& root);
+  std::int32_t pack_node(const FclTreeNode& node);
 
-  // A ray walk's stack of pending nodes and where the ray enters them: on
-  // the caller's stack unless the tree is deeper than kStackOnCaller.
+  template <typename Entry>
   class WalkStack {
   public:
     explicit WalkStack(size_t height) {
-      if (height + 2 > kStackOnCaller) heap_.resize(height + 2);
+      if (3 * height + 5 > kStackOnCaller) heap_.resize(3 * height + 5);
     }
-    void push(std::int32_t node, double entry) { data()[size_++] = {node, entry}; }
-    double top_entry() { return data()[size_ - 1].second; }
-    std::int32_t pop() { return data()[--size_].first; }
+    void push(const Entry& e) { data()[size_++] = e; }
+    Entry pop() { return data()[--size_]; }
     bool empty() const { return size_ == 0; }
 
   private:
-    struct Entry {  // no initialisers: the array is not cleared on every walk
-      std::int32_t first;
-      double second;
-    };
     Entry* data() { return heap_.empty() ? local_.data() : heap_.data(); }
-    std::array<Entry, kStackOnCaller> local_;
+    std::array<Entry, kStackOnCaller> local_;  // not cleared: written before read
     std::vector<Entry> heap_;
     size_t size_ = 0;
   };
 
-  // Calls visit(h) for the leaves whose boxes, and whose ancestors' boxes,
-  // meet `box`, and which pass `leaf_test`, until a call returns true. The
-  // box tests run on floats: `box` is rounded outward first, so they never
-  // miss.
-  template <typename LeafTest, typename Visit>
-  bool find_where(const Aabb& box, LeafTest&& leaf_test, Visit&& visit) const;
-
-  // A ray set up for slab tests: per axis, which of a box's two faces it
-  // crosses first.
-  struct RaySlabs {
-    Eigen::Vector3d origin, inverse;
-    bool negative[3];
-  };
-
-  // Where the ray enters `node` within [0, reach], or +infinity when it
-  // misses it. Along an axis the ray runs parallel to, a product is NaN only
-  // when the origin lies on the box's face; std::max(t, NaN) and
-  // std::min(t, NaN) keep t, so such an axis sets no limit, as it should.
-  static double ray_entry(const PackedNode& node, const RaySlabs& ray, double reach) {
-    double t0 = 0.0, t1 = reach;
-    for (int k = 0; k < 3; ++k) {
-      const double near = ((ray.negative[k] ? node.max[k] : node.min[k]) - ray.origin[k]) * ray.inverse[k];
-      const double far = ((ray.negative[k] ? node.min[k] : node.max[k]) - ray.origin[k]) * ray.inverse[k];
-      t0 = std::max(t0, near);
-      t1 = std::min(t1, far);
-    }
-    return t0 <= t1 ? t0 : std::numeric_limits<double>::infinity();
+  // Lanes (bit i: child i) whose boxes meet the float box [lo, hi].
+  static int lanes_meeting(const WideNode& n, const Float4 lo[3], const Float4 hi[3]) {
+    const Float4 miss = (Float4::load(n.min_x) > hi[0]) | (Float4::load(n.max_x) < lo[0]) |
+                        (Float4::load(n.min_y) > hi[1]) | (Float4::load(n.max_y) < lo[1]) |
+                        (Float4::load(n.min_z) > hi[2]) | (Float4::load(n.max_z) < lo[2]);
+    return ~miss.bits() & ((1 << n.count) - 1);
   }
+
+  // Calls visit(h) for the leaves whose boxes, and whose ancestors' boxes,
+  // meet `box` and pass `lane_test` (a lane mask per node), until a call
+  // returns true.
+  template <typename LaneTest, typename Visit>
+  bool find_where(const Aabb& box, LaneTest&& lane_test, Visit&& visit) const;
 };
 
-template <typename LeafTest, typename Visit>
-bool HullTree::find_where(const Aabb& box, LeafTest&& leaf_test, Visit&& visit) const {
-  float lo[3], hi[3];
+template <typename LaneTest, typename Visit>
+bool HullTree::find_where(const Aabb& box, LaneTest&& lane_test, Visit&& visit) const {
+  Float4 lo[3], hi[3];
   for (int k = 0; k < 3; ++k) {
-    lo[k] = float_at_or_below(box.min[k]);
-    hi[k] = float_at_or_above(box.max[k]);
+    lo[k] = Float4::all(float_at_or_below(box.min[k]));
+    hi[k] = Float4::all(float_at_or_above(box.max[k]));
   }
-  const PackedNode* const all = nodes_.data();
-  const std::int32_t end = static_cast<std::int32_t>(nodes_.size());
-  for (std::int32_t i = 0; i < end;) {
-    const PackedNode& node = all[i];
-    // One branch for the six comparisons: misses are the common case.
-    const bool miss = (node.min[0] > hi[0]) | (node.max[0] < lo[0]) | (node.min[1] > hi[1]) | (node.max[1] < lo[1]) |
-                      (node.min[2] > hi[2]) | (node.max[2] < lo[2]);
-    if (miss) {
-      i = node.after;
-      continue;
+  WalkStack<std::int32_t> stack(height_);
+  stack.push(0);
+  while (!stack.empty()) {
+    const WideNode& node = nodes_[stack.pop()];
+    int lanes = lanes_meeting(node, lo, hi) & lane_test(node);
+    // Children in lane order: leaves now, inner nodes pushed so the first
+    // is walked first.
+    for (int i = node.count - 1; i >= 0; --i) {
+      if (!(lanes >> i & 1) || node.child[i] < 0) continue;
+      stack.push(node.child[i]);
     }
-    if (node.hull >= 0 && leaf_test(node) && visit(node.hull)) return true;
-    ++i;
+    for (; lanes; lanes &= lanes - 1) {
+      const int i = __builtin_ctz(static_cast<unsigned>(lanes));
+      if (node.child[i] < 0 && visit(~node.child[i])) return true;
+    }
   }
   return false;
 }
 
 template <typename Visit>
+bool HullTree::find_near_point(const Eigen::Vector3d& centre, double radius, Visit&& visit) const {
+  const double scale = centre.cwiseAbs().maxCoeff();
+  const double reach = radius + kTouchingFraction * (1.0 + radius + scale);
+  Aabb box;
+  box.min = centre.array() - reach;
+  box.max = centre.array() + reach;
+  // Float gaps from the rounded centre are off by at most a few roundings
+  // of the coordinates' size: widen the reach by that before squaring.
+  const float limit = float_at_or_above(reach + 8.0 * kFloatUnit * (scale + reach));
+  const Float4 cx = Float4::all(static_cast<float>(centre.x())), cy = Float4::all(static_cast<float>(centre.y())),
+               cz = Float4::all(static_cast<float>(centre.z()));
+  const Float4 zero = Float4::all(0.0f), limit2 = Float4::all(limit) * Float4::all(limit);
+  return find_where(
+      box,
+      [&](const WideNode& n) {
+        const Float4 gx = max(max(Float4::load(n.min_x) - cx, cx - Float4::load(n.max_x)), zero);
+        const Float4 gy = max(max(Float4::load(n.min_y) - cy, cy - Float4::load(n.max_y)), zero);
+        const Float4 gz = max(max(Float4::load(n.min_z) - cz, cz - Float4::load(n.max_z)), zero);
+        return (gx * gx + gy * gy + gz * gz <= limit2).bits();
+      },
+      visit);
+}
+
+template <typename Visit>
 void HullTree::walk_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& inverse, double& reach,
                         Visit&& visit) const {
-  constexpr double kMissed = std::numeric_limits<double>::infinity();
-  RaySlabs ray{origin, inverse, {inverse[0] < 0.0, inverse[1] < 0.0, inverse[2] < 0.0}};
-  const PackedNode* const all = nodes_.data();
-  double entry = ray_entry(all[0], ray, reach);
-  if (entry == kMissed) return;
-  // Pending nodes with where the ray enters them: one skipped when the best
-  // hit so far comes before that.
-  WalkStack stack(height_);
-  std::int32_t i = 0;
-  for (;;) {
-    const PackedNode& node = all[i];
-    if (node.hull >= 0) {
-      visit(node.hull, reach);
-    } else {
-      const std::int32_t a = i + 1, b = all[a].after;
-      const double ta = ray_entry(all[a], ray, reach);
-      const double tb = ray_entry(all[b], ray, reach);
-      // Go on into the nearer child; keep the farther for later.
-      if (ta <= tb && ta != kMissed) {
-        if (tb != kMissed) stack.push(b, tb);
-        i = a;
-        continue;
-      }
-      if (tb < ta) {
-        if (ta != kMissed) stack.push(a, ta);
-        i = b;
-        continue;
-      }
+  // Per axis, the slab's near and far faces and the origin rounded so that
+  // the entry comes out no later and the exit no earlier than exactly.
+  Float4 near_origin[3], far_origin[3], inv[3];
+  bool negative[3];
+  for (int k = 0; k < 3; ++k) {
+    negative[k] = inverse[k] < 0.0;
+    const float below = float_at_or_below(origin[k]), above = float_at_or_above(origin[k]);
+    near_origin[k] = Float4::all(negative[k] ? below : above);
+    far_origin[k] = Float4::all(negative[k] ? above : below);
+    inv[k] = Float4::all(static_cast<float>(inverse[k]));
+  }
+  const Float4 zero = Float4::all(0.0f), widen = Float4::all(kRaySlabWidening);
+  struct Pending {
+    std::int32_t child;  // as in WideNode::child
+    float entry;
+  };
+  WalkStack<Pending> stack(height_);
+  stack.push({0, 0.0f});
+  while (!stack.empty()) {
+    const Pending top = stack.pop();
+    if (static_cast<double>(top.entry) > reach * static_cast<double>(kRaySlabWidening)) continue;
+    if (top.child < 0) {
+      visit(~top.child, reach);
+      continue;
     }
-    // Next pending node the ray still reaches before the best hit.
-    do {
-      if (stack.empty()) return;
-      entry = stack.top_entry();
-      i = stack.pop();
-    } while (entry > reach);
+    const WideNode& n = nodes_[top.child];
+    const float* lo[3] = {n.min_x, n.min_y, n.min_z};
+    const float* hi[3] = {n.max_x, n.max_y, n.max_z};
+    // A lane where the origin lies on a face of a slab the ray runs along
+    // gives 0 x infinity = NaN; max and min keep their second operand
+    // then, so such an axis sets no limit, as it should.
+    Float4 entry = zero, exit = Float4::all(float_at_or_above(reach));
+    for (int k = 0; k < 3; ++k) {
+      const Float4 near = (Float4::load(negative[k] ? hi[k] : lo[k]) - near_origin[k]) * inv[k];
+      const Float4 far = (Float4::load(negative[k] ? lo[k] : hi[k]) - far_origin[k]) * inv[k];
+      entry = max(near, entry);
+      exit = min(far, exit);
+    }
+    int lanes = (entry <= exit * widen).bits() & ((1 << n.count) - 1);
+    if (!lanes) continue;
+    float t[4];
+    entry.store(t);
+    // Push the lanes met, farthest first, so the nearest is walked next.
+    int order[4], met = 0;
+    for (; lanes; lanes &= lanes - 1) {
+      const int i = __builtin_ctz(static_cast<unsigned>(lanes));
+      int j = met++;
+      for (; j > 0 && t[order[j - 1]] < t[i]; --j) order[j] = order[j - 1];
+      order[j] = i;
+    }
+    for (int j = 0; j < met; ++j) stack.push({n.child[order[j]], t[order[j]]});
   }
 }
 

@@ -1,6 +1,7 @@
 #include "hullcover/bvh/hull_world.h"
 
 #include "hull_tree.h"
+#include "packed_planes.h"
 #include "query_guard.h"
 #include "world_queries.h"
 
@@ -11,18 +12,19 @@ namespace detail {
 struct TreeSource {
   const detail::HullTree& tree;
   const std::vector<RuntimeHull>& hulls;
+  const PackedPlanes& planes;
 
   template <typename Visit>
   bool in_box(const Aabb& box, Visit&& visit) const {
-    return tree.find_in_box(box, [&](int h) { return visit(h, hulls[h]); });
+    return tree.find_in_box(box, [&](int h) { return visit(h, hulls[h], PlanesOf{&planes, h}); });
   }
   template <typename Visit>
   bool near_point(const Eigen::Vector3d& centre, double radius, Visit&& visit) const {
-    return tree.find_near_point(centre, radius, [&](int h) { return visit(h, hulls[h]); });
+    return tree.find_near_point(centre, radius, [&](int h) { return visit(h, hulls[h], PlanesOf{&planes, h}); });
   }
   template <typename Visit>
   void along_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& inverse, double& reach, Visit&& visit) const {
-    tree.walk_ray(origin, inverse, reach, [&](int h, double& best) { visit(h, hulls[h], best); });
+    tree.walk_ray(origin, inverse, reach, [&](int h, double& best) { visit(h, hulls[h], PlanesOf{&planes, h}, best); });
   }
   std::optional<Aabb> bounds() const { return tree.bounds(); }
 };
@@ -38,11 +40,12 @@ Result<std::shared_ptr<const HullWorld>> HullWorld::build(std::vector<RuntimeHul
     std::shared_ptr<HullWorld> world(new HullWorld());
     world->hulls_ = std::move(hulls);
     world->tree_ = std::make_unique<detail::HullTree>(world->hulls_);
+    world->planes_ = std::make_unique<detail::PackedPlanes>(world->hulls_);
     return std::shared_ptr<const HullWorld>(std::move(world));
   });
 }
 
-detail::TreeSource HullWorld::source() const { return {*tree_, hulls_}; }
+detail::TreeSource HullWorld::source() const { return {*tree_, hulls_, *planes_}; }
 
 template class HullQueries<HullWorld>;
 

@@ -1,6 +1,7 @@
 #include "hullcover/bvh/streamed_world.h"
 
 #include "hull_tree.h"
+#include "packed_planes.h"
 #include "query_guard.h"
 #include "world_queries.h"
 
@@ -12,16 +13,19 @@
 namespace hullcover::bvh {
 namespace detail {
 
-/// One loaded section: its hulls, their global indices and their packed
-/// tree. Immutable once built; snapshots share it.
+/// One loaded section: its hulls, their global indices, their packed tree
+/// and planes. Immutable once built; snapshots share it.
 struct StreamSection {
   std::uint32_t id;
   std::vector<int> indices;
   std::vector<RuntimeHull> hulls;
   HullTree tree;
+  PackedPlanes planes;
 
   explicit StreamSection(SectionHulls&& s)
-      : id(s.id), indices(std::move(s.indices)), hulls(std::move(s.hulls)), tree(hulls) {}
+      : id(s.id), indices(std::move(s.indices)), hulls(std::move(s.hulls)), tree(hulls), planes(hulls) {}
+
+  PlanesOf planes_of(int h) const { return {&planes, h}; }
 };
 
 /// The loaded sections as queries see them. Never changed once published.
@@ -44,7 +48,7 @@ struct SnapshotSource {
   bool in_box(const Aabb& box, Visit&& visit) const {
     return top() && top()->find_in_box(box, [&](int s) {
       const StreamSection& section = *snapshot->sections[s];
-      return section.tree.find_in_box(box, [&](int h) { return visit(section.indices[h], section.hulls[h]); });
+      return section.tree.find_in_box(box, [&](int h) { return visit(section.indices[h], section.hulls[h], section.planes_of(h)); });
     });
   }
   // A section's box holds its hulls' boxes, so the sphere's test on it
@@ -54,7 +58,7 @@ struct SnapshotSource {
     return top() && top()->find_near_point(centre, radius, [&](int s) {
       const StreamSection& section = *snapshot->sections[s];
       return section.tree.find_near_point(
-          centre, radius, [&](int h) { return visit(section.indices[h], section.hulls[h]); });
+          centre, radius, [&](int h) { return visit(section.indices[h], section.hulls[h], section.planes_of(h)); });
     });
   }
   // One reach for both levels: a hit in one section prunes the others.
@@ -64,7 +68,7 @@ struct SnapshotSource {
     top()->walk_ray(origin, inverse, reach, [&](int s, double& best) {
       const StreamSection& section = *snapshot->sections[s];
       section.tree.walk_ray(origin, inverse, best,
-                            [&](int h, double& b) { visit(section.indices[h], section.hulls[h], b); });
+                            [&](int h, double& b) { visit(section.indices[h], section.hulls[h], section.planes_of(h), b); });
     });
   }
   std::optional<Aabb> bounds() const {

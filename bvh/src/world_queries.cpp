@@ -68,6 +68,16 @@ bool PlacedShape::touches(const RuntimeHull& hull) const {
   return false;
 }
 
+FloatVerdict PlacedShape::float_verdict(PlanesOf planes) const {
+  switch (shape.kind) {
+    case ShapeKind::sphere: return planes.sphere(a, shape.radius);
+    case ShapeKind::capsule: return planes.segment(a, b, shape.radius);
+    case ShapeKind::box:
+    case ShapeKind::convex: return FloatVerdict::unsure;
+  }
+  return FloatVerdict::unsure;
+}
+
 std::optional<Contact> PlacedShape::contact(const RuntimeHull& hull) const {
   switch (shape.kind) {
     case ShapeKind::sphere: return sphere_contact(hull, a, shape.radius);

@@ -8,16 +8,19 @@
 // HullQueries' members (hull_world.h), at the end, take the world's source
 // and call these.
 //
-// A source S provides, every visit returning true to stop the walk:
-//   bool in_box(const Aabb&, visit(int, const RuntimeHull&) -> bool)
-//   bool near_point(centre, radius, visit(int, const RuntimeHull&) -> bool)
-//   void along_ray(origin, inverse, double& reach, visit(int, const RuntimeHull&, double& reach))
+// A source S provides, every visit returning true to stop the walk, and
+// every visit given the hull's index in the answers, the hull and its
+// packed planes (packed_planes.h):
+//   bool in_box(const Aabb&, visit(int, const RuntimeHull&, PlanesOf) -> bool)
+//   bool near_point(centre, radius, visit(int, const RuntimeHull&, PlanesOf) -> bool)
+//   void along_ray(origin, inverse, double& reach, visit(int, const RuntimeHull&, PlanesOf, double& reach))
 //   std::optional<Aabb> bounds()  (nothing when it holds no hull)
 // with HullTree's guarantees (hull_tree.h): a box walk never misses a hull
 // whose box meets the box; a ray walk may shorten `reach` to prune.
 
 #include "hullcover/bvh/hull_world.h"
 
+#include "packed_planes.h"
 #include "query_guard.h"
 
 #include "hullcover/geometry/tolerances.h"
@@ -42,6 +45,20 @@ struct PlacedShape {
 
   bool touches(const RuntimeHull& hull) const;
   std::optional<Contact> contact(const RuntimeHull& hull) const;
+
+  /// The float pre-test of a sphere or capsule on the hull's packed planes
+  /// (unsure for the other shapes).
+  FloatVerdict float_verdict(PlanesOf planes) const;
+  /// touches(hull) and contact(hull), first settled by the float pre-test
+  /// where it can: the same answers.
+  bool touches(const RuntimeHull& hull, PlanesOf planes) const {
+    const FloatVerdict v = float_verdict(planes);
+    return v == FloatVerdict::unsure ? touches(hull) : v == FloatVerdict::meets;
+  }
+  std::optional<Contact> contact(const RuntimeHull& hull, PlanesOf planes) const {
+    if (float_verdict(planes) == FloatVerdict::apart) return std::nullopt;
+    return contact(hull);
+  }
 };
 
 /// Checks a shape and pose and places the shape; fails as
@@ -87,7 +104,7 @@ Status advance_sweep(const SweepRequest& request, const SweepPath& path, const s
 template <typename Source>
 void candidates_in_box(const Source& source, const Aabb& box, std::vector<Candidate>& out) {
   out.clear();
-  source.in_box(box, [&](int h, const RuntimeHull& hull) {
+  source.in_box(box, [&](int h, const RuntimeHull& hull, PlanesOf) {
     out.push_back({h, &hull});
     return false;
   });
@@ -111,8 +128,8 @@ Status touch_query(const Source& source, const OverlapRequest& request, TouchRes
     result = {};
     std::optional<PlacedShape> placed;
     if (Status s = place(request.shape, request.pose, placed); !s.ok()) return s;
-    find_candidates(source, *placed, [&](int h, const RuntimeHull& hull) {
-      if (!placed->touches(hull)) return false;
+    find_candidates(source, *placed, [&](int h, const RuntimeHull& hull, PlanesOf planes) {
+      if (!placed->touches(hull, planes)) return false;
       result.touching = true;
       result.hull = h;
       return true;
@@ -127,8 +144,8 @@ Status overlap_query(const Source& source, const OverlapRequest& request, Overla
     result.hulls.clear();
     std::optional<PlacedShape> placed;
     if (Status s = place(request.shape, request.pose, placed); !s.ok()) return s;
-    find_candidates(source, *placed, [&](int h, const RuntimeHull& hull) {
-      if (placed->touches(hull)) result.hulls.push_back(h);
+    find_candidates(source, *placed, [&](int h, const RuntimeHull& hull, PlanesOf planes) {
+      if (placed->touches(hull, planes)) result.hulls.push_back(h);
       return false;
     });
     std::sort(result.hulls.begin(), result.hulls.end());
@@ -143,8 +160,8 @@ Status contact_query(const Source& source, const ContactRequest& request, Contac
     if (request.max_contacts < 1) return {StatusCode::invalid_argument, "max_contacts must be at least 1"};
     std::optional<PlacedShape> placed;
     if (Status s = place(request.shape, request.pose, placed); !s.ok()) return s;
-    find_candidates(source, *placed, [&](int h, const RuntimeHull& hull) {
-      if (std::optional<Contact> c = placed->contact(hull)) {
+    find_candidates(source, *placed, [&](int h, const RuntimeHull& hull, PlanesOf planes) {
+      if (std::optional<Contact> c = placed->contact(hull, planes)) {
         c->hull = h;
         result.contacts.push_back(*c);
       }
@@ -167,7 +184,11 @@ void cast_checked_ray(const Source& source, const Eigen::Vector3d& origin, const
                       double max_distance, RayResult& result) {
   result = {};
   double reach = max_distance;
-  source.along_ray(origin, dir.cwiseInverse(), reach, [&](int h, const RuntimeHull& hull, double& best) {
+  source.along_ray(origin, dir.cwiseInverse(), reach, [&](int h, const RuntimeHull& hull, PlanesOf planes, double& best) {
+    // The float clip skips hulls the ray misses, or enters only past the
+    // best hit so far (equal t goes to the lower index: not skipped).
+    double enter;
+    if (!planes.ray_may_hit(origin, dir, best, enter) || enter > best) return;
     std::optional<RayHit> hit = ray_hit(hull, origin, dir, best);
     if (hit && (!result.hit || hit->t < result.first.t || (hit->t == result.first.t && h < result.first.hull))) {
       hit->hull = h;

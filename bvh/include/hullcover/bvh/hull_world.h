@@ -22,6 +22,7 @@ namespace hullcover::bvh {
 
 namespace detail {
 class HullTree;
+class PackedPlanes;
 struct TreeSource;
 } // namespace detail
 
@@ -255,6 +256,8 @@ private:
   std::vector<RuntimeHull> hulls_;
   // The broad phase, kept out of this header: fcl headers are slow to compile.
   std::unique_ptr<detail::HullTree> tree_;
+  // Every hull's planes in floats, for the queries' first test of a hull.
+  std::unique_ptr<detail::PackedPlanes> planes_;
 
   friend class HullQueries<HullWorld>;
   // The hulls and tree as a hull source for the queries (world_queries.h).

@@ -1,0 +1,166 @@
+#include "packed_planes.h"
+
+#include "float4.h"
+
+#include "hullcover/geometry/tolerances.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace hullcover::bvh::detail {
+namespace {
+
+constexpr float kFloatInfinity = std::numeric_limits<float>::infinity();
+
+// Sizes entering a bound: |x|_1 of a float point, in double.
+double l1(const float q[3]) { return std::abs(double(q[0])) + std::abs(double(q[1])) + std::abs(double(q[2])); }
+
+// `p` about a hull's centre, in float: the subtraction in double is exact
+// to within double's rounding, far below the one float rounding after it.
+void about_centre(const Eigen::Vector3d& p, const double centre[3], float q[3]) {
+  for (int k = 0; k < 3; ++k) q[k] = static_cast<float>(p[k] - centre[k]);
+}
+
+// The exact tests count a shape as touching up to kTouchingFraction of
+// the coordinates' and the hull's size away (hull_contact.cpp,
+// separating_axes.h), which also covers their own double rounding. A float
+// verdict leaves twice that to them, so it never settles a case they
+// would decide the other way, however far from the origin.
+double exact_slack(const Eigen::Vector3d& p, double reach, double radius) {
+  return 2.0 * kTouchingFraction * (1.0 + p.cwiseAbs().maxCoeff() + 2.0 * reach + radius);
+}
+
+} // namespace
+
+PackedPlanes::PackedPlanes(const std::vector<RuntimeHull>& hulls) {
+  hulls_.reserve(hulls.size());
+  size_t total_blocks = 0;
+  for (const RuntimeHull& hull : hulls) total_blocks += (hull.shape.planes.size() + 3) / 4;
+  if (total_blocks > std::numeric_limits<std::uint32_t>::max())
+    throw std::length_error("more planes than the packed store indexes");
+  blocks_.reserve(total_blocks);
+  for (const RuntimeHull& hull : hulls) {
+    HullRecord record{};
+    const Eigen::Vector3d centre = 0.5 * (hull.box.min + hull.box.max);
+    for (int k = 0; k < 3; ++k) record.centre[k] = centre[k];
+    double reach = 0.0;
+    for (const Eigen::Vector3d& v : hull.shape.vertices) reach = std::max(reach, (v - centre).norm());
+    // The bound takes each normal's components as at most 1 (unit normals):
+    // a hull with other normals, or none, is left to the exact tests.
+    bool unit = !hull.shape.planes.empty();
+    std::vector<float> nx, ny, nz, d;
+    for (const Plane& plane : hull.shape.planes) {
+      unit = unit && plane.normal.cwiseAbs().maxCoeff() <= 1.0 + kUnitNormalSlack;
+      const double offset = plane.normal.dot(centre) - plane.offset;
+      reach = std::max(reach, std::abs(offset));
+      nx.push_back(static_cast<float>(plane.normal.x()));
+      ny.push_back(static_cast<float>(plane.normal.y()));
+      nz.push_back(static_cast<float>(plane.normal.z()));
+      d.push_back(static_cast<float>(offset));
+    }
+    record.reach = float_at_or_above(reach);
+    record.first_block = static_cast<std::uint32_t>(blocks_.size());
+    record.blocks = unit && std::isfinite(record.reach) ? static_cast<std::uint32_t>((nx.size() + 3) / 4) : 0;
+    for (std::uint32_t b = 0; b < record.blocks; ++b) {
+      PlaneBlock block{};
+      for (size_t lane = 0; lane < 4; ++lane) {
+        const size_t i = 4 * b + lane < nx.size() ? 4 * b + lane : 0;
+        block.nx[lane] = nx[i];
+        block.ny[lane] = ny[i];
+        block.nz[lane] = nz[i];
+        block.d[lane] = d[i];
+      }
+      blocks_.push_back(block);
+    }
+    hulls_.push_back(record);
+  }
+}
+
+size_t PackedPlanes::bytes() const { return blocks_.size() * sizeof(PlaneBlock) + hulls_.size() * sizeof(HullRecord); }
+
+FloatVerdict PackedPlanes::sphere(int h, const Eigen::Vector3d& p, double radius) const {
+  const HullRecord& hull = hulls_[h];
+  if (hull.blocks == 0) return FloatVerdict::unsure;
+  float q[3];
+  about_centre(p, hull.centre, q);
+  const Float4 qx = Float4::all(q[0]), qy = Float4::all(q[1]), qz = Float4::all(q[2]);
+  Float4 outside = Float4::all(-kFloatInfinity);
+  const PlaneBlock* block = blocks_.data() + hull.first_block;
+  for (std::uint32_t b = 0; b < hull.blocks; ++b, ++block) {
+    const Float4 s = Float4::load(block->nx) * qx + Float4::load(block->ny) * qy + Float4::load(block->nz) * qz +
+                     Float4::load(block->d);
+    outside = max(s, outside);
+  }
+  const double most = largest_lane(outside);
+  const double slack = kFloatPlaneSlack * (l1(q) + hull.reach + radius) + exact_slack(p, hull.reach, radius);
+  if (most > radius + slack) return FloatVerdict::apart;
+  if (most < -slack) return FloatVerdict::meets;
+  return FloatVerdict::unsure;
+}
+
+PackedPlanes::Clip PackedPlanes::clip(const HullRecord& hull, const float q0[3], const float v[3], float span,
+                                      float grow) const {
+  const Float4 qx = Float4::all(q0[0]), qy = Float4::all(q0[1]), qz = Float4::all(q0[2]);
+  const Float4 vx = Float4::all(v[0]), vy = Float4::all(v[1]), vz = Float4::all(v[2]);
+  const Float4 zero = Float4::all(0.0f), g = Float4::all(grow);
+  const Float4 up = Float4::all(kFloatInfinity), down = Float4::all(-kFloatInfinity);
+  Float4 enter = zero, leave = Float4::all(span), cut = zero & up;  // no lane cut
+  Float4 start = down, end = down;
+  const PlaneBlock* block = blocks_.data() + hull.first_block;
+  for (std::uint32_t b = 0; b < hull.blocks; ++b, ++block) {
+    const Float4 nx = Float4::load(block->nx), ny = Float4::load(block->ny), nz = Float4::load(block->nz);
+    const Float4 num = nx * qx + ny * qy + nz * qz + Float4::load(block->d);
+    const Float4 den = nx * vx + ny * vy + nz * vz;
+    // Along the segment the signed distance to the moved plane is
+    // num - grow + t den: it crosses 0 at t = (grow - num) / den.
+    const Float4 t = (g - num) / den;
+    const Float4 rising = den > zero, falling = den < zero;
+    leave = min(select(rising, t, up), leave);
+    enter = max(select(falling, t, down), enter);
+    cut = cut | ((den >= zero) & (den <= zero) & (num > g));
+    start = max(num, start);
+    end = max(num + den * Float4::all(span), end);
+  }
+  return {largest_lane(enter), smallest_lane(leave), cut.bits() != 0, largest_lane(start), largest_lane(end)};
+}
+
+FloatVerdict PackedPlanes::segment(int h, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius) const {
+  const HullRecord& hull = hulls_[h];
+  if (hull.blocks == 0) return FloatVerdict::unsure;
+  float q0[3], v[3];
+  about_centre(a, hull.centre, q0);
+  for (int k = 0; k < 3; ++k) v[k] = static_cast<float>(b[k] - a[k]);
+  // The signed distance at any t in [0, 1] is off by at most this: the
+  // start's rounding plus t times the direction's (docs: "float pre-tests").
+  const double slack =
+      kFloatPlaneSlack * (l1(q0) + hull.reach + l1(v) + radius) + exact_slack(a, hull.reach, radius + l1(v));
+  // Planes moved out by a further 2 x slack keep a part of the segment
+  // whenever the exact ones do, whatever the rounding of the divisions.
+  const Clip c = clip(hull, q0, v, 1.0f, float_at_or_above(radius + 2.0 * slack));
+  if (c.cut || c.enter > c.leave) return FloatVerdict::apart;
+  if (c.start_outside < -slack || c.end_outside < -slack) return FloatVerdict::meets;
+  return FloatVerdict::unsure;
+}
+
+bool PackedPlanes::ray_may_hit(int h, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double reach,
+                               double& enter) const {
+  enter = 0.0;
+  const HullRecord& hull = hulls_[h];
+  if (hull.blocks == 0) return true;
+  float q0[3], v[3];
+  about_centre(origin, hull.centre, q0);
+  for (int k = 0; k < 3; ++k) v[k] = static_cast<float>(direction[k]);
+  // Every point of the hull is within its reach of the centre: a hit lies
+  // at t <= |q0| + reach, however far the ray goes.
+  const double span = std::min(reach, l1(q0) + static_cast<double>(hull.reach));
+  const double slack =
+      kFloatPlaneSlack * (l1(q0) + hull.reach + span * l1(v)) + exact_slack(origin, hull.reach, span);
+  const Clip c = clip(hull, q0, v, float_at_or_above(span), float_at_or_above(2.0 * slack));
+  if (c.cut || c.enter > c.leave) return false;
+  enter = c.enter;
+  return true;
+}
+
+} // namespace hullcover::bvh::detail
