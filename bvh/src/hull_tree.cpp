@@ -1,114 +1,179 @@
 #include "hull_tree.h"
 
-#include <fcl/broadphase/detail/hierarchy_tree.h>
-
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace hullcover::bvh::detail {
 
-HullTree::HullTree(const std::vector<RuntimeHull>& hulls) {
-  if (hulls.size() > static_cast<size_t>(std::numeric_limits<std::int32_t>::max() / 2))
+struct HullTree::Item {
+  Aabb box;
+  Eigen::Vector3d centre;
+  std::int32_t hull;
+};
+
+namespace {
+
+// Bins per axis of the binned surface area heuristic: enough to place a
+// split close to the best one, few enough that a build stays linear.
+constexpr int kSplitBins = 16;
+// Past this depth splits are at the median, so a tree over any boxes
+// (nested ones can make every heuristic split lopsided) stays within
+// this plus log2 of the hull count deep: bounded recursion and walk stacks.
+constexpr size_t kHeuristicDepth = 40;
+
+double half_area(const Aabb& box) {
+  const Eigen::Vector3d e = (box.max - box.min).cwiseMax(0.0);
+  return e.x() * e.y() + e.y() * e.z() + e.z() * e.x();
+}
+
+Aabb empty_box() {
+  Aabb box;
+  box.min.setConstant(std::numeric_limits<double>::infinity());
+  box.max.setConstant(-std::numeric_limits<double>::infinity());
+  return box;
+}
+
+void grow(Aabb& box, const Aabb& other) {
+  box.min = box.min.cwiseMin(other.min);
+  box.max = box.max.cwiseMax(other.max);
+}
+
+// Splits items [begin, end) (at least two) in two and returns where the
+// second part starts: the binned surface area heuristic's best plane
+// across the axis where the centres spread most, or the middle when the
+// centres coincide (both parts then non-empty all the same).
+template <typename Item>
+size_t split(std::vector<Item>& items, size_t begin, size_t end, bool at_median) {
+  Aabb centres = empty_box();
+  for (size_t i = begin; i < end; ++i) {
+    centres.min = centres.min.cwiseMin(items[i].centre);
+    centres.max = centres.max.cwiseMax(items[i].centre);
+  }
+  int axis = 0;
+  (centres.max - centres.min).maxCoeff(&axis);
+  const double lo = centres.min[axis], extent = centres.max[axis] - lo;
+  const size_t middle = begin + (end - begin) / 2;
+  if (!(extent > 0.0)) {
+    std::nth_element(items.begin() + begin, items.begin() + middle, items.begin() + end,
+                     [](const Item& a, const Item& b) { return a.hull < b.hull; });
+    return middle;
+  }
+  auto bin_of = [&](const Item& item) {
+    return std::min(kSplitBins - 1, static_cast<int>(kSplitBins * (item.centre[axis] - lo) / extent));
+  };
+  Aabb bin_box[kSplitBins];
+  size_t bin_count[kSplitBins] = {};
+  for (Aabb& b : bin_box) b = empty_box();
+  for (size_t i = begin; i < end; ++i) {
+    const int b = bin_of(items[i]);
+    grow(bin_box[b], items[i].box);
+    ++bin_count[b];
+  }
+  // Cost of each plane between bins: area times count on either side.
+  double right_cost[kSplitBins] = {};
+  Aabb right = empty_box();
+  size_t right_count = 0;
+  for (int b = kSplitBins - 1; b > 0; --b) {
+    grow(right, bin_box[b]);
+    right_count += bin_count[b];
+    right_cost[b] = right_count ? half_area(right) * static_cast<double>(right_count) : 0.0;
+  }
+  Aabb left = empty_box();
+  size_t left_count = 0;
+  int best = -1;
+  double best_cost = std::numeric_limits<double>::infinity();
+  for (int b = 1; b < kSplitBins; ++b) {
+    grow(left, bin_box[b - 1]);
+    left_count += bin_count[b - 1];
+    if (left_count == 0 || left_count == end - begin) continue;
+    const double cost = half_area(left) * static_cast<double>(left_count) + right_cost[b];
+    if (cost < best_cost) {
+      best_cost = cost;
+      best = b;
+    }
+  }
+  if (best < 0 || at_median) {
+    std::nth_element(items.begin() + begin, items.begin() + middle, items.begin() + end,
+                     [axis](const Item& a, const Item& b) { return a.centre[axis] < b.centre[axis]; });
+    return middle;
+  }
+  const auto cut = std::partition(items.begin() + begin, items.begin() + end,
+                                  [&](const Item& item) { return bin_of(item) < best; });
+  return static_cast<size_t>(cut - items.begin());
+}
+
+} // namespace
+
+namespace {
+std::vector<Aabb> boxes_of(const std::vector<RuntimeHull>& hulls) {
+  std::vector<Aabb> boxes;
+  boxes.reserve(hulls.size());
+  for (const RuntimeHull& hull : hulls) boxes.push_back(hull.box);
+  return boxes;
+}
+} // namespace
+
+HullTree::HullTree(const std::vector<RuntimeHull>& hulls) : HullTree(boxes_of(hulls)) {}
+
+HullTree::HullTree(const std::vector<Aabb>& boxes) {
+  if (boxes.empty()) throw std::invalid_argument("a hull tree needs at least one box");
+  if (boxes.size() > static_cast<size_t>(std::numeric_limits<std::int32_t>::max() / 2))
     throw std::length_error("more hulls than a packed tree indexes");
-  // FCL builds the tree: its dynamic AABB tree, as its broad-phase manager
-  // does, from leaves it then owns. (The array form's init leaks the 16
-  // nodes its clear() allocates; this form's does not.)
-  using Tree = fcl::detail::HierarchyTree<fcl::AABBd>;
-  using Node = Tree::NodeType;
-  std::vector<int> index(hulls.size());
-  std::vector<Node*> leaves;
-  leaves.reserve(hulls.size());
-  Tree tree;
-  try {
-    for (size_t i = 0; i < hulls.size(); ++i) {
-      index[i] = static_cast<int>(i);
-      leaves.push_back(new Node);
-      leaves.back()->bv = fcl::AABBd(hulls[i].box.min, hulls[i].box.max);
-      leaves.back()->parent = nullptr;
-      leaves.back()->children[1] = nullptr;
-      leaves.back()->data = &index[i];
-    }
-  } catch (...) {
-    for (Node* leaf : leaves) delete leaf;
-    throw;
-  }
-  // FCL's Morton-order build: on the shared scenes its tree has a fifth to
-  // two fifths fewer nodes in reach of a query than its median split
-  // (measured by counting the nodes a sphere and a ray walk visits).
-  constexpr int kMortonBuild = 2;
-  tree.init(leaves, kMortonBuild);
-  height_ = tree.getMaxHeight();
-  pack(*tree.getRoot());
-}
-
-HullTree::HullTree(const FclTreeNode& root, size_t height) : height_(height) { pack(root); }
-
-void HullTree::pack(const FclTreeNode& root) {
-  nodes_.clear();
-  if (root.isLeaf()) {
-    // One hull: a root with one child.
-    WideNode n{};
-    n.count = 1;
-    n.child[0] = ~*static_cast<const int*>(root.data);
-    n.min_x[0] = float_at_or_below(root.bv.min_[0]);
-    n.min_y[0] = float_at_or_below(root.bv.min_[1]);
-    n.min_z[0] = float_at_or_below(root.bv.min_[2]);
-    n.max_x[0] = float_at_or_above(root.bv.max_[0]);
-    n.max_y[0] = float_at_or_above(root.bv.max_[1]);
-    n.max_z[0] = float_at_or_above(root.bv.max_[2]);
-    nodes_.push_back(n);
-  } else {
-    pack_node(root);
-  }
+  std::vector<Item> items(boxes.size());
+  for (size_t i = 0; i < boxes.size(); ++i)
+    items[i] = {boxes[i], 0.5 * (boxes[i].min + boxes[i].max), static_cast<std::int32_t>(i)};
+  nodes_.reserve(boxes.size() / 2 + 1);
+  build_node(items, 0, items.size(), 1);
   const WideNode& top = nodes_.front();
-  for (int k = 0; k < 3; ++k) {
-    bounds_.min[k] = std::numeric_limits<double>::infinity();
-    bounds_.max[k] = -std::numeric_limits<double>::infinity();
-  }
-  for (int i = 0; i < top.count; ++i) {
-    const Eigen::Vector3d lo(top.min_x[i], top.min_y[i], top.min_z[i]), hi(top.max_x[i], top.max_y[i], top.max_z[i]);
-    bounds_.min = bounds_.min.cwiseMin(lo);
-    bounds_.max = bounds_.max.cwiseMax(hi);
-  }
+  bounds_ = empty_box();
+  for (int i = 0; i < top.count; ++i)
+    grow(bounds_, {Eigen::Vector3d(top.face[0][i], top.face[1][i], top.face[2][i]),
+                   Eigen::Vector3d(top.face[3][i], top.face[4][i], top.face[5][i])});
 }
 
-std::int32_t HullTree::pack_node(const FclTreeNode& node) {
-  // The node's four-wide form: its two children, each inner one with the
-  // largest box opened into its own two until four are gathered (the usual
-  // collapse of a binary tree, keeping the big boxes apart).
-  const FclTreeNode* kids[4] = {node.children[0], node.children[1], nullptr, nullptr};
-  int count = 2;
-  while (count < 4) {
-    int widest = -1;
-    double widest_area = -1.0;
-    for (int i = 0; i < count; ++i) {
-      if (kids[i]->isLeaf()) continue;
-      const Eigen::Vector3d e = kids[i]->bv.max_ - kids[i]->bv.min_;
-      const double area = e.x() * e.y() + e.y() * e.z() + e.z() * e.x();
-      if (area > widest_area) {
-        widest_area = area;
-        widest = i;
-      }
+std::int32_t HullTree::build_node(std::vector<Item>& items, size_t begin, size_t end, size_t depth) {
+  height_ = std::max(height_, depth);
+  // Up to four groups: the items split in two, and each part with more
+  // than one item split again (a binary tree's two levels in one node).
+  size_t cuts[5] = {begin, end, end, end, end};
+  int groups = 1;
+  const bool at_median = depth > kHeuristicDepth;
+  if (end - begin > 1) {
+    cuts[1] = split(items, begin, end, at_median);
+    groups = 2;
+    const size_t first = cuts[1] - begin, second = end - cuts[1];
+    if (end - begin <= 4) {
+      groups = static_cast<int>(end - begin);  // one item per lane
+      for (int g = 0; g <= groups; ++g) cuts[g] = begin + static_cast<size_t>(g);
+    } else {
+      size_t next[5] = {begin, 0, 0, 0, 0};
+      int n = 1;
+      if (first > 1) next[n++] = split(items, begin, cuts[1], at_median);
+      next[n++] = cuts[1];
+      if (second > 1) next[n++] = split(items, cuts[1], end, at_median);
+      next[n] = end;
+      groups = n;
+      std::copy(next, next + n + 1, cuts);
     }
-    if (widest < 0) break;
-    const FclTreeNode* opened = kids[widest];
-    kids[widest] = opened->children[0];
-    kids[count++] = opened->children[1];
   }
   const std::int32_t at = static_cast<std::int32_t>(nodes_.size());
   nodes_.emplace_back();
-  nodes_[at].count = count;
-  for (int i = 0; i < count; ++i) {
-    const FclTreeNode& k = *kids[i];
-    const std::int32_t child = k.isLeaf() ? ~*static_cast<const int*>(k.data) : pack_node(k);
+  nodes_[at].count = groups;
+  for (int g = 0; g < groups; ++g) {
+    Aabb box = empty_box();
+    for (size_t i = cuts[g]; i < cuts[g + 1]; ++i) grow(box, items[i].box);
+    const std::int32_t child =
+        cuts[g + 1] - cuts[g] == 1 ? ~items[cuts[g]].hull : build_node(items, cuts[g], cuts[g + 1], depth + 1);
     WideNode& n = nodes_[at];  // after the recursion: nodes_ may have moved
-    n.child[i] = child;
-    n.min_x[i] = float_at_or_below(k.bv.min_[0]);
-    n.min_y[i] = float_at_or_below(k.bv.min_[1]);
-    n.min_z[i] = float_at_or_below(k.bv.min_[2]);
-    n.max_x[i] = float_at_or_above(k.bv.max_[0]);
-    n.max_y[i] = float_at_or_above(k.bv.max_[1]);
-    n.max_z[i] = float_at_or_above(k.bv.max_[2]);
+    n.child[g] = child;
+    n.face[0][g] = float_at_or_below(box.min[0]);
+    n.face[1][g] = float_at_or_below(box.min[1]);
+    n.face[2][g] = float_at_or_below(box.min[2]);
+    n.face[3][g] = float_at_or_above(box.max[0]);
+    n.face[4][g] = float_at_or_above(box.max[1]);
+    n.face[5][g] = float_at_or_above(box.max[2]);
   }
   return at;
 }

@@ -1,7 +1,7 @@
 #pragma once
-// The broad phase of HullWorld (private to bvh/): FCL's dynamic AABB tree
-// over each hull's exact box, built by FCL (Morton order), then collapsed
-// into a tree of four-wide nodes packed in one array, depth first. A walk
+// The broad phase of HullWorld and of each streamed section (private to
+// bvh/): a tree of four-wide nodes over each hull's exact box, built top
+// down by the surface area heuristic and packed in one array, depth first. A walk
 // tests a node's four child boxes at once (float4.h) and keeps its pending
 // nodes on the caller's stack: no callback, virtual or library call, and
 // no allocation per query. Boxes are floats rounded outward, and every
@@ -24,19 +24,7 @@
 #include <memory>
 #include <vector>
 
-namespace fcl {
-template <typename S>
-class AABB;
-namespace detail {
-template <typename BV>
-struct NodeBase;
-} // namespace detail
-} // namespace fcl
-
 namespace hullcover::bvh::detail {
-
-/// A node of FCL's dynamic AABB tree (fcl/broadphase/detail/hierarchy_tree.h).
-using FclTreeNode = fcl::detail::NodeBase<fcl::AABB<double>>;
 
 /// Relative widening of a float ray-box entry and exit: each is a
 /// difference and a product of floats, with the inverse direction rounded
@@ -50,9 +38,8 @@ class HullTree {
 public:
   /// Builds the tree over `hulls`' boxes (at least one hull).
   explicit HullTree(const std::vector<RuntimeHull>& hulls);
-  /// Packs a tree FCL already holds, of height `height`, whose leaves' data
-  /// point to their numbers (int): what visits are given.
-  HullTree(const FclTreeNode& root, size_t height);
+  /// Builds the tree over boxes (at least one): leaf i is boxes[i].
+  explicit HullTree(const std::vector<Aabb>& boxes);
 
   /// Calls `visit(h)` for each hull h whose box meets the closed box `box`,
   /// until a call returns true. Returns whether one did.
@@ -87,8 +74,9 @@ private:
   // Up to four children, in the first `count` lanes: an inner node's index
   // (>= 0) or a leaf, as ~number (< 0).
   struct alignas(64) WideNode {
-    float min_x[4], min_y[4], min_z[4];
-    float max_x[4], max_y[4], max_z[4];
+    // Lane i's box: face[k][i] its least coordinate on axis k, face[3 + k][i]
+    // its greatest.
+    float face[6][4];
     std::int32_t child[4];
     std::int32_t count;
   };
@@ -100,8 +88,8 @@ private:
   Aabb bounds_;
   size_t height_ = 0;
 
-  void pack(const FclTreeNode& root);
-  std::int32_t pack_node(const FclTreeNode& node);
+  struct Item;  // a hull's box and centre while building
+  std::int32_t build_node(std::vector<Item>& items, size_t begin, size_t end, size_t depth);
 
   template <typename Entry>
   class WalkStack {
@@ -122,9 +110,9 @@ private:
 
   // Lanes (bit i: child i) whose boxes meet the float box [lo, hi].
   static int lanes_meeting(const WideNode& n, const Float4 lo[3], const Float4 hi[3]) {
-    const Float4 miss = (Float4::load(n.min_x) > hi[0]) | (Float4::load(n.max_x) < lo[0]) |
-                        (Float4::load(n.min_y) > hi[1]) | (Float4::load(n.max_y) < lo[1]) |
-                        (Float4::load(n.min_z) > hi[2]) | (Float4::load(n.max_z) < lo[2]);
+    const Float4 miss = (Float4::load(n.face[0]) > hi[0]) | (Float4::load(n.face[3]) < lo[0]) |
+                        (Float4::load(n.face[1]) > hi[1]) | (Float4::load(n.face[4]) < lo[1]) |
+                        (Float4::load(n.face[2]) > hi[2]) | (Float4::load(n.face[5]) < lo[2]);
     return ~miss.bits() & ((1 << n.count) - 1);
   }
 
@@ -177,9 +165,9 @@ bool HullTree::find_near_point(const Eigen::Vector3d& centre, double radius, Vis
   return find_where(
       box,
       [&](const WideNode& n) {
-        const Float4 gx = max(max(Float4::load(n.min_x) - cx, cx - Float4::load(n.max_x)), zero);
-        const Float4 gy = max(max(Float4::load(n.min_y) - cy, cy - Float4::load(n.max_y)), zero);
-        const Float4 gz = max(max(Float4::load(n.min_z) - cz, cz - Float4::load(n.max_z)), zero);
+        const Float4 gx = max(max(Float4::load(n.face[0]) - cx, cx - Float4::load(n.face[3])), zero);
+        const Float4 gy = max(max(Float4::load(n.face[1]) - cy, cy - Float4::load(n.face[4])), zero);
+        const Float4 gz = max(max(Float4::load(n.face[2]) - cz, cz - Float4::load(n.face[5])), zero);
         return (gx * gx + gy * gy + gz * gz <= limit2).bits();
       },
       visit);
@@ -188,43 +176,52 @@ bool HullTree::find_near_point(const Eigen::Vector3d& centre, double radius, Vis
 template <typename Visit>
 void HullTree::walk_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& inverse, double& reach,
                         Visit&& visit) const {
-  // Per axis, the slab's near and far faces and the origin rounded so that
-  // the entry comes out no later and the exit no earlier than exactly.
+  // Per axis, the slab's near and far faces (rows of a node's face array:
+  // no branch per node) and the origin rounded so that the entry
+  // comes out no later and the exit no earlier than exactly.
   Float4 near_origin[3], far_origin[3], inv[3];
-  bool negative[3];
+  int near_face[3], far_face[3];
   for (int k = 0; k < 3; ++k) {
-    negative[k] = inverse[k] < 0.0;
+    const bool negative = inverse[k] < 0.0;
     const float below = float_at_or_below(origin[k]), above = float_at_or_above(origin[k]);
-    near_origin[k] = Float4::all(negative[k] ? below : above);
-    far_origin[k] = Float4::all(negative[k] ? above : below);
+    near_origin[k] = Float4::all(negative ? below : above);
+    far_origin[k] = Float4::all(negative ? above : below);
     inv[k] = Float4::all(static_cast<float>(inverse[k]));
+    near_face[k] = negative ? 3 + k : k;
+    far_face[k] = negative ? k : 3 + k;
   }
   const Float4 zero = Float4::all(0.0f), widen = Float4::all(kRaySlabWidening);
   struct Pending {
     std::int32_t child;  // as in WideNode::child
     float entry;
   };
+  // The reach as a float at or above it, and the entry past which a box
+  // is beyond it whatever the rounding: updated when a visit shortens it.
+  double known_reach = reach;
+  float reach_up = float_at_or_above(reach);
+  float prune = float_at_or_above(reach * static_cast<double>(kRaySlabWidening));
   WalkStack<Pending> stack(height_);
   stack.push({0, 0.0f});
   while (!stack.empty()) {
     const Pending top = stack.pop();
-    if (static_cast<double>(top.entry) > reach * static_cast<double>(kRaySlabWidening)) continue;
+    if (top.entry > prune) continue;
     if (top.child < 0) {
       visit(~top.child, reach);
+      if (reach != known_reach) {
+        known_reach = reach;
+        reach_up = float_at_or_above(reach);
+        prune = float_at_or_above(reach * static_cast<double>(kRaySlabWidening));
+      }
       continue;
     }
     const WideNode& n = nodes_[top.child];
-    const float* lo[3] = {n.min_x, n.min_y, n.min_z};
-    const float* hi[3] = {n.max_x, n.max_y, n.max_z};
     // A lane where the origin lies on a face of a slab the ray runs along
     // gives 0 x infinity = NaN; max and min keep their second operand
     // then, so such an axis sets no limit, as it should.
-    Float4 entry = zero, exit = Float4::all(float_at_or_above(reach));
+    Float4 entry = zero, exit = Float4::all(reach_up);
     for (int k = 0; k < 3; ++k) {
-      const Float4 near = (Float4::load(negative[k] ? hi[k] : lo[k]) - near_origin[k]) * inv[k];
-      const Float4 far = (Float4::load(negative[k] ? lo[k] : hi[k]) - far_origin[k]) * inv[k];
-      entry = max(near, entry);
-      exit = min(far, exit);
+      entry = max((Float4::load(n.face[near_face[k]]) - near_origin[k]) * inv[k], entry);
+      exit = min((Float4::load(n.face[far_face[k]]) - far_origin[k]) * inv[k], exit);
     }
     int lanes = (entry <= exit * widen).bits() & ((1 << n.count) - 1);
     if (!lanes) continue;

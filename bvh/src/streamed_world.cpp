@@ -117,12 +117,14 @@ StreamedWorld::~StreamedWorld() = default;
 void StreamedWorld::publish() {
   auto next = std::make_shared<detail::StreamSnapshot>();
   next->sections.reserve(index_->loaded.size());
+  std::vector<Aabb> boxes;
+  boxes.reserve(index_->loaded.size());
   for (auto& [id, entry] : index_->loaded) {
     entry.slot = static_cast<int>(next->sections.size());
     next->sections.push_back(entry.section);
+    boxes.push_back(entry.section->tree.bounds());
   }
-  if (const detail::SectionIndex::Tree::NodeType* root = index_->tree.getRoot())
-    next->top = std::make_unique<const detail::HullTree>(*root, index_->tree.getMaxHeight());
+  if (!boxes.empty()) next->top = std::make_unique<const detail::HullTree>(boxes);
   std::atomic_store(&current_, std::shared_ptr<const detail::StreamSnapshot>(std::move(next)));
 }
 
