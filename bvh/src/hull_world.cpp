@@ -3,7 +3,7 @@
 #include "hull_tree.h"
 #include "packed_planes.h"
 #include "query_guard.h"
-#include "world_queries.h"
+#include "collected_queries.h"
 
 namespace hullcover::bvh {
 namespace detail {

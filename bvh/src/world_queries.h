@@ -6,7 +6,8 @@
 // each candidate to the query as (index in the answers, the hull), so the
 // narrow phase, the order rules and the numbers are the same code for both.
 // HullQueries' members (hull_world.h), at the end, take the world's source
-// and call these.
+// and call these; the queries that hand hits to collectors, and the
+// batches, are in collected_queries.h.
 //
 // A source S provides, every visit returning true to stop the walk, and
 // every visit given the hull's index in the answers, the hull and its
@@ -123,112 +124,6 @@ void find_candidates(const Source& source, const PlacedShape& placed, Visit&& vi
 }
 
 template <typename Source>
-Status touch_query(const Source& source, const OverlapRequest& request, TouchResult& result) {
-  return guarded("touch query", [&]() -> Status {
-    result = {};
-    std::optional<PlacedShape> placed;
-    if (Status s = place(request.shape, request.pose, placed); !s.ok()) return s;
-    find_candidates(source, *placed, [&](int h, const RuntimeHull& hull, PlanesOf planes) {
-      if (!placed->touches(hull, planes)) return false;
-      result.touching = true;
-      result.hull = h;
-      return true;
-    });
-    return Status::success();
-  });
-}
-
-template <typename Source>
-Status overlap_query(const Source& source, const OverlapRequest& request, OverlapResult& result) {
-  return guarded("overlap query", [&]() -> Status {
-    result.hulls.clear();
-    std::optional<PlacedShape> placed;
-    if (Status s = place(request.shape, request.pose, placed); !s.ok()) return s;
-    find_candidates(source, *placed, [&](int h, const RuntimeHull& hull, PlanesOf planes) {
-      if (placed->touches(hull, planes)) result.hulls.push_back(h);
-      return false;
-    });
-    std::sort(result.hulls.begin(), result.hulls.end());
-    return Status::success();
-  });
-}
-
-template <typename Source>
-Status contact_query(const Source& source, const ContactRequest& request, ContactResult& result) {
-  return guarded("contact query", [&]() -> Status {
-    result.contacts.clear();
-    if (request.max_contacts < 1) return {StatusCode::invalid_argument, "max_contacts must be at least 1"};
-    std::optional<PlacedShape> placed;
-    if (Status s = place(request.shape, request.pose, placed); !s.ok()) return s;
-    find_candidates(source, *placed, [&](int h, const RuntimeHull& hull, PlanesOf planes) {
-      if (std::optional<Contact> c = placed->contact(hull, planes)) {
-        c->hull = h;
-        result.contacts.push_back(*c);
-      }
-      return false;
-    });
-    // Deepest first, equal depths by hull index: a total order, so the
-    // answer does not depend on the tree's walk.
-    std::sort(result.contacts.begin(), result.contacts.end(), [](const Contact& x, const Contact& y) {
-      return x.depth > y.depth || (x.depth == y.depth && x.hull < y.hull);
-    });
-    if (static_cast<int>(result.contacts.size()) > request.max_contacts) result.contacts.resize(request.max_contacts);
-    return Status::success();
-  });
-}
-
-/// A checked ray (unit direction): the nearest hit, equal t to the lower
-/// index, whatever order the walk visits hulls in.
-template <typename Source>
-void cast_checked_ray(const Source& source, const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
-                      double max_distance, RayResult& result) {
-  result = {};
-  double reach = max_distance;
-  source.along_ray(origin, dir.cwiseInverse(), reach, [&](int h, const RuntimeHull& hull, PlanesOf planes, double& best) {
-    // The float clip skips hulls the ray misses, or enters only past the
-    // best hit so far (equal t goes to the lower index: not skipped).
-    double enter;
-    if (!planes.ray_may_hit(origin, dir, best, enter) || enter > best) return;
-    std::optional<RayHit> hit = ray_hit(hull, origin, dir, best);
-    if (hit && (!result.hit || hit->t < result.first.t || (hit->t == result.first.t && h < result.first.hull))) {
-      hit->hull = h;
-      result.hit = true;
-      result.first = *hit;
-      best = hit->t;
-    }
-  });
-}
-
-template <typename Source>
-Status ray_query(const Source& source, const RayRequest& request, RayResult& result) {
-  return guarded("ray query", [&]() -> Status {
-    result = {};
-    Eigen::Vector3d dir;
-    if (Status s = check_ray_request(request, dir); !s.ok()) return s;
-    cast_checked_ray(source, request.origin, dir, request.max_distance, result);
-    return Status::success();
-  });
-}
-
-template <typename Source>
-Status ray_batch_query(const Source& source, const std::vector<RayRequest>& requests,
-                       std::vector<RayResult>& results) {
-  return guarded("ray batch", [&]() -> Status {
-    results.clear();
-    results.resize(requests.size());
-    std::vector<Eigen::Vector3d> directions(requests.size());
-    for (size_t i = 0; i < requests.size(); ++i)
-      if (Status s = check_ray_request(requests[i], directions[i]); !s.ok()) {
-        results.clear();
-        return {s.code(), "ray " + std::to_string(i) + " of the batch: " + s.message()};
-      }
-    for (size_t i = 0; i < requests.size(); ++i)
-      cast_checked_ray(source, requests[i].origin, directions[i], requests[i].max_distance, results[i]);
-    return Status::success();
-  });
-}
-
-template <typename Source>
 Status distance_query(const Source& source, const DistanceRequest& request, DistanceResult& result) {
   return guarded("distance query", [&]() -> Status {
     result = {};
@@ -284,27 +179,6 @@ namespace hullcover::bvh {
 
 // HullQueries' members (hull_world.h), instantiated by each world's source
 // file for its own World: each takes the world's hull source for the call.
-template <typename World>
-Status HullQueries<World>::touches(const OverlapRequest& request, TouchResult& result) const {
-  return detail::touch_query(static_cast<const World&>(*this).source(), request, result);
-}
-template <typename World>
-Status HullQueries<World>::overlap(const OverlapRequest& request, OverlapResult& result) const {
-  return detail::overlap_query(static_cast<const World&>(*this).source(), request, result);
-}
-template <typename World>
-Status HullQueries<World>::contacts(const ContactRequest& request, ContactResult& result) const {
-  return detail::contact_query(static_cast<const World&>(*this).source(), request, result);
-}
-template <typename World>
-Status HullQueries<World>::ray_cast(const RayRequest& request, RayResult& result) const {
-  return detail::ray_query(static_cast<const World&>(*this).source(), request, result);
-}
-template <typename World>
-Status HullQueries<World>::ray_cast_batch(const std::vector<RayRequest>& requests,
-                                          std::vector<RayResult>& results) const {
-  return detail::ray_batch_query(static_cast<const World&>(*this).source(), requests, results);
-}
 template <typename World>
 Status HullQueries<World>::distance(const DistanceRequest& request, DistanceResult& result) const {
   return detail::distance_query(static_cast<const World&>(*this).source(), request, result);

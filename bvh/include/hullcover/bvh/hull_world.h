@@ -9,7 +9,9 @@
 /// [[nodiscard]] Status and never throws. Queries are const and safe to run
 /// from many threads at once on one world.
 
+#include "hullcover/bvh/collectors.h"
 #include "hullcover/bvh/hull_contact.h"
+#include "hullcover/bvh/query_threads.h"
 #include "hullcover/bvh/query_shape.h"
 #include "hullcover/bvh/runtime_hull.h"
 #include "hullcover/geometry/status.h"
@@ -185,10 +187,37 @@ public:
   /// Fails with `invalid_argument` as check_ray_request does. The tree is
   /// walked nearer boxes first and pruned at the best hit so far.
   [[nodiscard]] Status ray_cast(const RayRequest& request, RayResult& result) const;
-  /// Many rays in one call: `results[i]` answers `requests[i]` as ray_cast
-  /// would. Every ray is checked first; the first bad one fails the batch
-  /// with `invalid_argument` naming its index, and `results` is left empty.
-  [[nodiscard]] Status ray_cast_batch(const std::vector<RayRequest>& requests, std::vector<RayResult>& results) const;
+
+  /// The collector forms (collectors.h, after Jolt's NarrowPhaseQuery):
+  /// each hull `filter` admits is tested, and each hit handed to
+  /// `collector` (reset first) in walk order, until it stops the walk.
+  /// Fail as the plain calls do. The plain calls are these with a
+  /// collector of their own: touches() an AnyHitCollector, overlap() and
+  /// contacts() every hit then sorted, ray_cast() the closest.
+  ///
+  /// Every hull the shape touches, as its index.
+  [[nodiscard]] Status overlapping(const OverlapRequest& request, const HullFilter& filter,
+                                   HitCollector<int>& collector) const;
+  /// The exact contact of every hull the shape touches (Contact::hull set).
+  [[nodiscard]] Status collide(const OverlapRequest& request, const HullFilter& filter,
+                               HitCollector<Contact>& collector) const;
+  /// Each hull's first hit along the ray within max_distance and the
+  /// collector's reach(); a collector that lowers its reach (closest hit)
+  /// prunes the walk there.
+  [[nodiscard]] Status cast_ray(const RayRequest& request, const HullFilter& filter,
+                                HitCollector<RayHit>& collector) const;
+
+  /// Batches: `results[i]` answers `requests[i]` as the plain call would,
+  /// run on `threads` (query_threads.h) when given, else on the caller's
+  /// thread; the same answers for any thread count. When requests fail,
+  /// the lowest failing index is reported (its code, and a message naming
+  /// it) and `results` is left empty.
+  [[nodiscard]] Status touches_batch(const std::vector<OverlapRequest>& requests, std::vector<TouchResult>& results,
+                                     QueryThreads* threads = nullptr) const;
+  [[nodiscard]] Status contacts_batch(const std::vector<ContactRequest>& requests,
+                                      std::vector<ContactResult>& results, QueryThreads* threads = nullptr) const;
+  [[nodiscard]] Status ray_cast_batch(const std::vector<RayRequest>& requests, std::vector<RayResult>& results,
+                                      QueryThreads* threads = nullptr) const;
   /// Fails as overlap does. The distance is exact for every shape: spheres
   /// and capsules from their axis, boxes and convex shapes from closest
   /// features (closest_between; FCL's GJK distance was found to
