@@ -130,21 +130,38 @@ bool HullTree::find_where(const Aabb& box, LaneTest&& lane_test, Visit&& visit) 
     lo[k] = Float4::all(float_at_or_below(box.min[k]));
     hi[k] = Float4::all(float_at_or_above(box.max[k]));
   }
+  // The query box's centre: children are taken nearest to it first, so a
+  // yes/no query, which stops at the first touching hull, tends to meet
+  // it early. Any order finds the same hulls.
+  Float4 mid[3];
+  for (int k = 0; k < 3; ++k) mid[k] = Float4::all(static_cast<float>(0.5 * (box.min[k] + box.max[k])));
+  const Float4 zero = Float4::all(0.0f);
   WalkStack<std::int32_t> stack(height_);
   stack.push(0);
   while (!stack.empty()) {
     const WideNode& node = nodes_[stack.pop()];
     int lanes = lanes_meeting(node, lo, hi) & lane_test(node);
-    // Children in lane order: leaves now, inner nodes pushed so the first
-    // is walked first.
-    for (int i = node.count - 1; i >= 0; --i) {
-      if (!(lanes >> i & 1) || node.child[i] < 0) continue;
-      stack.push(node.child[i]);
+    if (!lanes) continue;
+    Float4 gap2 = zero;
+    for (int k = 0; k < 3; ++k) {
+      const Float4 g = max(max(Float4::load(node.face[k]) - mid[k], mid[k] - Float4::load(node.face[3 + k])), zero);
+      gap2 = gap2 + g * g;
     }
+    float key[4];
+    gap2.store(key);
+    int order[4], met = 0;
     for (; lanes; lanes &= lanes - 1) {
       const int i = __builtin_ctz(static_cast<unsigned>(lanes));
-      if (node.child[i] < 0 && visit(~node.child[i])) return true;
+      int j = met++;
+      for (; j > 0 && key[order[j - 1]] > key[i]; --j) order[j] = order[j - 1];
+      order[j] = i;
     }
+    // Leaves now, nearest first; inner nodes pushed farthest first, so the
+    // nearest is walked next.
+    for (int j = met - 1; j >= 0; --j)
+      if (node.child[order[j]] >= 0) stack.push(node.child[order[j]]);
+    for (int j = 0; j < met; ++j)
+      if (node.child[order[j]] < 0 && visit(~node.child[order[j]])) return true;
   }
   return false;
 }

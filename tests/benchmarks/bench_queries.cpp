@@ -51,6 +51,7 @@ const SceneScale kScenes[] = {{"recast-dungeon.obj", 1.0},        {"recast-nav_t
                               {"sauerbraten-pandora.obj", 20.0},  {"stanford-bunny-res2.ply", 0.0},
                               {"thor-art56-gearplate.stl", 0.0},  {"threejs-collision-world.glb", 1.0}};
 constexpr int kPoses = 512;
+constexpr int kBatchCopies = 8;  // a thread-batch benchmark asks every pose this many times
 
 // Poses and rays for one probe size.
 struct Probe {
@@ -187,6 +188,29 @@ void side_by_side(benchmark::State& state, int count, const std::function<void(i
   state.counters["speedup"] = triangle_seconds / hull_seconds;
 }
 
+// One batch on one thread, then on two (QueryThreads, started once), in
+// turn each iteration; the manual time is the two threads'. Counters: µs
+// per query for each and the speed-up (1.0: none; 2.0: perfect).
+void one_thread_then_two(benchmark::State& state, int count, const std::function<void(QueryThreads*)>& batch) {
+  const std::shared_ptr<QueryThreads> one = QueryThreads::start(1).value(), two = QueryThreads::start(2).value();
+  double one_seconds = 0.0, two_seconds = 0.0;
+  for (auto _ : state) {
+    auto start = Clock::now();
+    batch(one.get());
+    const double a = std::chrono::duration<double>(Clock::now() - start).count();
+    start = Clock::now();
+    batch(two.get());
+    const double b = std::chrono::duration<double>(Clock::now() - start).count();
+    state.SetIterationTime(b);
+    one_seconds += a;
+    two_seconds += b;
+  }
+  const double queries = static_cast<double>(state.iterations()) * std::max(count, 1);
+  state.counters["one_thread_us"] = 1e6 * one_seconds / queries;
+  state.counters["two_threads_us"] = 1e6 * two_seconds / queries;
+  state.counters["speedup"] = one_seconds / two_seconds;
+}
+
 void register_probe(const std::string& name, const std::shared_ptr<const Scene>& s, const Probe& p) {
   const auto reg = [&](const std::string& what, std::function<void(benchmark::State&)> fn) {
     benchmark::RegisterBenchmark(("query/" + name + "/" + what).c_str(), fn)->UseManualTime()->Unit(benchmark::kMicrosecond);
@@ -232,6 +256,25 @@ void register_probe(const std::string& name, const std::shared_ptr<const Scene>&
           if (i == 0) benchmark::DoNotOptimize(s->hulls->ray_cast_batch(probe->rays, batch));
         },
         [&](int i) { benchmark::DoNotOptimize(s->triangles->ray_cast(probe->rays[i], r)); });
+  });
+  // Batches of every pose, repeated to a few thousand queries: one thread
+  // against two.
+  reg("contacts_batch_threads", [s, probe](benchmark::State& state) {
+    std::vector<ContactRequest> requests;
+    for (int copy = 0; copy < kBatchCopies; ++copy)
+      for (const Eigen::Isometry3d& pose : probe->poses)
+        requests.push_back({copy % 2 ? QueryShape::sphere(probe->radius) : QueryShape::capsule(probe->radius, probe->half_height),
+                            pose, 64});
+    std::vector<ContactResult> results;
+    one_thread_then_two(state, static_cast<int>(requests.size()),
+                        [&](QueryThreads* threads) { benchmark::DoNotOptimize(s->hulls->contacts_batch(requests, results, threads)); });
+  });
+  reg("ray_batch_threads", [s, probe](benchmark::State& state) {
+    std::vector<RayRequest> requests;
+    for (int copy = 0; copy < kBatchCopies; ++copy) requests.insert(requests.end(), probe->rays.begin(), probe->rays.end());
+    std::vector<RayResult> results;
+    one_thread_then_two(state, static_cast<int>(requests.size()),
+                        [&](QueryThreads* threads) { benchmark::DoNotOptimize(s->hulls->ray_cast_batch(requests, results, threads)); });
   });
   reg("distance_sphere", [s, probe](benchmark::State& state) {
     DistanceResult r;
@@ -282,7 +325,8 @@ void register_scene(const std::string& name, const std::shared_ptr<const Scene>&
 // The rows register_probe adds, for filter_selects_scene.
 const char* const kRows[] = {"touches_capsule", "contacts_capsule", "overlap_capsule", "touches_sphere",
                              "contacts_sphere", "overlap_sphere",   "ray",             "ray_batch",
-                             "distance_sphere", "sliding_sphere",   "sliding_capsule"};
+                             "contacts_batch_threads", "ray_batch_threads", "distance_sphere", "sliding_sphere",
+                             "sliding_capsule"};
 
 // Whether `filter` (--benchmark_filter's value: a regular expression, empty
 // for all) selects some benchmark of `scene`, so that only those scenes are
