@@ -13,6 +13,12 @@ namespace hullcover::bvh::detail {
 namespace {
 
 constexpr float kFloatInfinity = std::numeric_limits<float>::infinity();
+// Each lane's slot within its block.
+alignas(16) constexpr float kLaneSlots[4] = {0.0f, 1.0f, 2.0f, 3.0f};
+// Bound on the rounding of s_i (n_j . n_i) relative to s_i, for unit
+// normals: the dot's three products and two sums, the product with s_i,
+// and the normals' own rounding to float, each within a few u.
+constexpr double kFootSlack = 32.0 * kFloatUnit;
 
 // Sizes entering a bound: |x|_1 of a float point, in double.
 double l1(const float q[3]) { return std::abs(double(q[0])) + std::abs(double(q[1])) + std::abs(double(q[2])); }
@@ -86,18 +92,59 @@ FloatVerdict PackedPlanes::sphere(int h, const Eigen::Vector3d& p, double radius
   float q[3];
   about_centre(p, hull.centre, q);
   const Float4 qx = Float4::all(q[0]), qy = Float4::all(q[1]), qz = Float4::all(q[2]);
-  Float4 outside = Float4::all(-kFloatInfinity);
-  const PlaneBlock* block = blocks_.data() + hull.first_block;
-  for (std::uint32_t b = 0; b < hull.blocks; ++b, ++block) {
-    const Float4 s = Float4::load(block->nx) * qx + Float4::load(block->ny) * qy + Float4::load(block->nz) * qz +
-                     Float4::load(block->d);
-    outside = max(s, outside);
+  // The largest signed distance, and in each lane the slot (4 x block +
+  // lane) where that lane's largest was seen.
+  Float4 outside = Float4::all(-kFloatInfinity), slot = Float4::all(0.0f);
+  const Float4 lane_slot = Float4::load(kLaneSlots);
+  const PlaneBlock* first = blocks_.data() + hull.first_block;
+  for (std::uint32_t b = 0; b < hull.blocks; ++b) {
+    const PlaneBlock& block = first[b];
+    const Float4 s = Float4::load(block.nx) * qx + Float4::load(block.ny) * qy + Float4::load(block.nz) * qz +
+                     Float4::load(block.d);
+    const Float4 larger = s > outside;
+    outside = select(larger, s, outside);
+    slot = select(larger, lane_slot + Float4::all(static_cast<float>(4 * b)), slot);
   }
-  const double most = largest_lane(outside);
+  const float most = largest_lane(outside);
   const double slack = kFloatPlaneSlack * (l1(q) + hull.reach + radius) + exact_slack(p, hull.reach, radius);
   if (most > radius + slack) return FloatVerdict::apart;
   if (most < -slack) return FloatVerdict::meets;
-  return FloatVerdict::unsure;
+  if (most > radius - slack) return FloatVerdict::unsure;
+  // The centre is in front of plane i (the largest), nearer than the
+  // radius. Its foot on that plane, f = p - s_i n_i, is within s_i < radius
+  // of p; when f is behind every other plane it is in the hull, so the
+  // sphere meets it. The most common case by far: a character on a floor,
+  // against a wall, or on a flat polygon's face.
+  float slots[4], values[4];
+  slot.store(slots);
+  outside.store(values);
+  int lane = 0;
+  while (values[lane] != most) ++lane;
+  const int at = static_cast<int>(slots[lane]);
+  const PlaneBlock& own = first[at / 4];
+  const float ix = own.nx[at % 4], iy = own.ny[at % 4], iz = own.nz[at % 4], id = own.d[at % 4];
+  const Float4 nix = Float4::all(ix), niy = Float4::all(iy), niz = Float4::all(iz), nid = Float4::all(id);
+  const Float4 m = Float4::all(most);
+  // s_j(f) = s_j(p) - s_i (n_j . n_i): off by the two distances' rounding
+  // (slack) and the product's, which is within 32 u of s_i <= radius.
+  const Float4 margin = Float4::all(-float_at_or_above(2.0 * slack + kFootSlack * radius));
+  for (std::uint32_t b = 0; b < hull.blocks; ++b) {
+    const PlaneBlock& block = first[b];
+    const Float4 nx = Float4::load(block.nx), ny = Float4::load(block.ny), nz = Float4::load(block.nz);
+    const Float4 d = Float4::load(block.d);
+    const Float4 s = nx * qx + ny * qy + nz * qz + d;
+    const Float4 at_foot = s - m * (nx * nix + ny * niy + nz * niz);
+    // Plane i itself (and its copies padding the last block) holds f; a
+    // plane facing exactly the other way (a flat polygon's back) holds it
+    // too, since no point is in front of both.
+    const Float4 itself = (nx >= nix) & (nx <= nix) & (ny >= niy) & (ny <= niy) & (nz >= niz) & (nz <= niz) &
+                          (d >= nid) & (d <= nid);
+    const Float4 zero = Float4::all(0.0f);
+    const Float4 opposite = ((nx + nix) >= zero) & ((nx + nix) <= zero) & ((ny + niy) >= zero) &
+                            ((ny + niy) <= zero) & ((nz + niz) >= zero) & ((nz + niz) <= zero);
+    if (((at_foot <= margin) | itself | opposite).bits() != 0xf) return FloatVerdict::unsure;
+  }
+  return FloatVerdict::meets;
 }
 
 PackedPlanes::Clip PackedPlanes::clip(const HullRecord& hull, const float q0[3], const float v[3], float span,
