@@ -30,6 +30,7 @@ set_target_properties(hullcover_covering PROPERTIES EXPORT_NAME covering)
 set_target_properties(hullcover_lib PROPERTIES EXPORT_NAME core)
 set_target_properties(hullcover_bvh PROPERTIES EXPORT_NAME bvh)
 set_target_properties(hullcover_bvh_covering PROPERTIES EXPORT_NAME bvh_covering)
+set_target_properties(hullcover_bvh_fcl PROPERTIES EXPORT_NAME bvh_fcl)
 set_target_properties(hullcover_validate PROPERTIES EXPORT_NAME validate)
 
 # hullcover_install_component(COMPONENT TARGETS target...)
@@ -53,7 +54,7 @@ function(hullcover_install_component component)
 endfunction()
 
 hullcover_install_component(geometry TARGETS hullcover_geometry)
-hullcover_install_component(bvh TARGETS hullcover_bvh)
+hullcover_install_component(bvh TARGETS hullcover_bvh hullcover_bvh_fcl)
 hullcover_install_component(core TARGETS hullcover_mesh hullcover_covering hullcover_lib)
 hullcover_install_component(validate TARGETS hullcover_validate hullcover_bvh_covering)
 

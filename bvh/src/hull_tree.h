@@ -96,15 +96,18 @@ private:
   public:
     explicit WalkStack(size_t height) {
       if (3 * height + 5 > kStackOnCaller) heap_.resize(3 * height + 5);
+      data_ = heap_.empty() ? local_.data() : heap_.data();
     }
-    void push(const Entry& e) { data()[size_++] = e; }
-    Entry pop() { return data()[--size_]; }
+    WalkStack(const WalkStack&) = delete;
+    WalkStack& operator=(const WalkStack&) = delete;
+    void push(const Entry& e) { data_[size_++] = e; }
+    Entry pop() { return data_[--size_]; }
     bool empty() const { return size_ == 0; }
 
   private:
-    Entry* data() { return heap_.empty() ? local_.data() : heap_.data(); }
     std::array<Entry, kStackOnCaller> local_;  // not cleared: written before read
     std::vector<Entry> heap_;
+    Entry* data_ = nullptr;
     size_t size_ = 0;
   };
 
