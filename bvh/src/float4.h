@@ -124,9 +124,22 @@ inline float float_at_or_below(double x) {
   constexpr float kLargest = std::numeric_limits<float>::max();
   if (x > kLargest) return kLargest;  // beyond float's range: the cast would not be defined
   if (x < -kLargest) return -std::numeric_limits<float>::infinity();
-  float f = static_cast<float>(x);
-  if (static_cast<double>(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
-  return f;
+  const float f = static_cast<float>(x);
+  if (!(static_cast<double>(f) > x)) return f;
+  // The next float down, by its bits (a query rounds a few coordinates;
+  // std::nextafter is a library call): a positive float's pattern one
+  // less, a negative one's one more, and below zero the least negative.
+  std::uint32_t bits;
+  __builtin_memcpy(&bits, &f, sizeof bits);
+  if (f > 0.0f)
+    --bits;
+  else if (f < 0.0f)
+    ++bits;
+  else
+    bits = 0x80000001u;  // -denorm_min
+  float below;
+  __builtin_memcpy(&below, &bits, sizeof below);
+  return below;
 }
 /// The float nearest `x` at or above it; see float_at_or_below.
 inline float float_at_or_above(double x) { return -float_at_or_below(-x); }

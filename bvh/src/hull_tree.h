@@ -45,7 +45,7 @@ public:
   /// until a call returns true. Returns whether one did.
   template <typename Visit>
   bool find_in_box(const Aabb& box, Visit&& visit) const {
-    return find_where(box, [](const WideNode&) { return 0xf; }, visit);
+    return find_where(box, 0.5 * (box.min + box.max), [](Float4) { return 0xf; }, visit);
   }
 
   /// The same for the boxes within `radius` of `centre` (a sphere's
@@ -120,36 +120,38 @@ private:
   }
 
   // Calls visit(h) for the leaves whose boxes, and whose ancestors' boxes,
-  // meet `box` and pass `lane_test` (a lane mask per node), until a call
+  // meet `box` and pass `lane_test` (a lane mask from the lanes' squared
+  // float gaps to `centre`), nearest to `centre` first, until a call
   // returns true.
   template <typename LaneTest, typename Visit>
-  bool find_where(const Aabb& box, LaneTest&& lane_test, Visit&& visit) const;
+  bool find_where(const Aabb& box, const Eigen::Vector3d& centre, LaneTest&& lane_test, Visit&& visit) const;
 };
 
 template <typename LaneTest, typename Visit>
-bool HullTree::find_where(const Aabb& box, LaneTest&& lane_test, Visit&& visit) const {
+bool HullTree::find_where(const Aabb& box, const Eigen::Vector3d& centre, LaneTest&& lane_test,
+                          Visit&& visit) const {
   Float4 lo[3], hi[3];
   for (int k = 0; k < 3; ++k) {
     lo[k] = Float4::all(float_at_or_below(box.min[k]));
     hi[k] = Float4::all(float_at_or_above(box.max[k]));
   }
-  // The query box's centre: children are taken nearest to it first, so a
-  // yes/no query, which stops at the first touching hull, tends to meet
-  // it early. Any order finds the same hulls.
+  // Children are taken nearest to the query's centre first, so a yes/no
+  // query, which stops at the first touching hull, tends to meet it early.
+  // Any order finds the same hulls.
   Float4 mid[3];
-  for (int k = 0; k < 3; ++k) mid[k] = Float4::all(static_cast<float>(0.5 * (box.min[k] + box.max[k])));
+  for (int k = 0; k < 3; ++k) mid[k] = Float4::all(static_cast<float>(centre[k]));
   const Float4 zero = Float4::all(0.0f);
   WalkStack<std::int32_t> stack(height_);
   stack.push(0);
   while (!stack.empty()) {
     const WideNode& node = nodes_[stack.pop()];
-    int lanes = lanes_meeting(node, lo, hi) & lane_test(node);
-    if (!lanes) continue;
     Float4 gap2 = zero;
     for (int k = 0; k < 3; ++k) {
       const Float4 g = max(max(Float4::load(node.face[k]) - mid[k], mid[k] - Float4::load(node.face[3 + k])), zero);
       gap2 = gap2 + g * g;
     }
+    int lanes = lanes_meeting(node, lo, hi) & lane_test(gap2);
+    if (!lanes) continue;
     float key[4];
     gap2.store(key);
     int order[4], met = 0;
@@ -179,18 +181,8 @@ bool HullTree::find_near_point(const Eigen::Vector3d& centre, double radius, Vis
   // Float gaps from the rounded centre are off by at most a few roundings
   // of the coordinates' size: widen the reach by that before squaring.
   const float limit = float_at_or_above(reach + 8.0 * kFloatUnit * (scale + reach));
-  const Float4 cx = Float4::all(static_cast<float>(centre.x())), cy = Float4::all(static_cast<float>(centre.y())),
-               cz = Float4::all(static_cast<float>(centre.z()));
-  const Float4 zero = Float4::all(0.0f), limit2 = Float4::all(limit) * Float4::all(limit);
-  return find_where(
-      box,
-      [&](const WideNode& n) {
-        const Float4 gx = max(max(Float4::load(n.face[0]) - cx, cx - Float4::load(n.face[3])), zero);
-        const Float4 gy = max(max(Float4::load(n.face[1]) - cy, cy - Float4::load(n.face[4])), zero);
-        const Float4 gz = max(max(Float4::load(n.face[2]) - cz, cz - Float4::load(n.face[5])), zero);
-        return (gx * gx + gy * gy + gz * gz <= limit2).bits();
-      },
-      visit);
+  const Float4 limit2 = Float4::all(limit) * Float4::all(limit);
+  return find_where(box, centre, [&](Float4 gap2) { return (gap2 <= limit2).bits(); }, visit);
 }
 
 template <typename Visit>

@@ -6,10 +6,13 @@
 #include "box_hulls.h"
 #include "hullcover/bvh/hull_contact.h"
 
-#include "packed_planes.h"  // private to bvh
+#include "float4.h"  // private to bvh
+#include "packed_planes.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 
 namespace hullcover::bvh {
@@ -97,6 +100,32 @@ TEST(PackedPlanes, SettledVerdictsAreTheExactTests) {
   EXPECT_GT(settled_apart, 1000);
   EXPECT_GT(settled_meets, 500);
   EXPECT_GT(unsure, 100);
+}
+
+// The outward rounding every float box and bound rests on: the float at or
+// below (above) x, and the next one up (down) is beyond x.
+TEST(FloatRounding, AtOrBelowAndAboveAreTheNearestFloatsOutward) {
+  using detail::float_at_or_above;
+  using detail::float_at_or_below;
+  std::mt19937 rng(41);
+  std::uniform_real_distribution<double> mantissa(-1.0, 1.0);
+  std::uniform_int_distribution<int> exponent(-140, 127);
+  std::vector<double> xs = {0.0, -0.0, 1.0, -1.0, 1e7 + 0.5, -(1e7 + 0.5), 1e-45, -1e-45, 1e-300, -1e-300,
+                            static_cast<double>(std::numeric_limits<float>::max()),
+                            -static_cast<double>(std::numeric_limits<float>::max())};
+  for (int i = 0; i < 20000; ++i) xs.push_back(std::ldexp(mantissa(rng), exponent(rng)));
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  for (const double x : xs) {
+    const float below = float_at_or_below(x), above = float_at_or_above(x);
+    EXPECT_LE(static_cast<double>(below), x) << x;
+    EXPECT_GE(static_cast<double>(above), x) << x;
+    EXPECT_GT(static_cast<double>(std::nextafter(below, kInf)), x) << x;
+    EXPECT_LT(static_cast<double>(std::nextafter(above, -kInf)), x) << x;
+  }
+  EXPECT_EQ(float_at_or_below(1e7 + 0.5), 1e7f);
+  EXPECT_EQ(float_at_or_above(1e7 + 0.5), 1e7f + 1.0f);
+  EXPECT_EQ(float_at_or_below(1e300), std::numeric_limits<float>::max());
+  EXPECT_EQ(float_at_or_below(-1e300), -kInf);
 }
 
 } // namespace
