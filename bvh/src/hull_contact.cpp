@@ -1,6 +1,7 @@
 #include "hullcover/bvh/hull_contact.h"
 
 #include "separating_axes.h"
+#include "sphere_face_contact.h"
 #include "surface_normals.h"
 
 #include "hullcover/geometry/tolerances.h"
@@ -220,6 +221,26 @@ std::optional<Contact> sphere_contact(const RuntimeHull& hull, const Eigen::Vect
   return on_surface(hull, Contact{-1, c.on_hull, normal, radius - c.distance}, radius,
                     [&](const Plane& facet) { return facet.signed_distance(centre); });
 }
+
+namespace detail {
+std::optional<Contact> sphere_contact_in_front_of(const RuntimeHull& hull, const Eigen::Vector3d& centre,
+                                                  double radius, int facet) {
+  // sphere_contact's path for a centre outside, in front of `facet` and
+  // over it: front_facet would find `facet` (outside = its distance > 0),
+  // and closest_to_point_outside its foot, in the same operations as here.
+  if (facet < 0 || facet >= static_cast<int>(hull.shape.facets.size())) return sphere_contact(hull, centre, radius);
+  const Plane& plane = hull.shape.planes[facet];
+  const double in_front = plane.signed_distance(centre);
+  if (!(in_front > 0.0) || in_front > radius) return sphere_contact(hull, centre, radius);
+  const Eigen::Vector3d foot = centre - plane.signed_distance(centre) * plane.normal;
+  const double gap = (foot - centre).norm();
+  if (!inside_facet(hull, facet, foot) || gap > in_front * (1.0 + kTouchingFraction) || gap > radius)
+    return sphere_contact(hull, centre, radius);
+  const Eigen::Vector3d normal = gap > touching_distance(hull) ? Eigen::Vector3d((centre - foot) / gap) : plane.normal;
+  return on_surface(hull, Contact{-1, foot, normal, radius - gap}, radius,
+                    [&](const Plane& p) { return p.signed_distance(centre); });
+}
+} // namespace detail
 
 std::optional<Contact> capsule_contact(const RuntimeHull& hull, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                        double radius) {

@@ -68,6 +68,7 @@ PackedPlanes::PackedPlanes(const std::vector<RuntimeHull>& hulls) {
     }
     record.reach = float_at_or_above(reach);
     record.first_block = static_cast<std::uint32_t>(blocks_.size());
+    record.planes = static_cast<std::uint32_t>(nx.size());
     record.blocks = unit && std::isfinite(record.reach) ? static_cast<std::uint32_t>((nx.size() + 3) / 4) : 0;
     for (std::uint32_t b = 0; b < record.blocks; ++b) {
       PlaneBlock block{};
@@ -86,7 +87,8 @@ PackedPlanes::PackedPlanes(const std::vector<RuntimeHull>& hulls) {
 
 size_t PackedPlanes::bytes() const { return blocks_.size() * sizeof(PlaneBlock) + hulls_.size() * sizeof(HullRecord); }
 
-FloatVerdict PackedPlanes::sphere(int h, const Eigen::Vector3d& p, double radius) const {
+FloatVerdict PackedPlanes::sphere(int h, const Eigen::Vector3d& p, double radius, int* face) const {
+  if (face) *face = -1;
   const HullRecord& hull = hulls_[h];
   if (hull.blocks == 0) return FloatVerdict::unsure;
   float q[3];
@@ -144,6 +146,11 @@ FloatVerdict PackedPlanes::sphere(int h, const Eigen::Vector3d& p, double radius
                             ((ny + niy) <= zero) & ((nz + niz) >= zero) & ((nz + niz) <= zero);
     if (((at_foot <= margin) | itself | opposite).bits() != 0xf) return FloatVerdict::unsure;
   }
+  // Every other plane then has p less far in front than plane i does, by
+  // more than the margin (s_j(p) = s_j(f) + s_i (n_j . n_i) <= s_j(f) + s_i):
+  // plane i is the one the exact code finds p farthest in front of, and p's
+  // foot on it lies inside the hull.
+  if (face && most > slack) *face = static_cast<std::uint32_t>(at) < hull.planes ? at : 0;
   return FloatVerdict::meets;
 }
 

@@ -42,9 +42,13 @@ public:
   /// A sphere (centre p, radius >= 0) against hull h's planes: `apart` when
   /// p is farther than radius in front of some plane (then the hull, which
   /// every plane supports, is farther than radius from p), `meets` when p
-  /// is behind every plane (inside the hull), else `unsure`. Each verdict
-  /// holds with the float rounding bounded as above.
-  FloatVerdict sphere(int h, const Eigen::Vector3d& p, double radius) const;
+  /// is behind every plane (inside the hull) or in front of exactly one
+  /// plane, nearer than the radius, with its foot on that plane inside the
+  /// hull; else `unsure`. Each verdict holds with the float rounding
+  /// bounded as above. In the second case `face`, when given, is set to
+  /// that plane's index (p then lies in front of it by more than the
+  /// slack and in front of no other plane), else to -1.
+  FloatVerdict sphere(int h, const Eigen::Vector3d& p, double radius, int* face = nullptr) const;
 
   /// Segment a-b swept by `radius` (a capsule; radius 0: the segment)
   /// against hull h: `apart` when no point of the segment lies behind
@@ -75,6 +79,7 @@ private:
     float reach;  // >= the distance from the centre to any of the hull's vertices
     std::uint32_t first_block;
     std::uint32_t blocks;
+    std::uint32_t planes;  // before padding
   };
   std::vector<PlaneBlock> blocks_;
   std::vector<HullRecord> hulls_;
@@ -97,8 +102,9 @@ struct PlanesOf {
   const PackedPlanes* store = nullptr;
   int local = 0;
 
-  FloatVerdict sphere(const Eigen::Vector3d& p, double radius) const {
-    return store ? store->sphere(local, p, radius) : FloatVerdict::unsure;
+  FloatVerdict sphere(const Eigen::Vector3d& p, double radius, int* face = nullptr) const {
+    if (face) *face = -1;
+    return store ? store->sphere(local, p, radius, face) : FloatVerdict::unsure;
   }
   FloatVerdict segment(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius) const {
     return store ? store->segment(local, a, b, radius) : FloatVerdict::unsure;

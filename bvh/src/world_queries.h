@@ -56,10 +56,7 @@ struct PlacedShape {
     const FloatVerdict v = float_verdict(planes);
     return v == FloatVerdict::unsure ? touches(hull) : v == FloatVerdict::meets;
   }
-  std::optional<Contact> contact(const RuntimeHull& hull, PlanesOf planes) const {
-    if (float_verdict(planes) == FloatVerdict::apart) return std::nullopt;
-    return contact(hull);
-  }
+  std::optional<Contact> contact(const RuntimeHull& hull, PlanesOf planes) const;
 };
 
 /// Checks a shape and pose and places the shape; fails as
