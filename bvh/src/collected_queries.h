@@ -47,8 +47,9 @@ Status overlapping_query(const Source& source, const OverlapRequest& request, co
     collector.reset();
     std::optional<PlacedShape> placed;
     if (Status s = place(request.shape, request.pose, placed); !s.ok()) return s;
+    const bool all = filter.admits_all();
     find_candidates(source, *placed, [&](int h, const RuntimeHull& hull, PlanesOf planes) {
-      if (!filter.admits(h, hull.material) || !placed->touches(hull, planes)) return false;
+      if ((!all && !filter.admits(h, hull.material)) || !placed->touches(hull, planes)) return false;
       collector.add(h);
       return collector.stopped();
     });
@@ -64,8 +65,9 @@ Status collide_query(const Source& source, const OverlapRequest& request, const 
     collector.reset();
     std::optional<PlacedShape> placed;
     if (Status s = place(request.shape, request.pose, placed); !s.ok()) return s;
+    const bool all = filter.admits_all();
     find_candidates(source, *placed, [&](int h, const RuntimeHull& hull, PlanesOf planes) {
-      if (!filter.admits(h, hull.material)) return false;
+      if (!all && !filter.admits(h, hull.material)) return false;
       if (std::optional<Contact> c = placed->contact(hull, planes)) {
         c->hull = h;
         collector.add(*c);
@@ -83,8 +85,9 @@ void cast_checked_ray(const Source& source, const Eigen::Vector3d& origin, const
                       double max_distance, const HullFilter& filter, HitCollector<RayHit>& collector) {
   collector.reset();
   double reach = std::min(max_distance, collector.reach());
+  const bool all = filter.admits_all();
   source.along_ray(origin, dir.cwiseInverse(), reach, [&](int h, const RuntimeHull& hull, PlanesOf planes, double& best) {
-    if (!filter.admits(h, hull.material)) return;
+    if (!all && !filter.admits(h, hull.material)) return;
     // The float clip skips hulls the ray misses, or enters only past the
     // reach (equal t is kept: it may go to the lower index).
     double enter;

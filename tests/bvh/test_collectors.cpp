@@ -1,11 +1,11 @@
-// The collector and filter forms of the queries (collectors.h) and the
-// batches on QueryThreads: the same answers as the plain calls, filters
-// that skip exactly what they say, collectors that stop the walk, and
-// batches that answer alike on any thread count.
+// The collector and filter forms of the queries (collectors.h): the same
+// answers as the plain calls, filters that skip exactly what they say, and
+// collectors that stop the walk.
 
 #include "box_hulls.h"
 #include "hullcover/bvh/hull_world.h"
 
+#include "box_field.h"
 #include "poses.h"
 
 #include <gtest/gtest.h>
@@ -18,51 +18,10 @@ namespace {
 
 using V = Eigen::Vector3d;
 using test::at;
-using test::box_hull;
-
-// 400 boxes of random sizes in a 40 m cube, materials 0-3 in turn: many
-// overlapping candidates per query.
-std::shared_ptr<const HullWorld> box_field() {
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> where(0.0, 40.0), size(0.2, 3.0);
-  std::vector<RuntimeHull> hulls;
-  for (int i = 0; i < 400; ++i) {
-    const V lo(where(rng), where(rng), where(rng));
-    hulls.push_back(box_hull(lo, lo + V(size(rng), size(rng), size(rng))));
-    hulls.back().material = i % 4;
-  }
-  auto world = HullWorld::build(std::move(hulls));
-  EXPECT_TRUE(world.ok()) << world.status().message();
-  return world.value();
-}
-
-struct Probe {
-  ContactRequest shape;
-  RayRequest ray;
-};
-
-std::vector<Probe> probes(int count) {
-  std::mt19937 rng(12);
-  std::uniform_real_distribution<double> where(0.0, 40.0);
-  std::vector<Probe> out;
-  for (int i = 0; i < count; ++i) {
-    const QueryShape shape = i % 3 == 0 ? QueryShape::sphere(1.0)
-                             : i % 3 == 1 ? QueryShape::capsule(0.6, 1.0)
-                                          : QueryShape::box(V(0.8, 0.5, 1.2));
-    Eigen::Isometry3d pose = at(V(where(rng), where(rng), where(rng)));
-    pose.linear() = Eigen::Quaterniond(Eigen::Vector4d::Random().normalized()).toRotationMatrix();
-    out.push_back({{shape, pose, 1 << 20}, {pose.translation(), pose.linear().col(0), 15.0}});
-  }
-  return out;
-}
-
-bool same_contacts(const std::vector<Contact>& a, const std::vector<Contact>& b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i)
-    if (a[i].hull != b[i].hull || a[i].depth != b[i].depth || a[i].normal != b[i].normal || a[i].point != b[i].point)
-      return false;
-  return true;
-}
+using test::box_field;
+using test::Probe;
+using test::probes;
+using test::same_contacts;
 
 void sort_deepest_first(std::vector<Contact>& contacts) {
   std::sort(contacts.begin(), contacts.end(), [](const Contact& x, const Contact& y) {
@@ -193,70 +152,6 @@ TEST(Collectors, ACallbackStopsTheWalk) {
     many += all.hulls.size() > 2;
   }
   EXPECT_GT(many, 5);
-}
-
-TEST(QueryThreads, BatchesAnswerAlikeOnAnyThreadCount) {
-  const auto world = box_field();
-  std::vector<ContactRequest> contacts;
-  std::vector<OverlapRequest> touches;
-  std::vector<RayRequest> rays;
-  for (const Probe& p : probes(1000)) {
-    contacts.push_back(p.shape);
-    touches.push_back({p.shape.shape, p.shape.pose});
-    rays.push_back(p.ray);
-  }
-  std::vector<ContactResult> c1, cn;
-  std::vector<TouchResult> t1, tn;
-  std::vector<RayResult> r1, rn;
-  ASSERT_TRUE(world->contacts_batch(contacts, c1).ok());
-  ASSERT_TRUE(world->touches_batch(touches, t1).ok());
-  ASSERT_TRUE(world->ray_cast_batch(rays, r1).ok());
-  for (size_t i = 0; i < contacts.size(); ++i) {
-    ContactResult one;
-    ASSERT_TRUE(world->contacts(contacts[i], one).ok());
-    ASSERT_TRUE(same_contacts(one.contacts, c1[i].contacts)) << i;
-  }
-  for (int threads : {1, 2, 3, 8}) {
-    auto pool = QueryThreads::start(threads);
-    ASSERT_TRUE(pool.ok()) << pool.status().message();
-    ASSERT_EQ(pool.value()->size(), threads);
-    ASSERT_TRUE(world->contacts_batch(contacts, cn, pool.value().get()).ok());
-    ASSERT_TRUE(world->touches_batch(touches, tn, pool.value().get()).ok());
-    ASSERT_TRUE(world->ray_cast_batch(rays, rn, pool.value().get()).ok());
-    ASSERT_EQ(cn.size(), contacts.size());
-    for (size_t i = 0; i < contacts.size(); ++i) {
-      EXPECT_TRUE(same_contacts(cn[i].contacts, c1[i].contacts)) << threads << " threads, request " << i;
-      EXPECT_EQ(tn[i].touching, t1[i].touching) << i;
-      EXPECT_EQ(tn[i].hull, t1[i].hull) << i;
-      EXPECT_EQ(rn[i].hit, r1[i].hit) << i;
-      EXPECT_EQ(rn[i].first.hull, r1[i].first.hull) << i;
-      EXPECT_EQ(rn[i].first.t, r1[i].first.t) << i;
-    }
-  }
-}
-
-TEST(QueryThreads, ABatchNamesItsLowestBadRequestOnAnyThreadCount) {
-  const auto world = box_field();
-  std::vector<RayRequest> rays(500);
-  rays[317].direction = V::Zero();
-  rays[401].max_distance = -1.0;
-  std::vector<ContactRequest> contacts(500, ContactRequest{QueryShape::sphere(1.0), at(V(1, 1, 1)), 8});
-  contacts[250].shape.radius = -1.0;
-  contacts[260].max_contacts = 0;
-  for (int threads : {1, 2, 4}) {
-    auto pool = QueryThreads::start(threads).value();
-    std::vector<RayResult> ray_results;
-    const Status r = world->ray_cast_batch(rays, ray_results, pool.get());
-    EXPECT_EQ(r.code(), StatusCode::invalid_argument);
-    EXPECT_NE(r.message().find("ray 317 of the batch"), std::string::npos) << r.message();
-    EXPECT_TRUE(ray_results.empty());
-    std::vector<ContactResult> contact_results;
-    const Status c = world->contacts_batch(contacts, contact_results, pool.get());
-    EXPECT_EQ(c.code(), StatusCode::invalid_argument);
-    EXPECT_NE(c.message().find("request 250 of the batch"), std::string::npos) << c.message();
-  }
-  EXPECT_EQ(QueryThreads::start(-1).status().code(), StatusCode::invalid_argument);
-  EXPECT_EQ(QueryThreads::start(QueryThreads::kMostThreads + 1).status().code(), StatusCode::invalid_argument);
 }
 
 } // namespace

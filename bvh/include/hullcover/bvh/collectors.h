@@ -25,6 +25,10 @@ struct HullFilter {
   bool (*accept)(const void* context, int hull) = nullptr;
   const void* context = nullptr;
 
+  /// Whether every hull is considered (the default): queries then skip
+  /// the test, and never read a hull's material for it.
+  bool admits_all() const { return material_mask == ~std::uint64_t{0} && accept == nullptr; }
+
   /// Whether hull `hull`, of material `material`, is considered.
   bool admits(int hull, int material) const {
     const int bit = material < 0 ? 0 : material > 63 ? 63 : material;

@@ -1,9 +1,12 @@
 #pragma once
 /// \file hull_world.h
-/// The runtime a game server links: a covering's hulls in FCL's dynamic
-/// AABB tree (broad phase, walked directly: no callback or allocation per
-/// query) with hullcover's exact narrow phase for every query: yes/no,
-/// contacts, rays, distances and sweeps (hull_contact.h).
+/// The runtime a game server links: a covering's hulls in a four-wide float
+/// box tree with every hull's planes packed in floats (walked directly: no
+/// callback or allocation per query; float tests only skip or confirm
+/// beyond their rounding bounds), and hullcover's exact narrow phase for
+/// every answer: yes/no, contacts, rays, distances and sweeps
+/// (hull_contact.h); collector and filter forms (collectors.h) and batches
+/// on threads (query_threads.h).
 ///
 /// Every query takes a Request and fills a Result (as FCL does), returns a
 /// [[nodiscard]] Status and never throws. Queries are const and safe to run
