@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <mutex>
 #include <string>
@@ -13,19 +14,41 @@
 
 namespace hullcover::bvh {
 
+namespace {
+// How long a thread between batches, or a caller waiting for the last
+// chunks, watches for the next event before it sleeps: a server asks
+// batches back to back each tick, and a sleeping thread takes tens of
+// microseconds to wake, as long as a whole batch of short rays.
+constexpr auto kWatchBeforeSleeping = std::chrono::microseconds(200);
+
+// Calls `ready()` until it is true or the watch is over; whether it was.
+template <typename Ready>
+bool watch(Ready&& ready) {
+  const auto until = std::chrono::steady_clock::now() + kWatchBeforeSleeping;
+  for (;;) {
+    for (int i = 0; i < 64; ++i) {
+      if (ready()) return true;
+      std::this_thread::yield();
+    }
+    if (std::chrono::steady_clock::now() >= until) return ready();
+  }
+}
+} // namespace
+
 struct QueryThreads::Shared {
   std::vector<std::thread> workers;
   std::mutex batch_mutex;  // one batch at a time
   std::mutex mutex;
   std::condition_variable wake, done;
-  // The batch in progress, published under `mutex` with a new generation.
-  std::uint64_t generation = 0;
-  bool quitting = false;
+  // The batch in progress, published under `mutex` with a new generation
+  // (read without it only to watch for a change).
+  std::atomic<std::uint64_t> generation{0};
+  std::atomic<bool> quitting{false};
   size_t count = 0, chunk = 1;
   void (*body)(size_t, size_t, void*) = nullptr;
   void* context = nullptr;
   std::atomic<size_t> next{0};
-  int busy = 0;  // workers still in the batch
+  std::atomic<int> busy{0};  // workers still in the batch
 
   // Takes chunks until none is left.
   void take_chunks() {
@@ -39,15 +62,16 @@ struct QueryThreads::Shared {
   void work() {
     std::uint64_t seen = 0;
     for (;;) {
+      watch([&] { return quitting.load() || generation.load() != seen; });
       {
         std::unique_lock<std::mutex> lock(mutex);
-        wake.wait(lock, [&] { return quitting || generation != seen; });
-        if (quitting) return;
-        seen = generation;
+        wake.wait(lock, [&] { return quitting.load() || generation.load() != seen; });
+        if (quitting.load()) return;
+        seen = generation.load();
       }
       take_chunks();
       std::lock_guard<std::mutex> lock(mutex);
-      if (--busy == 0) done.notify_one();
+      if (busy.fetch_sub(1) == 1) done.notify_one();
     }
   }
 };
@@ -57,7 +81,7 @@ QueryThreads::QueryThreads() : shared_(std::make_unique<Shared>()) {}
 QueryThreads::~QueryThreads() {
   {
     std::lock_guard<std::mutex> lock(shared_->mutex);
-    shared_->quitting = true;
+    shared_->quitting.store(true);
   }
   shared_->wake.notify_all();
   for (std::thread& t : shared_->workers) t.join();
@@ -96,13 +120,14 @@ void QueryThreads::run(size_t count, size_t chunk, void (*body)(size_t, size_t, 
     s.body = body;
     s.context = context;
     s.next.store(0, std::memory_order_relaxed);
-    s.busy = static_cast<int>(s.workers.size());
-    ++s.generation;
+    s.busy.store(static_cast<int>(s.workers.size()));
+    s.generation.fetch_add(1);
   }
   s.wake.notify_all();
   s.take_chunks();
+  if (watch([&] { return s.busy.load() == 0; })) return;
   std::unique_lock<std::mutex> lock(s.mutex);
-  s.done.wait(lock, [&] { return s.busy == 0; });
+  s.done.wait(lock, [&] { return s.busy.load() == 0; });
 }
 
 } // namespace hullcover::bvh
