@@ -2,7 +2,9 @@
 // Four floats at once (private to bvh/): the lanes of the wide tree's box
 // tests and of the packed hulls' plane tests. SSE2 where the compiler offers
 // it (every x86-64 build), plain loops elsewhere; both give the same bits,
-// as every operation is a correctly rounded IEEE one per lane.
+// as every operation is a correctly rounded IEEE one per lane (a compiler
+// allowed to fuse a multiply and an add rounds once instead of twice: the
+// bits may then differ, never by more than the bounds built on them allow).
 
 #include <cmath>
 #include <cstdint>

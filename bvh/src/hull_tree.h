@@ -139,7 +139,7 @@ bool HullTree::find_where(const Aabb& box, const Eigen::Vector3d& centre, LaneTe
   // query, which stops at the first touching hull, tends to meet it early.
   // Any order finds the same hulls.
   Float4 mid[3];
-  for (int k = 0; k < 3; ++k) mid[k] = Float4::all(static_cast<float>(centre[k]));
+  for (int k = 0; k < 3; ++k) mid[k] = Float4::all(float_at_or_below(centre[k]));
   const Float4 zero = Float4::all(0.0f);
   WalkStack<std::int32_t> stack(height_);
   stack.push(0);
@@ -193,12 +193,21 @@ void HullTree::walk_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& in
   // comes out no later and the exit no earlier than exactly.
   Float4 near_origin[3], far_origin[3], inv[3];
   int near_face[3], far_face[3];
+  // An axis whose inverse direction is beyond float's range (a direction
+  // component under 3e-39, not zero) sets no limit here: the walk keeps
+  // every box that axis would have cut, never fewer.
+  int axes[3], axis_count = 0;
+  for (int k = 0; k < 3; ++k)
+    if (!(std::abs(inverse[k]) > std::numeric_limits<float>::max()) || std::isinf(inverse[k])) axes[axis_count++] = k;
   for (int k = 0; k < 3; ++k) {
     const bool negative = inverse[k] < 0.0;
     const float below = float_at_or_below(origin[k]), above = float_at_or_above(origin[k]);
     near_origin[k] = Float4::all(negative ? below : above);
     far_origin[k] = Float4::all(negative ? above : below);
-    inv[k] = Float4::all(static_cast<float>(inverse[k]));
+    const double inverse_in_range =
+        std::isinf(inverse[k]) ? inverse[k] : std::clamp(inverse[k], -double(std::numeric_limits<float>::max()),
+                                                         double(std::numeric_limits<float>::max()));
+    inv[k] = Float4::all(static_cast<float>(inverse_in_range));
     near_face[k] = negative ? 3 + k : k;
     far_face[k] = negative ? k : 3 + k;
   }
@@ -231,7 +240,8 @@ void HullTree::walk_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& in
     // gives 0 x infinity = NaN; max and min keep their second operand
     // then, so such an axis sets no limit, as it should.
     Float4 entry = zero, exit = Float4::all(reach_up);
-    for (int k = 0; k < 3; ++k) {
+    for (int j = 0; j < axis_count; ++j) {
+      const int k = axes[j];
       entry = max((Float4::load(n.face[near_face[k]]) - near_origin[k]) * inv[k], entry);
       exit = min((Float4::load(n.face[far_face[k]]) - far_origin[k]) * inv[k], exit);
     }

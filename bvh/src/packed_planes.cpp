@@ -15,6 +15,10 @@ namespace {
 constexpr float kFloatInfinity = std::numeric_limits<float>::infinity();
 // Each lane's slot within its block.
 alignas(16) constexpr float kLaneSlots[4] = {0.0f, 1.0f, 2.0f, 3.0f};
+// Largest coordinate, distance or radius the float tests take: sums of a
+// few such terms stay far inside float's range (3.4e38), so no test
+// overflows; anything larger is left to the exact tests.
+constexpr double kFloatTestRange = 1e30;
 // Bound on the rounding of s_i (n_j . n_i) relative to s_i, for unit
 // normals: the dot's three products and two sums, the product with s_i,
 // and the normals' own rounding to float, each within a few u.
@@ -25,8 +29,15 @@ double l1(const float q[3]) { return std::abs(double(q[0])) + std::abs(double(q[
 
 // `p` about a hull's centre, in float: the subtraction in double is exact
 // to within double's rounding, far below the one float rounding after it.
-void about_centre(const Eigen::Vector3d& p, const double centre[3], float q[3]) {
-  for (int k = 0; k < 3; ++k) q[k] = static_cast<float>(p[k] - centre[k]);
+// False, leaving q unset, when p is so far from the hull that float could
+// not hold it with the bounds' room (the float tests then stand aside).
+bool about_centre(const Eigen::Vector3d& p, const double centre[3], float q[3]) {
+  for (int k = 0; k < 3; ++k) {
+    const double x = p[k] - centre[k];
+    if (!(std::abs(x) <= kFloatTestRange)) return false;
+    q[k] = static_cast<float>(x);
+  }
+  return true;
 }
 
 // The exact tests count a shape as touching up to kTouchingFraction of
@@ -53,12 +64,12 @@ PackedPlanes::PackedPlanes(const std::vector<RuntimeHull>& hulls) {
     for (int k = 0; k < 3; ++k) record.centre[k] = centre[k];
     double reach = 0.0;
     for (const Eigen::Vector3d& v : hull.shape.vertices) reach = std::max(reach, (v - centre).norm());
-    // The bound takes each normal's components as at most 1 (unit normals):
-    // a hull with other normals, or none, is left to the exact tests.
+    // The bounds, and the foot of a point on a plane, take every normal as
+    // unit: a hull with other normals, or none, is left to the exact tests.
     bool unit = !hull.shape.planes.empty();
     std::vector<float> nx, ny, nz, d;
     for (const Plane& plane : hull.shape.planes) {
-      unit = unit && plane.normal.cwiseAbs().maxCoeff() <= 1.0 + kUnitNormalSlack;
+      unit = unit && std::abs(plane.normal.norm() - 1.0) <= kUnitNormalSlack;
       const double offset = plane.normal.dot(centre) - plane.offset;
       reach = std::max(reach, std::abs(offset));
       nx.push_back(static_cast<float>(plane.normal.x()));
@@ -92,7 +103,7 @@ FloatVerdict PackedPlanes::sphere(int h, const Eigen::Vector3d& p, double radius
   const HullRecord& hull = hulls_[h];
   if (hull.blocks == 0) return FloatVerdict::unsure;
   float q[3];
-  about_centre(p, hull.centre, q);
+  if (!about_centre(p, hull.centre, q) || !(radius <= kFloatTestRange)) return FloatVerdict::unsure;
   const Float4 qx = Float4::all(q[0]), qy = Float4::all(q[1]), qz = Float4::all(q[2]);
   // The largest signed distance, and in each lane the slot (4 x block +
   // lane) where that lane's largest was seen.
@@ -124,8 +135,14 @@ FloatVerdict PackedPlanes::sphere(int h, const Eigen::Vector3d& p, double radius
   while (values[lane] != most) ++lane;
   const int at = static_cast<int>(slots[lane]);
   const PlaneBlock& own = first[at / 4];
-  const float ix = own.nx[at % 4], iy = own.ny[at % 4], iz = own.nz[at % 4], id = own.d[at % 4];
-  const Float4 nix = Float4::all(ix), niy = Float4::all(iy), niz = Float4::all(iz), nid = Float4::all(id);
+  const float ix = own.nx[at % 4], iy = own.ny[at % 4], iz = own.nz[at % 4];
+  const Float4 nix = Float4::all(ix), niy = Float4::all(iy), niz = Float4::all(iz);
+  // Plane i by its index (slots past the hull's planes repeat plane 0), not
+  // by its values: another plane whose floats equal plane i's is tested.
+  const int own_index = static_cast<std::uint32_t>(at) < hull.planes ? at : 0;
+  const Float4 own_plane = Float4::all(static_cast<float>(own_index));
+  const Float4 planes_f = Float4::all(static_cast<float>(hull.planes));
+  const Float4 zero = Float4::all(0.0f);
   const Float4 m = Float4::all(most);
   // s_j(f) = s_j(p) - s_i (n_j . n_i): off by the two distances' rounding
   // (slack) and the product's, which is within 32 u of s_i <= radius.
@@ -133,15 +150,14 @@ FloatVerdict PackedPlanes::sphere(int h, const Eigen::Vector3d& p, double radius
   for (std::uint32_t b = 0; b < hull.blocks; ++b) {
     const PlaneBlock& block = first[b];
     const Float4 nx = Float4::load(block.nx), ny = Float4::load(block.ny), nz = Float4::load(block.nz);
-    const Float4 d = Float4::load(block.d);
-    const Float4 s = nx * qx + ny * qy + nz * qz + d;
+    const Float4 s = nx * qx + ny * qy + nz * qz + Float4::load(block.d);
     const Float4 at_foot = s - m * (nx * nix + ny * niy + nz * niz);
-    // Plane i itself (and its copies padding the last block) holds f; a
-    // plane facing exactly the other way (a flat polygon's back) holds it
-    // too, since no point is in front of both.
-    const Float4 itself = (nx >= nix) & (nx <= nix) & (ny >= niy) & (ny <= niy) & (nz >= niz) & (nz <= niz) &
-                          (d >= nid) & (d <= nid);
-    const Float4 zero = Float4::all(0.0f);
+    // Plane i itself (and, when it is plane 0, its copies padding the last
+    // block) holds f; a plane facing exactly the other way (a flat
+    // polygon's back) holds it too, since no point is in front of both.
+    const Float4 slots_here = lane_slot + Float4::all(static_cast<float>(4 * b));
+    const Float4 plane_here = select(slots_here < planes_f, slots_here, zero);
+    const Float4 itself = (plane_here >= own_plane) & (plane_here <= own_plane);
     const Float4 opposite = ((nx + nix) >= zero) & ((nx + nix) <= zero) & ((ny + niy) >= zero) &
                             ((ny + niy) <= zero) & ((nz + niz) >= zero) & ((nz + niz) <= zero);
     if (((at_foot <= margin) | itself | opposite).bits() != 0xf) return FloatVerdict::unsure;
@@ -150,7 +166,7 @@ FloatVerdict PackedPlanes::sphere(int h, const Eigen::Vector3d& p, double radius
   // more than the margin (s_j(p) = s_j(f) + s_i (n_j . n_i) <= s_j(f) + s_i):
   // plane i is the one the exact code finds p farthest in front of, and p's
   // foot on it lies inside the hull.
-  if (face && most > slack) *face = static_cast<std::uint32_t>(at) < hull.planes ? at : 0;
+  if (face && most > slack) *face = own_index;
   return FloatVerdict::meets;
 }
 
@@ -184,7 +200,8 @@ FloatVerdict PackedPlanes::segment(int h, const Eigen::Vector3d& a, const Eigen:
   const HullRecord& hull = hulls_[h];
   if (hull.blocks == 0) return FloatVerdict::unsure;
   float q0[3], v[3];
-  about_centre(a, hull.centre, q0);
+  if (!about_centre(a, hull.centre, q0) || !about_centre(b, hull.centre, v) || !(radius <= kFloatTestRange))
+    return FloatVerdict::unsure;
   for (int k = 0; k < 3; ++k) v[k] = static_cast<float>(b[k] - a[k]);
   // The signed distance at any t in [0, 1] is off by at most this: the
   // start's rounding plus t times the direction's (docs: "float pre-tests").
@@ -204,7 +221,7 @@ bool PackedPlanes::ray_may_hit(int h, const Eigen::Vector3d& origin, const Eigen
   const HullRecord& hull = hulls_[h];
   if (hull.blocks == 0) return true;
   float q0[3], v[3];
-  about_centre(origin, hull.centre, q0);
+  if (!about_centre(origin, hull.centre, q0)) return true;
   for (int k = 0; k < 3; ++k) v[k] = static_cast<float>(direction[k]);
   // Every point of the hull is within its reach of the centre: a hit lies
   // at t <= |q0| + reach, however far the ray goes.

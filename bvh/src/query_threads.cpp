@@ -89,12 +89,12 @@ QueryThreads::~QueryThreads() {
 
 Result<std::shared_ptr<QueryThreads>> QueryThreads::start(int threads) {
   using Started = Result<std::shared_ptr<QueryThreads>>;
-  if (threads < 0 || threads > kMostThreads)
-    return Status{StatusCode::invalid_argument,
-                  "query threads: " + std::to_string(threads) + " is not a thread count from 0 to " +
-                      std::to_string(kMostThreads)};
-  if (threads == 0) threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, kMostThreads);
   return detail::guarded("starting query threads", [&]() -> Started {
+    if (threads < 0 || threads > kMostThreads)
+      return Status{StatusCode::invalid_argument, "query threads: " + std::to_string(threads) +
+                                                      " is not a thread count from 0 to " +
+                                                      std::to_string(kMostThreads)};
+    if (threads == 0) threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, kMostThreads);
     std::shared_ptr<QueryThreads> pool(new QueryThreads());
     try {
       for (int i = 1; i < threads; ++i) pool->shared_->workers.emplace_back([s = pool->shared_.get()] { s->work(); });

@@ -149,6 +149,13 @@ Status check_hulls(const std::vector<RuntimeHull>& hulls, const std::vector<int>
     for (const Eigen::Vector3d& v : s.vertices) finite = finite && v.allFinite();
     for (const Plane& p : s.planes) finite = finite && p.normal.allFinite() && std::isfinite(p.offset);
     if (!finite) return {StatusCode::invalid_argument, name + " has no facets or non-finite data"};
+    // The trees file a hull under its box: one that misses a vertex would
+    // hide the hull from the queries that reach that vertex.
+    const Aabb& box = hulls[i].box;
+    bool holds = box.min.allFinite() && box.max.allFinite() && (box.min.array() <= box.max.array()).all();
+    for (const Eigen::Vector3d& v : s.vertices)
+      holds = holds && (v.array() >= box.min.array()).all() && (v.array() <= box.max.array()).all();
+    if (!holds) return {StatusCode::invalid_argument, name + " has a box that does not hold all its vertices"};
     if (!hulls[i].surface_planes.empty() && hulls[i].surface_planes.size() != s.planes.size())
       return {StatusCode::invalid_argument, name + " has surface flags neither absent nor one per plane"};
   }

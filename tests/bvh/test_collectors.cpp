@@ -132,11 +132,10 @@ public:
   void add(const int&) override {
     if (++count == 2) stop();
   }
-  void reset() override {
-    HitCollector<int>::reset();
-    count = 0;
-  }
   int count = 0;
+
+private:
+  void on_reset() override { count = 0; }
 };
 
 TEST(Collectors, ACallbackStopsTheWalk) {

@@ -386,3 +386,24 @@ TEST(HullWorld, ExceptionsComeBackAsInternalErrors) {
 
 } // namespace
 } // namespace hullcover::bvh
+
+namespace hullcover::bvh {
+namespace {
+
+// The trees file each hull under its box: a box that misses a vertex, or
+// an empty one, would hide the hull, so building refuses it.
+TEST(HullWorld, RefusesAHullWhoseBoxMissesItsVertices) {
+  RuntimeHull shifted = box_hull(V(0, 0, 0), V(1, 1, 1));
+  shifted.box.max.x() = 0.5;
+  RuntimeHull empty = box_hull(V(2, 0, 0), V(3, 1, 1));
+  empty.box = Aabb{};
+  for (const RuntimeHull& bad : {shifted, empty}) {
+    auto world = HullWorld::build({box_hull(V(-5, -1, -5), V(5, 0, 5)), bad});
+    ASSERT_FALSE(world.ok());
+    EXPECT_EQ(world.status().code(), StatusCode::invalid_argument);
+    EXPECT_NE(world.status().message().find("hull 1"), std::string::npos) << world.status().message();
+  }
+}
+
+} // namespace
+} // namespace hullcover::bvh

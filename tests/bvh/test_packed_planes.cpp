@@ -116,6 +116,23 @@ TEST(PackedPlanes, SettledVerdictsAreTheExactTests) {
   EXPECT_GT(faces, 200);
 }
 
+// A hull whose planes are stored with normals of another length (the same
+// half-spaces) gets no float test: the bounds and the foot of a point on a
+// plane take normals as unit.
+TEST(PackedPlanes, NonUnitNormalsAreLeftToTheExactTests) {
+  RuntimeHull hull = test::box_hull(V(0, 0, 0), V(10, 10, 10));
+  for (Plane& plane : hull.shape.planes) {
+    plane.normal *= 1.5;
+    plane.offset *= 1.5;
+  }
+  const detail::PackedPlanes planes({hull});
+  std::mt19937 rng(43);
+  for (const V& p : points_near(hull, 1.0, rng)) {
+    EXPECT_EQ(planes.sphere(0, p, 1.0), FloatVerdict::unsure);
+    EXPECT_EQ(planes.segment(0, p, p + V(1, 2, 3), 1.0), FloatVerdict::unsure);
+  }
+}
+
 // The outward rounding every float box and bound rests on: the float at or
 // below (above) x, and the next one up (down) is beyond x.
 TEST(FloatRounding, AtOrBelowAndAboveAreTheNearestFloatsOutward) {

@@ -39,18 +39,21 @@ struct HullFilter {
 
 /// Receives a query's hits (`Hit`: a hull index, a Contact or a RayHit) in
 /// the order the walk finds them. Derive from it for a callback collector:
-/// `add` may call `stop()` to end the walk, and a ray's collector may lower
-/// `reach()` so that the walk skips hulls that begin beyond it.
+/// `add` may call `stop()` to end the walk, a ray's collector may lower its
+/// reach with `set_reach()` so that the walk skips hulls that begin beyond
+/// it, and `on_reset()` clears what it keeps.
 template <typename Hit>
 class HitCollector {
 public:
   virtual ~HitCollector() = default;
   /// One hit. Called on the querying thread.
   virtual void add(const Hit& hit) = 0;
-  /// Clears what was collected, ready for the next query (the query calls it).
-  virtual void reset() {
+  /// Ready for the next query (every query calls it first): the walk's
+  /// state cleared, then on_reset() for what the collector keeps.
+  void reset() {
     stopped_ = false;
     reach_ = std::numeric_limits<double>::infinity();
+    on_reset();
   }
   /// Whether the walk should end now.
   bool stopped() const { return stopped_; }
@@ -58,6 +61,8 @@ public:
   double reach() const { return reach_; }
 
 protected:
+  /// Clears what the collector keeps (its hits). Default: nothing.
+  virtual void on_reset() {}
   void stop() { stopped_ = true; }
   void set_reach(double reach) { reach_ = reach; }
 
@@ -75,15 +80,12 @@ public:
     found_ = true;
     this->stop();
   }
-  void reset() override {
-    HitCollector<Hit>::reset();
-    found_ = false;
-  }
   bool found() const { return found_; }
   /// The hit kept; meaningful when found().
   const Hit& hit() const { return hit_; }
 
 private:
+  void on_reset() override { found_ = false; }
   Hit hit_{};
   bool found_ = false;
 };
@@ -94,21 +96,22 @@ template <typename Hit>
 class AllHitsCollector final : public HitCollector<Hit> {
 public:
   void add(const Hit& hit) override { hits_.push_back(hit); }
-  void reset() override {
-    HitCollector<Hit>::reset();
-    hits_.clear();
-  }
   const std::vector<Hit>& hits() const { return hits_; }
   /// The hits, to sort or move out (then reset() before the next query).
   std::vector<Hit>& hits() { return hits_; }
 
 private:
+  void on_reset() override { hits_.clear(); }
   std::vector<Hit> hits_;
 };
 
-/// Keeps the best hit by `Better(a, b)` (a beats b). For rays it lowers
-/// reach() to the best hit's t, so the walk skips everything beyond: see
-/// ClosestRayHit and DeepestContact in hull_world.h.
+/// Keeps the best hit by `Better`, a default-constructible type with
+/// `bool operator()(const Hit& a, const Hit& b)` (a beats b) and
+/// `static double reach_after(const Hit& best)`: the reach() the collector
+/// lowers itself to once it holds `best` (for rays, best.t, so the walk skips
+/// every hull that begins beyond; infinity when hits do not shorten the walk).
+/// For the closest ray hit with ray_cast's tie rule: at equal t the lower
+/// hull index wins.
 template <typename Hit, typename Better>
 class BestHitCollector final : public HitCollector<Hit> {
 public:
@@ -119,15 +122,12 @@ public:
     const double r = Better::reach_after(hit);
     if (r < this->reach()) this->set_reach(r);
   }
-  void reset() override {
-    HitCollector<Hit>::reset();
-    found_ = false;
-  }
   bool found() const { return found_; }
   /// The best hit; meaningful when found().
   const Hit& hit() const { return hit_; }
 
 private:
+  void on_reset() override { found_ = false; }
   Hit hit_{};
   bool found_ = false;
 };
