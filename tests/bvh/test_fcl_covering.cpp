@@ -311,13 +311,13 @@ TEST(FclCovering, YesNoAgreesWithTheHullWorldJustOutsideTheMargin) {
   EXPECT_GT(counts.clearly_apart, kPosesPerShapeKind / 10);
 }
 
-/// FCL's GJK distance (libccd, its default) stops once a step gains less
-/// than the request's distance_tolerance (1e-6 by default), which near a
-/// face leaves it high by up to 25 times that here (measured 2.5e-5 units):
-/// the bound, this fraction of the scene's size (2.7e-4 units), is ten
-/// times the measured. A 1e-9 request compares the geometry itself
-/// (measured 1.4e-7 units; the bound 2.7e-6 units).
-constexpr double kFclDistanceTolerancePerSceneSize = 1e-5;
+/// FCL's GJK distance (libccd) stops once a step gains less than the
+/// request's distance_tolerance: at its default (1e-6) it was found up to
+/// 1.4e-4 units high on these poses, a bound that depends on the geometry
+/// and the poses, so the default request is held only to never being below
+/// the exact distance. A 1e-9 request compares the geometry itself
+/// (measured 1.4e-7 units high at most; the bound, this fraction of the
+/// scene's size, 2.7e-6 units).
 constexpr double kTightGjkTolerance = 1e-9;
 constexpr double kTightDistanceTolerancePerSceneSize = 1e-7;
 
@@ -340,7 +340,7 @@ TEST(FclCovering, DistanceAgreesWithTheHullWorldWhenApart) {
   const Scene& scene = demo_scene();
   ASSERT_TRUE(scene.world && scene.fcl.manager);
   const double size = scene.bounds.diagonal();
-  const double tolerance = kFclDistanceTolerancePerSceneSize * size;
+  const double tolerance = kTightDistanceTolerancePerSceneSize * size;
   fcl::DistanceRequestd tight;
   tight.distance_tolerance = kTightGjkTolerance;
   std::mt19937 rng(kPoseSeed);
@@ -355,14 +355,18 @@ TEST(FclCovering, DistanceAgreesWithTheHullWorldWhenApart) {
     ASSERT_GE(exact.hull, 0);
 
     fcl::CollisionObjectd query = fcl_object(p);
+    Nearest loose;  // FCL's default request: never below the exact distance
+    scene.fcl.manager->distance(&query, &loose, nearer_object);
+    EXPECT_GE(loose.distance, exact.distance - kRoundingPerSceneSize * size);
     Nearest nearest;
+    nearest.request = tight;
     scene.fcl.manager->distance(&query, &nearest, nearer_object);
     EXPECT_GE(nearest.distance, exact.distance - kRoundingPerSceneSize * size);
     EXPECT_LE(nearest.distance, exact.distance + tolerance);
 
     fcl::DistanceResultd to_that_object;
     fcl::distance(scene.fcl.objects[exact.hull].get(), &query, tight, to_that_object);
-    EXPECT_NEAR(to_that_object.min_distance, exact.distance, kTightDistanceTolerancePerSceneSize * size);
+    EXPECT_NEAR(to_that_object.min_distance, exact.distance, tolerance);
 
     ASSERT_GE(nearest.hull, 0);
     if (nearest.hull == exact.hull) {
