@@ -167,25 +167,36 @@ Scene make_scene(const PreparedMesh& prepared, const Covering& covering, double 
   return s;
 }
 
+// Runs `first()` then `second()` each iteration, timing both; the manual
+// time is the second's when `time_second`, else the first's. Sets the
+// counters `<first_name>_us` and `<second_name>_us` (µs per query, `count`
+// queries a call) and `speedup`: the other's time over the timed one's.
+void in_turn(benchmark::State& state, int count, const std::function<void()>& first, const char* first_name,
+             const std::function<void()>& second, const char* second_name, bool time_second) {
+  double first_seconds = 0.0, second_seconds = 0.0;
+  for (auto _ : state) {
+    Clock::time_point start = Clock::now();
+    first();
+    const double a = std::chrono::duration<double>(Clock::now() - start).count();
+    start = Clock::now();
+    second();
+    const double b = std::chrono::duration<double>(Clock::now() - start).count();
+    state.SetIterationTime(time_second ? b : a);
+    first_seconds += a;
+    second_seconds += b;
+  }
+  const double queries = static_cast<double>(state.iterations()) * std::max(count, 1);
+  state.counters[std::string(first_name) + "_us"] = 1e6 * first_seconds / queries;
+  state.counters[std::string(second_name) + "_us"] = 1e6 * second_seconds / queries;
+  state.counters["speedup"] = time_second ? first_seconds / second_seconds : second_seconds / first_seconds;
+}
+
 // Runs `hull_query(i)` and `triangle_query(i)` over every pose, timing both.
 void side_by_side(benchmark::State& state, int count, const std::function<void(int)>& hull_query,
                   const std::function<void(int)>& triangle_query) {
-  double hull_seconds = 0.0, triangle_seconds = 0.0;
-  for (auto _ : state) {
-    Clock::time_point start = Clock::now();
-    for (int i = 0; i < count; ++i) hull_query(i);
-    const double h = std::chrono::duration<double>(Clock::now() - start).count();
-    start = Clock::now();
-    for (int i = 0; i < count; ++i) triangle_query(i);
-    const double t = std::chrono::duration<double>(Clock::now() - start).count();
-    state.SetIterationTime(h);
-    hull_seconds += h;
-    triangle_seconds += t;
-  }
-  const double queries = static_cast<double>(state.iterations()) * std::max(count, 1);
-  state.counters["hull_us"] = 1e6 * hull_seconds / queries;
-  state.counters["triangle_us"] = 1e6 * triangle_seconds / queries;
-  state.counters["speedup"] = triangle_seconds / hull_seconds;
+  in_turn(
+      state, count, [&] { for (int i = 0; i < count; ++i) hull_query(i); }, "hull",
+      [&] { for (int i = 0; i < count; ++i) triangle_query(i); }, "triangle", false);
 }
 
 // One batch on one thread, then on two (QueryThreads, started once), in
@@ -193,22 +204,8 @@ void side_by_side(benchmark::State& state, int count, const std::function<void(i
 // per query for each and the speed-up (1.0: none; 2.0: perfect).
 void one_thread_then_two(benchmark::State& state, int count, const std::function<void(QueryThreads*)>& batch) {
   const std::shared_ptr<QueryThreads> one = QueryThreads::start(1).value(), two = QueryThreads::start(2).value();
-  double one_seconds = 0.0, two_seconds = 0.0;
-  for (auto _ : state) {
-    auto start = Clock::now();
-    batch(one.get());
-    const double a = std::chrono::duration<double>(Clock::now() - start).count();
-    start = Clock::now();
-    batch(two.get());
-    const double b = std::chrono::duration<double>(Clock::now() - start).count();
-    state.SetIterationTime(b);
-    one_seconds += a;
-    two_seconds += b;
-  }
-  const double queries = static_cast<double>(state.iterations()) * std::max(count, 1);
-  state.counters["one_thread_us"] = 1e6 * one_seconds / queries;
-  state.counters["two_threads_us"] = 1e6 * two_seconds / queries;
-  state.counters["speedup"] = one_seconds / two_seconds;
+  in_turn(
+      state, count, [&] { batch(one.get()); }, "one_thread", [&] { batch(two.get()); }, "two_threads", true);
 }
 
 // The machine's own two-thread speed-up, as a control for the batch rows:
