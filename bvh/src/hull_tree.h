@@ -67,9 +67,6 @@ public:
   /// The box of every hull (rounded outward to floats).
   Aabb bounds() const { return bounds_; }
 
-  /// Bytes held by the nodes.
-  size_t bytes() const { return nodes_.size() * sizeof(WideNode); }
-
 private:
   // Up to four children, in the first `count` lanes: an inner node's index
   // (>= 0) or a leaf, as ~number (< 0).
@@ -110,6 +107,21 @@ private:
     Entry* data_ = nullptr;
     size_t size_ = 0;
   };
+
+  // The lanes set in `lanes` (bit i: lane i), least `key` first, into
+  // `order`; returns how many. At most four: an insertion sort.
+  static int lanes_by_key(int lanes, Float4 key, int order[4]) {
+    float k[4];
+    key.store(k);
+    int met = 0;
+    for (; lanes; lanes &= lanes - 1) {
+      const int i = __builtin_ctz(static_cast<unsigned>(lanes));
+      int j = met++;
+      for (; j > 0 && k[order[j - 1]] > k[i]; --j) order[j] = order[j - 1];
+      order[j] = i;
+    }
+    return met;
+  }
 
   // Lanes (bit i: child i) whose boxes meet the float box [lo, hi].
   static int lanes_meeting(const WideNode& n, const Float4 lo[3], const Float4 hi[3]) {
@@ -152,15 +164,8 @@ bool HullTree::find_where(const Aabb& box, const Eigen::Vector3d& centre, LaneTe
     }
     int lanes = lanes_meeting(node, lo, hi) & lane_test(gap2);
     if (!lanes) continue;
-    float key[4];
-    gap2.store(key);
-    int order[4], met = 0;
-    for (; lanes; lanes &= lanes - 1) {
-      const int i = __builtin_ctz(static_cast<unsigned>(lanes));
-      int j = met++;
-      for (; j > 0 && key[order[j - 1]] > key[i]; --j) order[j] = order[j - 1];
-      order[j] = i;
-    }
+    int order[4];
+    const int met = lanes_by_key(lanes, gap2, order);
     // Leaves now, nearest first; inner nodes pushed farthest first, so the
     // nearest is walked next.
     for (int j = met - 1; j >= 0; --j)
@@ -250,14 +255,8 @@ void HullTree::walk_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& in
     float t[4];
     entry.store(t);
     // Push the lanes met, farthest first, so the nearest is walked next.
-    int order[4], met = 0;
-    for (; lanes; lanes &= lanes - 1) {
-      const int i = __builtin_ctz(static_cast<unsigned>(lanes));
-      int j = met++;
-      for (; j > 0 && t[order[j - 1]] < t[i]; --j) order[j] = order[j - 1];
-      order[j] = i;
-    }
-    for (int j = 0; j < met; ++j) stack.push({n.child[order[j]], t[order[j]]});
+    int order[4];
+    for (int j = lanes_by_key(lanes, entry, order) - 1; j >= 0; --j) stack.push({n.child[order[j]], t[order[j]]});
   }
 }
 

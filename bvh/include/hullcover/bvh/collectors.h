@@ -71,23 +71,34 @@ private:
   double reach_ = std::numeric_limits<double>::infinity();
 };
 
-/// Keeps the first hit and stops: the yes/no query.
+/// One hit kept: what AnyHitCollector and BestHitCollector share.
 template <typename Hit>
-class AnyHitCollector final : public HitCollector<Hit> {
+class OneHitCollector : public HitCollector<Hit> {
 public:
-  void add(const Hit& hit) override {
-    hit_ = hit;
-    found_ = true;
-    this->stop();
-  }
   bool found() const { return found_; }
   /// The hit kept; meaningful when found().
   const Hit& hit() const { return hit_; }
+
+protected:
+  void keep(const Hit& hit) {
+    hit_ = hit;
+    found_ = true;
+  }
 
 private:
   void on_reset() override { found_ = false; }
   Hit hit_{};
   bool found_ = false;
+};
+
+/// Keeps the first hit and stops: the yes/no query.
+template <typename Hit>
+class AnyHitCollector final : public OneHitCollector<Hit> {
+public:
+  void add(const Hit& hit) override {
+    this->keep(hit);
+    this->stop();
+  }
 };
 
 /// Keeps every hit, in walk order, in a vector whose capacity survives
@@ -113,23 +124,14 @@ private:
 /// For the closest ray hit with ray_cast's tie rule: at equal t the lower
 /// hull index wins.
 template <typename Hit, typename Better>
-class BestHitCollector final : public HitCollector<Hit> {
+class BestHitCollector final : public OneHitCollector<Hit> {
 public:
   void add(const Hit& hit) override {
-    if (found_ && !Better{}(hit, hit_)) return;
-    hit_ = hit;
-    found_ = true;
+    if (this->found() && !Better{}(hit, this->hit())) return;
+    this->keep(hit);
     const double r = Better::reach_after(hit);
     if (r < this->reach()) this->set_reach(r);
   }
-  bool found() const { return found_; }
-  /// The best hit; meaningful when found().
-  const Hit& hit() const { return hit_; }
-
-private:
-  void on_reset() override { found_ = false; }
-  Hit hit_{};
-  bool found_ = false;
 };
 
 } // namespace hullcover::bvh
