@@ -232,7 +232,7 @@ std::optional<Contact> sphere_contact_in_front_of(const RuntimeHull& hull, const
   const Plane& plane = hull.shape.planes[facet];
   const double in_front = plane.signed_distance(centre);
   if (!(in_front > 0.0) || in_front > radius) return sphere_contact(hull, centre, radius);
-  const Eigen::Vector3d foot = centre - plane.signed_distance(centre) * plane.normal;
+  const Eigen::Vector3d foot = centre - in_front * plane.normal;
   const double gap = (foot - centre).norm();
   if (!inside_facet(hull, facet, foot) || gap > in_front * (1.0 + kTouchingFraction) || gap > radius)
     return sphere_contact(hull, centre, radius);

@@ -96,8 +96,6 @@ PackedPlanes::PackedPlanes(const std::vector<RuntimeHull>& hulls) {
   }
 }
 
-size_t PackedPlanes::bytes() const { return blocks_.size() * sizeof(PlaneBlock) + hulls_.size() * sizeof(HullRecord); }
-
 FloatVerdict PackedPlanes::sphere(int h, const Eigen::Vector3d& p, double radius, int* face) const {
   if (face) *face = -1;
   const HullRecord& hull = hulls_[h];

@@ -64,9 +64,6 @@ public:
   bool ray_may_hit(int h, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double reach,
                    double& enter) const;
 
-  /// Bytes held (the store is a few arrays, whatever the hull count).
-  size_t bytes() const;
-
 private:
   // Four planes as four lanes: n.x, n.y, n.z and the offset about the
   // hull's centre. A hull whose plane count is not a multiple of four
