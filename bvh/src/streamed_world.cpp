@@ -5,8 +5,6 @@
 #include "query_guard.h"
 #include "collected_queries.h"
 
-#include <fcl/broadphase/detail/hierarchy_tree.h>
-
 #include <map>
 #include <unordered_set>
 
@@ -32,7 +30,7 @@ struct StreamSection {
 struct StreamSnapshot {
   /// Ascending id; sections[s] is leaf s of `top`.
   std::vector<std::shared_ptr<const StreamSection>> sections;
-  /// FCL's tree of the sections' boxes, packed; null when none is loaded.
+  /// A tree of the sections' boxes (leaf s: sections[s]); null when none is loaded.
   std::unique_ptr<const HullTree> top;
 };
 
@@ -77,20 +75,13 @@ struct SnapshotSource {
   }
 };
 
-/// The writer's side of a streamed world: FCL's dynamic AABB tree over the
-/// loaded sections' boxes (a leaf inserted or removed per section, as
-/// FCL's broad-phase manager does for its objects), and who holds which hull.
+/// The writer's side of a streamed world: the loaded sections by id (each
+/// publish builds the snapshot's top tree over their boxes), and who holds
+/// which hull.
 class SectionIndex {
 public:
-  using Tree = fcl::detail::HierarchyTree<fcl::AABBd>;
-  struct Entry {
-    std::shared_ptr<const StreamSection> section;
-    Tree::NodeType* leaf = nullptr;
-    int slot = 0;  // the leaf's number in the snapshot being packed (the leaf's data points here)
-  };
-  Tree tree;
-  std::map<std::uint32_t, Entry> loaded;  // a map: an entry's address, its leaf's data, stays put
-  std::unordered_set<int> hulls;          // global indices of every loaded hull
+  std::map<std::uint32_t, std::shared_ptr<const StreamSection>> loaded;
+  std::unordered_set<int> hulls;  // global indices of every loaded hull
 };
 
 namespace {
@@ -119,10 +110,9 @@ void StreamedWorld::publish() {
   next->sections.reserve(index_->loaded.size());
   std::vector<Aabb> boxes;
   boxes.reserve(index_->loaded.size());
-  for (auto& [id, entry] : index_->loaded) {
-    entry.slot = static_cast<int>(next->sections.size());
-    next->sections.push_back(entry.section);
-    boxes.push_back(entry.section->tree.bounds());
+  for (const auto& [id, section] : index_->loaded) {
+    next->sections.push_back(section);
+    boxes.push_back(section->tree.bounds());
   }
   if (!boxes.empty()) next->top = std::make_unique<const detail::HullTree>(boxes);
   std::atomic_store(&current_, std::shared_ptr<const detail::StreamSnapshot>(std::move(next)));
@@ -134,7 +124,6 @@ Status StreamedWorld::add_section(SectionHulls section) {
     const std::uint32_t id = section.id;
     // The heavy part, with no lock held: queries and other loads go on.
     auto built = std::make_shared<const detail::StreamSection>(std::move(section));
-    const Aabb box = built->tree.bounds();
 
     const std::lock_guard<std::mutex> lock(writer_);
     if (!index_) index_ = std::make_unique<detail::SectionIndex>();
@@ -145,14 +134,11 @@ Status StreamedWorld::add_section(SectionHulls section) {
       if (index.hulls.count(h))
         return {StatusCode::invalid_argument, "section " + std::to_string(id) + ": hull " + std::to_string(h) +
                                                   " belongs to a section already loaded"};
-    detail::SectionIndex::Entry& entry = index.loaded[id];
-    entry.section = built;
+    index.loaded[id] = built;
     try {
       index.hulls.insert(built->indices.begin(), built->indices.end());
-      entry.leaf = index.tree.insert(fcl::AABBd(box.min, box.max), &entry.slot);
       publish();
     } catch (...) {  // out of memory: leave the world as it was
-      if (entry.leaf) index.tree.remove(entry.leaf);
       for (int h : built->indices) index.hulls.erase(h);
       index.loaded.erase(id);
       throw;
@@ -169,15 +155,12 @@ Status StreamedWorld::remove_section(std::uint32_t id) {
     detail::SectionIndex& index = *index_;
     const auto found = index.loaded.find(id);
     if (found == index.loaded.end()) return not_loaded;
-    const std::shared_ptr<const detail::StreamSection> section = found->second.section;
-    index.tree.remove(found->second.leaf);
+    const std::shared_ptr<const detail::StreamSection> section = found->second;
     index.loaded.erase(found);
     try {
       publish();
     } catch (...) {  // out of memory: put it back as it was
-      detail::SectionIndex::Entry& entry = index.loaded[id];
-      entry.section = section;
-      entry.leaf = index.tree.insert(fcl::AABBd(section->tree.bounds().min, section->tree.bounds().max), &entry.slot);
+      index.loaded[id] = section;
       throw;
     }
     for (int h : section->indices) index.hulls.erase(h);

@@ -1,11 +1,10 @@
 #pragma once
 /// \file streamed_world.h
 /// A world whose cells (sections of a runtime file, runtime_file.h) stream
-/// in and out while a server runs. The loaded sections' boxes sit in FCL's
-/// dynamic AABB tree, updated as sections come and go, and each published
-/// snapshot packs them in a four-wide tree; each section's hulls sit in a
-/// packed tree and plane store of their own, built as HullWorld builds its
-/// one.
+/// in and out while a server runs. Each published snapshot holds a
+/// four-wide tree over the loaded sections' boxes, rebuilt as sections come
+/// and go; each section's hulls sit in a packed tree and plane store of
+/// their own, built once when it loads, as HullWorld builds its one.
 /// Queries answer with the file's global hull indices and run the same code
 /// as HullWorld's: whenever every section a query reaches is loaded, the
 /// answer is the answer of a HullWorld built from the whole file, hull for
