@@ -22,7 +22,6 @@
 namespace hullcover::app {
 namespace {
 
-constexpr int kExitFinding = 1;
 // The query capsule's half height, in radii: a standing character.
 constexpr double kCapsuleHalfHeightPerRadius = 1.25;
 

@@ -2,6 +2,7 @@
 // status, what it prints and what it writes.
 
 #include "command_run.h"
+#include "png_pixels.h"
 #include "temp_dir.h"
 
 #include <gtest/gtest.h>
@@ -107,6 +108,34 @@ TEST(CommandLine, DemoWritesTheSceneItsFiguresAndItsHulls) {
   for (size_t at = hulls.find("\no hull_"); at != std::string::npos; at = hulls.find("\no hull_", at + 1)) ++hull_groups;
   EXPECT_EQ(hull_groups, written["totals"]["hulls"].get<size_t>());
   EXPECT_LT(written["totals"]["hulls"].get<int>(), written["totals"]["faces"].get<int>());
+}
+
+TEST(CommandLine, DemoAuditsItsHullsQueriesTheRuntimeFileAndDrawsThePicture) {
+  TempDir dir;
+  const CommandRun r = run(dir, "demo --out " + dir.path("demo"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  // The verdict, as `hullcover audit` gives it on the same files.
+  EXPECT_NE(r.out.find("demo-hulls.obj: CLEAN: no accessible space lost"), std::string::npos) << r.out;
+  const CommandRun audit =
+      run(dir, "audit " + dir.path("demo/demo-scene.obj") + " " + dir.path("demo/demo-hulls.obj") + " -q");
+  EXPECT_EQ(audit.status, 0) << audit.out;
+  // The building's floor top is y = 0 and the interior wall's face x = -0.1:
+  // a capsule sunk 1 cm into the floor touches it 0.01 deep, straight up,
+  // and a ray from x = -3 along +x meets the wall 2.9 along.
+  EXPECT_NE(r.out.find("1 contact(s)\n  hull "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("depth 0.01, normal (0, 1, 0)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("at distance 2.9, point (-0.1, 1.4, 0), normal (-1, 0, 0)"), std::string::npos) << r.out;
+  // The same ray through `hullcover query` on the runtime file the demo wrote.
+  const CommandRun ray = run(dir, "query " + dir.path("demo/demo-world.hcw") + " --ray -3 1.4 0 1 0 0");
+  ASSERT_EQ(ray.status, 0) << ray.err;
+  EXPECT_NE(ray.out.find("at t 2.9 "), std::string::npos) << ray.out;
+  // The picture is where the demo says, a full image with many colours.
+  const std::string picture = dir.path("demo/demo-hulls.png");
+  EXPECT_NE(r.out.find("picture: " + picture), std::string::npos) << r.out;
+  const hullcover::test::DecodedPng png = hullcover::test::decode_png(picture);
+  EXPECT_EQ(png.width, 1200);
+  EXPECT_EQ(png.height, 900);
+  EXPECT_GT(hullcover::test::distinct_colours(png), 20u);
 }
 
 TEST(CommandLine, DecomposeWritesOneGroupPerHullAndTheSidecar) {
