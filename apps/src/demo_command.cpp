@@ -11,6 +11,7 @@
 #include "hullcover/bvh/covering_hulls.h"
 #include "hullcover/bvh/hull_world.h"
 #include "hullcover/bvh/runtime_file.h"
+#include "hullcover/covering/covering.h"
 #include "hullcover/covering/covering_export.h"
 #include "hullcover/mesh/mesh_export.h"
 #include "hullcover/mesh/scene_builder.h"

@@ -2,6 +2,8 @@
 
 #include "query_guard.h"
 
+#include "hullcover/geometry/point_hull.h"
+
 #include <cmath>
 
 namespace hullcover::bvh {
@@ -69,6 +71,14 @@ Status check_query_shape(const QueryShape& shape, const Eigen::Isometry3d& pose)
     const char* why = shape_problem(shape, pose);
     return why != nullptr ? Status{StatusCode::invalid_argument, why} : Status::success();
   });
+}
+
+std::optional<RuntimeHull> placed_convex(const QueryShape& shape, const Eigen::Isometry3d& pose) {
+  std::vector<Eigen::Vector3d> points;
+  for (const Eigen::Vector3d& p : shape.points) points.push_back(pose * p);
+  std::optional<ConvexPolytope> hull = convex_hull_of_points(points);
+  if (!hull) return std::nullopt;
+  return make_runtime_hull(std::move(*hull), 0);
 }
 
 } // namespace hullcover::bvh

@@ -4,7 +4,7 @@
 // (hull_touch.cpp) so that both decide "do they meet" the same way.
 // Nothing here allocates: axes are produced one at a time.
 
-#include "hullcover/bvh/hull_contact.h"
+#include "hullcover/bvh/query_types.h"
 #include "hullcover/bvh/runtime_hull.h"
 #include "hullcover/geometry/tolerances.h"
 

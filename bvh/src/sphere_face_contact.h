@@ -3,7 +3,7 @@
 // than its radius, with its foot on that facet inside the hull (private to
 // bvh/): what the packed planes' float test certifies (packed_planes.h).
 
-#include "hullcover/bvh/hull_contact.h"
+#include "hullcover/bvh/query_types.h"
 
 #include <optional>
 

@@ -2,20 +2,10 @@
 
 #include "sphere_face_contact.h"
 
-#include "hullcover/geometry/point_hull.h"
-
 #include <memory>
 #include <tuple>
 
 namespace hullcover::bvh {
-
-std::optional<RuntimeHull> placed_convex(const QueryShape& shape, const Eigen::Isometry3d& pose) {
-  std::vector<Eigen::Vector3d> points;
-  for (const Eigen::Vector3d& p : shape.points) points.push_back(pose * p);
-  std::optional<ConvexPolytope> hull = convex_hull_of_points(points);
-  if (!hull) return std::nullopt;
-  return make_runtime_hull(std::move(*hull), 0);
-}
 
 Status check_ray_request(const RayRequest& request, Eigen::Vector3d& unit_direction) {
   // Guarded: the message is allocated.

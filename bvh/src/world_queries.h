@@ -19,7 +19,8 @@
 // with HullTree's guarantees (hull_tree.h): a box walk never misses a hull
 // whose box meets the box; a ray walk may shorten `reach` to prune.
 
-#include "hullcover/bvh/hull_world.h"
+#include "hullcover/bvh/hull_contact.h"
+#include "hullcover/bvh/hull_queries.h"
 
 #include "packed_planes.h"
 #include "query_guard.h"

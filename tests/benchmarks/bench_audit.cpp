@@ -7,6 +7,7 @@
 
 #include "shared_data.h"
 
+#include "hullcover/covering/covering.h"
 #include "hullcover/bvh/covering_hulls.h"
 #include "hullcover/validate/accessible_space.h"
 #include "hullcover/validate/behaviour_equivalence.h"

@@ -1,4 +1,4 @@
-// Dissolving (DecomposeOptions::dissolve, lib/covering/src/patch_dissolving.cpp),
+// Dissolving (DecomposeOptions::dissolve, lib/covering/src/merging/patch_dissolving.cpp),
 // built in code from the case it exists for: greedy merging unites the two
 // middle strips of a ridge first, and then neither outer strip can join the
 // pair; emptying the pair into the outer strips saves a hull.

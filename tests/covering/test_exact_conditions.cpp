@@ -7,8 +7,8 @@
 #include "covering_fixture.h"
 
 #include "indexed_scene.h"
-#include "scene_index.h"
-#include "validity_conditions.h"
+#include "validity/scene_index_build.h"
+#include "validity/validity_conditions.h"
 
 #include "hullcover/covering/convex_hull_3d.h"
 

@@ -1,4 +1,4 @@
-// Faces thinner than tol join no patch (lib/covering/src/face_coverage.h),
+// Faces thinner than tol join no patch (lib/covering/src/merging/face_coverage.h),
 // yet coverage (docs/definitions-and-proofs.md: every point of every face on a hull, within tol)
 // holds for them too. The fan below is how a Cube map trims a wall: slivers
 // between two straight lines, each thinner than tol, together a strip with

@@ -3,8 +3,8 @@
 // to when it asks whether an edit crosses it (scene_change.h).
 
 #include "indexed_scene.h"
-#include "mesh_ray.h"
-#include "first_hit_bound.h"
+#include "validity/mesh_ray.h"
+#include "validity/first_hit_bound.h"
 
 #include "hullcover/geometry/tolerances.h"
 #include "covering_fixture.h"

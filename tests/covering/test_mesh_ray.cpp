@@ -4,8 +4,8 @@
 
 #include "indexed_scene.h"
 #include "hullcover/covering/convex_hull_3d.h"
-#include "exact_conditions.h"
-#include "mesh_ray.h"
+#include "validity/exact_conditions.h"
+#include "validity/mesh_ray.h"
 #include "hullcover/mesh/scene_builder.h"
 #include "hullcover/geometry/incremental_hull.h"
 #include "hullcover/geometry/tolerances.h"

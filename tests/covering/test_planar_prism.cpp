@@ -13,7 +13,7 @@
 // coincident with the polygon facing into it (back-to-back walls) to 0.
 
 #include "covering_fixture.h"
-#include "planar_prism.h"
+#include "validity/planar_prism.h"
 #include "indexed_scene.h"
 
 #include "hullcover/mesh/prepared_mesh.h"

@@ -6,9 +6,9 @@
 #include "covering_fixture.h"
 #include "temp_dir.h"
 
-#include "cell_merging.h"
-#include "cell_result_bytes.h"
-#include "scene_change.h"
+#include "cells/cell_merging.h"
+#include "cells/cell_result_bytes.h"
+#include "cells/scene_change.h"
 
 #include "hullcover/covering/cell_cache.h"
 #include "hullcover/mesh/scene_builder.h"

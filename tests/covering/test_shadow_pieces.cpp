@@ -2,7 +2,7 @@
 // quick miss test that lets the exact judges pass over faces whose shadow
 // does not reach a piece must never pass over one that does.
 
-#include "shadow_pieces.h"
+#include "validity/shadow_pieces.h"
 
 #include <gtest/gtest.h>
 

@@ -15,7 +15,7 @@
 
 #include "covering_fixture.h"
 #include "indexed_scene.h"
-#include "validity_conditions.h"
+#include "validity/validity_conditions.h"
 
 #include "hullcover/covering/convex_hull_3d.h"
 #include "hullcover/mesh/prepared_mesh.h"

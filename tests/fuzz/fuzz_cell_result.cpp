@@ -1,4 +1,4 @@
-// Fuzz target: a cell's result as bytes (lib/covering/src/cell_result_bytes.h),
+// Fuzz target: a cell's result as bytes (lib/covering/src/cells/cell_result_bytes.h),
 // what a distributed bake's worker sends back and the cell cache reads from
 // disk. StagedDecomposition::still_valid and finish must refuse bad bytes with
 // a message, never crash, hang or trust them.

@@ -1,5 +1,5 @@
 // Fuzz target: the cell cache's record of the last bake (`last-bake.scene`,
-// lib/covering/src/scene_change.h), read by every bake with a cache. A bake
+// lib/covering/src/cells/scene_change.h), read by every bake with a cache. A bake
 // must refuse a bad record (and re-check every kept patch), never crash,
 // hang, allocate without bound or trust what it cannot read.
 //

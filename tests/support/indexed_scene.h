@@ -3,7 +3,7 @@
 // it (scene_index.h is private to lib/covering: only the covering tests, which
 // have its folder on their include path, use this header).
 
-#include "scene_index.h"
+#include "validity/scene_index_build.h"
 
 #include "hullcover/mesh/prepared_mesh.h"
 

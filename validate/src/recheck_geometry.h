@@ -7,7 +7,7 @@
 /// decomposer's trees. Nothing here may come from lib/covering: a bug there
 /// must not hide here too.
 
-#include "hullcover/validate/validity_recheck.h"
+#include "hullcover/validate/hull_under_check.h"
 
 #include <Eigen/Core>
 

@@ -14,7 +14,7 @@ How it runs (docs/worlds.md, "The distributed bake"):
   2. Each cell is a task, largest first. A worker loads the scene once and
      keeps it for every later task of the same scene and options; a task
      returns the cell's result as bytes (the checked form of
-     lib/covering/src/cell_result_bytes.h).
+     lib/covering/src/cells/cell_result_bytes.h).
   3. The client gathers the bytes in cell order and finishes: the seam pass
      and the hulls. The output is the same, byte for byte, as
      `hullcover decompose WORLD -o HULLS.obj --world H.hcw` with the same

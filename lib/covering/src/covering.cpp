@@ -4,10 +4,11 @@
 #include "hullcover/geometry/tolerances.h"
 #include "hullcover/mesh/mesh_islands.h"
 
-#include "cell_merging.h"
-#include "patch_merging.h"
-#include "patch_hulls.h"
-#include "face_coverage.h"
+#include "cells/cell_merging.h"
+#include "merging/patch_merging.h"
+#include "merging/patch_hulls.h"
+#include "merging/face_coverage.h"
+#include "validity/scene_index_build.h"
 
 #include <algorithm>
 #include <chrono>

@@ -2,7 +2,7 @@
 
 #include "hullcover/mesh/json_nesting.h"
 
-#include "scene_file_checks.h"
+#include "scene_file_rules.h"
 
 #include <nlohmann/json.hpp>
 

@@ -4,7 +4,7 @@
 // actually present.
 
 #include "hullcover/geometry/status.h"
-#include "hullcover/mesh/mesh_import.h"
+#include "hullcover/mesh/import_limits.h"
 
 #include <cstdint>
 #include <fstream>

@@ -2,6 +2,7 @@
 
 #include "confined_io.h"
 #include "scene_file_checks.h"
+#include "scene_file_rules.h"
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>

@@ -1,6 +1,6 @@
 #include "obj_file_checks.h"
 
-#include "scene_file_checks.h"
+#include "scene_file_rules.h"
 
 #include <sstream>
 #include <string>

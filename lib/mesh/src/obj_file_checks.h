@@ -3,7 +3,7 @@
 // Assimp reads it.
 
 #include "hullcover/geometry/status.h"
-#include "hullcover/mesh/mesh_import.h"
+#include "hullcover/mesh/import_limits.h"
 
 #include <istream>
 

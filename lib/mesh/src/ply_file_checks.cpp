@@ -1,7 +1,7 @@
 #include "ply_file_checks.h"
 
 #include "ply_ascii_checks.h"
-#include "scene_file_checks.h"
+#include "scene_file_rules.h"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 // Both hold the elements the header declares against the body, read a chunk
 // at a time, and report in the same words.
 
-#include "scene_file_checks.h"
+#include "scene_file_rules.h"
 
 #include "hullcover/geometry/status.h"
 

@@ -1,4 +1,5 @@
 #include "scene_file_checks.h"
+#include "scene_file_rules.h"
 
 #include "gltf_file_checks.h"
 #include "obj_file_checks.h"

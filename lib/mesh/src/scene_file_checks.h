@@ -6,47 +6,11 @@
 // files it names, inside its folder).
 
 #include "hullcover/geometry/status.h"
-#include "hullcover/mesh/mesh_import.h"
+#include "hullcover/mesh/import_limits.h"
 
-#include <cstdint>
-#include <filesystem>
 #include <string>
 
 namespace hullcover::detail {
-
-/// A file that is not what it says: `unreadable_file` with `why`.
-inline Status damaged_file(const std::string& why) { return {StatusCode::unreadable_file, why}; }
-
-/// The unsigned 32-bit little-endian number in `bytes[0..3]` (GLB chunk
-/// lengths, a binary STL's triangle count).
-inline std::uint32_t little_endian_u32(const unsigned char* bytes) {
-  return static_cast<std::uint32_t>(bytes[0]) | static_cast<std::uint32_t>(bytes[1]) << 8 |
-         static_cast<std::uint32_t>(bytes[2]) << 16 | static_cast<std::uint32_t>(bytes[3]) << 24;
-}
-
-/// `limit_exceeded` for `what` (a hierarchy, a nesting) deeper than
-/// limits.max_node_depth, naming the option that raises it.
-inline Status deeper_than_limit(const std::string& what, const ImportLimits& limits) {
-  return {StatusCode::limit_exceeded, what + " deeper than the limit of " + std::to_string(limits.max_node_depth) +
-                                          " levels (raise it with --max-node-depth)"};
-}
-
-/// Whether the text of a reference a scene file makes (a glTF URI once
-/// percent-decoded, an OBJ material library's name) could lead outside the
-/// scene's folder: a scheme (`http:`, `file:`), an absolute path, a `..`
-/// or a backslash. Judged on the text before any reader resolves it; the
-/// confined IO system judges the path the reader makes of it as well.
-inline bool reference_text_leaves_folder(const std::string& path) {
-  const bool scheme = path.find(':') != std::string::npos;
-  const bool absolute = !path.empty() && (path[0] == '/' || path[0] == '\\');
-  bool climbs = false;
-  for (const auto& part : std::filesystem::path(path)) climbs |= part == "..";
-  return scheme || absolute || climbs || path.find('\\') != std::string::npos;
-}
-
-/// How far into a PLY file its header may run before the file is taken as
-/// damaged (a header cut off would otherwise be read to the end).
-inline constexpr std::size_t kMaxPlyHeaderBytes = std::size_t{1} << 20;
 
 /// Checks a glTF (.gltf, .glb), PLY, binary STL or OBJ file against itself
 /// and `limits`; other formats pass (Assimp reads them within the file's

@@ -7,7 +7,7 @@
 
 #include "hullcover/bvh/hull_world.h"
 #include "hullcover/bvh/runtime_hull.h"
-#include "hullcover/covering/covering.h"
+#include "hullcover/covering/covering_types.h"
 
 #include <cstdint>
 #include <memory>

@@ -19,6 +19,7 @@
 /// surface facet's there and the depth is measured along it, so the
 /// contact still separates but is not the smallest push.
 
+#include "hullcover/bvh/query_types.h"
 #include "hullcover/bvh/runtime_hull.h"
 
 #include <Eigen/Geometry>
@@ -26,26 +27,6 @@
 #include <optional>
 
 namespace hullcover::bvh {
-
-/// A contact between a world hull and the query shape (world frame, scene
-/// units).
-struct Contact {
-  int hull = -1;                                     ///< hull index in its world (-1 from the free functions)
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();   ///< on the hull's surface
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); ///< unit, out of the hull towards the shape
-  double depth = 0.0;                                ///< penetration along `normal`, >= 0 (0: touching)
-};
-
-/// Closest points between a hull and a point, segment or shape (world
-/// frame, scene units).
-struct ClosestPoints {
-  double distance = 0.0;                               ///< >= 0; 0 when they meet
-  /// Closest point on the hull; when they meet, a point in or on the hull
-  /// that only locates the meeting.
-  Eigen::Vector3d on_hull = Eigen::Vector3d::Zero();
-  /// Closest point on the other; when they meet, the same point as on_hull.
-  Eigen::Vector3d on_other = Eigen::Vector3d::Zero();
-};
 
 /// Distance from `p` to the hull (0 inside) and the closest hull point.
 ClosestPoints closest_to_point(const RuntimeHull& hull, const Eigen::Vector3d& p);
@@ -92,14 +73,6 @@ ClosestPoints closest_between(const RuntimeHull& hull, const RuntimeHull& shape)
 
 /// A box (centre pose, half extents) as a closed runtime hull in the world.
 RuntimeHull placed_box(const Eigen::Isometry3d& pose, const Eigen::Vector3d& half_extents);
-
-/// A ray hit on a hull (world frame, scene units).
-struct RayHit {
-  int hull = -1;                                      ///< hull index in its world (-1 from ray_hit)
-  double t = 0.0;                                     ///< distance from the origin along the unit direction, >= 0
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();    ///< origin + t * direction (the origin if inside)
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< unit, outward normal of the facet hit
-};
 
 /// First hit of the ray origin + t * direction (unit), 0 <= t <= max_t.
 /// A ray starting inside the hull hits at t = 0 with the normal of the

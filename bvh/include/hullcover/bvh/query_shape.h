@@ -7,6 +7,7 @@
 /// +half_height between the centres of its end spheres; a box is centred on
 /// its local origin.
 
+#include "hullcover/bvh/runtime_hull.h"
 #include "hullcover/geometry/aabb.h"
 #include "hullcover/geometry/status.h"
 
@@ -56,5 +57,9 @@ Aabb world_box(const QueryShape& shape, const Eigen::Isometry3d& pose);
 /// sizes, a convex with fewer than 4 points or a non-finite one, a
 /// non-finite pose. Every query runs it first.
 [[nodiscard]] Status check_query_shape(const QueryShape& shape, const Eigen::Isometry3d& pose);
+
+/// A convex query shape's hull placed at `pose`; nothing when its points
+/// have no 3D hull.
+std::optional<RuntimeHull> placed_convex(const QueryShape& shape, const Eigen::Isometry3d& pose);
 
 } // namespace hullcover::bvh

@@ -8,20 +8,14 @@
 /// it on hulls from any source; the tests run it on every covering.
 
 #include "hullcover/bvh/runtime_hull.h"
-#include "hullcover/covering/covering.h"
+#include "hullcover/validate/hull_under_check.h"
+#include "hullcover/covering/covering_types.h"
 #include "hullcover/mesh/prepared_mesh.h"
 
 #include <string>
 #include <vector>
 
 namespace hullcover::validate {
-
-/// One hull to re-check.
-struct HullUnderCheck {
-  const ConvexPolytope* shape = nullptr;
-  bool flat = false;       ///< a polygon of thickness 0 (front and back facets)
-  std::vector<int> faces;  ///< mesh faces it claims to cover, ascending; empty when unknown
-};
 
 /// A covering's hulls, with the faces each covers.
 std::vector<HullUnderCheck> hulls_under_check(const Covering& covering);

@@ -2,7 +2,7 @@
 /// \file covering_export.h
 /// Writing a `Covering`: OBJ for viewers and engines, JSON for tools.
 
-#include "hullcover/covering/covering.h"
+#include "hullcover/covering/covering_types.h"
 #include "hullcover/geometry/status.h"
 
 #include <nlohmann/json.hpp>

@@ -53,7 +53,7 @@ enum class MergeOrder {
 /// defaults named beside them (relative to the scene's bounding-box diagonal,
 /// or to the tolerance).
 struct DecomposeOptions {
-  /// `exact` (default) keeps every condition of lib/covering/src/exact_conditions.h too, so
+  /// `exact` (default) keeps every condition of lib/covering/src/validity/exact_conditions.h too, so
   /// no free space is lost; `paper` applies the paper's four alone, so the
   /// cost of exactness stays measurable.
   ValidityMode conditions = ValidityMode::exact;

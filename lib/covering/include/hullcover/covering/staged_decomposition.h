@@ -55,7 +55,7 @@ public:
   std::uint64_t cell_key(int cell) const;
 
   /// Stage 2 for one cell: its patches as bytes (a versioned binary form,
-  /// lib/covering/src/cell_result_bytes.h). Progress is not reported.
+  /// lib/covering/src/cells/cell_result_bytes.h). Progress is not reported.
   /// Fails with `invalid_argument` for a cell out of range, or
   /// `internal_error`.
   [[nodiscard]] Result<std::string> merge_cell(int cell) const;

@@ -11,7 +11,7 @@ namespace hullcover {
 /// no free space lost").
 enum class ValidityMode {
   paper,  ///< the paper's conditions 1-4 alone (bars at edge midpoints)
-  exact,  ///< the paper's plus lib/covering/src/exact_conditions.h: no free space lost
+  exact,  ///< the paper's plus lib/covering/src/validity/exact_conditions.h: no free space lost
 };
 
 /// Which condition a candidate broke first (or `valid`).

@@ -1,0 +1,52 @@
+#pragma once
+// What every cell of a decomposition shares, internal to the decomposer:
+// the resolved options and lengths, islands, cells, and the scene index
+// with its views. Made by prepare_stages (cell_merging.h); read by every
+// stage after it.
+
+#include "hullcover/covering/covering_types.h"
+#include "hullcover/covering/merge_cells.h"
+#include "hullcover/mesh/mesh_islands.h"
+#include "hullcover/mesh/tolerance.h"
+
+#include "validity/scene_index.h"
+
+#include <vector>
+
+namespace hullcover::detail {
+
+/// What the cells share. Holds a reference to `prepared`, which must
+/// outlive it.
+struct DecompositionStages {
+  explicit DecompositionStages(const PreparedMesh& mesh) : prepared(mesh), place_tolerance(mesh.tolerance) {}
+  // The views in `island_index` refer to `index_data`: never copied or moved.
+  DecompositionStages(const DecompositionStages&) = delete;
+  DecompositionStages& operator=(const DecompositionStages&) = delete;
+  const PreparedMesh& prepared;
+  /// The tolerance of each place, and where each island's zone is.
+  const PlaceTolerance place_tolerance;
+  /// Options and resolved lengths; no hulls yet. Statistics: faces, index
+  /// time, islands, cells.
+  Covering covering;
+  MeshIslands islands;
+  CellLayout cells;
+  /// Per island: the tolerance its cells, seam pass and hulls are checked
+  /// at, scene units: its place's (hullcover/mesh/tolerance.h; its hulls stay
+  /// out of every zone of a smaller one).
+  std::vector<double> island_tolerance;
+  /// What every check reads, built once...
+  SceneIndexData index_data;
+  /// ... and its views: per island, at the island's tolerance
+  /// (Tolerance::island_lengths), then the whole scene's at the smallest.
+  std::vector<SceneIndex> island_index;
+
+  /// The view the checks of island `island` use; -1: the whole scene's (the
+  /// one cell of --cell-size 0, which spans every island).
+  const SceneIndex& index_of_island(int island) const {
+    return island < 0 ? island_index.back() : island_index[island];
+  }
+  /// The view cell `cell` merges with.
+  const SceneIndex& index_of_cell(int cell) const { return index_of_island(cells.island_of_cell[cell]); }
+};
+
+} // namespace hullcover::detail

@@ -1,0 +1,85 @@
+#include "hullcover/covering/staged_decomposition.h"
+
+#include "cells/cell_merging.h"
+#include "cells/cell_result_bytes.h"
+
+#include <exception>
+
+namespace hullcover {
+namespace {
+
+Status failed(const std::exception& e) {
+  return {StatusCode::internal_error, std::string("decomposition failed: ") + e.what()};
+}
+
+} // namespace
+
+Result<std::unique_ptr<StagedDecomposition>> StagedDecomposition::prepare(PreparedMesh prepared,
+                                                                          const DecomposeOptions& options) {
+  try {
+    std::unique_ptr<StagedDecomposition> staged(new StagedDecomposition());
+    staged->prepared_ = std::make_unique<PreparedMesh>(std::move(prepared));
+    Result<std::unique_ptr<detail::DecompositionStages>> stages =
+        detail::prepare_stages(*staged->prepared_, options);
+    if (!stages.ok()) return stages.status();
+    staged->stages_ = std::move(stages).value();
+    // Progress belongs to a run, not to stages other threads share.
+    staged->stages_->covering.options.progress = nullptr;
+    return Result<std::unique_ptr<StagedDecomposition>>(std::move(staged));
+  } catch (const std::exception& e) {
+    return failed(e);
+  }
+}
+
+StagedDecomposition::~StagedDecomposition() = default;
+
+int StagedDecomposition::cell_count() const { return static_cast<int>(stages_->cells.faces_of_cell.size()); }
+
+const std::vector<int>& StagedDecomposition::cell_faces(int cell) const {
+  return stages_->cells.faces_of_cell.at(static_cast<size_t>(cell));
+}
+
+std::uint64_t StagedDecomposition::cell_key(int cell) const { return detail::cell_key(*stages_, cell); }
+
+Result<std::string> StagedDecomposition::merge_cell(int cell) const {
+  if (cell < 0 || cell >= cell_count()) return Status{StatusCode::invalid_argument, "no such cell"};
+  try {
+    return detail::cell_result_bytes(*stages_, cell, detail::merge_cell(*stages_, cell, nullptr));
+  } catch (const std::exception& e) {
+    return failed(e);
+  }
+}
+
+bool StagedDecomposition::still_valid(int cell, const std::string& bytes, std::string* why) const {
+  if (cell < 0 || cell >= cell_count()) {
+    if (why) *why = "no such cell";
+    return false;
+  }
+  try {
+    return detail::cell_bytes_hold(*stages_, cell, bytes, {}, why);
+  } catch (const std::exception& e) {
+    if (why) *why = e.what();
+    return false;
+  }
+}
+
+Result<Covering> StagedDecomposition::finish(const std::vector<std::string>& cells) const {
+  if (static_cast<int>(cells.size()) != cell_count())
+    return Status{StatusCode::invalid_argument, "finish needs one result per cell (" + std::to_string(cell_count()) +
+                                                    "), got " + std::to_string(cells.size())};
+  try {
+    std::vector<detail::CellResult> results;
+    results.reserve(cells.size());
+    for (int c = 0; c < cell_count(); ++c) {
+      Result<detail::CellResult> result = detail::cell_result_from_bytes(*stages_, c, cells[c]);
+      if (!result.ok())
+        return Status{result.status().code(), "cell " + std::to_string(c) + ": " + result.status().message()};
+      results.push_back(std::move(result).value());
+    }
+    return detail::finish_stages(*stages_, std::move(results), 0.0);
+  } catch (const std::exception& e) {
+    return failed(e);
+  }
+}
+
+} // namespace hullcover
