@@ -6,7 +6,11 @@ function(hullcover_library name)
   cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC;PRIVATE" ${ARGN})
   add_library(hullcover_${name} ${ARG_SOURCES})
   add_library(hullcover::${name} ALIAS hullcover_${name})
-  target_include_directories(hullcover_${name} PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>)
+  # include/: the installed API. internal/: headers the project's own
+  # modules, tools and tests share (files, threads, geometry kernels), never
+  # installed; no header in include/ may include one.
+  target_include_directories(hullcover_${name} PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
+                                                     $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/internal>)
   target_link_libraries(hullcover_${name} PUBLIC ${ARG_PUBLIC} PRIVATE ${ARG_PRIVATE})
   hullcover_target_defaults(hullcover_${name})
 endfunction()

@@ -48,6 +48,22 @@ config="$(find "$prefix" -name hullcoverConfig.cmake -print -quit)"
 [ -n "$config" ] || fail "no hullcoverConfig.cmake under $prefix"
 [ -f "$(dirname "$config")/hullcoverConfigVersion.cmake" ] || fail "no hullcoverConfigVersion.cmake beside $config"
 [ -f "$prefix/include/hullcover/bvh/hull_world.h" ] || fail "public headers not installed"
+# Exactly the expected headers (scripts/check_public_headers.py's list): no
+# internal header (files, threads, kernels) reaches a user's include path.
+expected="$(python3 - "$repo/scripts/check_public_headers.py" <<'PY'
+import importlib.util, sys
+spec = importlib.util.spec_from_file_location("check", sys.argv[1])
+check = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(check)
+print("\n".join(sorted(check.EXPECTED)))
+PY
+)"
+installed="$(cd "$prefix/include" && find hullcover -name '*.h' | LC_ALL=C sort)"
+if [ "$installed" != "$(printf '%s\n' "$expected" | LC_ALL=C sort)" ]; then
+  diff <(printf '%s\n' "$expected" | LC_ALL=C sort) <(printf '%s\n' "$installed") >&2 || true
+  fail "the installed headers differ from the expected list (above: < expected, > installed)"
+fi
+printf 'installed headers: %d, the expected list\n' "$(printf '%s\n' "$installed" | wc -l)"
 [ -x "$prefix/bin/hullcover" ] || fail "the hullcover tool not installed"
 [ -z "$(find "$prefix/include" -path '*/src/*')" ] || fail "private sources installed"
 

@@ -9,7 +9,7 @@ audits them against the map alone. A hull belongs to the map of its first
 face. Prints a table and exits 1 when any audit is not clean.
 
 This is the check of docs/worlds.md ("each map's hulls from a world are
-valid for the map alone"); docs/measurements.md gives its figures.
+valid for the map alone"); docs/results/worlds.md gives its figures.
 
     scripts/check_world_maps.py --hullcover build/release/apps/hullcover \\
         --out /tmp/w --columns 7 --gap 64 maps/*.obj

@@ -2,13 +2,16 @@
 """Counts include cycles between units of the libraries (lib, bvh, validate).
 
 A unit is a source file and its header taken together: lib/covering's
-scene_index.cpp, src/scene_index.h (or include/hullcover/covering/
-scene_index.h) are one unit. Unit A depends on unit B when any file of A
+src/validity/scene_index.cpp and src/validity/scene_index.h (or a header
+of the same name in include/hullcover/covering/ or internal/hullcover/
+covering/) are one unit. Unit A depends on unit B when any file of A
 includes a header of B. Every strongly connected group of more than one
 unit is a cycle: the script prints each, with the includes that close it,
 and exits 1 when there is any (0 when none).
 
 Usage: scripts/count_include_cycles.py [REPOSITORY_ROOT]
+       scripts/count_include_cycles.py --self-test  (a made-up tree with a
+       known cycle must be found, one without must not)
 """
 import os
 import re
@@ -22,7 +25,7 @@ def module_of(path):
     """The module folder holding `path`: the one with include/ or src/ under it."""
     parts = path.split(os.sep)
     for i, part in enumerate(parts):
-        if part in ("include", "src"):
+        if part in ("include", "internal", "src"):
             return os.sep.join(parts[:i])
     return os.path.dirname(path)
 
@@ -37,8 +40,38 @@ def collect(root):
     return sorted(files)
 
 
+def self_test():
+    import tempfile
+
+    def tree(files):
+        root = tempfile.mkdtemp()
+        for path, text in files.items():
+            full = os.path.join(root, path)
+            os.makedirs(os.path.dirname(full), exist_ok=True)
+            with open(full, "w", encoding="utf-8") as out:
+                out.write(text)
+        return root
+
+    # a.cpp includes b.h, b.cpp includes the public a.h: units a and b form a cycle.
+    cyclic = tree({"lib/m/include/hullcover/m/a.h": "", "lib/m/src/a.cpp": '#include "b.h"\n',
+                   "lib/m/src/b.h": "", "lib/m/src/b.cpp": '#include "hullcover/m/a.h"\n'})
+    acyclic = tree({"lib/m/include/hullcover/m/a.h": "", "lib/m/src/a.cpp": '#include "sub/b.h"\n',
+                    "lib/m/src/sub/b.h": "", "lib/m/src/sub/b.cpp": "#include <vector>\n"})
+    found = count(cyclic, quiet=True), count(acyclic, quiet=True)
+    print(f"self-test: {found[0]} cycle(s) in the cyclic tree, {found[1]} in the acyclic one")
+    return 0 if found == (1, 0) else 1
+
+
 def main():
+    if sys.argv[1:] == ["--self-test"]:
+        return self_test()
     root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..")
+    groups = count(root, quiet=False)
+    return 1 if groups else 0
+
+
+def count(root, quiet):
+    """The number of cycles under `root`; each printed unless `quiet`."""
     files = collect(root)
     unit_of = {f: (module_of(f), os.path.splitext(os.path.basename(f))[0]) for f in files}
     # Public headers by their include path; private headers by module and name.
@@ -47,9 +80,11 @@ def main():
     for f in files:
         if not f.endswith((".h", ".hpp")):
             continue
-        marker = os.sep + "include" + os.sep
-        if marker in f:
-            public[f.split(marker, 1)[1].replace(os.sep, "/")] = unit_of[f]
+        for folder in ("include", "internal"):
+            marker = os.sep + folder + os.sep
+            if marker in f:
+                public[f.split(marker, 1)[1].replace(os.sep, "/")] = unit_of[f]
+                break
         else:
             private[(module_of(f), os.path.basename(f))] = unit_of[f]
     edges = {}
@@ -104,6 +139,8 @@ def main():
                         break
                 if len(group) > 1:
                     groups.append(sorted(group))
+    if quiet:
+        return len(groups)
     for group in groups:
         print("cycle: " + ", ".join(m + "/" + n for m, n in group))
         members = set(group)
@@ -112,7 +149,7 @@ def main():
                 if b in members:
                     print("  " + why[(a, b)])
     print(f"{len(units)} units, {sum(len(v) for v in edges.values())} dependencies, {len(groups)} cycles")
-    return 1 if groups else 0
+    return len(groups)
 
 
 if __name__ == "__main__":

@@ -2,7 +2,7 @@
 # Export Red Eclipse 1.6 maps' world (octree) geometry to Wavefront OBJ: real
 # Cube 2 engine levels this project was never tuned on, for measuring bake
 # speed and auditing coverings beyond the shared scenes
-# (docs/measurements.md, "Maps never seen"). The game's own `writeobj` writes
+# (docs/results/worlds.md, "Maps never seen"). The game's own `writeobj` writes
 # each map, loaded in edit mode under a virtual X server with software GL.
 # Not used by the tests or CI (the packages are about 860 MB).
 # Usage: export_redeclipse_maps.sh OUTDIR MAP [MAP...]

@@ -1,6 +1,9 @@
 // `hullcover audit MESH HULLS`: does a set of hulls (from hullcover or any
 // other tool) take accessible space away from the scene it stands for?
 
+#include "help_numbers.h"
+#include "hullcover/covering/decompose_options.h"
+#include "hullcover/geometry/tolerances.h"
 #include "number_checks.h"
 #include "audit_printout.h"
 #include "audit_report_json.h"
@@ -121,7 +124,8 @@ void register_audit_command(CLI::App& app, int& exit_status) {
                   "Hulls: a runtime file (.hcw) or an OBJ with one o/g group per hull (each hull the convex\n"
                   "hull of its group's vertices; a group in one plane is a flat polygon)")
       ->required();
-  cmd->add_option("--tol", o->tolerance, "Tolerance in scene units, for every island (default 1e-5 x each place's diagonal)");
+  cmd->add_option("--tol", o->tolerance, "Tolerance in scene units, for every island (default " + number_text(kDefaultRelativeTolerance) +
+                      " x each place's diagonal)");
   add_import_limit_options(*cmd, o->limits);
   cmd->add_option("--probe", o->audit.probe.probe_distance,
                   "Optional cap on every ray's length in scene units (default none: the strict definition;\n"
@@ -132,7 +136,8 @@ void register_audit_command(CLI::App& app, int& exit_status) {
                   "each face's island for the rays, of the scene for the octree; every face gets rays however small)")
       ->check(positive_number());
   cmd->add_option("--bar-length", o->audit.bar_half_length,
-                  "Half-length of the boundary bars of the re-check (default 0.1 x diagonal, the paper-mode default)")
+                  "Half-length of the boundary bars of the re-check (default " + number_text(kDefaultBarHalfLengthRelative) +
+                      " x diagonal, the paper-mode default)")
       ->check(positive_number());
   cmd->add_option("--proxies", o->audit.behaviour.proxies,
                   "Character proxies (sphere, capsule, box) compared on both worlds")

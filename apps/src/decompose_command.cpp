@@ -1,5 +1,7 @@
 // `hullcover decompose IN -o OUT.obj`: the convex hull covering of a scene.
 
+#include "help_numbers.h"
+#include "hullcover/geometry/tolerances.h"
 #include "number_checks.h"
 #include "commands.h"
 #include "export/collider_export.h"
@@ -143,7 +145,8 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
   cmd->add_option("-o,--output", o->obj_path, "Output: the hull OBJ, or with --format an engine export (glb or obj)")->required();
   cmd->add_option("--json", o->json_path, "Also write per-hull figures, totals, options and timing as JSON");
   cmd->add_option("--world", o->world_path, "Also write the runtime file (.hcw) that 'query' and game servers load");
-  cmd->add_option("--tol", o->tolerance, "Tolerance in scene units, for every island (default 1e-5 x each place's diagonal)");
+  cmd->add_option("--tol", o->tolerance, "Tolerance in scene units, for every island (default " + number_text(kDefaultRelativeTolerance) +
+                      " x each place's diagonal)");
   add_import_limit_options(*cmd, o->limits);
   cmd->add_option("--threads", o->decompose.threads,
                   "Threads merging cells at once (default 0: every core); the output is the same for any count")
@@ -182,8 +185,9 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
       ->check(non_negative_number());
   cmd->add_option("--near-merge", o->decompose.near_merge_distance,
                   "After the paper's merging, also try patches that share no edge but come within this distance, "
-                  "scene units, under the same conditions; 0 = off, the paper's algorithm alone (default: exact "
-                  "0.02 x each island's diagonal, halved in a cell cut from a crowded cube per halving; paper 0)")
+                  "scene units, under the same conditions; 0 = off, the paper's algorithm alone (default: exact " +
+                      number_text(kDefaultNearMergeRelative) +
+                      " x each island's diagonal, halved in a cell cut from a crowded cube per halving; paper 0)")
       ->check(non_negative_number());
   cmd->add_option("--dissolve", o->dissolve,
                   "After merging, empty each patch whose faces can each join a patch around it (across an edge or "
@@ -201,12 +205,14 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
       ->check(CLI::Range(1, 1 << 16))
       ->capture_default_str();
   cmd->add_option("--bar-length", o->decompose.bar_half_length,
-                  "Half-length of the boundary constraint bars, scene units (default: paper 0.1 x diagonal, "
-                  "exact 4 x tol)")
+                  "Half-length of the boundary constraint bars, scene units (default: paper " +
+                      number_text(kDefaultBarHalfLengthRelative) + " x diagonal, exact " +
+                      number_text(kExactBarHalfLengthInTolerances) + " x tol)")
       ->check(positive_number());
   cmd->add_option("--prism-cap", o->decompose.prism_thickness_cap,
-                  "Largest thickness of the prisms made from planar patches (default 0.01 x each island's diagonal;\n"
-                  "a prism also stops short of a smaller neighbouring map's zone)")
+                  "Largest thickness of the prisms made from planar patches (default " +
+                      number_text(kDefaultPrismCapRelative) +
+                      " x each island's diagonal;\na prism also stops short of a smaller neighbouring map's zone)")
       ->check(non_negative_number());
   cmd->add_option("--max-hull-vertices", o->decompose.max_hull_vertices,
                   "Largest vertex count of a hull; a merge that exceeds it is not made")

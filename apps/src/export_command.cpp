@@ -1,5 +1,6 @@
 // `hullcover export HULLS -o OUT`: a covering's hulls as engines import them.
 
+#include "help_numbers.h"
 #include "number_checks.h"
 #include "commands.h"
 #include "export/collider_export.h"
@@ -79,8 +80,8 @@ void register_export_command(CLI::App& app, int& exit_status) {
   cmd->add_option("-o,--out", o->out_path, "Output file (.glb or .obj)")->required();
   cmd->add_option("--scene", o->scene_path, "The scene the hulls cover: its tolerance, and its triangles for "
                                             "--with-scene");
-  cmd->add_option("--tol", o->tolerance, "Tolerance, scene units (default: the scene's, or 1e-5 of the hulls' "
-                                         "bounding-box diagonal)")
+  cmd->add_option("--tol", o->tolerance, "Tolerance, scene units (default: the scene's, or " + number_text(kDefaultRelativeTolerance) +
+                                         " of the hulls' bounding-box diagonal)")
       ->check(positive_number());
   add_collider_export_options(cmd, o->exported);
   add_import_limit_options(*cmd, o->limits);

@@ -1,5 +1,7 @@
 // `hullcover info FILE`: what the importer, welding and connectivity see.
 
+#include "help_numbers.h"
+#include "hullcover/geometry/tolerances.h"
 #include "commands.h"
 #include "mesh_report.h"
 
@@ -50,8 +52,8 @@ void register_info_command(CLI::App& app, int& exit_status) {
   info->add_option("FILE", options->path, "Scene file: OBJ, PLY, STL, glTF/GLB, FBX (anything Assimp reads)")
       ->required();
   info->add_option("--tol", options->tolerance,
-                   "Tolerance in scene units for welding and zero-area tests\n"
-                   "(default 1e-5 x each place's diagonal; never below the data's rounding floor)");
+                   "Tolerance in scene units for welding and zero-area tests\n(default " + number_text(kDefaultRelativeTolerance) +
+                       " x each place's diagonal; never below the data's rounding floor)");
   add_import_limit_options(*info, options->limits);
   info->add_flag("--json", options->json, "Print the figures as JSON on standard output");
   info->callback([options, &exit_status] { exit_status = run_info(*options); });

@@ -1,6 +1,9 @@
 // The `hullcover` command line tool.
 
 #include "commands.h"
+#include "help_numbers.h"
+
+#include "hullcover/geometry/tolerances.h"
 
 #include <cstdio>
 
@@ -12,7 +15,9 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer(
       "Exit status: 0 success, 1 a violation was found, 2 unreadable input or bad usage.\n"
-      "Lengths are in the scene's own units; the tolerance defaults to 1e-5 of each place's diagonal (a map in a world keeps its own).");
+      "Lengths are in the scene's own units; the tolerance defaults to " +
+      hullcover::app::number_text(hullcover::kDefaultRelativeTolerance) +
+      " of each place's diagonal (a map in a world keeps its own).");
 
   int exit_status = hullcover::app::kExitSuccess;
   hullcover::app::register_info_command(app, exit_status);

@@ -1,5 +1,8 @@
 #include "mesh_report.h"
 
+#include "help_numbers.h"
+#include "hullcover/geometry/tolerances.h"
+
 #include <cstdio>
 
 namespace hullcover::app {
@@ -23,6 +26,7 @@ MeshFigures measure_mesh(const PreparedMesh& prepared) {
 }
 
 std::string describe_tolerance(const Tolerance& t) {
+  const std::string relative = number_text(kDefaultRelativeTolerance);
   char line[320];
   char lengths[96];
   if (t.largest_length() > t.length)
@@ -36,13 +40,13 @@ std::string describe_tolerance(const Tolerance& t) {
   else if (t.user_given)
     std::snprintf(line, sizeof line, "%s (given)", lengths);
   else if (t.islands <= 1)
-    std::snprintf(line, sizeof line, "%s (default: 1e-5 x the diagonal %.6g)", lengths, t.local_extent);
+    std::snprintf(line, sizeof line, "%s (default: %s x the diagonal %.6g)", lengths, relative.c_str(), t.local_extent);
   else if (t.places <= 1)
-    std::snprintf(line, sizeof line, "%s (default: 1e-5 x the diagonal of the box of its %d islands)", lengths,
+    std::snprintf(line, sizeof line, "%s (default: %s x the diagonal of the box of its %d islands)", lengths, relative.c_str(),
                   t.islands);
   else
-    std::snprintf(line, sizeof line, "%s (default: 1e-5 x each place's diagonal; %d places, each islands whose boxes meet)",
-                  lengths, t.places);
+    std::snprintf(line, sizeof line, "%s (default: %s x each place's diagonal; %d places, each islands whose boxes meet)",
+                  lengths, relative.c_str(), t.places);
   return line;
 }
 

@@ -1,4 +1,4 @@
-// Issue 16: the real `hullcover` binary on a hostile corpus generated in
+// The real `hullcover` binary on a hostile corpus generated in
 // code (tests/support/hostile_*.h): no crash, no hang, no read outside the
 // scene's folder, an exit status the help documents with one clear line on
 // exit 2, and under 512 MB of peak memory for any input under 1 MB. Each
@@ -8,7 +8,7 @@
 // canary folder (any open or read there), the canary's secret (also in the
 // children's environment, for /proc/self/environ) searched in everything a
 // run prints or writes, and the refusal line a reference outside must get.
-// The per-category table it prints is the figure for the issue.
+// The per-category table it prints is the figure docs/results quotes.
 
 #include "child_process.h"
 #include "hostile_corpus.h"

@@ -1,7 +1,7 @@
 // Audit benchmark (not a test): the whole audit at default settings -
 // accessible-space probe, independent re-check, behaviour equivalence - of
 // hullcover's covering and of the V-HACD peer hulls, per shared scene. The
-// issue's target: one scene in under a minute on this machine.
+// aim: one scene in under a minute on a two-core machine.
 //
 //   build/release/tests/hullcover_bench_audit [--benchmark_filter=fdm6]
 

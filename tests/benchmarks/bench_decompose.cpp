@@ -2,7 +2,7 @@
 // scene, the paper's conditions and exact mode (compact order), exact mode
 // without dissolving, without near merges (nor dissolving), and exact mode in
 // random order, side by side, with faces, hulls, hulls per face, the
-// ratio to the prototype's paper-mode count (docs/measurements.md, "Paper vs exact"; issue 6's
+// ratio to the prototype's paper-mode count (docs/results/covering.md, "Paper vs exact"; the
 // target for exact mode: <= 1) and the time per 20K faces (the paper: tens
 // of seconds to a minute for 21K faces). Then, without the shared scenes,
 // scattered islands: n separate triangles a unit apart, each its own island
@@ -31,7 +31,7 @@ using namespace hullcover;
 constexpr double kPaperHullsPerFace = 3137.0 / 14608.0;
 
 // Hull counts of the prototype with the paper's conditions alone
-// (docs/measurements.md, "Paper vs exact").
+// (docs/results/covering.md, "Paper vs exact").
 const std::map<std::string, double> kPrototypePaperHulls = {
     {"sauerbraten-fdm6.obj", 3112},   {"sauerbraten-pandora.obj", 21098},       {"recast-dungeon.obj", 3231},
     {"threejs-collision-world.glb", 368}, {"recast-nav_test.obj", 714}};

@@ -3,7 +3,7 @@
 // one run over the same poses near the surfaces of each shared scene, at two
 // sizes: a character (capsule radius 0.4 m, half height 0.5 m, from the
 // scene's units per metre) and a large probe (radius 0.02 x the scene's
-// diagonal, the size of the Jolt measurement). Each row reports
+// diagonal, the size of the Jolt comparison's probes, docs/results/runtime.md). Each row reports
 // microseconds per query for both worlds and the speed-up
 // (triangles / hulls). Rows: yes/no (touches), contacts, every touching
 // hull (overlap), rays (single and a batch of all poses, up to 4 radii

@@ -284,7 +284,7 @@ TEST(PointHull, MatchesQhullOnRandomClouds) {
   EXPECT_GE(built, trials * 9 / 10);
 }
 
-// Known shortfall (issue 16 note): the draws inside one expression below
+// Known shortfall: the draws inside one expression below
 // are in the compiler's order; clang's order makes trials 9 and 11 (14
 // coplanar points around (3e4, -2e4, 1e4) and one 0.5 off their plane) sets
 // the incremental update refuses, which convex_hull_of_points documents

@@ -55,7 +55,7 @@ TEST(FlatPolygon, IsProjectedOntoItsPlaneWithOutwardSides) {
   for (const Plane& side : p.sides) EXPECT_LT(side.signed_distance({1, 1, 0}), -0.5);
 }
 
-// Coverage (issue 13, recast-dungeon): the plane runs through the middle of
+// Coverage (a case from recast-dungeon): the plane runs through the middle of
 // the points' slab, so a lone raised point is half the slab off it, not
 // three quarters as through their mean.
 TEST(FlatPolygon, PlaneRunsThroughTheMiddleOfTheSlab) {

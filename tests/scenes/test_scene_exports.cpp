@@ -1,4 +1,4 @@
-// Engine exports of every shared scene (issue 17's targets): the .glb passes
+// Engine exports of every shared scene: the .glb passes
 // the Khronos validator and reads back in Assimp with every hull; the Unreal
 // and Godot OBJs read back as the hulls alone; and the audit of the .glb,
 // allowed the stated flat-hull thickness, finds nothing farther from the

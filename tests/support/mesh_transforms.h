@@ -58,7 +58,7 @@ inline Eigen::Matrix3d random_rotation(std::mt19937& rng) {
   return Eigen::Quaterniond(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized().toRotationMatrix();
 }
 
-/// The transforms: translation by 1e5 and 1e7 along the diagonal,
+/// The transforms: translation by 1e5 and 1e7 along the diagonal,
 /// two random rotations (fixed seed), uniform scaling by 1e-3 and 1e3, and
 /// a mirror in x.
 inline std::vector<MeshTransform> metamorphic_transforms() {

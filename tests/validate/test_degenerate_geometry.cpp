@@ -245,7 +245,7 @@ TEST(DegenerateGeometry, DuplicateFacesDoNotAddHulls) {
 // hull for both windings; today the two windings stay apart (a planar merge
 // needs patches facing the same way, and Qhull refuses the coplanar union),
 // so the count is that of the two one-sided surfaces, never more: a block of
-// 12 triangles gives 12 flat hulls, not 6 (noted as a shortfall on issue 16).
+// 12 triangles gives 12 flat hulls, not 6 (a known shortfall).
 TEST(DegenerateGeometry, FlippedDuplicatesMakeADoubleSidedSurface) {
   Mesh block;
   add_box(block, V(0, 0, 0), V(2, 1, 3));

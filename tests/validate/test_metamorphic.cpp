@@ -93,7 +93,7 @@ TEST(Metamorphic, TransformedScenesAuditCleanWithTheSameHullCount) {
       const std::string what = std::string(scene.name) + ", " + t.name;
       const double scale = std::cbrt(std::abs(t.map.linear().determinant()));
       const long count = clean_hull_count(test::transformed(mesh, t.map), scale, what);
-      std::printf("%s: %ld hulls (%ld untransformed)\n", what.c_str(), count, reference);  // the figures
+      std::printf("%s: %ld hulls (%ld untransformed)\n", what.c_str(), count, reference);  // the figures docs/results quotes
       EXPECT_LE(std::abs(count - reference), std::floor(t.hull_count_spread * reference)) << what << ": " << count
                                                                                        << " hulls, " << reference
                                                                                        << " untransformed";

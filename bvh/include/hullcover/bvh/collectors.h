@@ -75,6 +75,7 @@ private:
 template <typename Hit>
 class OneHitCollector : public HitCollector<Hit> {
 public:
+  /// Whether a hit was kept since the last reset().
   bool found() const { return found_; }
   /// The hit kept; meaningful when found().
   const Hit& hit() const { return hit_; }
@@ -95,6 +96,7 @@ private:
 template <typename Hit>
 class AnyHitCollector final : public OneHitCollector<Hit> {
 public:
+  /// Keeps `hit` and stops the walk.
   void add(const Hit& hit) override {
     this->keep(hit);
     this->stop();
@@ -106,7 +108,9 @@ public:
 template <typename Hit>
 class AllHitsCollector final : public HitCollector<Hit> {
 public:
+  /// Appends `hit`.
   void add(const Hit& hit) override { hits_.push_back(hit); }
+  /// The hits since the last reset(), in walk order.
   const std::vector<Hit>& hits() const { return hits_; }
   /// The hits, to sort or move out (then reset() before the next query).
   std::vector<Hit>& hits() { return hits_; }
@@ -126,6 +130,7 @@ private:
 template <typename Hit, typename Better>
 class BestHitCollector final : public OneHitCollector<Hit> {
 public:
+  /// Keeps `hit` when it beats the one kept, and lowers reach().
   void add(const Hit& hit) override {
     if (this->found() && !Better{}(hit, this->hit())) return;
     this->keep(hit);

@@ -64,8 +64,10 @@ public:
   /// it) and `results` is left empty.
   [[nodiscard]] Status touches_batch(const std::vector<OverlapRequest>& requests, std::vector<TouchResult>& results,
                                      QueryThreads* threads = nullptr) const;
+  /// contacts() for each request, as touches_batch.
   [[nodiscard]] Status contacts_batch(const std::vector<ContactRequest>& requests,
                                       std::vector<ContactResult>& results, QueryThreads* threads = nullptr) const;
+  /// ray_cast() for each request, as touches_batch.
   [[nodiscard]] Status ray_cast_batch(const std::vector<RayRequest>& requests, std::vector<RayResult>& results,
                                       QueryThreads* threads = nullptr) const;
   /// Fails as overlap does. The distance is exact for every shape: spheres

@@ -17,6 +17,7 @@
 
 namespace hullcover::bvh {
 
+/// What a QueryShape is.
 enum class ShapeKind { sphere, capsule, box, convex };
 
 /// A query shape in its local frame. Only the fields of its `kind` are read;
@@ -39,10 +40,14 @@ struct QueryShape {
   /// hull small. Default empty.
   std::vector<Eigen::Vector3d> points;
 
+  /// A sphere of radius `r`, centred on the pose's origin.
   static QueryShape sphere(double r) { QueryShape s; s.kind = ShapeKind::sphere; s.radius = r; return s; }
+  /// A capsule of radius `r` around the local z axis from -half_height to
+  /// +half_height.
   static QueryShape capsule(double r, double half_height) {
     QueryShape s; s.kind = ShapeKind::capsule; s.radius = r; s.half_height = half_height; return s;
   }
+  /// A box of these half extents along the local axes.
   static QueryShape box(const Eigen::Vector3d& half_extents) {
     QueryShape s; s.kind = ShapeKind::box; s.half_extents = half_extents; return s;
   }

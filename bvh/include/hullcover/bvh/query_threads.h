@@ -14,12 +14,15 @@
 
 namespace hullcover::bvh {
 
+/// A pool of threads for the batch queries (hull_queries.h): started once,
+/// shared by any number of batches, one batch at a time.
 class QueryThreads {
 public:
   /// `threads` in all, the caller's included (>= 1; 0: one per hardware
   /// thread). Fails with `invalid_argument` for a negative count or more
   /// than kMostThreads, and `internal_error` if the system starts none.
   static Result<std::shared_ptr<QueryThreads>> start(int threads);
+  /// The most threads start() accepts.
   static constexpr int kMostThreads = 256;
 
   ~QueryThreads();

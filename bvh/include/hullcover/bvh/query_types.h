@@ -50,6 +50,7 @@ struct OverlapRequest {
   /// units), finite. Default: identity.
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
 };
+/// What overlap() found.
 struct OverlapResult {
   /// Ascending indices of every hull that overlaps or touches the shape:
   /// exactly the hulls contacts() gives a contact for (hull_contact.h's
@@ -78,6 +79,7 @@ struct ContactRequest {
   /// are kept. Default 8.
   int max_contacts = 8;
 };
+/// What contacts() found.
 struct ContactResult {
   /// At most one per hull the shape overlaps or touches (depth 0), at most
   /// `max_contacts` in all; deepest first, equal depths by hull index.
@@ -95,6 +97,7 @@ struct RayRequest {
   /// ignored. Default 1e30: unlimited.
   double max_distance = 1e30;
 };
+/// What ray_cast() found.
 struct RayResult {
   bool hit = false;  ///< some hull is hit within max_distance
   /// The nearest hit (equal t: the lower hull index); valid when `hit`. A
@@ -115,6 +118,7 @@ struct DistanceRequest {
   /// identity.
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
 };
+/// What distance() found.
 struct DistanceResult {
   /// The shape overlaps or touches a hull: `distance` is exactly 0.
   bool touching = false;
@@ -157,6 +161,7 @@ struct SweepRequest {
   /// for a path that would only graze past. Default 200.
   int max_steps = 200;
 };
+/// What sweep() found.
 struct SweepResult {
   /// The shape comes within `touch` of a hull on the way (or ran out of
   /// steps, see SweepRequest::max_steps).

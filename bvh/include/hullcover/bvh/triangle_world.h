@@ -18,6 +18,8 @@
 
 namespace hullcover::bvh {
 
+/// The scene's triangles as a world: the queries HullWorld answers, on
+/// triangles (see the file comment for how results differ).
 class TriangleWorld {
 public:
   /// Builds over every triangle of `mesh` with a surface (altitude above
@@ -50,6 +52,7 @@ public:
   /// Nearest triangle by FCL's distance query; spheres and capsules.
   [[nodiscard]] Status distance(const DistanceRequest& request, DistanceResult& result) const;
 
+  /// How many triangles the world holds.
   int triangle_count() const { return static_cast<int>(triangles_.size()); }
 
 private:

@@ -1,7 +1,7 @@
 #pragma once
 /// \file loss_allowance.h
 /// The free space a covering may take beyond exact mode, when the user asks
-/// (issue 15; README "Agent-exact coverings"). Exact mode rejects a hull as
+/// (README "Agent-exact coverings"). Exact mode rejects a hull as
 /// soon as one witness ray (witness_rays.h) finds free space inside it. With
 /// an allowance, the space that piece of rays can lose is first bounded by a
 /// convex polytope L (every point a ray of the piece has inside the hull

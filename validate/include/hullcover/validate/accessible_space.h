@@ -97,6 +97,7 @@ struct ProbeReport {
   std::vector<LostPlace> worst;  ///< the deepest lost point per hull, deepest first, at most kWorstPlaces
   AllowanceReport allowance;     ///< the allowance's figures (allowance_audit.h), when a knob is set
 
+  /// Lost rays, front and openings together.
   long lost_rays() const { return front.lost + opening.lost; }
 };
 /// How many hulls' deepest lost places a report keeps.

@@ -16,7 +16,7 @@
 namespace hullcover {
 
 /// Default bar half-length as a fraction of the bounding-box diagonal (the
-/// value the prototype measured the paper with: docs/measurements.md).
+/// value the prototype measured the paper with: docs/results/covering.md).
 inline constexpr double kDefaultBarHalfLengthRelative = 0.1;
 /// The audit's default probe distance as a fraction of the diagonal (the
 /// decomposer itself keeps free space with no cap unless asked for one).

@@ -21,6 +21,7 @@ struct Plane {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
   double offset = 0.0;
 
+  /// normal . p - offset: positive on the side the normal points to.
   double signed_distance(const Eigen::Vector3d& p) const { return normal.dot(p) - offset; }
   /// The same plane facing the other way (its inner side is this one's outer).
   Plane flipped() const { return {-normal, -offset}; }
@@ -76,6 +77,7 @@ bool region_outside_interior(const std::vector<Plane>& planes, const Aabb& box, 
 /// region_outside_interior is true for them, and so for the hull.
 class InteriorRegionTest {
 public:
+  /// How many of the hull's planes the test asks.
   static constexpr int kPlanes = 4;
   /// A hull filling more than this fraction of its box leaves too little of
   /// it outside for the node tests to pay for themselves: worthwhile() is
@@ -84,6 +86,8 @@ public:
   /// Keeps the hull's planes it needs: `hull` need not outlive it. `box`:
   /// the box the walks query (the hull's, grown by tol).
   InteriorRegionTest(const ConvexPolytope& hull, const Aabb& box, double tol);
+  /// True only when no point of `box` lies strictly inside the hull
+  /// (region_outside_interior on the kept planes).
   bool outside(const Aabb& box) const;
   /// Whether a walk should ask outside() at all: the hull fills at most
   /// kMostFilledFraction of the box.
@@ -144,6 +148,7 @@ void clip_polygon_to_planes_in_place(std::vector<Eigen::Vector3d>& polygon, cons
 struct HullInterior {
   std::vector<Plane> planes;                         ///< the hull's planes moved in by tol
   std::vector<std::vector<Eigen::Vector3d>> facets;  ///< per plane, its facet (empty when gone)
+  /// Whether no facet is left: the hull is thinner than 2 tol.
   bool empty() const {
     for (const auto& f : facets)
       if (!f.empty()) return false;

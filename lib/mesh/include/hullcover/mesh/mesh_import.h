@@ -21,8 +21,11 @@ namespace hullcover {
 /// bytes of memory per placed triangle a file under 1 MB stays under
 /// 512 MB.
 inline constexpr std::uint64_t kInputBytesPerDefaultTriangle = 8;
+/// The default rule's least limit, whatever the files' size.
 inline constexpr std::uint64_t kDefaultTriangleLimitFloor = std::uint64_t{1} << 16;
+/// The default rule's greatest limit, whatever the files' size.
 inline constexpr std::uint64_t kDefaultTriangleLimitCeiling = std::uint64_t{4} << 20;
+/// The default rule: the placed triangles allowed for `input_bytes` read.
 std::uint64_t default_triangle_limit(std::uint64_t input_bytes);
 
 /// What an import saw besides the mesh itself.

@@ -91,6 +91,7 @@ struct Tolerance {
 /// by). Refers to the Tolerance given, which must outlive it.
 class PlaceTolerance {
 public:
+  /// Refers to `tolerance`, which must outlive this.
   explicit PlaceTolerance(const Tolerance& tolerance);
   PlaceTolerance(Tolerance&&) = delete;  // would refer to a temporary
   /// Scene units (> 0). O(log islands + zones met); thread-safe.
