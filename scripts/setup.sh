@@ -26,7 +26,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev
   libcairo2-dev
   chromium  # tests/apps/test_audit_html.cpp opens the audit's HTML report headless (skipped without it)
-  clang libclang-rt-14-dev
+  clang libclang-rt-14-dev  # the fuzzing and sanitizer builds
+  clang-format  # scripts/check_format.sh, in CI
   python3-dev python3-pybind11 python3-numpy python3-pytest  # the Python module (apps/python) and its tests
   python3-distributed  # the distributed bake (python3 -m hullcover.bake) on Dask
 )

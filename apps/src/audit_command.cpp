@@ -32,7 +32,7 @@ namespace {
 // audit's own options (validate::AuditOptions, defaults included).
 struct AuditCommandOptions {
   std::string mesh, hulls, json_path, html_path;
-  std::string html_up = "y";  // the pictures' up axis
+  std::string html_up = "y"; // the pictures' up axis
   std::optional<double> tolerance;
   ImportLimits limits;
   validate::AuditOptions audit;
@@ -87,7 +87,9 @@ int run_audit_command(const AuditCommandOptions& o) {
   const validate::AuditReport& a = audited.value();
   print_audit(o.hulls, scene->prepared, a);
   if (!o.json_path.empty())
-    if (Status written = write_file_atomically(o.json_path, audit_json(o, scene->prepared, a).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+    if (Status written = write_file_atomically(
+            o.json_path,
+            audit_json(o, scene->prepared, a).dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
         !written.ok())
       return bad_input(written);
   if (!o.html_path.empty()) {
@@ -110,7 +112,8 @@ void register_audit_command(CLI::App& app, int& exit_status) {
   auto o = std::make_shared<AuditCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
       "audit",
-      "Check that hulls take no accessible space from the scene (the strict definition (docs/definitions-and-proofs.md)): rays from\n"
+      "Check that hulls take no accessible space from the scene (the strict definition "
+      "(docs/definitions-and-proofs.md)): rays from\n"
       "points of every face along its normal, and from every open edge outward in the face's plane and tilted\n"
       "to either side, run with no distance cap to the first mesh hit (or out of the box of scene and hulls);\n"
       "each is decided exactly against every hull it meets (the segment against the hull shrunk by the\n"
@@ -124,7 +127,8 @@ void register_audit_command(CLI::App& app, int& exit_status) {
                   "Hulls: a runtime file (.hcw) or an OBJ with one o/g group per hull (each hull the convex\n"
                   "hull of its group's vertices; a group in one plane is a flat polygon)")
       ->required();
-  cmd->add_option("--tol", o->tolerance, "Tolerance in scene units, for every island (default " + number_text(kDefaultRelativeTolerance) +
+  cmd->add_option("--tol", o->tolerance,
+                  "Tolerance in scene units, for every island (default " + number_text(kDefaultRelativeTolerance) +
                       " x each place's diagonal)");
   add_import_limit_options(*cmd, o->limits);
   cmd->add_option("--probe", o->audit.probe.probe_distance,
@@ -136,8 +140,8 @@ void register_audit_command(CLI::App& app, int& exit_status) {
                   "each face's island for the rays, of the scene for the octree; every face gets rays however small)")
       ->check(positive_number());
   cmd->add_option("--bar-length", o->audit.bar_half_length,
-                  "Half-length of the boundary bars of the re-check (default " + number_text(kDefaultBarHalfLengthRelative) +
-                      " x diagonal, the paper-mode default)")
+                  "Half-length of the boundary bars of the re-check (default " +
+                      number_text(kDefaultBarHalfLengthRelative) + " x diagonal, the paper-mode default)")
       ->check(positive_number());
   cmd->add_option("--proxies", o->audit.behaviour.proxies,
                   "Character proxies (sphere, capsule, box) compared on both worlds")
@@ -148,8 +152,9 @@ void register_audit_command(CLI::App& app, int& exit_status) {
   cmd->add_option("--seed", o->audit.behaviour.seed, "Seed of the proxy poses (0 or more)")
       ->check(non_negative_number())
       ->capture_default_str();
-  cmd->add_option("--octree", o->audit.probe.octree_path,
-                  "Write the octree of the cells of lost rays' deepest points (.bt, for OctoMap's viewer; origin = box centre)");
+  cmd->add_option(
+      "--octree", o->audit.probe.octree_path,
+      "Write the octree of the cells of lost rays' deepest points (.bt, for OctoMap's viewer; origin = box centre)");
   cmd->add_option("--agent-radius", o->audit.probe.allowance.agent_radius,
                   "Audit a covering made for agents of this radius (scene units): every ball of this radius clear\n"
                   "of the mesh, centred on the probe's rays, must stay out of the hulls (within the tolerance);\n"

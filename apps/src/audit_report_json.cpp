@@ -36,36 +36,39 @@ nlohmann::json rays_json(const validate::RayTally& t) {
           {"deepest", place_json(t.deepest)}};
 }
 
-nlohmann::json optional_json(const std::optional<double>& x) { return x ? nlohmann::json(*x) : nlohmann::json(nullptr); }
+nlohmann::json optional_json(const std::optional<double>& x) {
+  return x ? nlohmann::json(*x) : nlohmann::json(nullptr);
+}
 
 nlohmann::json allowance_json(const validate::AllowanceReport& a) {
   if (!a.options.any()) return nullptr;
   const validate::ReachPlace& p = a.deepest_reach;
-  return {{"agent_radius", optional_json(a.options.agent_radius)},
-          {"max_deviation", optional_json(a.options.max_deviation)},
-          {"lost_stretches", a.lost_stretches},
-          {"max_lost_deviation", a.max_lost_deviation},
-          {"farthest",
-           a.farthest_hull < 0 ? nlohmann::json(nullptr)
-                               : nlohmann::json{{"point", {a.farthest_point.x(), a.farthest_point.y(), a.farthest_point.z()}},
-                                                {"face", a.farthest_face},
-                                                {"hull", a.farthest_hull}}},
-          {"beyond_deviation", a.beyond_deviation},
-          {"centre_rays", a.centre_rays},
-          {"reach_lost", a.reach_lost},
-          {"enclosed_balls", a.enclosed_balls},
-          {"deepest_reach", p.hull < 0 ? nlohmann::json(nullptr)
-                                       : nlohmann::json{{"centre", {p.centre.x(), p.centre.y(), p.centre.z()}},
-                                                        {"face", p.face},
-                                                        {"hull", p.hull},
-                                                        {"depth", p.depth},
-                                                        {"clearance", p.clearance},
-                                                        {"opening", p.opening}}},
-          {"undecided", a.undecided},
-          {"first_undecided", ray_point_json(a.first_undecided)}};
+  return {
+      {"agent_radius", optional_json(a.options.agent_radius)},
+      {"max_deviation", optional_json(a.options.max_deviation)},
+      {"lost_stretches", a.lost_stretches},
+      {"max_lost_deviation", a.max_lost_deviation},
+      {"farthest", a.farthest_hull < 0
+                       ? nlohmann::json(nullptr)
+                       : nlohmann::json{{"point", {a.farthest_point.x(), a.farthest_point.y(), a.farthest_point.z()}},
+                                        {"face", a.farthest_face},
+                                        {"hull", a.farthest_hull}}},
+      {"beyond_deviation", a.beyond_deviation},
+      {"centre_rays", a.centre_rays},
+      {"reach_lost", a.reach_lost},
+      {"enclosed_balls", a.enclosed_balls},
+      {"deepest_reach", p.hull < 0 ? nlohmann::json(nullptr)
+                                   : nlohmann::json{{"centre", {p.centre.x(), p.centre.y(), p.centre.z()}},
+                                                    {"face", p.face},
+                                                    {"hull", p.hull},
+                                                    {"depth", p.depth},
+                                                    {"clearance", p.clearance},
+                                                    {"opening", p.opening}}},
+      {"undecided", a.undecided},
+      {"first_undecided", ray_point_json(a.first_undecided)}};
 }
 
-}  // namespace
+} // namespace
 
 nlohmann::json audit_report_json(const PreparedMesh& prepared, const validate::AuditReport& a) {
   const validate::ProbeReport& r = a.probe;
@@ -117,6 +120,5 @@ nlohmann::json audit_report_json(const PreparedMesh& prepared, const validate::A
         {"max_normal_angle_deg", b.max_normal_angle}}},
   };
 }
-
 
 } // namespace hullcover::app

@@ -8,7 +8,7 @@
 namespace hullcover::app {
 
 inline constexpr int kExitSuccess = 0;
-inline constexpr int kExitFinding = 1;  // e.g. an audit violation
+inline constexpr int kExitFinding = 1; // e.g. an audit violation
 inline constexpr int kExitBadInput = 2;
 
 void register_info_command(CLI::App& app, int& exit_status);

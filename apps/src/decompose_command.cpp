@@ -34,9 +34,9 @@ struct DecomposeCommandOptions {
   ImportLimits limits;
   std::string order = "compact";
   std::string conditions = "exact";
-  std::string dissolve;  // "", "on" or "off"
+  std::string dissolve; // "", "on" or "off"
   DecomposeOptions decompose;
-  ColliderExportOptions exported;  // with --format, -o is an engine export
+  ColliderExportOptions exported; // with --format, -o is an engine export
   bool quiet = false;
 };
 
@@ -50,9 +50,9 @@ int run_decompose(DecomposeCommandOptions& o) {
   TerminalProgress bar("decomposing (merges at most)", o.quiet);
   if (bar.enabled()) o.decompose.progress = [&bar](double fraction) { bar.update(fraction); };
   CellCacheReport cache;
-  const Result<Covering> covering =
-      o.cell_cache.empty() ? decompose(scene->prepared, o.decompose)
-                           : decompose_with_cell_cache(scene->prepared, o.decompose, o.cell_cache, cache);
+  const Result<Covering> covering = o.cell_cache.empty()
+                                        ? decompose(scene->prepared, o.decompose)
+                                        : decompose_with_cell_cache(scene->prepared, o.decompose, o.cell_cache, cache);
   bar.finish();
   if (!covering.ok()) {
     std::fprintf(stderr, "hullcover: error: %s\n", covering.status().message().c_str());
@@ -90,12 +90,12 @@ int run_decompose(DecomposeCommandOptions& o) {
   }
   const int faces = c.statistics.faces;
   const double reduction = faces > 0 ? 1.0 - static_cast<double>(c.hulls.size()) / faces : 0.0;
-  std::printf("%s: %d faces -> %zu hulls (%.1f%% fewer, %.3f hulls/face), %.3f s (merging %.3f s)\n",
-              o.input.c_str(), faces, c.hulls.size(), 100.0 * reduction,
-              faces > 0 ? static_cast<double>(c.hulls.size()) / faces : 0.0, seconds, c.statistics.seconds_merging);
-  std::printf("  tolerance %.6g%s, bar half-length %.6g, prism cap %.6g, order %s, conditions %s\n",
-              c.tolerance.length, c.tolerance.largest_length() > c.tolerance.length ? " (the smallest place's)" : "",
-              c.bar_half_length, c.prism_thickness_cap, o.order.c_str(), o.conditions.c_str());
+  std::printf("%s: %d faces -> %zu hulls (%.1f%% fewer, %.3f hulls/face), %.3f s (merging %.3f s)\n", o.input.c_str(),
+              faces, c.hulls.size(), 100.0 * reduction, faces > 0 ? static_cast<double>(c.hulls.size()) / faces : 0.0,
+              seconds, c.statistics.seconds_merging);
+  std::printf("  tolerance %.6g%s, bar half-length %.6g, prism cap %.6g, order %s, conditions %s\n", c.tolerance.length,
+              c.tolerance.largest_length() > c.tolerance.length ? " (the smallest place's)" : "", c.bar_half_length,
+              c.prism_thickness_cap, o.order.c_str(), o.conditions.c_str());
   std::printf("  %d island%s, %d cell%s, threads %d\n", c.statistics.islands, c.statistics.islands == 1 ? "" : "s",
               c.statistics.cells, c.statistics.cells == 1 ? "" : "s",
               o.decompose.threads > 0 ? o.decompose.threads
@@ -115,17 +115,19 @@ int run_decompose(DecomposeCommandOptions& o) {
   if (c.dissolve)
     std::printf("  dissolved patches (emptied into their neighbours): %d\n", c.statistics.dissolved_patches);
   if (!o.cell_cache.empty()) {
-    std::printf("  cell cache %s: %d cells, %d reused (re-checked against this scene, %.3f s), %d stale, %d merged "
-                "(%.3f s)\n",
-                o.cell_cache.c_str(), cache.cells, cache.reused, cache.seconds_checking, cache.stale, cache.merged,
-                cache.seconds_merging);
+    std::printf(
+        "  cell cache %s: %d cells, %d reused (re-checked against this scene, %.3f s), %d stale, %d merged "
+        "(%.3f s)\n",
+        o.cell_cache.c_str(), cache.cells, cache.reused, cache.seconds_checking, cache.stale, cache.merged,
+        cache.seconds_merging);
     if (cache.changed_faces < 0)
       std::printf("    no usable record of the last bake (or an allowance): every kept patch re-checked (%ld)\n",
                   cache.patches_rechecked);
     else
-      std::printf("    %d faces added or removed since the last bake: %ld kept patches within their reach "
-                  "re-checked, %ld out of reach kept as they were\n",
-                  cache.changed_faces, cache.patches_rechecked, cache.patches_kept_unchecked);
+      std::printf(
+          "    %d faces added or removed since the last bake: %ld kept patches within their reach "
+          "re-checked, %ld out of reach kept as they were\n",
+          cache.changed_faces, cache.patches_rechecked, cache.patches_kept_unchecked);
   }
   if (!exported.empty()) std::printf("  %s\n", exported.c_str());
   std::printf("  wrote %s%s%s%s%s\n", o.obj_path.c_str(), o.json_path.empty() ? "" : ", ", o.json_path.c_str(),
@@ -142,10 +144,12 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
       "Compute the convex hull covering of a scene (the paper's greedy, compactness-ordered merging)\n"
       "and write it as OBJ, one 'o' group per hull, with an optional JSON sidecar.");
   cmd->add_option("IN", o->input, "Scene file (OBJ, PLY, STL, glTF/GLB, FBX)")->required();
-  cmd->add_option("-o,--output", o->obj_path, "Output: the hull OBJ, or with --format an engine export (glb or obj)")->required();
+  cmd->add_option("-o,--output", o->obj_path, "Output: the hull OBJ, or with --format an engine export (glb or obj)")
+      ->required();
   cmd->add_option("--json", o->json_path, "Also write per-hull figures, totals, options and timing as JSON");
   cmd->add_option("--world", o->world_path, "Also write the runtime file (.hcw) that 'query' and game servers load");
-  cmd->add_option("--tol", o->tolerance, "Tolerance in scene units, for every island (default " + number_text(kDefaultRelativeTolerance) +
+  cmd->add_option("--tol", o->tolerance,
+                  "Tolerance in scene units, for every island (default " + number_text(kDefaultRelativeTolerance) +
                       " x each place's diagonal)");
   add_import_limit_options(*cmd, o->limits);
   cmd->add_option("--threads", o->decompose.threads,

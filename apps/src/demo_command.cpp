@@ -64,7 +64,8 @@ int query_runtime(const std::string& world_path, std::vector<render::Marker>& ma
 
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   // QueryShape::capsule's axis is local z: stand it up along y.
-  pose.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitY()).toRotationMatrix();
+  pose.linear() =
+      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitY()).toRotationMatrix();
   const Eigen::Vector3d feet = point(kCharacterFeet), origin = point(kShotOrigin), along = point(kShotDirection);
   pose.translation() = feet + Eigen::Vector3d(0.0, kCharacterRadius + kCharacterHalfAxis - kCharacterSink, 0.0);
   bvh::ContactResult contacts;
@@ -129,7 +130,8 @@ int run_demo(const DemoOptions& options) {
     if (!s.ok()) return fail(s);
   const CoveringStatistics& st = c.statistics;
   std::printf("decomposed: %d faces -> %zu hulls (%.3f hulls/face) in %.3f s\n", st.faces, c.hulls.size(),
-              static_cast<double>(c.hulls.size()) / st.faces, st.seconds_index + st.seconds_merging + st.seconds_output);
+              static_cast<double>(c.hulls.size()) / st.faces,
+              st.seconds_index + st.seconds_merging + st.seconds_output);
   std::printf("wrote %s, %s, %s and %s\n", scene_path.c_str(), hulls_path.c_str(), json_path.c_str(),
               world_path.c_str());
 
@@ -166,9 +168,10 @@ int run_demo(const DemoOptions& options) {
 void register_demo_command(CLI::App& app, int& exit_status) {
   auto options = std::make_shared<DemoOptions>();
   CLI::App* demo = app.add_subcommand(
-      "demo", "Run the whole product on the embedded default scene (a small building with a doorway, an interior\n"
-              "wall, stairs and a terrain patch, generated in code): decompose it, audit the hulls, query the\n"
-              "runtime file with a standing character and a ray, and draw the hulls; writes everything to --out.");
+      "demo",
+      "Run the whole product on the embedded default scene (a small building with a doorway, an interior\n"
+      "wall, stairs and a terrain patch, generated in code): decompose it, audit the hulls, query the\n"
+      "runtime file with a standing character and a ray, and draw the hulls; writes everything to --out.");
   demo->add_option("--out", options->out_dir, "Directory for the outputs")->capture_default_str();
   demo->callback([options, &exit_status] { exit_status = run_demo(*options); });
 }

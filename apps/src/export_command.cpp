@@ -75,13 +75,17 @@ void register_export_command(CLI::App& app, int& exit_status) {
       "convex collider (KHR_physics_rigid_bodies and OMI_physics_shape), or OBJ with Unreal (--ucx) or Godot "
       "(--godot) collider names. Flat hulls get a thickness engines accept (behind the face, or half each side of a "
       "double-sided sheet); every hull is checked against the engine's limits.");
-  cmd->add_option("hulls", o->hulls_path, "Hull file: a hull OBJ (as decompose writes), a .hcw runtime file, or an export (.glb, UCX or Godot OBJ)")
+  cmd->add_option(
+         "hulls", o->hulls_path,
+         "Hull file: a hull OBJ (as decompose writes), a .hcw runtime file, or an export (.glb, UCX or Godot OBJ)")
       ->required();
   cmd->add_option("-o,--out", o->out_path, "Output file (.glb or .obj)")->required();
-  cmd->add_option("--scene", o->scene_path, "The scene the hulls cover: its tolerance, and its triangles for "
-                                            "--with-scene");
-  cmd->add_option("--tol", o->tolerance, "Tolerance, scene units (default: the scene's, or " + number_text(kDefaultRelativeTolerance) +
-                                         " of the hulls' bounding-box diagonal)")
+  cmd->add_option("--scene", o->scene_path,
+                  "The scene the hulls cover: its tolerance, and its triangles for "
+                  "--with-scene");
+  cmd->add_option("--tol", o->tolerance,
+                  "Tolerance, scene units (default: the scene's, or " + number_text(kDefaultRelativeTolerance) +
+                      " of the hulls' bounding-box diagonal)")
       ->check(positive_number());
   add_collider_export_options(cmd, o->exported);
   add_import_limit_options(*cmd, o->limits);

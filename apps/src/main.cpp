@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int cli_status = app.exit(e);  // prints help or the usage error
+    const int cli_status = app.exit(e); // prints help or the usage error
     return cli_status == 0 ? hullcover::app::kExitSuccess : hullcover::app::kExitBadInput;
   }
   return exit_status;

@@ -42,11 +42,12 @@ std::string describe_tolerance(const Tolerance& t) {
   else if (t.islands <= 1)
     std::snprintf(line, sizeof line, "%s (default: %s x the diagonal %.6g)", lengths, relative.c_str(), t.local_extent);
   else if (t.places <= 1)
-    std::snprintf(line, sizeof line, "%s (default: %s x the diagonal of the box of its %d islands)", lengths, relative.c_str(),
-                  t.islands);
+    std::snprintf(line, sizeof line, "%s (default: %s x the diagonal of the box of its %d islands)", lengths,
+                  relative.c_str(), t.islands);
   else
-    std::snprintf(line, sizeof line, "%s (default: %s x each place's diagonal; %d places, each islands whose boxes meet)",
-                  lengths, relative.c_str(), t.places);
+    std::snprintf(line, sizeof line,
+                  "%s (default: %s x each place's diagonal; %d places, each islands whose boxes meet)", lengths,
+                  relative.c_str(), t.places);
   return line;
 }
 

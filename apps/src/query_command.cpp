@@ -43,8 +43,8 @@ int run_query(const QueryOptions& o) {
 
   if (!o.ray.empty()) {
     bvh::RayResult hit;
-    const bvh::RayRequest request{{o.ray[0], o.ray[1], o.ray[2]}, {o.ray[3], o.ray[4], o.ray[5]},
-                                  o.ray.size() > 6 ? o.ray[6] : 1e30};
+    const bvh::RayRequest request{
+        {o.ray[0], o.ray[1], o.ray[2]}, {o.ray[3], o.ray[4], o.ray[5]}, o.ray.size() > 6 ? o.ray[6] : 1e30};
     if (Status s = w.ray_cast(request, hit); !s.ok()) {
       std::fprintf(stderr, "hullcover: error: %s\n", s.message().c_str());
       return kExitBadInput;
@@ -68,8 +68,8 @@ int run_query(const QueryOptions& o) {
   } else if (!o.capsule.empty()) {
     shape = bvh::QueryShape::capsule(o.capsule[3], o.capsule[4]);
     pose.translation() = Eigen::Vector3d(o.capsule[0], o.capsule[1], o.capsule[2]);
-    const Eigen::Vector3d axis = o.capsule.size() == 8 ? Eigen::Vector3d(o.capsule[5], o.capsule[6], o.capsule[7])
-                                                        : Eigen::Vector3d::UnitY();
+    const Eigen::Vector3d axis =
+        o.capsule.size() == 8 ? Eigen::Vector3d(o.capsule[5], o.capsule[6], o.capsule[7]) : Eigen::Vector3d::UnitY();
     pose.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis.normalized()).toRotationMatrix();
   } else {
     shape = bvh::QueryShape::box({o.box[3], o.box[4], o.box[5]});
@@ -103,9 +103,10 @@ int run_query(const QueryOptions& o) {
 void register_query_command(CLI::App& app, int& exit_status) {
   auto o = std::make_shared<QueryOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "query", "Ask a runtime file (from 'decompose --world') one question: the contacts of a sphere, capsule\n"
-               "or box (with the nearest hull when there are none), or the first hit of a ray. Normals point\n"
-               "out of the world hull, towards the shape; depth is how far to move along it to separate.");
+      "query",
+      "Ask a runtime file (from 'decompose --world') one question: the contacts of a sphere, capsule\n"
+      "or box (with the nearest hull when there are none), or the first hit of a ray. Normals point\n"
+      "out of the world hull, towards the shape; depth is how far to move along it to separate.");
   cmd->add_option("WORLD", o->world, "Runtime file (.hcw)")->required();
   cmd->add_option("--sphere", o->sphere, "x,y,z,radius")->delimiter(',')->expected(4);
   cmd->add_option("--capsule", o->capsule,

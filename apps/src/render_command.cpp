@@ -104,10 +104,8 @@ void register_render_command(CLI::App& app, int& exit_status) {
                   "Where the camera stands: iso (azimuth 45, elevation 35.26), top (0, 90), front (0, 0), or\n"
                   "AZIMUTH,ELEVATION in degrees (azimuth from the front towards the right, elevation in [-90, 90])")
       ->capture_default_str();
-  cmd->add_option("--size", o->size, "Image size WIDTHxHEIGHT in pixels, each from 16 to 8192")
-      ->capture_default_str();
-  cmd->add_option("--up", o->up,
-                  "The scene's up axis: y (OBJ, glTF; front is +z), z (front is -y) or x (front is -z)")
+  cmd->add_option("--size", o->size, "Image size WIDTHxHEIGHT in pixels, each from 16 to 8192")->capture_default_str();
+  cmd->add_option("--up", o->up, "The scene's up axis: y (OBJ, glTF; front is +z), z (front is -y) or x (front is -z)")
       ->capture_default_str();
   cmd->add_flag("--cut", o->cut, cut_rule_help());
   add_import_limit_options(*cmd, o->limits);

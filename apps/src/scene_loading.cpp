@@ -39,8 +39,7 @@ void add_import_limit_options(CLI::App& command, ImportLimits& limits) {
                   "Most triangles a scene may place, counting a mesh once per node that places it (default: one per "
                   "8 bytes of the files read, at least 65,536, at most 4,194,304)")
       ->check(positive_number());
-  command
-      .add_option("--max-materials", limits.max_materials, "Most distinct materials an OBJ file may name (usemtl)")
+  command.add_option("--max-materials", limits.max_materials, "Most distinct materials an OBJ file may name (usemtl)")
       ->capture_default_str()
       ->check(positive_number());
 }

@@ -7,8 +7,8 @@
 namespace hullcover::app {
 namespace {
 
-constexpr int kBarWidth = 30;      // characters between the brackets
-constexpr int kPerMille = 1000;    // the bar's resolution
+constexpr int kBarWidth = 30;   // characters between the brackets
+constexpr int kPerMille = 1000; // the bar's resolution
 
 } // namespace
 

@@ -11,7 +11,7 @@ namespace hullcover::app {
 
 /// One progress bar on stderr, redrawn in place.
 class TerminalProgress {
- public:
+public:
   /// A bar labelled `label`; drawn only when `quiet` is false and stderr is
   /// a terminal.
   TerminalProgress(std::string label, bool quiet);
@@ -32,13 +32,13 @@ class TerminalProgress {
   /// nothing when the bar is not drawn.
   void note(const std::string& line);
 
- private:
+private:
   void draw();
 
   std::string label_;
   bool enabled_ = false;
   bool drawn_ = false;
-  int shown_ = -1;  // per mille last drawn
+  int shown_ = -1; // per mille last drawn
 };
 
 } // namespace hullcover::app

@@ -100,7 +100,8 @@ int run_world(const WorldOptions& o) {
       const int base = static_cast<int>(world.positions.size());
       for (const Eigen::Vector3d& p : piece.mesh.positions)
         world.positions.push_back(turned(p - centre, quarter, up) + offset);
-      for (const Eigen::Vector3i& t : piece.mesh.triangles) world.triangles.push_back(t + Eigen::Vector3i::Constant(base));
+      for (const Eigen::Vector3i& t : piece.mesh.triangles)
+        world.triangles.push_back(t + Eigen::Vector3i::Constant(base));
       world.material_ids.insert(world.material_ids.end(), piece.mesh.triangles.size(), 0);
       ++copies;
       if (static_cast<long>(world.triangles.size()) >= o.triangles && o.triangles > 0) break;
@@ -124,7 +125,8 @@ void register_world_command(CLI::App& app, int& exit_status) {
       "Build a test world: copies of the scenes, in turn, on a square grid (a step of the largest scene's\n"
       "diagonal plus a gap, so no copy touches another), each turned by the next multiple of 90 degrees\n"
       "about the up axis, until the world holds --triangles. Writes one OBJ.");
-  cmd->add_option("SCENES", o->scenes, "Scene files, taken in turn; SCENE@N scales one in N units per metre to metres")->required();
+  cmd->add_option("SCENES", o->scenes, "Scene files, taken in turn; SCENE@N scales one in N units per metre to metres")
+      ->required();
   cmd->add_option("-o,--output", o->output, "The world OBJ")->required();
   cmd->add_option("--triangles", o->triangles, "Stop once the world holds at least this many (default: one copy each)")
       ->check(non_negative_number());

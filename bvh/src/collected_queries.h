@@ -86,7 +86,8 @@ void cast_checked_ray(const Source& source, const Eigen::Vector3d& origin, const
   collector.reset();
   double reach = std::min(max_distance, collector.reach());
   const bool all = filter.admits_all();
-  source.along_ray(origin, dir.cwiseInverse(), reach, [&](int h, const RuntimeHull& hull, PlanesOf planes, double& best) {
+  source.along_ray(origin, dir.cwiseInverse(), reach,
+                   [&](int h, const RuntimeHull& hull, PlanesOf planes, double& best) {
     if (!all && !filter.admits(h, hull.material)) return;
     // The float clip skips hulls the ray misses, or enters only past the
     // reach (equal t is kept: it may go to the lower index).
@@ -192,11 +193,12 @@ Status run_batch(size_t count, QueryThreads* threads, const char* what, Answer&&
     struct Job {
       decltype(one)* call;
     } job{&one};
-    threads->run(count, kBatchChunk,
-                 [](size_t begin, size_t end, void* context) {
-                   for (size_t i = begin; i < end; ++i) (*static_cast<Job*>(context)->call)(i);
-                 },
-                 &job);
+    threads->run(
+        count, kBatchChunk,
+        [](size_t begin, size_t end, void* context) {
+      for (size_t i = begin; i < end; ++i) (*static_cast<Job*>(context)->call)(i);
+        },
+        &job);
   }
   if (first_bad.load() == count) return Status::success();
   return {bad.code(), std::string(what) + " " + std::to_string(first_bad.load()) + " of the batch: " + bad.message()};
@@ -207,7 +209,8 @@ Status batch_query(const Source& source, const std::vector<Request>& requests, s
                    QueryThreads* threads, const char* what, Answer answer) {
   return guarded("batch query", [&]() -> Status {
     results.resize(requests.size());
-    Status s = run_batch(requests.size(), threads, what, [&](size_t i) { return answer(source, requests[i], results[i]); });
+    Status s =
+        run_batch(requests.size(), threads, what, [&](size_t i) { return answer(source, requests[i], results[i]); });
     if (!s.ok()) results.clear();
     return s;
   });
@@ -249,31 +252,28 @@ Status HullQueries<World>::cast_ray(const RayRequest& request, const HullFilter&
   return detail::cast_ray_query(static_cast<const World&>(*this).source(), request, filter, collector);
 }
 template <typename World>
-Status HullQueries<World>::touches_batch(const std::vector<OverlapRequest>& requests,
-                                         std::vector<TouchResult>& results, QueryThreads* threads) const {
+Status HullQueries<World>::touches_batch(const std::vector<OverlapRequest>& requests, std::vector<TouchResult>& results,
+                                         QueryThreads* threads) const {
   const auto source = static_cast<const World&>(*this).source();
-  return detail::batch_query(source, requests, results, threads, "request",
-                             [](const auto& src, const OverlapRequest& q, TouchResult& r) {
-                               return detail::touch_query(src, q, r);
-                             });
+  return detail::batch_query(
+      source, requests, results, threads, "request",
+      [](const auto& src, const OverlapRequest& q, TouchResult& r) { return detail::touch_query(src, q, r); });
 }
 template <typename World>
 Status HullQueries<World>::contacts_batch(const std::vector<ContactRequest>& requests,
                                           std::vector<ContactResult>& results, QueryThreads* threads) const {
   const auto source = static_cast<const World&>(*this).source();
-  return detail::batch_query(source, requests, results, threads, "request",
-                             [](const auto& src, const ContactRequest& q, ContactResult& r) {
-                               return detail::contact_query(src, q, r);
-                             });
+  return detail::batch_query(
+      source, requests, results, threads, "request",
+      [](const auto& src, const ContactRequest& q, ContactResult& r) { return detail::contact_query(src, q, r); });
 }
 template <typename World>
 Status HullQueries<World>::ray_cast_batch(const std::vector<RayRequest>& requests, std::vector<RayResult>& results,
                                           QueryThreads* threads) const {
   const auto source = static_cast<const World&>(*this).source();
-  return detail::batch_query(source, requests, results, threads, "ray",
-                             [](const auto& src, const RayRequest& q, RayResult& r) {
-                               return detail::ray_query(src, q, r);
-                             });
+  return detail::batch_query(
+      source, requests, results, threads, "ray",
+      [](const auto& src, const RayRequest& q, RayResult& r) { return detail::ray_query(src, q, r); });
 }
 
 } // namespace hullcover::bvh

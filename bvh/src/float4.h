@@ -88,17 +88,37 @@ struct Float4 {
     return f;
   }
 
-  friend Float4 operator+(Float4 a, Float4 b) { return each(a, b, [](float x, float y) { return x + y; }); }
-  friend Float4 operator-(Float4 a, Float4 b) { return each(a, b, [](float x, float y) { return x - y; }); }
-  friend Float4 operator*(Float4 a, Float4 b) { return each(a, b, [](float x, float y) { return x * y; }); }
-  friend Float4 operator/(Float4 a, Float4 b) { return each(a, b, [](float x, float y) { return x / y; }); }
+  friend Float4 operator+(Float4 a, Float4 b) {
+    return each(a, b, [](float x, float y) { return x + y; });
+  }
+  friend Float4 operator-(Float4 a, Float4 b) {
+    return each(a, b, [](float x, float y) { return x - y; });
+  }
+  friend Float4 operator*(Float4 a, Float4 b) {
+    return each(a, b, [](float x, float y) { return x * y; });
+  }
+  friend Float4 operator/(Float4 a, Float4 b) {
+    return each(a, b, [](float x, float y) { return x / y; });
+  }
   // As SSE's minps / maxps: the second operand when either is NaN.
-  friend Float4 min(Float4 a, Float4 b) { return each(a, b, [](float x, float y) { return x < y ? x : y; }); }
-  friend Float4 max(Float4 a, Float4 b) { return each(a, b, [](float x, float y) { return x > y ? x : y; }); }
-  friend Float4 operator<(Float4 a, Float4 b) { return each(a, b, [](float x, float y) { return mask(x < y); }); }
-  friend Float4 operator<=(Float4 a, Float4 b) { return each(a, b, [](float x, float y) { return mask(x <= y); }); }
-  friend Float4 operator>(Float4 a, Float4 b) { return each(a, b, [](float x, float y) { return mask(x > y); }); }
-  friend Float4 operator>=(Float4 a, Float4 b) { return each(a, b, [](float x, float y) { return mask(x >= y); }); }
+  friend Float4 min(Float4 a, Float4 b) {
+    return each(a, b, [](float x, float y) { return x < y ? x : y; });
+  }
+  friend Float4 max(Float4 a, Float4 b) {
+    return each(a, b, [](float x, float y) { return x > y ? x : y; });
+  }
+  friend Float4 operator<(Float4 a, Float4 b) {
+    return each(a, b, [](float x, float y) { return mask(x < y); });
+  }
+  friend Float4 operator<=(Float4 a, Float4 b) {
+    return each(a, b, [](float x, float y) { return mask(x <= y); });
+  }
+  friend Float4 operator>(Float4 a, Float4 b) {
+    return each(a, b, [](float x, float y) { return mask(x > y); });
+  }
+  friend Float4 operator>=(Float4 a, Float4 b) {
+    return each(a, b, [](float x, float y) { return mask(x >= y); });
+  }
   friend Float4 operator&(Float4 a, Float4 b) {
     return each(a, b, [](float x, float y) { return from_raw(raw(x) & raw(y)); });
   }
@@ -124,7 +144,7 @@ struct Float4 {
 /// still outward.
 inline float float_at_or_below(double x) {
   constexpr float kLargest = std::numeric_limits<float>::max();
-  if (x > kLargest) return kLargest;  // beyond float's range: the cast would not be defined
+  if (x > kLargest) return kLargest; // beyond float's range: the cast would not be defined
   if (x < -kLargest) return -std::numeric_limits<float>::infinity();
   const float f = static_cast<float>(x);
   if (!(static_cast<double>(f) > x)) return f;
@@ -138,7 +158,7 @@ inline float float_at_or_below(double x) {
   else if (f < 0.0f)
     ++bits;
   else
-    bits = 0x80000001u;  // -denorm_min
+    bits = 0x80000001u; // -denorm_min
   float below;
   __builtin_memcpy(&below, &bits, sizeof below);
   return below;

@@ -124,8 +124,8 @@ ClosestPoints closest_to_segment_apart(const RuntimeHull& hull, const Eigen::Vec
     }
     const std::vector<int>& poly = hull.shape.facets[f];
     for (size_t i = 0; i < poly.size() && best.distance > good_enough; ++i) {
-      const auto [on_segment, on_edge] = closest_points_of_segments(
-          a, b, hull.shape.vertices[poly[i]], hull.shape.vertices[poly[(i + 1) % poly.size()]]);
+      const auto [on_segment, on_edge] = closest_points_of_segments(a, b, hull.shape.vertices[poly[i]],
+                                                                    hull.shape.vertices[poly[(i + 1) % poly.size()]]);
       const double d = (on_segment - on_edge).norm();
       if (d < best.distance) best = {d, on_edge, on_segment};
     }
@@ -138,7 +138,9 @@ std::optional<std::pair<double, Eigen::Vector3d>> capsule_axis_push(const Runtim
   const int directions = axis.norm() > touching_distance(hull) ? 1 : 0;
   return smallest_push(
       hull, [&](auto&& f) { return for_each_axis(hull, &axis, directions, f); },
-      [&](const Eigen::Vector3d& w) { return std::make_pair(std::min(a.dot(w), b.dot(w)), std::max(a.dot(w), b.dot(w))); });
+      [&](const Eigen::Vector3d& w) {
+    return std::make_pair(std::min(a.dot(w), b.dot(w)), std::max(a.dot(w), b.dot(w)));
+      });
 }
 } // namespace detail
 
@@ -204,7 +206,7 @@ std::pair<double, Eigen::Vector3d> push_through_surface(const RuntimeHull& hull,
 
 std::optional<Contact> sphere_contact(const RuntimeHull& hull, const Eigen::Vector3d& centre, double radius) {
   const detail::FrontFacet front = detail::front_facet(hull, centre);
-  if (front.outside > radius) return std::nullopt;  // a plane separates them: the usual case, and cheap
+  if (front.outside > radius) return std::nullopt; // a plane separates them: the usual case, and cheap
   if (front.outside <= 0.0) {
     // Inside: out through the nearest facet the surface has.
     int f = front.facet;
@@ -216,15 +218,16 @@ std::optional<Contact> sphere_contact(const RuntimeHull& hull, const Eigen::Vect
   }
   const ClosestPoints c = detail::closest_to_point_outside(hull, centre, front, -1.0);
   if (c.distance > radius) return std::nullopt;
-  const Eigen::Vector3d normal = c.distance > touching_distance(hull) ? Eigen::Vector3d((centre - c.on_hull) / c.distance)
-                                                                      : hull.shape.planes[front.facet].normal;
+  const Eigen::Vector3d normal = c.distance > touching_distance(hull)
+                                     ? Eigen::Vector3d((centre - c.on_hull) / c.distance)
+                                     : hull.shape.planes[front.facet].normal;
   return on_surface(hull, Contact{-1, c.on_hull, normal, radius - c.distance}, radius,
                     [&](const Plane& facet) { return facet.signed_distance(centre); });
 }
 
 namespace detail {
-std::optional<Contact> sphere_contact_in_front_of(const RuntimeHull& hull, const Eigen::Vector3d& centre,
-                                                  double radius, int facet) {
+std::optional<Contact> sphere_contact_in_front_of(const RuntimeHull& hull, const Eigen::Vector3d& centre, double radius,
+                                                  int facet) {
   // sphere_contact's path for a centre outside, in front of `facet` and
   // over it: front_facet would find `facet` (outside = its distance > 0),
   // and closest_to_point_outside its foot, in the same operations as here.
@@ -244,7 +247,7 @@ std::optional<Contact> sphere_contact_in_front_of(const RuntimeHull& hull, const
 
 std::optional<Contact> capsule_contact(const RuntimeHull& hull, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                        double radius) {
-  if (detail::segment_clear_of_grown_planes(hull, a, b, radius)) return std::nullopt;  // the usual case, and cheap
+  if (detail::segment_clear_of_grown_planes(hull, a, b, radius)) return std::nullopt; // the usual case, and cheap
   // The axis meets the hull: the separating axes give depth and normal.
   // (When one separates them, the clip met only by rounding: the axis is
   // then as good as touching, and the closest points below tell.)
@@ -264,9 +267,8 @@ std::optional<Contact> capsule_contact(const RuntimeHull& hull, const Eigen::Vec
   const Eigen::Vector3d normal = c.distance > touching_distance(hull)
                                      ? Eigen::Vector3d((c.on_other - c.on_hull) / c.distance)
                                      : hull.shape.planes[nearest_facet(hull, c.on_other)].normal;
-  return on_surface(hull, Contact{-1, c.on_hull, normal, radius - c.distance}, radius, [&](const Plane& facet) {
-    return std::min(facet.signed_distance(a), facet.signed_distance(b));
-  });
+  return on_surface(hull, Contact{-1, c.on_hull, normal, radius - c.distance}, radius,
+                    [&](const Plane& facet) { return std::min(facet.signed_distance(a), facet.signed_distance(b)); });
 }
 
 std::optional<Contact> box_contact(const RuntimeHull& hull, const Eigen::Isometry3d& pose,
@@ -320,7 +322,7 @@ ClosestPoints closest_between(const RuntimeHull& hull, const RuntimeHull& shape)
   for (const auto& [u, w] : hull.edges)
     for (const auto& [x, y] : shape.edges) {
       const auto [on_hull, on_shape] = closest_points_of_segments(hull.shape.vertices[u], hull.shape.vertices[w],
-                                                                 shape.shape.vertices[x], shape.shape.vertices[y]);
+                                                                  shape.shape.vertices[x], shape.shape.vertices[y]);
       const double d = (on_hull - on_shape).norm();
       if (d < best.distance) best = {d, on_hull, on_shape};
     }
@@ -366,7 +368,7 @@ std::optional<RayHit> ray_hit(const RuntimeHull& hull, const Eigen::Vector3d& or
     }
     if (enter > leave) return std::nullopt;
   }
-  if (entering_plane < 0) {  // the origin is inside (or on) the hull
+  if (entering_plane < 0) { // the origin is inside (or on) the hull
     const int f = nearest_facet(hull, origin);
     return RayHit{-1, 0.0, origin, hull.shape.planes[f].normal};
   }

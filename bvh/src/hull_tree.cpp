@@ -99,8 +99,8 @@ size_t split(std::vector<Item>& items, size_t begin, size_t end, bool at_median)
                      [axis](const Item& a, const Item& b) { return a.centre[axis] < b.centre[axis]; });
     return middle;
   }
-  const auto cut = std::partition(items.begin() + begin, items.begin() + end,
-                                  [&](const Item& item) { return bin_of(item) < best; });
+  const auto cut =
+      std::partition(items.begin() + begin, items.begin() + end, [&](const Item& item) { return bin_of(item) < best; });
   return static_cast<size_t>(cut - items.begin());
 }
 
@@ -145,7 +145,7 @@ std::int32_t HullTree::build_node(std::vector<Item>& items, size_t begin, size_t
     groups = 2;
     const size_t first = cuts[1] - begin, second = end - cuts[1];
     if (end - begin <= 4) {
-      groups = static_cast<int>(end - begin);  // one item per lane
+      groups = static_cast<int>(end - begin); // one item per lane
       for (int g = 0; g <= groups; ++g) cuts[g] = begin + static_cast<size_t>(g);
     } else {
       size_t next[5] = {begin, 0, 0, 0, 0};
@@ -166,7 +166,7 @@ std::int32_t HullTree::build_node(std::vector<Item>& items, size_t begin, size_t
     for (size_t i = cuts[g]; i < cuts[g + 1]; ++i) grow(box, items[i].box);
     const std::int32_t child =
         cuts[g + 1] - cuts[g] == 1 ? ~items[cuts[g]].hull : build_node(items, cuts[g], cuts[g + 1], depth + 1);
-    WideNode& n = nodes_[at];  // after the recursion: nodes_ may have moved
+    WideNode& n = nodes_[at]; // after the recursion: nodes_ may have moved
     n.child[g] = child;
     n.face[0][g] = float_at_or_below(box.min[0]);
     n.face[1][g] = float_at_or_below(box.min[1]);

@@ -45,7 +45,8 @@ public:
   /// until a call returns true. Returns whether one did.
   template <typename Visit>
   bool find_in_box(const Aabb& box, Visit&& visit) const {
-    return find_where(box, 0.5 * (box.min + box.max), [](Float4) { return 0xf; }, visit);
+    return find_where(
+        box, 0.5 * (box.min + box.max), [](Float4) { return 0xf; }, visit);
   }
 
   /// The same for the boxes within `radius` of `centre` (a sphere's
@@ -85,7 +86,7 @@ private:
   Aabb bounds_;
   size_t height_ = 0;
 
-  struct Item;  // a hull's box and centre while building
+  struct Item; // a hull's box and centre while building
   std::int32_t build_node(std::vector<Item>& items, size_t begin, size_t end, size_t depth);
 
   template <typename Entry>
@@ -102,7 +103,7 @@ private:
     bool empty() const { return size_ == 0; }
 
   private:
-    std::array<Entry, kStackOnCaller> local_;  // not cleared: written before read
+    std::array<Entry, kStackOnCaller> local_; // not cleared: written before read
     std::vector<Entry> heap_;
     Entry* data_ = nullptr;
     size_t size_ = 0;
@@ -140,8 +141,7 @@ private:
 };
 
 template <typename LaneTest, typename Visit>
-bool HullTree::find_where(const Aabb& box, const Eigen::Vector3d& centre, LaneTest&& lane_test,
-                          Visit&& visit) const {
+bool HullTree::find_where(const Aabb& box, const Eigen::Vector3d& centre, LaneTest&& lane_test, Visit&& visit) const {
   Float4 lo[3], hi[3];
   for (int k = 0; k < 3; ++k) {
     lo[k] = Float4::all(float_at_or_below(box.min[k]));
@@ -187,7 +187,8 @@ bool HullTree::find_near_point(const Eigen::Vector3d& centre, double radius, Vis
   // of the coordinates' size: widen the reach by that before squaring.
   const float limit = float_at_or_above(reach + 8.0 * kFloatUnit * (scale + reach));
   const Float4 limit2 = Float4::all(limit) * Float4::all(limit);
-  return find_where(box, centre, [&](Float4 gap2) { return (gap2 <= limit2).bits(); }, visit);
+  return find_where(
+      box, centre, [&](Float4 gap2) { return (gap2 <= limit2).bits(); }, visit);
 }
 
 template <typename Visit>
@@ -209,16 +210,17 @@ void HullTree::walk_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& in
     const float below = float_at_or_below(origin[k]), above = float_at_or_above(origin[k]);
     near_origin[k] = Float4::all(negative ? below : above);
     far_origin[k] = Float4::all(negative ? above : below);
-    const double inverse_in_range =
-        std::isinf(inverse[k]) ? inverse[k] : std::clamp(inverse[k], -double(std::numeric_limits<float>::max()),
-                                                         double(std::numeric_limits<float>::max()));
+    const double inverse_in_range = std::isinf(inverse[k])
+                                        ? inverse[k]
+                                        : std::clamp(inverse[k], -double(std::numeric_limits<float>::max()),
+                                                     double(std::numeric_limits<float>::max()));
     inv[k] = Float4::all(static_cast<float>(inverse_in_range));
     near_face[k] = negative ? 3 + k : k;
     far_face[k] = negative ? k : 3 + k;
   }
   const Float4 zero = Float4::all(0.0f), widen = Float4::all(kRaySlabWidening);
   struct Pending {
-    std::int32_t child;  // as in WideNode::child
+    std::int32_t child; // as in WideNode::child
     float entry;
   };
   // The reach as a float at or above it, and the entry past which a box

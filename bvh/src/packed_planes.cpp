@@ -110,8 +110,8 @@ FloatVerdict PackedPlanes::sphere(int h, const Eigen::Vector3d& p, double radius
   const PlaneBlock* first = blocks_.data() + hull.first_block;
   for (std::uint32_t b = 0; b < hull.blocks; ++b) {
     const PlaneBlock& block = first[b];
-    const Float4 s = Float4::load(block.nx) * qx + Float4::load(block.ny) * qy + Float4::load(block.nz) * qz +
-                     Float4::load(block.d);
+    const Float4 s =
+        Float4::load(block.nx) * qx + Float4::load(block.ny) * qy + Float4::load(block.nz) * qz + Float4::load(block.d);
     const Float4 larger = s > outside;
     outside = select(larger, s, outside);
     slot = select(larger, lane_slot + Float4::all(static_cast<float>(4 * b)), slot);
@@ -156,8 +156,8 @@ FloatVerdict PackedPlanes::sphere(int h, const Eigen::Vector3d& p, double radius
     const Float4 slots_here = lane_slot + Float4::all(static_cast<float>(4 * b));
     const Float4 plane_here = select(slots_here < planes_f, slots_here, zero);
     const Float4 itself = (plane_here >= own_plane) & (plane_here <= own_plane);
-    const Float4 opposite = ((nx + nix) >= zero) & ((nx + nix) <= zero) & ((ny + niy) >= zero) &
-                            ((ny + niy) <= zero) & ((nz + niz) >= zero) & ((nz + niz) <= zero);
+    const Float4 opposite = ((nx + nix) >= zero) & ((nx + nix) <= zero) & ((ny + niy) >= zero) & ((ny + niy) <= zero) &
+                            ((nz + niz) >= zero) & ((nz + niz) <= zero);
     if (((at_foot <= margin) | itself | opposite).bits() != 0xf) return FloatVerdict::unsure;
   }
   // Every other plane then has p less far in front than plane i does, by
@@ -174,7 +174,7 @@ PackedPlanes::Clip PackedPlanes::clip(const HullRecord& hull, const float q0[3],
   const Float4 vx = Float4::all(v[0]), vy = Float4::all(v[1]), vz = Float4::all(v[2]);
   const Float4 zero = Float4::all(0.0f), g = Float4::all(grow);
   const Float4 up = Float4::all(kFloatInfinity), down = Float4::all(-kFloatInfinity);
-  Float4 enter = zero, leave = Float4::all(span), cut = zero & up;  // no lane cut
+  Float4 enter = zero, leave = Float4::all(span), cut = zero & up; // no lane cut
   Float4 start = down, end = down;
   const PlaneBlock* block = blocks_.data() + hull.first_block;
   for (std::uint32_t b = 0; b < hull.blocks; ++b, ++block) {
@@ -224,8 +224,7 @@ bool PackedPlanes::ray_may_hit(int h, const Eigen::Vector3d& origin, const Eigen
   // Every point of the hull is within its reach of the centre: a hit lies
   // at t <= |q0| + reach, however far the ray goes.
   const double span = std::min(reach, l1(q0) + static_cast<double>(hull.reach));
-  const double slack =
-      kFloatPlaneSlack * (l1(q0) + hull.reach + span * l1(v)) + exact_slack(origin, hull.reach, span);
+  const double slack = kFloatPlaneSlack * (l1(q0) + hull.reach + span * l1(v)) + exact_slack(origin, hull.reach, span);
   const Clip c = clip(hull, q0, v, float_at_or_above(span), float_at_or_above(2.0 * slack));
   if (c.cut || c.enter > c.leave) return false;
   enter = c.enter;

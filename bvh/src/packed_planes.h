@@ -72,11 +72,11 @@ private:
     float nx[4], ny[4], nz[4], d[4];
   };
   struct HullRecord {
-    double centre[3];  // double: a float centre would move by up to half a float unit of the coordinates
-    float reach;  // >= the distance from the centre to any of the hull's vertices
+    double centre[3]; // double: a float centre would move by up to half a float unit of the coordinates
+    float reach;      // >= the distance from the centre to any of the hull's vertices
     std::uint32_t first_block;
     std::uint32_t blocks;
-    std::uint32_t planes;  // before padding
+    std::uint32_t planes; // before padding
   };
   std::vector<PlaneBlock> blocks_;
   std::vector<HullRecord> hulls_;
@@ -87,7 +87,7 @@ private:
   // build their verdicts on.
   struct Clip {
     float enter, leave;
-    bool cut;  // a plane parallel to the segment is in front of it all the way
+    bool cut; // a plane parallel to the segment is in front of it all the way
     float start_outside, end_outside;
   };
   Clip clip(const HullRecord& hull, const float q0[3], const float v[3], float span, float grow) const;
@@ -106,8 +106,7 @@ struct PlanesOf {
   FloatVerdict segment(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius) const {
     return store ? store->segment(local, a, b, radius) : FloatVerdict::unsure;
   }
-  bool ray_may_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double reach,
-                   double& enter) const {
+  bool ray_may_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double reach, double& enter) const {
     enter = 0.0;
     return store ? store->ray_may_hit(local, origin, direction, reach, enter) : true;
   }

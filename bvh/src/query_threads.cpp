@@ -37,7 +37,7 @@ bool watch(Ready&& ready) {
 
 struct QueryThreads::Shared {
   std::vector<std::thread> workers;
-  std::mutex batch_mutex;  // one batch at a time
+  std::mutex batch_mutex; // one batch at a time
   std::mutex mutex;
   std::condition_variable wake, done;
   // The batch in progress, published under `mutex` with a new generation
@@ -48,7 +48,7 @@ struct QueryThreads::Shared {
   void (*body)(size_t, size_t, void*) = nullptr;
   void* context = nullptr;
   std::atomic<size_t> next{0};
-  std::atomic<int> busy{0};  // workers still in the batch
+  std::atomic<int> busy{0}; // workers still in the batch
 
   // Takes chunks until none is left.
   void take_chunks() {

@@ -18,7 +18,6 @@ constexpr char kMagic[8] = {'H', 'C', 'W', 'O', 'R', 'L', 'D', '\0'};
 constexpr size_t kHeaderBytes = 8 + 4 + 4 + 8 + 8 + 8;
 constexpr size_t kHullFixedBytes = 5 * 4 + 6 * 8;
 
-
 struct Writer {
   std::vector<unsigned char> bytes;
   void u32(std::uint32_t v) {
@@ -136,7 +135,7 @@ Status write_hulls(const std::vector<RuntimeHull>& hulls, const std::string& pat
   return write_file_atomically(path, [&file, &payload](std::FILE* out) {
     std::fwrite(file.bytes.data(), 1, file.bytes.size(), out);
     std::fwrite(payload.bytes.data(), 1, payload.bytes.size(), out);
-    return true;  // a short write sets the stream's error flag, which the caller checks
+    return true; // a short write sets the stream's error flag, which the caller checks
   });
 }
 
@@ -145,9 +144,9 @@ Status write_hulls(const std::vector<RuntimeHull>& hulls, const std::string& pat
 // for, so a section's read checks that section's values alone.
 struct CheckedFile {
   std::string path;
-  std::string content;  // the file's bytes, parsed in place (a copy would double a large file's memory)
+  std::string content; // the file's bytes, parsed in place (a copy would double a large file's memory)
   std::uint32_t version = 0;
-  std::vector<size_t> hull_at;  // offset of each hull in `content`
+  std::vector<size_t> hull_at; // offset of each hull in `content`
   std::vector<RuntimeSection> sections;
 };
 
@@ -239,7 +238,8 @@ Result<CheckedFile> check_file(const std::string& path) {
     if (Status s = skip_hull(r, f, h); !s.ok()) return s;
   }
   if (Status s = read_sections(r, f); !s.ok()) return s;
-  if (r.at != size) return broken(path, f.version >= 3 ? "bytes left after the section table" : "bytes left after the last hull");
+  if (r.at != size)
+    return broken(path, f.version >= 3 ? "bytes left after the section table" : "bytes left after the last hull");
   return f;
 }
 
@@ -288,7 +288,7 @@ Result<RuntimeHull> parse_hull(const CheckedFile& f, std::uint64_t h) {
     }
   std::vector<bool> surface_planes;
   if (f.version >= 2) {
-    const std::uint64_t flags = r.u32();  // within the file: skip_hull walked it
+    const std::uint64_t flags = r.u32(); // within the file: skip_hull walked it
     if (flags != 0 && flags != P) return broken(path, where + "surface flags neither absent nor one per plane");
     for (std::uint64_t i = 0; i < flags; ++i) {
       const unsigned char flag = r.data[r.at++];

@@ -14,7 +14,7 @@ namespace hullcover::bvh::detail {
 /// foot on it is inside the facet: the same contact, bit for bit, without
 /// the search for that facet and the test of the foot. Falls back to
 /// sphere_contact where the arithmetic does not bear the premise out.
-std::optional<Contact> sphere_contact_in_front_of(const RuntimeHull& hull, const Eigen::Vector3d& centre,
-                                                  double radius, int facet);
+std::optional<Contact> sphere_contact_in_front_of(const RuntimeHull& hull, const Eigen::Vector3d& centre, double radius,
+                                                  int facet);
 
 } // namespace hullcover::bvh::detail

@@ -46,7 +46,8 @@ struct SnapshotSource {
   bool in_box(const Aabb& box, Visit&& visit) const {
     return top() && top()->find_in_box(box, [&](int s) {
       const StreamSection& section = *snapshot->sections[s];
-      return section.tree.find_in_box(box, [&](int h) { return visit(section.indices[h], section.hulls[h], section.planes_of(h)); });
+      return section.tree.find_in_box(
+          box, [&](int h) { return visit(section.indices[h], section.hulls[h], section.planes_of(h)); });
     });
   }
   // A section's box holds its hulls' boxes, so the sphere's test on it
@@ -65,8 +66,9 @@ struct SnapshotSource {
     if (!top()) return;
     top()->walk_ray(origin, inverse, reach, [&](int s, double& best) {
       const StreamSection& section = *snapshot->sections[s];
-      section.tree.walk_ray(origin, inverse, best,
-                            [&](int h, double& b) { visit(section.indices[h], section.hulls[h], section.planes_of(h), b); });
+      section.tree.walk_ray(origin, inverse, best, [&](int h, double& b) {
+        visit(section.indices[h], section.hulls[h], section.planes_of(h), b);
+      });
     });
   }
   std::optional<Aabb> bounds() const {
@@ -81,7 +83,7 @@ struct SnapshotSource {
 class SectionIndex {
 public:
   std::map<std::uint32_t, std::shared_ptr<const StreamSection>> loaded;
-  std::unordered_set<int> hulls;  // global indices of every loaded hull
+  std::unordered_set<int> hulls; // global indices of every loaded hull
 };
 
 namespace {
@@ -95,8 +97,7 @@ Status check_section(const SectionHulls& s) {
   for (size_t i = 0; i < s.indices.size(); ++i)
     if (s.indices[i] < 0 || (i > 0 && s.indices[i] <= s.indices[i - 1]))
       return {StatusCode::invalid_argument, name + ": hull indices must be >= 0 and ascending"};
-  if (Status st = check_hulls(s.hulls, &s.indices); !st.ok())
-    return {st.code(), name + ": " + st.message()};
+  if (Status st = check_hulls(s.hulls, &s.indices); !st.ok()) return {st.code(), name + ": " + st.message()};
   return Status::success();
 }
 } // namespace
@@ -138,7 +139,7 @@ Status StreamedWorld::add_section(SectionHulls section) {
     try {
       index.hulls.insert(built->indices.begin(), built->indices.end());
       publish();
-    } catch (...) {  // out of memory: leave the world as it was
+    } catch (...) { // out of memory: leave the world as it was
       for (int h : built->indices) index.hulls.erase(h);
       index.loaded.erase(id);
       throw;
@@ -159,7 +160,7 @@ Status StreamedWorld::remove_section(std::uint32_t id) {
     index.loaded.erase(found);
     try {
       publish();
-    } catch (...) {  // out of memory: put it back as it was
+    } catch (...) { // out of memory: put it back as it was
       index.loaded[id] = section;
       throw;
     }

@@ -236,9 +236,8 @@ Status TriangleWorld::ray_hits(const RayRequest& request, std::vector<RayHit>& h
     if (Status s = check_ray_request(request, dir); !s.ok()) return s;
     double reach = request.max_distance;
     traverse_ray(request.origin, dir, reach, [&](const RayHit& hit) { hits.push_back(hit); });
-    std::sort(hits.begin(), hits.end(), [](const RayHit& a, const RayHit& b) {
-      return a.t < b.t || (a.t == b.t && a.hull < b.hull);
-    });
+    std::sort(hits.begin(), hits.end(),
+              [](const RayHit& a, const RayHit& b) { return a.t < b.t || (a.t == b.t && a.hull < b.hull); });
     return Status::success();
   });
 }

@@ -31,8 +31,8 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> capsule_ends(const QueryShape& s, co
 // what a turn of angle a moves it by, at most a times this.
 double reach_from_origin(const QueryShape& s) {
   switch (s.kind) {
-    case ShapeKind::sphere: return 0.0;  // turning a sphere moves none of it
-    case ShapeKind::capsule: return s.half_height;  // its axis; the radius turns with it
+    case ShapeKind::sphere: return 0.0;            // turning a sphere moves none of it
+    case ShapeKind::capsule: return s.half_height; // its axis; the radius turns with it
     case ShapeKind::box: return s.half_extents.norm();
     case ShapeKind::convex: {
       double farthest = 0.0;
@@ -107,8 +107,8 @@ Status place(const QueryShape& shape, const Eigen::Isometry3d& pose, std::option
 Separation separation_from(const QueryShape& s, const Eigen::Isometry3d& pose) {
   // Spheres and capsules: exact closest points to the axis.
   if (s.kind == ShapeKind::sphere || s.kind == ShapeKind::capsule) {
-    const auto [a, b] = s.kind == ShapeKind::capsule ? capsule_ends(s, pose)
-                                                     : std::make_pair(pose.translation(), pose.translation());
+    const auto [a, b] =
+        s.kind == ShapeKind::capsule ? capsule_ends(s, pose) : std::make_pair(pose.translation(), pose.translation());
     return [a = a, b = b, radius = s.radius](const RuntimeHull& hull, Eigen::Vector3d& on_world,
                                              Eigen::Vector3d& on_shape) {
       const ClosestPoints c = closest_to_segment(hull, a, b);
@@ -210,7 +210,7 @@ Status advance_sweep(const SweepRequest& request, const SweepPath& path, const s
         away = on_shape - on_world;
       }
     }
-    if (!nearest_hull) return Status::success();  // nothing on the way
+    if (!nearest_hull) return Status::success(); // nothing on the way
     // Out of steps (a grazing approach advances ever more slowly): a hit
     // where the shape stands is conservative, as it is still apart there.
     if (nearest <= touch || step + 1 == request.max_steps) {
@@ -226,7 +226,7 @@ Status advance_sweep(const SweepRequest& request, const SweepPath& path, const s
       const std::optional<Contact> c = placed->contact(*nearest_hull->hull);
       // Without a contact (out of steps, a graze): from the hull towards the
       // shape, else against the travel, else up (a turn in place touching).
-      const Eigen::Vector3d fallback = away.norm() > 0.0           ? Eigen::Vector3d(away.normalized())
+      const Eigen::Vector3d fallback = away.norm() > 0.0          ? Eigen::Vector3d(away.normalized())
                                        : path.travel.norm() > 0.0 ? Eigen::Vector3d(-path.travel.normalized())
                                                                   : Eigen::Vector3d::UnitZ();
       result.normal = c ? c->normal : fallback;

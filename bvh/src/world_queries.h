@@ -42,8 +42,8 @@ namespace hullcover::bvh::detail {
 struct PlacedShape {
   const QueryShape& shape;
   const Eigen::Isometry3d& pose;
-  Eigen::Vector3d a, b;               ///< capsule axis ends; a sphere's centre twice
-  std::optional<RuntimeHull> convex;  ///< a convex shape's hull in the world
+  Eigen::Vector3d a, b;              ///< capsule axis ends; a sphere's centre twice
+  std::optional<RuntimeHull> convex; ///< a convex shape's hull in the world
 
   bool touches(const RuntimeHull& hull) const;
   std::optional<Contact> contact(const RuntimeHull& hull) const;
@@ -86,7 +86,7 @@ struct SweepPath {
   Eigen::Vector3d travel;
   Eigen::Quaterniond from, to;
   bool turns = false;
-  double speed = 0.0;  ///< no point of the shape moves farther per unit of the way
+  double speed = 0.0; ///< no point of the shape moves farther per unit of the way
   Eigen::Isometry3d pose_at(double t) const;
 };
 
@@ -131,7 +131,7 @@ Status distance_query(const Source& source, const DistanceRequest& request, Dist
     if (!separation) return {StatusCode::invalid_argument, "the convex query shape has no 3D hull"};
     result.distance = std::numeric_limits<double>::infinity();
     const std::optional<Aabb> world = source.bounds();
-    if (!world) return Status::success();  // no hull to be near
+    if (!world) return Status::success(); // no hull to be near
     // Grow the search box until it holds a hull, then until it holds every
     // hull nearer than the best found.
     const double scene = (world->max - world->min).norm();

@@ -46,7 +46,7 @@ inline std::vector<ObjHull> read_obj_hulls(const std::string& text) {
       hulls.back().faces.push_back(face);
     }
   }
-  for (ObjHull& hull : hulls) {  // local indices, each hull its own points
+  for (ObjHull& hull : hulls) { // local indices, each hull its own points
     std::vector<int> local(vertices.size(), -1);
     for (std::vector<int>& face : hull.faces)
       for (int& index : face) {

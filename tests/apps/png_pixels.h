@@ -23,7 +23,7 @@ struct Pixel {
 /// A decoded picture; empty (width 0) when the file is no readable PNG.
 struct DecodedPng {
   int width = 0, height = 0;
-  std::vector<Pixel> pixels;  ///< row by row
+  std::vector<Pixel> pixels; ///< row by row
 };
 
 inline DecodedPng decode_png(const std::string& path) {
@@ -38,7 +38,7 @@ inline DecodedPng decode_png(const std::string& path) {
     const cairo_format_t format = cairo_image_surface_get_format(surface);
     for (int y = 0; y < png.height; ++y)
       for (int x = 0; x < png.width; ++x) {
-        std::uint32_t word;  // native-endian 0xAARRGGBB (RGB24 and ARGB32 alike)
+        std::uint32_t word; // native-endian 0xAARRGGBB (RGB24 and ARGB32 alike)
         std::copy_n(data + y * stride + 4 * x, 4, reinterpret_cast<unsigned char*>(&word));
         const int alpha = format == CAIRO_FORMAT_ARGB32 ? static_cast<int>(word >> 24) : 255;
         // Premultiplied in ARGB32: a screenshot is opaque, so alpha is 255.
@@ -77,7 +77,7 @@ inline int hue_buckets(const DecodedPng& png, int buckets, size_t least) {
   for (const Pixel& p : png.pixels) {
     if (!saturated(p)) continue;
     const double r = p.r / 255.0, g = p.g / 255.0, b = p.b / 255.0;
-    const double hue = std::atan2(std::sqrt(3.0) * (g - b), 2.0 * r - g - b);  // radians, -pi..pi
+    const double hue = std::atan2(std::sqrt(3.0) * (g - b), 2.0 * r - g - b); // radians, -pi..pi
     ++count[std::min(buckets - 1, static_cast<int>((hue + M_PI) / (2.0 * M_PI) * buckets))];
   }
   return static_cast<int>(std::count_if(count.begin(), count.end(), [&](size_t c) { return c >= least; }));

@@ -116,11 +116,18 @@ protected:
   // output goes to `name`.out and `name`.err.
   static hullcover::test::ChildOutcome chromium(const std::string& html, const std::string& name,
                                                 const std::vector<std::string>& action) {
-    const std::string profile = dir_->path(name + "-profile");  // a fresh profile each run
+    const std::string profile = dir_->path(name + "-profile"); // a fresh profile each run
     std::filesystem::create_directories(profile);
     hullcover::test::ChildSpec spec;
-    spec.argv = {kChromium, "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-                 "--disable-background-networking", "--disable-component-update", "--disable-sync",
+    spec.argv = {kChromium,
+                 "--headless",
+                 "--no-sandbox",
+                 "--disable-gpu",
+                 "--disable-quic",
+                 "--no-first-run",
+                 "--disable-background-networking",
+                 "--disable-component-update",
+                 "--disable-sync",
                  "--user-data-dir=" + profile};
     spec.argv.insert(spec.argv.end(), action.begin(), action.end());
     spec.argv.push_back("file://" + html);
@@ -128,7 +135,7 @@ protected:
     spec.stderr_path = dir_->path(name + ".err");
     hullcover::test::ChildLimits limits;
     limits.wall = kChromiumTimeLimit;
-    limits.address_space_bytes = 0;  // Chromium reserves terabytes of address space up front
+    limits.address_space_bytes = 0; // Chromium reserves terabytes of address space up front
     limits.parallel = 1;
     return hullcover::test::run_children({spec}, limits).front();
   }
@@ -201,9 +208,8 @@ TEST_F(AuditHtml, ChromiumShowsTheVerdictInItsBanner) {
     const std::string shot = dir_->path(report.name + "-screenshot.png");
     const hullcover::test::ChildOutcome shown =
         chromium(html, report.name + "-shot", {"--screenshot=" + shot, "--window-size=1200,1600"});
-    ASSERT_TRUE(shown.exited && shown.status == 0)
-        << "chromium " << (shown.timed_out ? "timed out" : "failed") << ": "
-        << slurp(dir_->path(report.name + "-shot.err"));
+    ASSERT_TRUE(shown.exited && shown.status == 0) << "chromium " << (shown.timed_out ? "timed out" : "failed") << ": "
+                                                   << slurp(dir_->path(report.name + "-shot.err"));
     const DecodedPng png = decode_png(shot);
     ASSERT_EQ(png.width, 1200) << "no screenshot";
     ASSERT_EQ(png.height, 1600);

@@ -29,14 +29,14 @@ std::string crates_obj() {
         << ' ' << base + 3 << '\n';
     base += 4;
   };
-  quad(-5, 0, -5, -5, 0, 5, 5, 0, 5, 5, 0, -5);  // floor, facing +y
-  for (double x0 : {-1.05, 0.05}) {               // crates [x0, x0 + 1] x [0, 1] x [0, 1], faces out
+  quad(-5, 0, -5, -5, 0, 5, 5, 0, 5, 5, 0, -5); // floor, facing +y
+  for (double x0 : {-1.05, 0.05}) {             // crates [x0, x0 + 1] x [0, 1] x [0, 1], faces out
     const double x1 = x0 + 1;
-    quad(x0, 1, 0, x0, 1, 1, x1, 1, 1, x1, 1, 0);  // top
-    quad(x0, 0, 0, x0, 0, 1, x0, 1, 1, x0, 1, 0);  // -x
-    quad(x1, 0, 0, x1, 1, 0, x1, 1, 1, x1, 0, 1);  // +x
-    quad(x0, 0, 0, x0, 1, 0, x1, 1, 0, x1, 0, 0);  // -z
-    quad(x0, 0, 1, x1, 0, 1, x1, 1, 1, x0, 1, 1);  // +z
+    quad(x0, 1, 0, x0, 1, 1, x1, 1, 1, x1, 1, 0); // top
+    quad(x0, 0, 0, x0, 0, 1, x0, 1, 1, x0, 1, 0); // -x
+    quad(x1, 0, 0, x1, 1, 0, x1, 1, 1, x1, 0, 1); // +x
+    quad(x0, 0, 0, x0, 1, 0, x1, 1, 0, x1, 0, 0); // -z
+    quad(x0, 0, 1, x1, 0, 1, x1, 1, 1, x0, 1, 1); // +z
   }
   return obj.str();
 }
@@ -80,14 +80,15 @@ TEST(BenchCommand, EveryRowAgreesWithDecomposeTheFilesAndTheAudit) {
   ASSERT_EQ(rows.size(), 2u);
   EXPECT_EQ(rows[0].at("setting"), "exact");
   EXPECT_EQ(rows[1].at("setting"), "r=0.3m");
-  EXPECT_DOUBLE_EQ(std::stod(rows[1].at("agent_radius")), 0.3);  // 1 unit per metre
+  EXPECT_DOUBLE_EQ(std::stod(rows[1].at("agent_radius")), 0.3); // 1 unit per metre
 
   const std::vector<std::string> decompose_options = {"", " --agent-radius 0.3"};
   for (size_t i = 0; i < rows.size(); ++i) {
     const auto& row = rows[i];
     SCOPED_TRACE(row.at("setting"));
     // The hull count is decompose's at the same setting.
-    const CommandRun d = run_hullcover(dir, "decompose " + scene + decompose_options[i] + " -o " + dir.path("d.obj") + " -q");
+    const CommandRun d =
+        run_hullcover(dir, "decompose " + scene + decompose_options[i] + " -o " + dir.path("d.obj") + " -q");
     ASSERT_EQ(d.status, 0) << d.err;
     EXPECT_EQ(std::stoi(row.at("hulls")), hull_groups(slurp(dir.path("d.obj"))));
     // The runtime file is there, as large as reported, and audits as the row says.
@@ -114,7 +115,7 @@ TEST(BenchCommand, EveryRowAgreesWithDecomposeTheFilesAndTheAudit) {
   EXPECT_NE(slurp(dir.path("out/bench.svg")).find("<svg"), std::string::npos);
   const std::string markdown = slurp(dir.path("out/bench.md"));
   EXPECT_NE(markdown.find("| crates.obj | r=0.3m |"), std::string::npos) << markdown;
-  EXPECT_EQ(r.out.find(markdown.substr(0, 40)), 0u);  // the table is printed too
+  EXPECT_EQ(r.out.find(markdown.substr(0, 40)), 0u); // the table is printed too
 }
 
 TEST(BenchCommand, LengthsResolveInMetresAndPercentOfTheDiagonal) {
@@ -125,7 +126,7 @@ TEST(BenchCommand, LengthsResolveInMetresAndPercentOfTheDiagonal) {
   ASSERT_EQ(r.status, 0) << r.err << r.out;
   const auto rows = read_csv(slurp(dir.path("out/bench.csv")));
   ASSERT_EQ(rows.size(), 2u);
-  EXPECT_DOUBLE_EQ(std::stod(rows[0].at("max_deviation")), 0.1);  // 0.005 m at 20 units per metre
+  EXPECT_DOUBLE_EQ(std::stod(rows[0].at("max_deviation")), 0.1); // 0.005 m at 20 units per metre
   const double diagonal = std::stod(rows[1].at("diagonal"));
   EXPECT_NEAR(std::stod(rows[1].at("max_deviation")), 0.01 * diagonal, 1e-9 * diagonal);
   EXPECT_NEAR(std::stod(rows[1].at("max_deviation_percent_of_diagonal")), 1.0, 1e-9);

@@ -44,9 +44,9 @@ std::string sheet_room_obj() {
     obj << "f " << base << ' ' << base + 1 << ' ' << base + 2 << ' ' << base + 3 << '\n';
     base += 4;
   };
-  quad({0, 0, 0, 4, 0, 0, 4, 4, 0, 0, 4, 0});  // floor, up
-  quad({2, 0, 0, 2, 4, 0, 2, 4, 2, 2, 0, 2});  // sheet, facing -x ... (winding decides)
-  quad({2, 0, 0, 2, 0, 2, 2, 4, 2, 2, 4, 0});  // the same sheet, the other way
+  quad({0, 0, 0, 4, 0, 0, 4, 4, 0, 0, 4, 0}); // floor, up
+  quad({2, 0, 0, 2, 4, 0, 2, 4, 2, 2, 0, 2}); // sheet, facing -x ... (winding decides)
+  quad({2, 0, 0, 2, 0, 2, 2, 4, 2, 2, 4, 0}); // the same sheet, the other way
   // A crate: five faces looking out (its bottom sits on the floor).
   quad({0.5, 0.5, 1, 1.5, 0.5, 1, 1.5, 1.5, 1, 0.5, 1.5, 1});
   quad({0.5, 0.5, 0, 1.5, 0.5, 0, 1.5, 0.5, 1, 0.5, 0.5, 1});
@@ -128,9 +128,9 @@ TEST(ColliderExport, GlbHoldsEveryHullSolidAndTheAuditReadsTheSameHulls) {
   EXPECT_EQ(assimp_vertices, all_glb);
 
   // The audit of the export: its loss lies within the thickness of the mesh.
-  const CommandRun audit = run_hullcover(d.dir, "audit " + d.dir.path("room.obj") + " " + d.dir.path("out.glb") +
-                                                    " --max-deviation " + std::to_string(thickness) + " --json " +
-                                                    d.dir.path("audit.json"));
+  const CommandRun audit =
+      run_hullcover(d.dir, "audit " + d.dir.path("room.obj") + " " + d.dir.path("out.glb") + " --max-deviation " +
+                               std::to_string(thickness) + " --json " + d.dir.path("audit.json"));
   EXPECT_EQ(audit.status, 0) << audit.out << audit.err;
   const auto report = nlohmann::json::parse(slurp(d.dir.path("audit.json")));
   EXPECT_LE(report["allowance"]["max_lost_deviation"].get<double>(), thickness + report["tolerance"].get<double>());
@@ -148,7 +148,8 @@ TEST(ColliderExport, KhronosValidatorReportsNoErrorAndPhysicsExtensionsOnlyAsInf
   Decomposed d;
   decompose_room(d);
   for (const std::string& extra : std::vector<std::string>{"", " --with-scene --scene " + d.dir.path("room.obj")}) {
-    ASSERT_EQ(run_hullcover(d.dir, "export " + d.dir.path("hulls.obj") + " -o " + d.dir.path("v.glb") + extra).status, 0);
+    ASSERT_EQ(run_hullcover(d.dir, "export " + d.dir.path("hulls.obj") + " -o " + d.dir.path("v.glb") + extra).status,
+              0);
     const std::string command = "node " + (tools / "validate_glb.mjs").string() + " " + d.dir.path("v.glb") + " >" +
                                 d.dir.path("report.json") + " 2>" + d.dir.path("node.err");
     ASSERT_EQ(std::system(command.c_str()), 0) << slurp(d.dir.path("node.err"));
@@ -158,7 +159,7 @@ TEST(ColliderExport, KhronosValidatorReportsNoErrorAndPhysicsExtensionsOnlyAsInf
     std::set<std::string> unknown;
     for (const auto& m : report["issues"]["messages"]) {
       if (m["code"] == "UNSUPPORTED_EXTENSION") {
-        EXPECT_EQ(m["severity"].get<int>(), 2) << m.dump();  // 2: information
+        EXPECT_EQ(m["severity"].get<int>(), 2) << m.dump(); // 2: information
         unknown.insert(m["message"].get<std::string>());
       }
     }
@@ -172,7 +173,8 @@ TEST(ColliderExport, KhronosValidatorReportsNoErrorAndPhysicsExtensionsOnlyAsInf
 TEST(ColliderExport, UnrealAndGodotNamesAreReadBackAsTheHullsOnly) {
   Decomposed d;
   decompose_room(d);
-  const std::string common = "export " + d.dir.path("hulls.obj") + " --scene " + d.dir.path("room.obj") + " --with-scene ";
+  const std::string common =
+      "export " + d.dir.path("hulls.obj") + " --scene " + d.dir.path("room.obj") + " --with-scene ";
   ASSERT_EQ(run_hullcover(d.dir, common + "-o " + d.dir.path("ucx.obj") + " --ucx Room").status, 0);
   ASSERT_EQ(run_hullcover(d.dir, common + "-o " + d.dir.path("godot.obj") + " --godot").status, 0);
   const std::string ucx = slurp(d.dir.path("ucx.obj"));
@@ -218,15 +220,17 @@ TEST(ColliderExport, HullOverAnEnginesLimitIsRefusedNamingTheOption) {
     obj << "v " << r * std::cos(golden * i) << ' ' << r * std::sin(golden * i) << ' ' << z << '\n';
   }
   obj << "f";
-  for (int i = 1; i <= 100; ++i) obj << ' ' << i;  // a group's hull is its points' hull
+  for (int i = 1; i <= 100; ++i) obj << ' ' << i; // a group's hull is its points' hull
   obj << '\n';
   obj.close();
-  const CommandRun gpu = run_hullcover(dir, "export " + dir.path("round.obj") + " -o " + dir.path("r.glb") + " --engine physx-gpu");
+  const CommandRun gpu =
+      run_hullcover(dir, "export " + dir.path("round.obj") + " -o " + dir.path("r.glb") + " --engine physx-gpu");
   EXPECT_EQ(gpu.status, 2);
   EXPECT_NE(gpu.err.find("over PhysX GPU's 64"), std::string::npos) << gpu.err;
   EXPECT_NE(gpu.err.find("--max-hull-vertices 64"), std::string::npos) << gpu.err;
   EXPECT_FALSE(std::filesystem::exists(dir.path("r.glb")));
-  EXPECT_EQ(run_hullcover(dir, "export " + dir.path("round.obj") + " -o " + dir.path("r.glb") + " --engine jolt").status, 0);
+  EXPECT_EQ(
+      run_hullcover(dir, "export " + dir.path("round.obj") + " -o " + dir.path("r.glb") + " --engine jolt").status, 0);
 }
 
 TEST(FlatHullThickening, OneSidedPolygonGrowsBehindItsFrontAndASheetSplitsAcrossBoth) {
@@ -251,7 +255,8 @@ TEST(FlatHullThickening, OneSidedPolygonGrowsBehindItsFrontAndASheetSplitsAcross
     for (const Eigen::Vector3d& v : one.hulls[0].vertices) EXPECT_LE(plane.signed_distance(v), 1e-12);
   EXPECT_NEAR(hullcover::polytope_volume(one.hulls[0]), t, 1e-12);
 
-  const auto sheet = hullcover::app::thicken_flat_hulls({flat(Eigen::Vector3d::UnitZ()), flat(-Eigen::Vector3d::UnitZ())}, t, tol);
+  const auto sheet =
+      hullcover::app::thicken_flat_hulls({flat(Eigen::Vector3d::UnitZ()), flat(-Eigen::Vector3d::UnitZ())}, t, tol);
   EXPECT_EQ(sheet.split, 2);
   for (const auto& hull : sheet.hulls) EXPECT_EQ(extent_along_z(hull), (std::pair{-t / 2, t / 2}));
 }

@@ -21,7 +21,9 @@ using hullcover::test::TempDir;
 using hullcover::test::CommandRun;
 using hullcover::test::slurp;
 
-CommandRun run(const TempDir& dir, const std::string& arguments) { return hullcover::test::run_hullcover(dir, arguments); }
+CommandRun run(const TempDir& dir, const std::string& arguments) {
+  return hullcover::test::run_hullcover(dir, arguments);
+}
 
 const char* kQuadObj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
 
@@ -105,7 +107,8 @@ TEST(CommandLine, DemoWritesTheSceneItsFiguresAndItsHulls) {
     EXPECT_EQ(written["scene"][key], reread[key]) << key;
   const std::string hulls = slurp(dir.path("demo/demo-hulls.obj"));
   size_t hull_groups = 0;
-  for (size_t at = hulls.find("\no hull_"); at != std::string::npos; at = hulls.find("\no hull_", at + 1)) ++hull_groups;
+  for (size_t at = hulls.find("\no hull_"); at != std::string::npos; at = hulls.find("\no hull_", at + 1))
+    ++hull_groups;
   EXPECT_EQ(hull_groups, written["totals"]["hulls"].get<size_t>());
   EXPECT_LT(written["totals"]["hulls"].get<int>(), written["totals"]["faces"].get<int>());
 }
@@ -141,8 +144,9 @@ TEST(CommandLine, DemoAuditsItsHullsQueriesTheRuntimeFileAndDrawsThePicture) {
 TEST(CommandLine, DecomposeWritesOneGroupPerHullAndTheSidecar) {
   TempDir dir;
   const std::string quad = dir.write("quad.obj", kQuadObj);
-  const CommandRun r = run(dir, "decompose " + quad + " -o " + dir.path("h.obj") + " --json " + dir.path("h.json") +
-                                    " --order random --seed 7 --bar-length 0.5 --prism-cap 0.1 --max-hull-vertices 16 -q");
+  const CommandRun r =
+      run(dir, "decompose " + quad + " -o " + dir.path("h.obj") + " --json " + dir.path("h.json") +
+                   " --order random --seed 7 --bar-length 0.5 --prism-cap 0.1 --max-hull-vertices 16 -q");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("2 faces -> 1 hulls"), std::string::npos) << r.out;
   const nlohmann::json j = nlohmann::json::parse(slurp(dir.path("h.json")));
@@ -150,7 +154,7 @@ TEST(CommandLine, DecomposeWritesOneGroupPerHullAndTheSidecar) {
   EXPECT_EQ(j["options"]["order"], "random");
   EXPECT_EQ(j["options"]["seed"], 7);
   EXPECT_DOUBLE_EQ(j["options"]["bar_half_length"].get<double>(), 0.5);
-  EXPECT_DOUBLE_EQ(j["hulls"][0]["prism_thickness"].get<double>(), 0.1);  // nothing behind the quad
+  EXPECT_DOUBLE_EQ(j["hulls"][0]["prism_thickness"].get<double>(), 0.1); // nothing behind the quad
   EXPECT_EQ(j["hulls"][0]["faces"], nlohmann::json::array({0, 1}));
   const std::string obj = slurp(dir.path("h.obj"));
   EXPECT_NE(obj.find("o hull_0\n"), std::string::npos);
@@ -160,8 +164,8 @@ TEST(CommandLine, DecomposeRejectsBadOptionsWithTwo) {
   TempDir dir;
   const std::string quad = dir.write("quad.obj", kQuadObj);
   const std::string base = "decompose " + quad + " -o " + dir.path("h.obj") + " ";
-  for (const std::string bad : {"--order sideways", "--max-hull-vertices 3", "--bar-length -1", "--prism-cap -2",
-                                "--tol 0", "--seed -1"})
+  for (const std::string bad :
+       {"--order sideways", "--max-hull-vertices 3", "--bar-length -1", "--prism-cap -2", "--tol 0", "--seed -1"})
     EXPECT_EQ(run(dir, base + bad).status, 2) << bad;
   // The message names the text given, in a line (not the 309 digits of the
   // largest double).
@@ -220,21 +224,23 @@ TEST(CommandLine, QueryAnswersFromTheRuntimeFile) {
   // Down onto the roof.
   r = run(dir, "query " + world + " --ray 0,5,0,0,-1,0");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("at t 1.7999999"), std::string::npos) << r.out;  // the roof at 3.2, read as float32
+  EXPECT_NE(r.out.find("at t 1.7999999"), std::string::npos) << r.out; // the roof at 3.2, read as float32
   // Floating in a room: no contact, the floor 1.2 below.
   r = run(dir, "query " + world + " --sphere -2,1.5,-2,0.3");
   EXPECT_NE(r.out.find("distance 1.2"), std::string::npos) << r.out;
   EXPECT_EQ(run(dir, "query " + world + " --sphere 1,2").status, 2);
   EXPECT_EQ(run(dir, "query " + world).status, 2);
-  EXPECT_EQ(run(dir, "query " + dir.path("h.obj") + " --sphere 0,0,0,1").status, 2);  // not a runtime file
+  EXPECT_EQ(run(dir, "query " + dir.path("h.obj") + " --sphere 0,0,0,1").status, 2); // not a runtime file
 }
 
 TEST(CommandLine, AuditExitsZeroWhenCleanOneWhenSpaceIsLostTwoWhenUnreadable) {
   TempDir dir;
   ASSERT_EQ(run(dir, "demo --out " + dir.path("demo")).status, 0);
   const std::string scene = dir.path("demo/demo-scene.obj");
-  ASSERT_EQ(run(dir, "decompose " + scene + " -o " + dir.path("h.obj") + " --world " + dir.path("w.hcw") + " -q").status, 0);
-  CommandRun r = run(dir, "audit " + scene + " " + dir.path("w.hcw") + " --resolution 0.15 --json " + dir.path("a.json"));
+  ASSERT_EQ(
+      run(dir, "decompose " + scene + " -o " + dir.path("h.obj") + " --world " + dir.path("w.hcw") + " -q").status, 0);
+  CommandRun r =
+      run(dir, "audit " + scene + " " + dir.path("w.hcw") + " --resolution 0.15 --json " + dir.path("a.json"));
   EXPECT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("CLEAN"), std::string::npos) << r.out;
   const nlohmann::json j = nlohmann::json::parse(slurp(dir.path("a.json")));
@@ -242,11 +248,12 @@ TEST(CommandLine, AuditExitsZeroWhenCleanOneWhenSpaceIsLostTwoWhenUnreadable) {
   EXPECT_GT(j["front"]["rays"].get<long>(), 0);
   EXPECT_EQ(j["front"]["lost"].get<long>(), 0);
   EXPECT_TRUE(j["front"]["deepest"].is_null());
-  EXPECT_TRUE(j["probe_distance"].is_null());  // no cap unless asked
+  EXPECT_TRUE(j["probe_distance"].is_null()); // no cap unless asked
   // One hull over the whole building, as an OBJ group: the rooms are lost.
-  const std::string blob = dir.write("blob.obj", "o all\nv -5 0 -4\nv 5 0 -4\nv 5 3.2 -4\nv -5 3.2 -4\n"
-                                                 "v -5 0 4\nv 5 0 4\nv 5 3.2 4\nv -5 3.2 4\n"
-                                                 "f 1 2 3 4\nf 5 6 7 8\n");
+  const std::string blob = dir.write("blob.obj",
+                                     "o all\nv -5 0 -4\nv 5 0 -4\nv 5 3.2 -4\nv -5 3.2 -4\n"
+                                     "v -5 0 4\nv 5 0 4\nv 5 3.2 4\nv -5 3.2 4\n"
+                                     "f 1 2 3 4\nf 5 6 7 8\n");
   r = run(dir, "audit " + scene + " " + blob + " --resolution 0.15 --json " + dir.path("b.json"));
   EXPECT_EQ(r.status, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("VIOLATIONS"), std::string::npos) << r.out;
@@ -268,12 +275,13 @@ TEST(CommandLine, AuditPrintsAndWritesTheSameOnAnyThreadCount) {
   // The decomposer's hulls (clean), and hulls that lose space in many
   // places: one over the back half of the building, one closing the doorway.
   ASSERT_EQ(run(dir, "decompose " + scene + " -o " + dir.path("h.obj") + " -q").status, 0);
-  const std::string spoiled = dir.write("spoiled.obj", "o back\nv -5 0 -4\nv 5 0 -4\nv 5 3.2 -4\nv -5 3.2 -4\n"
-                                                       "v -5 0 0\nv 5 0 0\nv 5 3.2 0\nv -5 3.2 0\n"
-                                                       "f 1 2 3 4\nf 5 6 7 8\n"
-                                                       "o door\nv -0.6 0 3.8\nv 0.6 0 3.8\nv 0.6 2.1 3.8\nv -0.6 2.1 3.8\n"
-                                                       "v -0.6 0 4\nv 0.6 0 4\nv 0.6 2.1 4\nv -0.6 2.1 4\n"
-                                                       "f 9 10 11 12\nf 13 14 15 16\n");
+  const std::string spoiled = dir.write("spoiled.obj",
+                                        "o back\nv -5 0 -4\nv 5 0 -4\nv 5 3.2 -4\nv -5 3.2 -4\n"
+                                        "v -5 0 0\nv 5 0 0\nv 5 3.2 0\nv -5 3.2 0\n"
+                                        "f 1 2 3 4\nf 5 6 7 8\n"
+                                        "o door\nv -0.6 0 3.8\nv 0.6 0 3.8\nv 0.6 2.1 3.8\nv -0.6 2.1 3.8\n"
+                                        "v -0.6 0 4\nv 0.6 0 4\nv 0.6 2.1 4\nv -0.6 2.1 4\n"
+                                        "f 9 10 11 12\nf 13 14 15 16\n");
   for (const std::string& hulls : {dir.path("h.obj"), spoiled}) {
     const std::string common = "audit " + scene + " " + hulls + " --resolution 0.15 --proxies 600 -q --json ";
     const CommandRun one = run(dir, common + dir.path("t1.json") + " --threads 1");
@@ -307,8 +315,10 @@ TEST(CommandLine, AuditSaysWhereARayRanOutOfEvaluations) {
   ASSERT_EQ(run(dir, "demo --out " + dir.path("demo")).status, 0);
   const std::string scene = dir.path("demo/demo-scene.obj");
   ASSERT_EQ(run(dir, "decompose " + scene + " -o " + dir.path("h.obj") + " --agent-radius 0.3 -q").status, 0);
-  const std::string common = "audit " + scene + " " + dir.path("h.obj") + " --agent-radius 0.3 --resolution 0.3 "
-                             "--proxies 300 --json " + dir.path("a.json") + " --max-ray-evaluations ";
+  const std::string common = "audit " + scene + " " + dir.path("h.obj") +
+                             " --agent-radius 0.3 --resolution 0.3 "
+                             "--proxies 300 --json " +
+                             dir.path("a.json") + " --max-ray-evaluations ";
   const CommandRun bounded = run(dir, common + "2 --html " + dir.path("a.html"));
   EXPECT_EQ(bounded.status, 1) << bounded.err;
   EXPECT_NE(bounded.out.find("ran out of evaluations (undecided: a violation); the first at ("), std::string::npos)

@@ -55,7 +55,7 @@ constexpr bool kSanitized = false;
 #endif
 
 ChildLimits corpus_limits() {
-  ChildLimits limits;  // 60 s, 4 GiB, 4 at a time
+  ChildLimits limits; // 60 s, 4 GiB, 4 at a time
   if (kSanitized) {
     limits.address_space_bytes = 0;
     limits.wall *= 5;
@@ -73,7 +73,7 @@ std::vector<std::string> message_lines(const std::string& err) {
   std::vector<std::string> lines;
   std::istringstream in(err);
   for (std::string line; std::getline(in, line);) {
-    line.erase(0, line.find_last_of('\r') == std::string::npos ? 0 : line.find_last_of('\r') + 1);  // progress
+    line.erase(0, line.find_last_of('\r') == std::string::npos ? 0 : line.find_last_of('\r') + 1); // progress
     if (!line.empty() && line != kCli11Footer) lines.push_back(line);
   }
   return lines;
@@ -120,11 +120,14 @@ std::string ending(const ChildOutcome& o) {
 }
 
 /// What a case did wrong; empty when it held to every promise.
-std::vector<std::string> judge(const HostileCase& c, const ChildOutcome& o, const std::string& out, const std::string& err,
-                               const std::set<std::string>& touched, const std::string& passwd_line) {
+std::vector<std::string> judge(const HostileCase& c, const ChildOutcome& o, const std::string& out,
+                               const std::string& err, const std::set<std::string>& touched,
+                               const std::string& passwd_line) {
   std::vector<std::string> wrong;
-  if (o.timed_out) wrong.push_back("hang: still running after the wall-clock limit");
-  else if (o.signal != 0) wrong.push_back(std::string("crash: ended by signal ") + strsignal(o.signal));
+  if (o.timed_out)
+    wrong.push_back("hang: still running after the wall-clock limit");
+  else if (o.signal != 0)
+    wrong.push_back(std::string("crash: ended by signal ") + strsignal(o.signal));
   else if (std::find(c.allowed_exits.begin(), c.allowed_exits.end(), o.status) == c.allowed_exits.end())
     wrong.push_back("exit status " + std::to_string(o.status) + " is not documented for this command");
   if (c.expected_exit && o.exited && o.status != *c.expected_exit)
@@ -147,7 +150,8 @@ std::vector<std::string> judge(const HostileCase& c, const ChildOutcome& o, cons
     }
   for (const auto& [where, text] : texts) {
     if (text.find(kCanarySecret) != std::string::npos) wrong.push_back("the canary's secret is in " + where);
-    if (!passwd_line.empty() && text.find(passwd_line) != std::string::npos) wrong.push_back("/etc/passwd is in " + where);
+    if (!passwd_line.empty() && text.find(passwd_line) != std::string::npos)
+      wrong.push_back("/etc/passwd is in " + where);
   }
   return wrong;
 }
@@ -157,7 +161,10 @@ struct Tally {
   double max_seconds = 0.0, max_rss_mb = 0.0;
   void add(const ChildOutcome& o, bool failed) {
     ++cases;
-    (o.exited && o.status == 0 ? exit0 : o.exited && o.status == 1 ? exit1 : o.exited && o.status == 2 ? exit2 : other)++;
+    (o.exited && o.status == 0   ? exit0
+     : o.exited && o.status == 1 ? exit1
+     : o.exited && o.status == 2 ? exit2
+                                 : other)++;
     failing += failed;
     max_seconds = std::max(max_seconds, o.seconds);
     max_rss_mb = std::max(max_rss_mb, o.peak_rss_mb);
@@ -165,8 +172,8 @@ struct Tally {
 };
 
 void print_tally(const std::string& name, const Tally& t) {
-  std::printf("| %-8s | %5d | %6d | %6d | %6d | %5d | %7d | %9.2f | %11.1f |\n", name.c_str(), t.cases, t.exit0, t.exit1,
-              t.exit2, t.other, t.failing, t.max_seconds, t.max_rss_mb);
+  std::printf("| %-8s | %5d | %6d | %6d | %6d | %5d | %7d | %9.2f | %11.1f |\n", name.c_str(), t.cases, t.exit0,
+              t.exit1, t.exit2, t.other, t.failing, t.max_seconds, t.max_rss_mb);
 }
 
 TEST(ChildProcessHarness, ReportsExitsSignalsHangsAndPeakMemory) {
@@ -180,11 +187,10 @@ TEST(ChildProcessHarness, ReportsExitsSignalsHangsAndPeakMemory) {
   limits.wall = std::chrono::milliseconds(8000);
   limits.address_space_bytes = 512ull << 20;
   // A shell holding 32 MB in a variable; one asking for more than the cap.
-  const std::vector<ChildOutcome> o = run_children(
-      {shell("exit 3"), shell("kill -SEGV $$"), shell("sleep 60"),
-       shell("x=$(head -c 33554432 /dev/zero | tr '\\000' a); exit 0"),
-       shell("x=$(head -c 1073741824 /dev/zero | tr '\\000' a); exit 0")},
-      limits);
+  const std::vector<ChildOutcome> o = run_children({shell("exit 3"), shell("kill -SEGV $$"), shell("sleep 60"),
+                                                    shell("x=$(head -c 33554432 /dev/zero | tr '\\000' a); exit 0"),
+                                                    shell("x=$(head -c 1073741824 /dev/zero | tr '\\000' a); exit 0")},
+                                                   limits);
   EXPECT_TRUE(o[0].exited && o[0].status == 3);
   EXPECT_EQ(o[1].signal, SIGSEGV);
   EXPECT_FALSE(o[1].timed_out);
@@ -206,7 +212,7 @@ TEST(ChildProcessHarness, TheWatchSeesAChildReadACanary) {
   const auto run = [&](const std::string& file) {
     run_children({{{"/bin/cat", file}, dir.path(""), dir.path("out"), dir.path("err"), {}}}, ChildLimits{});
   };
-  run(dir.path("err"));  // beside the folder: not seen
+  run(dir.path("err")); // beside the folder: not seen
   EXPECT_TRUE(watch.touched().empty());
   run(dir.path("outside/canary.txt"));
   EXPECT_EQ(watch.touched()[7], std::set<std::string>{"canary.txt"});
@@ -236,7 +242,10 @@ TEST(HostileCorpus, NoCrashHangReadOutsideOrMemoryBlowUp) {
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const HostileCase& c = cases[i];
     ASSERT_TRUE(watch.watch(c.outside(), i)) << "inotify: " << std::strerror(errno);
-    ChildSpec spec{{HULLCOVER_EXECUTABLE}, c.folder, c.folder + "/stdout.txt", c.folder + "/stderr.txt",
+    ChildSpec spec{{HULLCOVER_EXECUTABLE},
+                   c.folder,
+                   c.folder + "/stdout.txt",
+                   c.folder + "/stderr.txt",
                    {std::string(kCanaryEnvironmentName) + "=" + kCanarySecret}};
     spec.argv.insert(spec.argv.end(), c.args.begin(), c.args.end());
     specs.push_back(std::move(spec));
@@ -261,7 +270,7 @@ TEST(HostileCorpus, NoCrashHangReadOutsideOrMemoryBlowUp) {
     const std::vector<std::string> lines = message_lines(err);
     std::string first = lines.empty() ? std::string() : lines.front();
     for (std::size_t at; (at = first.find(dir.path("corpus"))) != std::string::npos;)
-      first.replace(at, dir.path("corpus").size(), "$CORPUS");  // the temporary folder, shortened
+      first.replace(at, dir.path("corpus").size(), "$CORPUS"); // the temporary folder, shortened
     std::printf("%-44s %9llu %-16s %7.2f %8.1f  %s%s\n", (c.category + "/" + c.name).c_str(),
                 static_cast<unsigned long long>(c.input_bytes), ending(o).c_str(), o.seconds, o.peak_rss_mb,
                 wrong.empty() ? "" : "FAIL ", first.substr(0, 110).c_str());
@@ -273,10 +282,11 @@ TEST(HostileCorpus, NoCrashHangReadOutsideOrMemoryBlowUp) {
     tallies[c.category].add(o, !wrong.empty());
     total.add(o, !wrong.empty());
   }
-  std::printf("\nHostile corpus: %zu cases written in %.1f s, run in %.1f s wall (%d at a time, %lld s limit, %llu GiB "
-              "address space, 0: no cap)\n",
-              cases.size(), writing, wall, limits.parallel, static_cast<long long>(limits.wall.count() / 1000),
-              static_cast<unsigned long long>(limits.address_space_bytes >> 30));
+  std::printf(
+      "\nHostile corpus: %zu cases written in %.1f s, run in %.1f s wall (%d at a time, %lld s limit, %llu GiB "
+      "address space, 0: no cap)\n",
+      cases.size(), writing, wall, limits.parallel, static_cast<long long>(limits.wall.count() / 1000),
+      static_cast<unsigned long long>(limits.address_space_bytes >> 30));
   std::printf("| category | cases | exit 0 | exit 1 | exit 2 | other | failing | max s     | max RSS MB  |\n");
   std::printf("|----------|------:|-------:|-------:|-------:|------:|--------:|----------:|------------:|\n");
   for (const auto& [name, t] : tallies) print_tally(name, t);

@@ -33,7 +33,6 @@ using hullcover::test::TempDir;
 
 const std::string kOld = "old content\n";
 
-
 // The outputs of one decompose run, placed in their own folder with old
 // content, so a run that stops early shows as old content.
 struct Outputs {
@@ -104,8 +103,10 @@ TEST(InterruptedOutputs, ASignalAtAnyMomentLeavesEachOutputOldOrComplete) {
     kill(child, k % 2 == 0 ? SIGTERM : SIGINT);
     int status = 0;
     waitpid(child, &status, 0);
-    if (WIFSIGNALED(status)) ++interrupted;
-    else if (WIFEXITED(status) && WEXITSTATUS(status) == 0) ++finished;
+    if (WIFSIGNALED(status))
+      ++interrupted;
+    else if (WIFEXITED(status) && WEXITSTATUS(status) == 0)
+      ++finished;
     expect_old_or_complete(o, "killed at moment " + std::to_string(k) + " of " + std::to_string(kMoments));
   }
   // Both kinds of ending must occur, or the moments missed the run.

@@ -14,8 +14,8 @@
 namespace {
 
 using hullcover::test::CommandRun;
-using hullcover::test::DecodedPng;
 using hullcover::test::decode_png;
+using hullcover::test::DecodedPng;
 using hullcover::test::ObjHull;
 using hullcover::test::run_hullcover;
 using hullcover::test::slurp;
@@ -63,7 +63,7 @@ TEST_F(RenderCommand, DrawsTheSceneAloneInShadedGrey) {
   const DecodedPng png = decode_png(out);
   ASSERT_EQ(png.width, 400);
   ASSERT_EQ(png.height, 300);
-  EXPECT_LT(hullcover::test::saturated_pixels(png), png.pixels.size() / 200);  // grey: no hull colour
+  EXPECT_LT(hullcover::test::saturated_pixels(png), png.pixels.size() / 200); // grey: no hull colour
   // Not blank: faces in several shades of grey, darker than the background.
   size_t shaded = 0;
   for (const hullcover::test::Pixel& p : png.pixels) shaded += p.r < 200 && p.g < 200 && p.b < 200;

@@ -30,8 +30,9 @@ void audit(benchmark::State& state, std::shared_ptr<PreparedMesh> prepared, std:
   validate::BehaviourReport behaviour;
   for (auto _ : state) {
     probe = validate::probe_accessible_space(*prepared, *triangles, *hulls, {}).value();
-    const validate::CheckReport recheck = validate::recheck_hulls(
-        *prepared, validate::hulls_under_check(set->hulls), kDefaultBarHalfLengthRelative * prepared->tolerance.diagonal);
+    const validate::CheckReport recheck =
+        validate::recheck_hulls(*prepared, validate::hulls_under_check(set->hulls),
+                                kDefaultBarHalfLengthRelative * prepared->tolerance.diagonal);
     behaviour = validate::compare_behaviour(*prepared, *triangles, *hulls, {}).value();
     benchmark::DoNotOptimize(recheck);
   }
@@ -56,10 +57,10 @@ int main(int argc, char** argv) {
     ours->hulls = bvh::runtime_hulls(decompose(*mesh, {}).value());
     const std::string stem = std::string(scene).substr(0, std::string(scene).rfind('.'));
     Result<validate::HullSet> peer = validate::load_hull_set(*dir + "/../peer-hulls/" + stem + ".vhacd.obj");
-    for (const auto& [who, set] : {std::make_pair(std::string("hullcover"), ours),
-                                   std::make_pair(std::string("vhacd"),
-                                                  peer.ok() ? std::make_shared<validate::HullSet>(std::move(peer).value())
-                                                            : nullptr)}) {
+    for (const auto& [who, set] :
+         {std::make_pair(std::string("hullcover"), ours),
+          std::make_pair(std::string("vhacd"),
+                         peer.ok() ? std::make_shared<validate::HullSet>(std::move(peer).value()) : nullptr)}) {
       if (!set) continue;
       benchmark::RegisterBenchmark(("audit/" + std::string(scene) + "/" + who).c_str(), audit, mesh, set)
           ->Unit(benchmark::kSecond)

@@ -32,17 +32,19 @@ constexpr double kPaperHullsPerFace = 3137.0 / 14608.0;
 
 // Hull counts of the prototype with the paper's conditions alone
 // (docs/results/covering.md, "Paper vs exact").
-const std::map<std::string, double> kPrototypePaperHulls = {
-    {"sauerbraten-fdm6.obj", 3112},   {"sauerbraten-pandora.obj", 21098},       {"recast-dungeon.obj", 3231},
-    {"threejs-collision-world.glb", 368}, {"recast-nav_test.obj", 714}};
+const std::map<std::string, double> kPrototypePaperHulls = {{"sauerbraten-fdm6.obj", 3112},
+                                                            {"sauerbraten-pandora.obj", 21098},
+                                                            {"recast-dungeon.obj", 3231},
+                                                            {"threejs-collision-world.glb", 368},
+                                                            {"recast-nav_test.obj", 714}};
 
 // One way of decomposing, named in the benchmark's name.
 struct Variant {
   const char* name;
   MergeOrder order;
   ValidityMode conditions;
-  std::optional<double> near_merge_distance;  // unset: the mode's default
-  std::optional<bool> dissolve;               // unset: the mode's default
+  std::optional<double> near_merge_distance; // unset: the mode's default
+  std::optional<bool> dissolve;              // unset: the mode's default
 };
 
 constexpr double kNoNearMerges = 0.0;

@@ -46,19 +46,19 @@ struct SceneScale {
   const char* file;
   double units_per_metre;
 };
-const SceneScale kScenes[] = {{"recast-dungeon.obj", 1.0},        {"recast-nav_test.obj", 1.0},
-                              {"recast-undulating.obj", 1.0},     {"sauerbraten-fdm6.obj", 20.0},
-                              {"sauerbraten-pandora.obj", 20.0},  {"stanford-bunny-res2.ply", 0.0},
-                              {"thor-art56-gearplate.stl", 0.0},  {"threejs-collision-world.glb", 1.0}};
+const SceneScale kScenes[] = {{"recast-dungeon.obj", 1.0},       {"recast-nav_test.obj", 1.0},
+                              {"recast-undulating.obj", 1.0},    {"sauerbraten-fdm6.obj", 20.0},
+                              {"sauerbraten-pandora.obj", 20.0}, {"stanford-bunny-res2.ply", 0.0},
+                              {"thor-art56-gearplate.stl", 0.0}, {"threejs-collision-world.glb", 1.0}};
 constexpr int kPoses = 512;
-constexpr int kBatchCopies = 8;  // a thread-batch benchmark asks every pose this many times
+constexpr int kBatchCopies = 8; // a thread-batch benchmark asks every pose this many times
 
 // Poses and rays for one probe size.
 struct Probe {
-  double radius = 0.4, half_height = 0.5;  // capsule (and sphere radius), scene units
-  double ray_length = 1.6;                  // 4 radii
-  std::vector<Eigen::Isometry3d> poses;     // near surfaces: -0.5 to 1.5 radii in front of a face
-  std::vector<RayRequest> rays;             // from each pose, towards its face
+  double radius = 0.4, half_height = 0.5; // capsule (and sphere radius), scene units
+  double ray_length = 1.6;                // 4 radii
+  std::vector<Eigen::Isometry3d> poses;   // near surfaces: -0.5 to 1.5 radii in front of a face
+  std::vector<RayRequest> rays;           // from each pose, towards its face
 };
 
 // A shape resting 5% of its radius deep on a face, where every triangle it
@@ -66,14 +66,14 @@ struct Probe {
 // ramp or wall meets.
 struct Resting {
   Eigen::Isometry3d pose;
-  Eigen::Vector3d normal;  // the face's
+  Eigen::Vector3d normal; // the face's
 };
 
 struct Scene {
   std::shared_ptr<const HullWorld> hulls;
   std::shared_ptr<const TriangleWorld> triangles;
   Probe character, large;
-  std::vector<Resting> resting_spheres, resting_capsules;  // character size
+  std::vector<Resting> resting_spheres, resting_capsules; // character size
 };
 
 // A point drawn uniformly on a random face with a surface, and that face's
@@ -109,8 +109,9 @@ Probe make_probe(const PreparedMesh& prepared, double radius, double half_height
     const Eigen::Vector3d& n = on.normal;
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.translation() = on.point + n * (offset(rng) * radius);
-    pose.linear() = Eigen::Quaterniond(Eigen::Vector4d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5).normalized())
-                        .toRotationMatrix();
+    pose.linear() =
+        Eigen::Quaterniond(Eigen::Vector4d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5).normalized())
+            .toRotationMatrix();
     probe.poses.push_back(pose);
     const Eigen::Vector3d towards = -n + 0.3 * Eigen::Vector3d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
     probe.rays.push_back({pose.translation(), towards, probe.ray_length});
@@ -119,12 +120,12 @@ Probe make_probe(const PreparedMesh& prepared, double radius, double half_height
 }
 
 constexpr int kRestingPoses = 1000;
-const double kGhostCosine = std::cos(M_PI / 180.0);  // a normal more than 1 degree off the face's is a ghost
+const double kGhostCosine = std::cos(M_PI / 180.0); // a normal more than 1 degree off the face's is a ghost
 
 // Resting poses on random faces (a capsule lies along the face's first
 // edge), kept where every triangle contact is with a face in the same plane.
-std::vector<Resting> resting_poses(const PreparedMesh& prepared, const TriangleWorld& triangles, const QueryShape& shape,
-                                   unsigned seed) {
+std::vector<Resting> resting_poses(const PreparedMesh& prepared, const TriangleWorld& triangles,
+                                   const QueryShape& shape, unsigned seed) {
   const Mesh& mesh = prepared.mesh;
   const double tol = prepared.tolerance.length;
   std::mt19937 rng(seed);
@@ -195,8 +196,15 @@ void in_turn(benchmark::State& state, int count, const std::function<void()>& fi
 void side_by_side(benchmark::State& state, int count, const std::function<void(int)>& hull_query,
                   const std::function<void(int)>& triangle_query) {
   in_turn(
-      state, count, [&] { for (int i = 0; i < count; ++i) hull_query(i); }, "hull",
-      [&] { for (int i = 0; i < count; ++i) triangle_query(i); }, "triangle", false);
+      state, count,
+      [&] {
+    for (int i = 0; i < count; ++i) hull_query(i);
+      },
+      "hull",
+      [&] {
+    for (int i = 0; i < count; ++i) triangle_query(i);
+  },
+      "triangle", false);
 }
 
 // One batch on one thread, then on two (QueryThreads, started once), in
@@ -213,31 +221,38 @@ void one_thread_then_two(benchmark::State& state, int count, const std::function
 // shared machine it is below 2.0 too; a batch row near it is at the
 // machine's limit.
 void register_thread_control() {
-  benchmark::RegisterBenchmark("threads/arithmetic_control", [](benchmark::State& state) {
+  benchmark::RegisterBenchmark(
+      "threads/arithmetic_control",
+      [](benchmark::State& state) {
     constexpr int kItems = 4096;
     std::vector<double> out(kItems);
     one_thread_then_two(state, kItems, [&](QueryThreads* threads) {
       struct Job {
         std::vector<double>* out;
       } job{&out};
-      threads->run(kItems, 16,
-                   [](size_t begin, size_t end, void* context) {
-                     std::vector<double>& o = *static_cast<Job*>(context)->out;
-                     for (size_t i = begin; i < end; ++i) {
-                       double x = static_cast<double>(i);
-                       for (int k = 0; k < 200; ++k) x = std::sqrt(x + 1.0001);
-                       o[i] = x;
-                     }
-                   },
-                   &job);
+      threads->run(
+          kItems, 16,
+          [](size_t begin, size_t end, void* context) {
+        std::vector<double>& o = *static_cast<Job*>(context)->out;
+        for (size_t i = begin; i < end; ++i) {
+          double x = static_cast<double>(i);
+          for (int k = 0; k < 200; ++k) x = std::sqrt(x + 1.0001);
+          o[i] = x;
+        }
+          },
+          &job);
       benchmark::DoNotOptimize(out.data());
     });
-  })->UseManualTime()->Unit(benchmark::kMicrosecond);
+      })
+      ->UseManualTime()
+      ->Unit(benchmark::kMicrosecond);
 }
 
 void register_probe(const std::string& name, const std::shared_ptr<const Scene>& s, const Probe& p) {
   const auto reg = [&](const std::string& what, std::function<void(benchmark::State&)> fn) {
-    benchmark::RegisterBenchmark(("query/" + name + "/" + what).c_str(), fn)->UseManualTime()->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark(("query/" + name + "/" + what).c_str(), fn)
+        ->UseManualTime()
+        ->Unit(benchmark::kMicrosecond);
   };
   // `p` lives in `s`, which every benchmark below keeps alive.
   const Probe* probe = &p;
@@ -247,20 +262,35 @@ void register_probe(const std::string& name, const std::shared_ptr<const Scene>&
     reg("touches_" + kind, [s, probe, shape = shape](benchmark::State& state) {
       TouchResult r;
       side_by_side(
-          state, kPoses, [&](int i) { benchmark::DoNotOptimize(s->hulls->touches({shape, probe->poses[i]}, r)); },
-          [&](int i) { benchmark::DoNotOptimize(s->triangles->touches({shape, probe->poses[i]}, r)); });
+          state, kPoses,
+          [&](int i) {
+        benchmark::DoNotOptimize(s->hulls->touches({shape, probe->poses[i]}, r));
+          },
+          [&](int i) {
+        benchmark::DoNotOptimize(s->triangles->touches({shape, probe->poses[i]}, r));
+      });
     });
     reg("contacts_" + kind, [s, probe, shape = shape](benchmark::State& state) {
       ContactResult r;
       side_by_side(
-          state, kPoses, [&](int i) { benchmark::DoNotOptimize(s->hulls->contacts({shape, probe->poses[i], 8}, r)); },
-          [&](int i) { benchmark::DoNotOptimize(s->triangles->contacts({shape, probe->poses[i], 8}, r)); });
+          state, kPoses,
+          [&](int i) {
+        benchmark::DoNotOptimize(s->hulls->contacts({shape, probe->poses[i], 8}, r));
+          },
+          [&](int i) {
+        benchmark::DoNotOptimize(s->triangles->contacts({shape, probe->poses[i], 8}, r));
+      });
     });
     reg("overlap_" + kind, [s, probe, shape = shape](benchmark::State& state) {
       OverlapResult r;
       side_by_side(
-          state, kPoses, [&](int i) { benchmark::DoNotOptimize(s->hulls->overlap({shape, probe->poses[i]}, r)); },
-          [&](int i) { benchmark::DoNotOptimize(s->triangles->overlap({shape, probe->poses[i]}, r)); });
+          state, kPoses,
+          [&](int i) {
+        benchmark::DoNotOptimize(s->hulls->overlap({shape, probe->poses[i]}, r));
+          },
+          [&](int i) {
+        benchmark::DoNotOptimize(s->triangles->overlap({shape, probe->poses[i]}, r));
+      });
     });
   }
   reg("ray", [s, probe](benchmark::State& state) {
@@ -277,7 +307,7 @@ void register_probe(const std::string& name, const std::shared_ptr<const Scene>&
     side_by_side(
         state, kPoses,
         [&](int i) {
-          if (i == 0) benchmark::DoNotOptimize(s->hulls->ray_cast_batch(probe->rays, batch));
+      if (i == 0) benchmark::DoNotOptimize(s->hulls->ray_cast_batch(probe->rays, batch));
         },
         [&](int i) { benchmark::DoNotOptimize(s->triangles->ray_cast(probe->rays[i], r)); });
   });
@@ -287,25 +317,34 @@ void register_probe(const std::string& name, const std::shared_ptr<const Scene>&
     std::vector<ContactRequest> requests;
     for (int copy = 0; copy < kBatchCopies; ++copy)
       for (const Eigen::Isometry3d& pose : probe->poses)
-        requests.push_back({copy % 2 ? QueryShape::sphere(probe->radius) : QueryShape::capsule(probe->radius, probe->half_height),
-                            pose, 64});
+        requests.push_back(
+            {copy % 2 ? QueryShape::sphere(probe->radius) : QueryShape::capsule(probe->radius, probe->half_height),
+             pose, 64});
     std::vector<ContactResult> results;
-    one_thread_then_two(state, static_cast<int>(requests.size()),
-                        [&](QueryThreads* threads) { benchmark::DoNotOptimize(s->hulls->contacts_batch(requests, results, threads)); });
+    one_thread_then_two(state, static_cast<int>(requests.size()), [&](QueryThreads* threads) {
+      benchmark::DoNotOptimize(s->hulls->contacts_batch(requests, results, threads));
+    });
   });
   reg("ray_batch_threads", [s, probe](benchmark::State& state) {
     std::vector<RayRequest> requests;
-    for (int copy = 0; copy < kBatchCopies; ++copy) requests.insert(requests.end(), probe->rays.begin(), probe->rays.end());
+    for (int copy = 0; copy < kBatchCopies; ++copy)
+      requests.insert(requests.end(), probe->rays.begin(), probe->rays.end());
     std::vector<RayResult> results;
-    one_thread_then_two(state, static_cast<int>(requests.size()),
-                        [&](QueryThreads* threads) { benchmark::DoNotOptimize(s->hulls->ray_cast_batch(requests, results, threads)); });
+    one_thread_then_two(state, static_cast<int>(requests.size()), [&](QueryThreads* threads) {
+      benchmark::DoNotOptimize(s->hulls->ray_cast_batch(requests, results, threads));
+    });
   });
   reg("distance_sphere", [s, probe](benchmark::State& state) {
     DistanceResult r;
     const QueryShape shape = QueryShape::sphere(probe->radius);
     side_by_side(
-        state, kPoses, [&](int i) { benchmark::DoNotOptimize(s->hulls->distance({shape, probe->poses[i]}, r)); },
-        [&](int i) { benchmark::DoNotOptimize(s->triangles->distance({shape, probe->poses[i]}, r)); });
+        state, kPoses,
+        [&](int i) {
+      benchmark::DoNotOptimize(s->hulls->distance({shape, probe->poses[i]}, r));
+        },
+        [&](int i) {
+      benchmark::DoNotOptimize(s->triangles->distance({shape, probe->poses[i]}, r));
+    });
   });
 }
 
@@ -315,26 +354,36 @@ void register_probe(const std::string& name, const std::shared_ptr<const Scene>&
 // flat).
 void register_sliding(const std::string& name, const std::shared_ptr<const Scene>& s) {
   const auto reg = [&](const std::string& what, const QueryShape& shape, const std::vector<Resting>* poses) {
-    benchmark::RegisterBenchmark(("query/" + name + "/character/" + what).c_str(), [s, shape, poses](benchmark::State& state) {
+    benchmark::RegisterBenchmark(
+        ("query/" + name + "/character/" + what).c_str(),
+        [s, shape, poses](benchmark::State& state) {
       long hull_contacts = 0, hull_ghosts = 0, triangle_contacts = 0, triangle_ghosts = 0;
       ContactResult r;
       for (const Resting& rest : *poses) {
         if (s->hulls->contacts({shape, rest.pose, 64}, r).ok())
-          for (const Contact& c : r.contacts) hull_contacts += 1, hull_ghosts += c.normal.dot(rest.normal) <= kGhostCosine;
+          for (const Contact& c : r.contacts)
+            hull_contacts += 1, hull_ghosts += c.normal.dot(rest.normal) <= kGhostCosine;
         if (s->triangles->contacts({shape, rest.pose, 64}, r).ok())
           for (const Contact& c : r.contacts)
             triangle_contacts += 1, triangle_ghosts += c.normal.dot(rest.normal) <= kGhostCosine;
       }
       const int count = static_cast<int>(poses->size());
       side_by_side(
-          state, count, [&](int i) { benchmark::DoNotOptimize(s->hulls->contacts({shape, (*poses)[i].pose, 64}, r)); },
-          [&](int i) { benchmark::DoNotOptimize(s->triangles->contacts({shape, (*poses)[i].pose, 64}, r)); });
+          state, count,
+          [&](int i) {
+        benchmark::DoNotOptimize(s->hulls->contacts({shape, (*poses)[i].pose, 64}, r));
+          },
+          [&](int i) {
+        benchmark::DoNotOptimize(s->triangles->contacts({shape, (*poses)[i].pose, 64}, r));
+      });
       state.counters["poses"] = count;
       state.counters["hull_contacts"] = static_cast<double>(hull_contacts);
       state.counters["hull_ghosts"] = static_cast<double>(hull_ghosts);
       state.counters["triangle_contacts"] = static_cast<double>(triangle_contacts);
       state.counters["triangle_ghosts"] = static_cast<double>(triangle_ghosts);
-    })->UseManualTime()->Unit(benchmark::kMicrosecond);
+        })
+        ->UseManualTime()
+        ->Unit(benchmark::kMicrosecond);
   };
   reg("sliding_sphere", QueryShape::sphere(s->character.radius), &s->resting_spheres);
   reg("sliding_capsule", QueryShape::capsule(s->character.radius, s->character.half_height), &s->resting_capsules);
@@ -347,9 +396,18 @@ void register_scene(const std::string& name, const std::shared_ptr<const Scene>&
 }
 
 // The rows register_probe adds, for filter_selects_scene.
-const char* const kRows[] = {"touches_capsule", "contacts_capsule", "overlap_capsule", "touches_sphere",
-                             "contacts_sphere", "overlap_sphere",   "ray",             "ray_batch",
-                             "contacts_batch_threads", "ray_batch_threads", "distance_sphere", "sliding_sphere",
+const char* const kRows[] = {"touches_capsule",
+                             "contacts_capsule",
+                             "overlap_capsule",
+                             "touches_sphere",
+                             "contacts_sphere",
+                             "overlap_sphere",
+                             "ray",
+                             "ray_batch",
+                             "contacts_batch_threads",
+                             "ray_batch_threads",
+                             "distance_sphere",
+                             "sliding_sphere",
                              "sliding_capsule"};
 
 // Whether `filter` (--benchmark_filter's value: a regular expression, empty
@@ -365,14 +423,14 @@ bool filter_selects_scene(const std::string& filter, const std::string& scene) {
         if (std::regex_search("query/" + scene + "/" + size + "/" + row + "/manual_time", pattern)) return true;
     return false;
   } catch (const std::regex_error&) {
-    return true;  // Google Benchmark reports the bad filter itself
+    return true; // Google Benchmark reports the bad filter itself
   }
 }
 
 } // namespace
 
 int main(int argc, char** argv) {
-  std::string filter;  // read before Initialize, which takes its flags out of argv
+  std::string filter; // read before Initialize, which takes its flags out of argv
   for (int i = 1; i < argc; ++i)
     if (std::string(argv[i]).rfind("--benchmark_filter=", 0) == 0) filter = std::string(argv[i]).substr(19);
   benchmark::Initialize(&argc, argv);

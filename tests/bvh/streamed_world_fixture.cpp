@@ -27,7 +27,7 @@ Eigen::Vector3d place_in_grid(std::mt19937& rng) {
 std::uint32_t cell_of(const RuntimeHull& h) {
   const Eigen::Vector3d c = 0.5 * (h.box.min + h.box.max);
   const auto index = [](double x) { return std::clamp(static_cast<int>(std::floor(x / kCellSize)), 0, kCells - 1); };
-  return static_cast<std::uint32_t>(100 + index(c.x()) * kCells + index(c.z()));  // ids need not start at 0
+  return static_cast<std::uint32_t>(100 + index(c.x()) * kCells + index(c.z())); // ids need not start at 0
 }
 
 } // namespace
@@ -101,7 +101,7 @@ std::vector<Pose> seeded_poses(std::uint32_t seed, int count) {
     }
     p.pose.linear() = random_rotation(rng);
     p.pose.translation() = place_in_grid(rng);
-    p.end.linear() = i % 8 < 4 ? p.pose.linear() : random_rotation(rng);  // half the sweeps turn
+    p.end.linear() = i % 8 < 4 ? p.pose.linear() : random_rotation(rng); // half the sweeps turn
     p.end.translation() = p.pose.translation() + Eigen::Vector3d(step(rng), step(rng) / 4, step(rng));
     // Rays along the ground, many crossing several cells.
     p.ray.origin = place_in_grid(rng);
@@ -150,8 +150,7 @@ const char* differs(const Answers& x, const Answers& y, int kind) {
 constexpr int kQueryKinds = 6;
 
 bool touch_hull_overlaps(const Answers& a, const Answers& overlap) {
-  return !a.touching ||
-         std::binary_search(overlap.overlap.hulls.begin(), overlap.overlap.hulls.end(), a.touch_hull);
+  return !a.touching || std::binary_search(overlap.overlap.hulls.begin(), overlap.overlap.hulls.end(), a.touch_hull);
 }
 } // namespace
 

@@ -143,7 +143,7 @@ TEST(Collectors, ACallbackStopsTheWalk) {
   StopAfterTwo two;
   int many = 0;
   for (const Probe& p : probes(300)) {
-    const OverlapRequest overlap{QueryShape::sphere(5.0), p.shape.pose};  // large: often many hulls
+    const OverlapRequest overlap{QueryShape::sphere(5.0), p.shape.pose}; // large: often many hulls
     OverlapResult all;
     ASSERT_TRUE(world->overlap(overlap, all).ok());
     ASSERT_TRUE(world->overlapping(overlap, HullFilter{}, two).ok());

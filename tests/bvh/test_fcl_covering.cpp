@@ -64,7 +64,7 @@ struct Scene {
   std::shared_ptr<const HullWorld> world;
   FclCovering fcl;
   Aabb bounds;
-  double margin = 0.0;  ///< the yes/no margin for this scene's size
+  double margin = 0.0; ///< the yes/no margin for this scene's size
 };
 
 /// The box around every hull.
@@ -168,7 +168,7 @@ bool collect_collision(fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void*
   fcl::CollisionResultd result;
   fcl::collide(a, b, all.request, result);
   if (result.isCollision()) all.hulls.insert(hull_of_pair(*a, *b));
-  return false;  // keep walking: every colliding hull is wanted
+  return false; // keep walking: every colliding hull is wanted
 }
 
 /// The least of FCL's distances over the manager's objects and the hull it
@@ -355,7 +355,7 @@ TEST(FclCovering, DistanceAgreesWithTheHullWorldWhenApart) {
     ASSERT_GE(exact.hull, 0);
 
     fcl::CollisionObjectd query = fcl_object(p);
-    Nearest loose;  // FCL's default request: never below the exact distance
+    Nearest loose; // FCL's default request: never below the exact distance
     scene.fcl.manager->distance(&query, &loose, nearer_object);
     EXPECT_GE(loose.distance, exact.distance - kRoundingPerSceneSize * size);
     Nearest nearest;

@@ -58,7 +58,7 @@ OrientedBox random_box(std::mt19937& rng) {
   return b;
 }
 
-constexpr double kExact = 1e-9;  // metre-sized shapes: nanometres
+constexpr double kExact = 1e-9; // metre-sized shapes: nanometres
 
 TEST(SphereContact, MatchesTheExactReferenceAtRandomPoses) {
   std::mt19937 rng(2024);
@@ -70,7 +70,7 @@ TEST(SphereContact, MatchesTheExactReferenceAtRandomPoses) {
     const double r = radius(rng);
     Eigen::Vector3d c = box.pose * Eigen::Vector3d(u(rng) * (box.half.x() + r), u(rng) * (box.half.y() + r),
                                                    u(rng) * (box.half.z() + r));
-    if (trial % 4 == 0) {  // near touching: put the surface just inside or outside the radius
+    if (trial % 4 == 0) { // near touching: put the surface just inside or outside the radius
       Eigen::Vector3d s, n;
       const double d = box.signed_distance(c, &s, &n);
       c += n * (r - d + (trial % 8 == 0 ? 1e-7 : -1e-7));
@@ -116,7 +116,7 @@ TEST(CapsuleContact, MatchesTheExactReferenceAtRandomPoses) {
     }
     const double t = 0.5 * (lo + hi);
     const double d = f(t);
-    if (d <= 1e-6) continue;  // pierced or touching: not what this reference covers
+    if (d <= 1e-6) continue; // pierced or touching: not what this reference covers
     Eigen::Vector3d surface, normal;
     box.signed_distance(a + t * (b - a), &surface, &normal);
     const std::optional<Contact> contact = capsule_contact(hull, a, b, r);
@@ -174,22 +174,22 @@ TEST(RayHit, FacesEdgesVerticesGrazingAndFromInside) {
   ASSERT_TRUE(h);
   EXPECT_NEAR(h->t, 1.0, kExact);
   EXPECT_NEAR((h->normal - Eigen::Vector3d(-1, 0, 0)).norm(), 0.0, kExact);
-  h = hit({-1, -1, 0.5}, {1, 1, 0});  // an edge
+  h = hit({-1, -1, 0.5}, {1, 1, 0}); // an edge
   ASSERT_TRUE(h);
   EXPECT_NEAR(h->t, std::sqrt(2.0), kExact);
-  h = hit({-1, -1, -1}, {1, 1, 1});  // a vertex
+  h = hit({-1, -1, -1}, {1, 1, 1}); // a vertex
   ASSERT_TRUE(h);
   EXPECT_NEAR(h->t, std::sqrt(3.0), kExact);
-  h = hit({-1, 1, 0.5}, {1, 0, 0});  // grazing the top face
+  h = hit({-1, 1, 0.5}, {1, 0, 0}); // grazing the top face
   ASSERT_TRUE(h);
   EXPECT_NEAR(h->t, 1.0, kExact);
   EXPECT_FALSE(hit({-1, 1.001, 0.5}, {1, 0, 0}));
-  h = hit({0.5, 0.5, 0.7}, {1, 0, 0});  // from inside
+  h = hit({0.5, 0.5, 0.7}, {1, 0, 0}); // from inside
   ASSERT_TRUE(h);
   EXPECT_EQ(h->t, 0.0);
-  EXPECT_NEAR((h->normal - Eigen::Vector3d(0, 0, 1)).norm(), 0.0, kExact);  // nearest facet
+  EXPECT_NEAR((h->normal - Eigen::Vector3d(0, 0, 1)).norm(), 0.0, kExact); // nearest facet
   EXPECT_FALSE(hit({-1, 0.5, 0.5}, {-1, 0, 0}));
-  EXPECT_FALSE(ray_hit(hull, {-1, 0.5, 0.5}, {1, 0, 0}, 0.5));  // too short
+  EXPECT_FALSE(ray_hit(hull, {-1, 0.5, 0.5}, {1, 0, 0}, 0.5)); // too short
 }
 
 // Reference for polytopes: the shape S overlaps hull H by the distance from
@@ -198,7 +198,7 @@ TEST(RayHit, FacesEdgesVerticesGrazingAndFromInside) {
 struct Penetration {
   double depth;
   Eigen::Vector3d normal;
-  bool unique;  // the nearest facet is clearly nearest (normal well defined)
+  bool unique; // the nearest facet is clearly nearest (normal well defined)
 };
 std::optional<Penetration> minkowski_reference(const std::vector<Eigen::Vector3d>& hull,
                                                const std::vector<Eigen::Vector3d>& shape) {
@@ -211,7 +211,7 @@ std::optional<Penetration> minkowski_reference(const std::vector<Eigen::Vector3d
   double best = INFINITY, second = INFINITY;
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
   for (const Plane& p : m.value().planes) {
-    if (p.offset < 0.0) return std::nullopt;  // the origin is outside: apart
+    if (p.offset < 0.0) return std::nullopt; // the origin is outside: apart
     if (p.offset < best) {
       second = best;
       best = p.offset;

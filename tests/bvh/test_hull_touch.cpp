@@ -105,8 +105,7 @@ TEST(HullTouch, CapsuleAcrossABoxEdge) {
   const V a(2, 0.5, 0.5), b(0.5, 2, 0.5);
   const double gap = 0.25 * std::sqrt(2.0);
   // No facet plane has both ends in front of it by the gap.
-  for (const Plane& p : block.shape.planes)
-    EXPECT_FALSE(p.signed_distance(a) > gap && p.signed_distance(b) > gap);
+  for (const Plane& p : block.shape.planes) EXPECT_FALSE(p.signed_distance(a) > gap && p.signed_distance(b) > gap);
   EXPECT_FALSE(capsule_touches(block, a, b, gap - 1e-9));
   EXPECT_FALSE(capsule_contact(block, a, b, gap - 1e-9));
   EXPECT_TRUE(capsule_touches(block, a, b, gap + 1e-9));
@@ -119,7 +118,7 @@ TEST(HullTouch, CapsuleAcrossABoxEdge) {
 TEST(HullTouch, TouchingAtDepthZeroCounts) {
   auto world = HullWorld::build({test::box_hull(V(-5, -1, -5), V(5, 0, 5))}).value();
   TouchResult r;
-  ASSERT_TRUE(world->touches({QueryShape::sphere(0.5), at(V(1, 0.5, 1))}, r).ok());  // resting on it exactly
+  ASSERT_TRUE(world->touches({QueryShape::sphere(0.5), at(V(1, 0.5, 1))}, r).ok()); // resting on it exactly
   EXPECT_TRUE(r.touching);
   EXPECT_EQ(r.hull, 0);
   ASSERT_TRUE(world->touches({QueryShape::sphere(0.5), at(V(1, 0.5 + 1e-9, 1))}, r).ok());
@@ -144,7 +143,7 @@ TEST(HullTouch, RaysMatchEveryHullCastOneByOne) {
   for (int i = 0; i < 600; ++i) {
     V dir(d(rng), d(rng), d(rng));
     V origin(x(rng), y(rng), z(rng));
-    if (i % 10 == 0) dir = V(0, -1, 0);  // straight down, parallel to most boxes' sides
+    if (i % 10 == 0) dir = V(0, -1, 0); // straight down, parallel to most boxes' sides
     if (i % 20 == 0) {
       // Starting exactly on a hull's box face, running along it: the slab
       // test's 0 * infinity case.

@@ -9,7 +9,7 @@
 #include "concurrent_queries.h"
 #include "covering_fixture.h"
 #include "poses.h"
-#include "query_guard.h"  // private to bvh: no public input makes a query throw
+#include "query_guard.h" // private to bvh: no public input makes a query throw
 
 #include "hullcover/mesh/scene_builder.h"
 
@@ -96,7 +96,7 @@ TEST(HullWorld, DistanceBetweenSeparatedShapes) {
   EXPECT_NEAR(d.distance, 1.0, 1e-12);
   EXPECT_EQ(d.hull, 0);
   ASSERT_TRUE(world->distance({QueryShape::capsule(0.25, 0.5), at(V(0.5, 3.0, 0.5))}, d).ok());
-  EXPECT_NEAR(d.distance, 3.0 - 0.25 - 1.0, 1e-12);  // axis along z at y = 3: lowest point y = 2.75
+  EXPECT_NEAR(d.distance, 3.0 - 0.25 - 1.0, 1e-12); // axis along z at y = 3: lowest point y = 2.75
   EXPECT_EQ(d.hull, 1);
   EXPECT_NEAR(d.on_world.y(), 1.0, 1e-12);
   // A box: the floor 1.5 below it, the block's corner edge sqrt(1.5^2 + 0.5^2) away.
@@ -126,7 +126,7 @@ TEST(HullWorld, RaysFindTheFirstHull) {
   ASSERT_TRUE(r.hit);
   EXPECT_EQ(r.first.hull, 1);
   EXPECT_NEAR(r.first.t, 3.0, 1e-12);
-  ASSERT_TRUE(world->ray_cast({V(0.5, 5, 0.5), V(0, -2, 0), 100}, r).ok());  // unnormalised direction
+  ASSERT_TRUE(world->ray_cast({V(0.5, 5, 0.5), V(0, -2, 0), 100}, r).ok()); // unnormalised direction
   EXPECT_EQ(r.first.hull, 1);
   EXPECT_NEAR(r.first.t, 4.0, 1e-12);
   ASSERT_TRUE(world->ray_cast({V(3, 5, 3), V(0, -1, 0), 100}, r).ok());
@@ -159,7 +159,7 @@ TEST(HullWorld, StuckInTheWallGetsOneConsistentNormal) {
   ContactResult result;
   ASSERT_TRUE(world.value()->contacts({QueryShape::sphere(0.25), at(V(0.12, 1.5, 2))}, result).ok());
   ASSERT_EQ(result.contacts.size(), 1u);
-  EXPECT_NEAR((result.contacts[0].normal - V(-1, 0, 0)).norm(), 0.0, 1e-12);  // nearest side: x = 0
+  EXPECT_NEAR((result.contacts[0].normal - V(-1, 0, 0)).norm(), 0.0, 1e-12); // nearest side: x = 0
   EXPECT_NEAR(result.contacts[0].depth, 0.25 + 0.12, 1e-12);
   // Against the triangles, each face facing the sphere's centre pushes
   // along its own normal: the two big sides give opposing normals.
@@ -186,7 +186,7 @@ TEST(HullWorld, CoveringOfTheDemoBuilding) {
   // Standing upright in the doorway, 5 cm into the floor: touches only the
   // floor, pushed up.
   Eigen::Isometry3d upright = at(V(0, 0.85, 3.9));
-  upright.linear() = Eigen::AngleAxisd(-M_PI / 2, V::UnitX()).toRotationMatrix();  // local z -> world y
+  upright.linear() = Eigen::AngleAxisd(-M_PI / 2, V::UnitX()).toRotationMatrix(); // local z -> world y
   ASSERT_TRUE(world.value()->contacts({QueryShape::capsule(0.3, 0.6), upright}, result).ok());
   ASSERT_FALSE(result.contacts.empty());
   for (const Contact& c : result.contacts) {
@@ -217,7 +217,7 @@ TEST(HullWorld, EightThreadsGetExactlyWhatOneThreadGets) {
   std::uniform_real_distribution<double> x(-15, 5), y(-0.5, 3.5), z(-6, 6);
   std::vector<ContactRequest> requests;
   for (int i = 0; i < 400; ++i) {
-    const QueryShape shape = i % 3 == 0 ? QueryShape::sphere(0.4)
+    const QueryShape shape = i % 3 == 0   ? QueryShape::sphere(0.4)
                              : i % 3 == 1 ? QueryShape::capsule(0.3, 0.6)
                                           : QueryShape::box(V(0.3, 0.5, 0.2));
     Eigen::Isometry3d pose = at(V(x(rng), y(rng), z(rng)));
@@ -287,7 +287,7 @@ TEST(HullWorld, ATurningSweepStopsWhereThePlankMeetsTheWall) {
   ASSERT_TRUE(r.hit);
   const double meet = std::asin(0.5 / std::sqrt(1.0 + 0.05 * 0.05)) - std::atan(0.05);
   EXPECT_NEAR(r.fraction, meet / (M_PI / 2), 1e-7);
-  EXPECT_NEAR(r.normal.y(), -1.0, 1e-6);  // pushed back out of the wall's face
+  EXPECT_NEAR(r.normal.y(), -1.0, 1e-6); // pushed back out of the wall's face
   // Apart where it stopped, by at most the touch (and rounding).
   Eigen::Isometry3d stopped = start;
   stopped.linear() = Eigen::AngleAxisd(r.fraction * M_PI / 2, V::UnitZ()).toRotationMatrix();
@@ -310,8 +310,8 @@ TEST(HullWorld, ATurningSweepDoesNotTunnelThroughAThinWall) {
   auto world = HullWorld::build({box_hull(V(1.5, -3, -3), V(1.51, 3, 3))}).value();
   const QueryShape plank = QueryShape::box(V(2, 0.05, 0.05));
   Eigen::Isometry3d start = at(V(0, 0, 0)), end = at(V(0.2, 0, 0));
-  start.linear() = Eigen::AngleAxisd(M_PI / 2, V::UnitZ()).toRotationMatrix();  // along y: clear of the wall
-  end.linear() = Eigen::AngleAxisd(-M_PI / 2 + 1e-3, V::UnitZ()).toRotationMatrix();  // along y again, the other way
+  start.linear() = Eigen::AngleAxisd(M_PI / 2, V::UnitZ()).toRotationMatrix();       // along y: clear of the wall
+  end.linear() = Eigen::AngleAxisd(-M_PI / 2 + 1e-3, V::UnitZ()).toRotationMatrix(); // along y again, the other way
   for (const Eigen::Isometry3d* pose : {&start, &end}) {
     TouchResult t;
     ASSERT_TRUE(world->touches({plank, *pose}, t).ok());
@@ -321,7 +321,7 @@ TEST(HullWorld, ATurningSweepDoesNotTunnelThroughAThinWall) {
   ASSERT_TRUE(world->sweep({plank, start, end}, r, 1e-9).ok());
   EXPECT_TRUE(r.hit);
   EXPECT_GT(r.fraction, 0.0);
-  EXPECT_LT(r.fraction, 0.5);  // halfway it lies along x, through the wall
+  EXPECT_LT(r.fraction, 0.5); // halfway it lies along x, through the wall
 }
 
 // Out of steps, a sweep reports a hit where the shape stands (still apart):
@@ -342,11 +342,11 @@ TEST(HullWorld, SweepOutOfStepsStopsWhereItStands) {
   EXPECT_TRUE(r.hit);
   EXPECT_EQ(r.fraction, 0.0);
   EXPECT_EQ(r.hull, 0);
-  EXPECT_EQ(r.normal, V(-1, 0, 0));  // no contact a touch further on: against the travel
+  EXPECT_EQ(r.normal, V(-1, 0, 0)); // no contact a touch further on: against the travel
 
-  const double over = 3.0 + (0.1 + 1e-6) / std::sqrt(2.0);  // off the edge y = z = 3, diagonally
+  const double over = 3.0 + (0.1 + 1e-6) / std::sqrt(2.0); // off the edge y = z = 3, diagonally
   request = {QueryShape::sphere(0.1), at(V(-5, over, over)), at(V(5, over, over))};
-  ASSERT_TRUE(world->sweep(request, r, 1e-9).ok());  // the default 200 steps
+  ASSERT_TRUE(world->sweep(request, r, 1e-9).ok()); // the default 200 steps
   ASSERT_TRUE(r.hit);
   EXPECT_EQ(r.hull, 0);
   EXPECT_LT(r.fraction, 0.5);
@@ -368,8 +368,7 @@ TEST(HullWorld, QueryShapeCheckNamesTheProblem) {
   flat.kind = ShapeKind::convex;
   flat.points = {V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)};
   EXPECT_EQ(check_query_shape(flat, pose).code(), StatusCode::invalid_argument);
-  EXPECT_EQ(check_query_shape(QueryShape::box(V(1, 1, 1)), at(V(0, INFINITY, 0))).code(),
-            StatusCode::invalid_argument);
+  EXPECT_EQ(check_query_shape(QueryShape::box(V(1, 1, 1)), at(V(0, INFINITY, 0))).code(), StatusCode::invalid_argument);
 }
 
 // The barrier every public query runs in: nothing thrown gets out.

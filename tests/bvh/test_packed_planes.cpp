@@ -6,7 +6,7 @@
 #include "box_hulls.h"
 #include "hullcover/bvh/hull_contact.h"
 
-#include "float4.h"  // private to bvh
+#include "float4.h" // private to bvh
 #include "packed_planes.h"
 #include "sphere_face_contact.h"
 
@@ -141,7 +141,16 @@ TEST(FloatRounding, AtOrBelowAndAboveAreTheNearestFloatsOutward) {
   std::mt19937 rng(41);
   std::uniform_real_distribution<double> mantissa(-1.0, 1.0);
   std::uniform_int_distribution<int> exponent(-140, 127);
-  std::vector<double> xs = {0.0, -0.0, 1.0, -1.0, 1e7 + 0.5, -(1e7 + 0.5), 1e-45, -1e-45, 1e-300, -1e-300,
+  std::vector<double> xs = {0.0,
+                            -0.0,
+                            1.0,
+                            -1.0,
+                            1e7 + 0.5,
+                            -(1e7 + 0.5),
+                            1e-45,
+                            -1e-45,
+                            1e-300,
+                            -1e-300,
                             static_cast<double>(std::numeric_limits<float>::max()),
                             -static_cast<double>(std::numeric_limits<float>::max())};
   for (int i = 0; i < 20000; ++i) xs.push_back(std::ldexp(mantissa(rng), exponent(rng)));

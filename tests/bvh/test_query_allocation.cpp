@@ -17,7 +17,7 @@
 
 namespace {
 std::atomic<long> g_allocations{0};
-}  // namespace
+} // namespace
 
 void* operator new(std::size_t size) {
   g_allocations.fetch_add(1, std::memory_order_relaxed);
@@ -50,7 +50,8 @@ TEST(QueryAllocation, NoQueryAllocatesOnceItsResultHasGrown) {
     pose.linear() = Eigen::Quaterniond(Eigen::Vector4d::Random().normalized()).toRotationMatrix();
     poses.push_back(pose);
   }
-  const QueryShape shapes[] = {QueryShape::sphere(1.0), QueryShape::capsule(0.6, 1.0), QueryShape::box(V(0.8, 0.5, 1.2))};
+  const QueryShape shapes[] = {QueryShape::sphere(1.0), QueryShape::capsule(0.6, 1.0),
+                               QueryShape::box(V(0.8, 0.5, 1.2))};
   ContactResult contacts;
   TouchResult touch;
   RayResult ray;
@@ -68,14 +69,14 @@ TEST(QueryAllocation, NoQueryAllocatesOnceItsResultHasGrown) {
         touching += touch.touching;
       }
   };
-  ask_everything();  // the results and collectors grow to their largest
+  ask_everything(); // the results and collectors grow to their largest
   // (QueryShape is passed by value inside the requests above: a sphere,
   // capsule or box holds no heap memory, so copying it allocates nothing.)
   const long before = g_allocations.load();
   ask_everything();
   const long during = g_allocations.load() - before;
   EXPECT_EQ(during, 0) << "allocations in " << 5 * 3 * poses.size() << " queries";
-  EXPECT_GT(touching, 100);  // the queries did find hulls
+  EXPECT_GT(touching, 100); // the queries did find hulls
   // The counter counts: a vector that must grow allocates.
   const long check = g_allocations.load();
   std::vector<int> grows(1000);

@@ -83,7 +83,7 @@ void expect_sane(const RayResult& r, const std::string& what) {
 struct BlockWorlds {
   std::shared_ptr<const HullWorld> hulls;
   std::shared_ptr<const TriangleWorld> triangles;
-  double tol = 0.0;  // the triangle world's
+  double tol = 0.0; // the triangle world's
 };
 
 // The block [0,2] x [0,1] x [0,3] moved by `offset`, decomposed at the
@@ -122,8 +122,8 @@ void check_sphere(const BlockWorlds& w, const std::string& what, const V& centre
 
 struct KnownRay {
   std::string name;
-  V origin, direction;  // before any offset
-  double t;             // expected first hit; NAN for none
+  V origin, direction; // before any offset
+  double t;            // expected first hit; NAN for none
 };
 
 // A ray against both worlds: the expected hit or none; met from outside, a
@@ -159,7 +159,7 @@ struct Resting {
 
 Eigen::Isometry3d upright_at(const V& p) {
   Eigen::Isometry3d pose = at(p);
-  pose.linear() = Eigen::AngleAxisd(-M_PI / 2, V::UnitX()).toRotationMatrix();  // local z -> world y
+  pose.linear() = Eigen::AngleAxisd(-M_PI / 2, V::UnitX()).toRotationMatrix(); // local z -> world y
   return pose;
 }
 
@@ -260,12 +260,12 @@ TEST(RuntimeEdgeCases, TouchingAndRestingShapesAgreeWithTheTriangles) {
 // flat hull, only of a side plane, which has no facet. A sphere at the same
 // place, and the same capsule tilted out of the plane, are found.
 TEST(RuntimeEdgeCases, ACapsuleInAFlatHullsPlaneTouchesItsRim) {
-  const RuntimeHull triangle = flat_triangle_hull(V(0, 0, 0), V(0, 0, 2), V(2, 0, 0));  // in y = 0
-  const double r = 0.25, off = 0.2;  // the axis runs along z, `off` beyond the edge x = 0
+  const RuntimeHull triangle = flat_triangle_hull(V(0, 0, 0), V(0, 0, 2), V(2, 0, 0)); // in y = 0
+  const double r = 0.25, off = 0.2; // the axis runs along z, `off` beyond the edge x = 0
   const V a(-off, 0, 0.5), b(-off, 0, 1.5);
   const double slack = rounding_at(V(2, 2, 2));
   ASSERT_TRUE(sphere_contact(triangle, V(-off, 0, 1), r));
-  const V tilt(0, 0.1 * off, 0);  // any tilt puts one end in front of a facet
+  const V tilt(0, 0.1 * off, 0); // any tilt puts one end in front of a facet
   ASSERT_TRUE(capsule_contact(triangle, a - tilt, b + tilt, r));
   EXPECT_NEAR(closest_to_segment(triangle, a, b).distance, off, slack);
   EXPECT_TRUE(capsule_touches(triangle, a, b, r));
@@ -331,7 +331,7 @@ TEST(RuntimeEdgeCases, AHullAMillionthThick) {
   Mesh m;
   add_box(m, V(0, 0, 0), V(width, thickness, width));
   const BlockWorlds w{HullWorld::build({test::box_hull(V(0, 0, 0), V(width, thickness, width))}).value(),
-                 TriangleWorld::build(m, thin_tol).value(), thin_tol};
+                      TriangleWorld::build(m, thin_tol).value(), thin_tol};
   ASSERT_EQ(w.triangles->triangle_count(), 12);
   const double r = 0.5;
   check_sphere(w, "touching the top", V(1, thickness + r, 1), r, 0.0, kUp);
@@ -380,7 +380,7 @@ TEST(RuntimeEdgeCases, FlatHullsOfADoubleSidedFloor) {
   ASSERT_TRUE(d);
   for (const CoveringHull& hull : d->covering.hulls) ASSERT_EQ(hull.thickness, 0.0) << "expected flat hulls";
   const BlockWorlds w{build_hull_world(d->covering).value(), TriangleWorld::build(d->prepared.mesh, d->tol()).value(),
-                 d->tol()};
+                      d->tol()};
   const double r = 0.5;
   check_sphere(w, "touching from above", V(1, r, 1), r, 0.0, kUp);
   check_sphere(w, "touching from below", V(1, -r, 1), r, 0.0, -kUp);

@@ -96,18 +96,18 @@ TEST(RuntimeFile, VersionOneFilesStillLoad) {
   std::string payload;
   size_t at = kHeader;
   for (size_t h = 0; h < hulls.size(); ++h) {
-    const std::uint64_t vertices = field(v2, at + 4, 4), facets = field(v2, at + 8, 4),
-                        planes = field(v2, at + 12, 4), indices = field(v2, at + 16, 4);
+    const std::uint64_t vertices = field(v2, at + 4, 4), facets = field(v2, at + 8, 4), planes = field(v2, at + 12, 4),
+                        indices = field(v2, at + 16, 4);
     const size_t hull_bytes = 20 + 48 + vertices * 24 + planes * 32 + facets * 4 + indices * 4;
     payload += v2.substr(at, hull_bytes);
     at += hull_bytes;
-    at += 4 + field(v2, at, 4);  // version 2's surface flags, dropped
+    at += 4 + field(v2, at, 4); // version 2's surface flags, dropped
   }
   // Version 3's section table, dropped: one section 0 of every hull.
   ASSERT_EQ(at + 4 + 8 + 4 * hulls.size(), v2.size());
   std::string v1 = v2.substr(0, kHeader) + payload;
-  put(v1, 8, 1, 4);                // version
-  put(v1, 24, payload.size(), 8);  // payload bytes
+  put(v1, 8, 1, 4);               // version
+  put(v1, 24, payload.size(), 8); // payload bytes
   std::uint64_t fnv = 0xcbf29ce484222325ull;
   for (char c : payload) fnv = (fnv ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
   put(v1, 32, fnv, 8);
@@ -129,7 +129,8 @@ TEST(RuntimeFile, VersionOneFilesStillLoad) {
   ASSERT_EQ(field(v2, first_flags, 4), field(v2, kHeader + 12, 4)) << "the first hull carries a flag per plane";
   bad[first_flags + 4] = 2;
   std::uint64_t bad_sum = 0xcbf29ce484222325ull;
-  for (size_t i = kHeader; i < bad.size(); ++i) bad_sum = (bad_sum ^ static_cast<unsigned char>(bad[i])) * 0x100000001b3ull;
+  for (size_t i = kHeader; i < bad.size(); ++i)
+    bad_sum = (bad_sum ^ static_cast<unsigned char>(bad[i])) * 0x100000001b3ull;
   put(bad, 32, bad_sum, 8);
   {
     std::ofstream out(dir.path("bad.hcw"), std::ios::binary);

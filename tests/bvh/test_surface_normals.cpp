@@ -32,7 +32,8 @@ Mesh l_shaped_floor() {
   return floor;
 }
 
-class FloorSeams : public ::testing::TestWithParam<double> {};  // prism thickness cap: 0 flat polygons only; 0.25 prisms where the decomposer can extrude
+class FloorSeams : public ::testing::TestWithParam<double> {
+}; // prism thickness cap: 0 flat polygons only; 0.25 prisms where the decomposer can extrude
 
 TEST_P(FloorSeams, RestingSpheresAndCapsulesGetTheFloorNormalEverywhere) {
   DecomposeOptions options;
@@ -48,9 +49,9 @@ TEST_P(FloorSeams, RestingSpheresAndCapsulesGetTheFloorNormalEverywhere) {
   int contacts = 0;
   for (int i = 0; i < 2000; ++i) {
     const V p(x(rng), 0.25, z(rng));
-    if (p.x() > 1.5 && p.z() > 1.5) continue;  // off the L
+    if (p.x() > 1.5 && p.z() > 1.5) continue; // off the L
     Eigen::Isometry3d lying = at(p);
-    lying.linear() = Eigen::AngleAxisd(0.5 * M_PI, V::UnitY()).toRotationMatrix();  // axis (local z) along x
+    lying.linear() = Eigen::AngleAxisd(0.5 * M_PI, V::UnitY()).toRotationMatrix(); // axis (local z) along x
     for (const QueryShape& shape : {QueryShape::sphere(0.3), QueryShape::capsule(0.3, 0.4)}) {
       ContactResult result;
       ASSERT_TRUE(world->contacts({shape, shape.kind == ShapeKind::sphere ? at(p) : lying, 16}, result).ok());
@@ -70,14 +71,15 @@ TEST_P(FloorSeams, RestingSpheresAndCapsulesGetTheFloorNormalEverywhere) {
 // at the seam, and a box across it, go out through the top of both, never
 // through a seam side.
 TEST(SeamFlags, SunkSpheresGoOutThroughTheTop) {
-  std::vector<RuntimeHull> floor = {test::box_hull(V(-2, -0.5, -2), V(0, 0, 2)), test::box_hull(V(0, -0.5, -2), V(2, 0, 2))};
+  std::vector<RuntimeHull> floor = {test::box_hull(V(-2, -0.5, -2), V(0, 0, 2)),
+                                    test::box_hull(V(0, -0.5, -2), V(2, 0, 2))};
   for (int side = 0; side < 2; ++side) {
     RuntimeHull& h = floor[side];
     h.surface_planes.assign(h.shape.planes.size(), true);
     for (size_t p = 0; p < h.shape.planes.size(); ++p)
       if (std::abs(std::abs(h.shape.planes[p].normal.x()) - 1.0) < 1e-12 &&
           std::abs(h.shape.planes[p].signed_distance(V::Zero())) < 1e-12)
-        h.surface_planes[p] = false;  // the side at x = 0
+        h.surface_planes[p] = false; // the side at x = 0
   }
   const auto world = HullWorld::build(floor).value();
   for (const double x : {-0.2, -0.05, 0.0, 0.05, 0.2}) {
@@ -99,8 +101,9 @@ TEST(SeamFlags, SunkSpheresGoOutThroughTheTop) {
     EXPECT_NEAR(c.depth, 0.1, 1e-9) << "box, hull " << c.hull;
   }
   // Without the flags the hull on the far side pushes sideways: the ghost.
-  const auto plain = HullWorld::build({test::box_hull(V(-2, -0.5, -2), V(0, 0, 2)),
-                                       test::box_hull(V(0, -0.5, -2), V(2, 0, 2))}).value();
+  const auto plain =
+      HullWorld::build({test::box_hull(V(-2, -0.5, -2), V(0, 0, 2)), test::box_hull(V(0, -0.5, -2), V(2, 0, 2))})
+          .value();
   ContactResult result;
   ASSERT_TRUE(plain->contacts({QueryShape::sphere(0.3), at(V(0.2, -0.05, 0.3)), 8}, result).ok());
   bool sideways = false;

@@ -46,11 +46,12 @@ TEST(MeshIslands, FarApartCopiesAreIslandsOfTheirOwn) {
   ASSERT_EQ(two.boxes.size(), 2 * one.boxes.size());
   EXPECT_DOUBLE_EQ(two.largest_diagonal(), one.largest_diagonal());
   // Numbered by their lowest face: the original's islands come first.
-  for (size_t f = 0; f < building.triangles.size(); ++f) EXPECT_LT(two.island_of_face[f], static_cast<int>(one.boxes.size()));
+  for (size_t f = 0; f < building.triangles.size(); ++f)
+    EXPECT_LT(two.island_of_face[f], static_cast<int>(one.boxes.size()));
 }
 
 TEST(MeshIslands, PiecesWithinATenthOfAPercentOfEachOtherAreOneIsland) {
-  const Mesh floor = flat_floor(4);  // diagonal sqrt(32)
+  const Mesh floor = flat_floor(4); // diagonal sqrt(32)
   // A gap of 0.1% of each floor's diagonal, added up, minus a little:
   // within reach (a crack between kit pieces).
   const double near_gap = 4.0 + 0.0019 * std::sqrt(32.0);
@@ -179,9 +180,9 @@ TEST(MergeCells, EveryFaceIsInOneCellAndSmallIslandsAreOneCell) {
   ASSERT_TRUE(p.ok());
   const MeshIslands islands = find_mesh_islands(p.value().mesh);
   const CellLayout automatic = lay_out_cells(p.value(), islands, std::nullopt);
-  EXPECT_EQ(automatic.faces_of_cell.size(), 1u);  // 128 faces: far below kFacesPerAutomaticCell
+  EXPECT_EQ(automatic.faces_of_cell.size(), 1u); // 128 faces: far below kFacesPerAutomaticCell
   const CellLayout cells = lay_out_cells(p.value(), islands, 2.0);
-  EXPECT_EQ(cells.faces_of_cell.size(), 16u);  // a grid of side 2 centred on (4, 4) over [0, 8]^2
+  EXPECT_EQ(cells.faces_of_cell.size(), 16u); // a grid of side 2 centred on (4, 4) over [0, 8]^2
   std::vector<int> seen(p.value().mesh.triangles.size(), 0);
   for (size_t c = 0; c < cells.faces_of_cell.size(); ++c) {
     EXPECT_FALSE(cells.faces_of_cell[c].empty());
@@ -297,7 +298,8 @@ TEST(MergeCells, EachCellKeepsItsOwnHalvingsBesideAnIslandLeftWhole) {
   const CellLayout beside = layout_of(both);
   ASSERT_EQ(beside.cell_halvings.size(), beside.faces_of_cell.size());
   std::set<std::pair<std::vector<int>, int>> cut_alone, cut_beside;
-  for (size_t c = 0; c < alone.faces_of_cell.size(); ++c) cut_alone.insert({alone.faces_of_cell[c], alone.cell_halvings[c]});
+  for (size_t c = 0; c < alone.faces_of_cell.size(); ++c)
+    cut_alone.insert({alone.faces_of_cell[c], alone.cell_halvings[c]});
   int whole_cells = 0;
   for (size_t c = 0; c < beside.faces_of_cell.size(); ++c) {
     std::vector<int> faces = beside.faces_of_cell[c];

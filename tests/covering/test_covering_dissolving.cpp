@@ -17,7 +17,7 @@ using test::decompose_and_check;
 using V = Eigen::Vector3d;
 
 constexpr double kRadius = 5.0;
-constexpr double kDepth = 6.0;  // along y: long strips, so the wider middle pair is the most compact
+constexpr double kDepth = 6.0; // along y: long strips, so the wider middle pair is the most compact
 constexpr double kDegrees = 3.14159265358979323846 / 180.0;
 
 V on_arc(double degrees, double r = kRadius) {

@@ -34,7 +34,7 @@ TEST(PaperCases, RoomSeenFromInsideIsSixPrismsAndKeepsItsSpace) {
   ASSERT_EQ(d->covering.hulls.size(), 6u);
   for (const CoveringHull& h : d->covering.hulls) {
     EXPECT_TRUE(h.planar);
-    EXPECT_GT(h.thickness, 0.0);  // nothing behind the walls: full prisms
+    EXPECT_GT(h.thickness, 0.0); // nothing behind the walls: full prisms
   }
   for (const V& p : {V(2, 1.5, 2.5), V(0.01, 0.01, 0.01), V(3.99, 2.99, 4.99)})
     EXPECT_FALSE(test::point_inside_covering(d->covering, p, d->tol())) << p.transpose();
@@ -69,9 +69,9 @@ TEST(PaperCases, PitInAFloorStaysOpen) {
   const double xs[] = {0, 1, 3, 4};
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
-      if (i == 1 && j == 1) continue;  // the pit's mouth
-      add_quad_facing(m, V(xs[i], 0, xs[j]), V(xs[i + 1], 0, xs[j]), V(xs[i + 1], 0, xs[j + 1]),
-                      V(xs[i], 0, xs[j + 1]), V(0, 1, 0));
+      if (i == 1 && j == 1) continue; // the pit's mouth
+      add_quad_facing(m, V(xs[i], 0, xs[j]), V(xs[i + 1], 0, xs[j]), V(xs[i + 1], 0, xs[j + 1]), V(xs[i], 0, xs[j + 1]),
+                      V(0, 1, 0));
     }
   const double depth = -1.0;
   add_quad_facing(m, V(1, 0, 1), V(3, 0, 1), V(3, depth, 1), V(1, depth, 1), V(0, 0, 1));
@@ -103,8 +103,8 @@ TEST(PaperCases, Figure4OpeningStaysOpen) {
     add_quad_facing(m, V(0, 0, xs[i]), V(0, 0, xs[i + 1]), V(0, 2, xs[i + 1]), V(0, 2, xs[i]), V(-1, 0, 0));
     add_quad_facing(m, V(3, 0, xs[i]), V(3, 0, xs[i + 1]), V(3, 2, xs[i + 1]), V(3, 2, xs[i]), V(1, 0, 0));
     for (int j = 0; j < 3; ++j)
-      add_quad_facing(m, V(xs[i], 0, xs[j]), V(xs[i + 1], 0, xs[j]), V(xs[i + 1], 0, xs[j + 1]),
-                      V(xs[i], 0, xs[j + 1]), V(0, -1, 0));
+      add_quad_facing(m, V(xs[i], 0, xs[j]), V(xs[i + 1], 0, xs[j]), V(xs[i + 1], 0, xs[j + 1]), V(xs[i], 0, xs[j + 1]),
+                      V(0, -1, 0));
   }
   const auto d = decompose_and_check(m);
   ASSERT_TRUE(d);
@@ -119,7 +119,7 @@ TEST(PaperCases, Figure5ObjectUnderTheRidgeKeepsItsHullsApart) {
   Mesh m;
   add_quad_facing(m, V(0, 0, 0), V(0, 0, 2), V(1, 0.5, 2), V(1, 0.5, 0), V(-0.5, 1, 0));
   add_quad_facing(m, V(1, 0.5, 0), V(1, 0.5, 2), V(2, 0, 2), V(2, 0, 0), V(0.5, 1, 0));
-  add_box(m, V(0.9, 0.05, 0.9), V(1.1, 0.25, 1.1));  // under the ridge, inside the would-be hull
+  add_box(m, V(0.9, 0.05, 0.9), V(1.1, 0.25, 1.1)); // under the ridge, inside the would-be hull
   const auto d = decompose_and_check(m);
   ASSERT_TRUE(d);
   EXPECT_NE(d->hull_of_face(0), d->hull_of_face(2));
@@ -215,8 +215,8 @@ Mesh gear(int teeth) {
   Mesh m;
   const double pi = std::acos(-1.0), h = 0.3, root = 1.0, tip = 1.25;
   const double half_tooth = pi / (2.0 * teeth) * 0.9;
-  std::vector<V> profile;       // counter-clockwise seen from +z
-  std::vector<int> root_index;  // positions of root vertices in `profile`
+  std::vector<V> profile;      // counter-clockwise seen from +z
+  std::vector<int> root_index; // positions of root vertices in `profile`
   for (int i = 0; i < teeth; ++i) {
     const double a = 2.0 * pi * i / teeth;
     const auto at = [](double r, double angle) { return V(r * std::cos(angle), r * std::sin(angle), 0); };
@@ -240,17 +240,17 @@ Mesh gear(int teeth) {
   for (int z = 0; z < 2; ++z) {
     const int o = z * n;
     const auto cap = [&](int a, int b, int c) { z ? tri(o + a, o + b, o + c) : tri(o + a, o + c, o + b); };
-    for (size_t r = 0; r < root_index.size(); ++r) {  // the hub, a fan over the root vertices
+    for (size_t r = 0; r < root_index.size(); ++r) { // the hub, a fan over the root vertices
       const int a = root_index[r], b = root_index[(r + 1) % root_index.size()];
       z ? tri(centre[z], o + a, o + b) : tri(centre[z], o + b, o + a);
     }
-    for (int t = 0; t < teeth; ++t) {  // each tooth: root A, tip C, tip D, root B
+    for (int t = 0; t < teeth; ++t) { // each tooth: root A, tip C, tip D, root B
       const int A = 4 * t, C = A + 1, D = A + 2, B = A + 3;
       cap(A, C, D);
       cap(A, D, B);
     }
   }
-  for (int i = 0; i < n; ++i) {  // side walls
+  for (int i = 0; i < n; ++i) { // side walls
     const int j = (i + 1) % n;
     tri(i, j, n + j);
     tri(i, n + j, n + i);
@@ -273,7 +273,7 @@ TEST(PaperCases, Figure10NearMergesNeedFewerHullsAndKeepTheGaps) {
   EXPECT_LT(d->covering.hulls.size(), 33u);
   const double pi = std::acos(-1.0);
   for (int i = 0; i < teeth; ++i) {
-    const double between = 2.0 * pi * (i + 0.5) / teeth;  // the middle of a gap, just off the root
+    const double between = 2.0 * pi * (i + 0.5) / teeth; // the middle of a gap, just off the root
     const V p(1.05 * std::cos(between), 1.05 * std::sin(between), 0.15);
     EXPECT_FALSE(test::point_inside_covering(d->covering, p, d->tol())) << "gap " << i;
   }
@@ -298,7 +298,7 @@ TEST(PaperCases, Figure8FireplaceChamberStaysOpen) {
   const double xs[] = {0, 1, 3, 4}, ys[] = {0, 1.5, 3};
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 2; ++j)
-      if (!(i == 1 && j == 0))  // the chamber's mouth
+      if (!(i == 1 && j == 0)) // the chamber's mouth
         add_quad_facing(m, V(xs[i], ys[j], 1), V(xs[i + 1], ys[j], 1), V(xs[i + 1], ys[j + 1], 1),
                         V(xs[i], ys[j + 1], 1), V(0, 0, 1));
   const double back = 0.3;
@@ -307,7 +307,7 @@ TEST(PaperCases, Figure8FireplaceChamberStaysOpen) {
   add_quad_facing(m, V(3, 0, back), V(3, 0, 1), V(3, 1.5, 1), V(3, 1.5, back), V(-1, 0, 0));
   add_quad_facing(m, V(1, 1.5, back), V(3, 1.5, back), V(3, 1.5, 1), V(1, 1.5, 1), V(0, -1, 0));
   add_quad_facing(m, V(1, 0, back), V(3, 0, back), V(3, 0, 1), V(1, 0, 1), V(0, 1, 0));
-  add_quad_facing(m, V(0, 3, 0), V(4, 3, 0), V(4, 3, 1), V(0, 3, 1), V(0, 1, 0));  // top panel
+  add_quad_facing(m, V(0, 3, 0), V(4, 3, 0), V(4, 3, 1), V(0, 3, 1), V(0, 1, 0)); // top panel
   const auto d = decompose_and_check(m);
   ASSERT_TRUE(d);
   EXPECT_FALSE(test::segment_hits_covering(d->covering, V(2, 0.75, 2), V(2, 0.75, back + 0.01), d->tol()));

@@ -42,12 +42,13 @@ TEST(Robustness, FarFromTheOriginGivesTheSameHulls) {
 TEST(Robustness, NearCoplanarFacesJitteredWithinTheTolerance) {
   Mesh m;
   std::mt19937 rng(11);
-  std::uniform_real_distribution<double> jitter(-2e-6, 2e-6);  // well under the tolerance (1e-5 x ~11)
-  add_height_field(m, {0, 1, 2, 3, 4, 5, 6, 7, 8}, {0, 1, 2, 3, 4, 5, 6, 7, 8}, [&](double, double) { return jitter(rng); });
+  std::uniform_real_distribution<double> jitter(-2e-6, 2e-6); // well under the tolerance (1e-5 x ~11)
+  add_height_field(m, {0, 1, 2, 3, 4, 5, 6, 7, 8}, {0, 1, 2, 3, 4, 5, 6, 7, 8},
+                   [&](double, double) { return jitter(rng); });
   const auto d = decompose_and_check(m);
   ASSERT_TRUE(d);
   expect_finite(d->covering);
-  EXPECT_EQ(d->covering.hulls.size(), 1u);  // a flat floor, however it drifts within tol
+  EXPECT_EQ(d->covering.hulls.size(), 1u); // a flat floor, however it drifts within tol
 }
 
 TEST(Robustness, SliversZeroAreaFacesAndDuplicateVertices) {
@@ -91,7 +92,7 @@ TEST(Robustness, VeryThinSlabKeepsItsFacesApart) {
     const auto d = decompose_and_check(m, {}, 1e-6);
     ASSERT_TRUE(d) << thickness;
     expect_finite(d->covering);
-    EXPECT_EQ(d->covering.hulls.size(), 1u) << thickness;  // a closed box, however thin
+    EXPECT_EQ(d->covering.hulls.size(), 1u) << thickness; // a closed box, however thin
   }
 }
 

@@ -40,7 +40,7 @@ void add_wedge(Mesh& m) {
 DecomposeOptions with_conditions(ValidityMode mode) {
   DecomposeOptions o;
   o.conditions = mode;
-  o.free_space_reach = 2.0;  // the whole scene
+  o.free_space_reach = 2.0; // the whole scene
   return o;
 }
 
@@ -127,7 +127,6 @@ TEST(ExactConditions, FoldEdgeIsOpen) {
   EXPECT_EQ(folds, 3);
 }
 
-
 // ---- docs/definitions-and-proofs.md's strict free space, decided on hand-made hulls ---------------
 // Each case asks check_solid_hull about one hull over a small scene, at the
 // default (uncapped) reach, as the decomposer asks about a merged patch.
@@ -143,7 +142,7 @@ ConvexPolytope box_hull(const V& min, const V& max) {
 Validity exact_verdict(const Mesh& m, const ConvexPolytope& hull, int hull_place = -1) {
   Result<PreparedMesh> prepared = prepare_mesh(m, std::nullopt);
   EXPECT_TRUE(prepared.ok());
-  const double margin = 0.0;  // the hulls below lie within the scene's box
+  const double margin = 0.0; // the hulls below lie within the scene's box
   BarOptions bars{kExactBarHalfLengthInTolerances * prepared.value().tolerance.length, false, ValidityMode::exact,
                   uncapped_free_space_reach(prepared.value(), margin), margin};
   const auto scene = test::index_scene(m, std::nullopt, bars);
@@ -191,7 +190,7 @@ TEST(StrictFreeSpace, RecentRejectionsChangeNoVerdict) {
       low[k] = box.min[k] + unit(rng) * extent;
       high[k] = low[k] + (0.02 + 0.2 * unit(rng)) * extent;
     }
-    if (trial % 4 == 0) {  // under the scene, where no ray of free space reaches: valid
+    if (trial % 4 == 0) { // under the scene, where no ray of free space reaches: valid
       const double height = box.max.y() - box.min.y();
       high.y() = box.min.y() - 0.1 * height;
       low.y() = high.y() - 0.2 * height;
@@ -246,7 +245,7 @@ TEST(StrictFreeSpace, AnotherMapAboveEnclosesNothingForTheMapsOwnHulls) {
 TEST(StrictFreeSpace, HullFloatingFarAboveAFloorTakesItsSpace) {
   Mesh m;
   add_quad_facing(m, V(0, 0, 0), V(10, 0, 0), V(10, 0, 10), V(0, 0, 10), V(0, 1, 0));
-  add_quad_facing(m, V(0, 9, 0), V(0.1, 9, 0), V(0.1, 9, 0.1), V(0, 9, 0.1), V(0, 1, 0));  // only to size the scene
+  add_quad_facing(m, V(0, 9, 0), V(0.1, 9, 0), V(0.1, 9, 0.1), V(0, 9, 0.1), V(0, 1, 0)); // only to size the scene
   // 8 units up: far beyond the old 0.02 x diagonal reach.
   EXPECT_EQ(exact_verdict(m, box_hull(V(4, 8, 4), V(5, 8.5, 5))), Validity::front_space_inside);
 }
@@ -302,7 +301,7 @@ TEST(StrictFreeSpace, FloorRunningIntoAClosedPillarIsEnclosed) {
 TEST(StrictFreeSpace, TiltedOpeningIsKept) {
   Mesh m;
   add_quad_facing(m, V(0, 0, 0), V(1, 0, 0), V(1, 0, 1), V(0, 0, 1), V(0, 1, 0));
-  add_quad_facing(m, V(-1, -1, -1), V(-0.9, -1, -1), V(-0.9, -1, -0.9), V(-1, -1, -0.9), V(0, 1, 0));  // sizes the scene
+  add_quad_facing(m, V(-1, -1, -1), V(-0.9, -1, -1), V(-0.9, -1, -0.9), V(-1, -1, -0.9), V(0, 1, 0)); // sizes the scene
   add_quad_facing(m, V(3, 1, 2), V(3.1, 1, 2), V(3.1, 1, 2.1), V(3, 1, 2.1), V(0, 1, 0));
   const ConvexPolytope below = box_hull(V(1.5, -0.08, 0.2), V(2, -0.03, 0.8));
   EXPECT_EQ(exact_verdict(m, below), Validity::opening_inside);
@@ -321,20 +320,21 @@ TEST(StrictFreeSpace, TiltedOpeningIsKept) {
 // them. The audit found a ray there 3.8 tol deep that meets no face at all.
 ConvexPolytope fdm6_grown_wall_hull() {
   ConvexPolytope hull;
-  hull.vertices = {
-      V(6.4000000953674308, 4.0, 9.6000003814697248),
-      V(6.5999999046325684, 2.4000000953674316, 9.3999996185302734),
-      V(6.4000000953674308, 2.4000000953674316, 9.6000003814697248),
-      V(6.4000000953674316, 2.5999999046325684, 9.8000001907348633),
-      V(8.8000001907348633, 2.4000000953674316, 7.1999998092651367),
-      V(6.4000000953674316, 5.5999999046325684, 9.6000003814697266),
-      V(8.8000001907348633, 4.0, 7.1999998092651367),
-      V(8.0, 5.5999999046325684, 8.0),
-      V(9.3999996185302734, 2.5999999046325684, 6.5999999046325684),
-      V(9.6000003814697266, 2.5999999046325684, 6.4000000953674316),
-      V(9.6000003814697266, 5.5999999046325684, 6.4000000953674316),
-      V(6.4000000953674316, 4.0, 9.8000001907348633)};
-  hull.facets = {{0, 1, 2}, {2, 1, 3}, {0, 2, 3}, {1, 0, 4}, {3, 1, 4}, {0, 3, 5}, {4, 0, 5}, {4, 5, 6}, {6, 5, 7}, {4, 6, 8}, {6, 7, 9}, {3, 4, 9}, {4, 8, 9}, {8, 6, 9}, {3, 9, 10}, {9, 7, 10}, {5, 3, 11}, {7, 5, 11}, {3, 10, 11}, {10, 7, 11}};
+  hull.vertices = {V(6.4000000953674308, 4.0, 9.6000003814697248),
+                   V(6.5999999046325684, 2.4000000953674316, 9.3999996185302734),
+                   V(6.4000000953674308, 2.4000000953674316, 9.6000003814697248),
+                   V(6.4000000953674316, 2.5999999046325684, 9.8000001907348633),
+                   V(8.8000001907348633, 2.4000000953674316, 7.1999998092651367),
+                   V(6.4000000953674316, 5.5999999046325684, 9.6000003814697266),
+                   V(8.8000001907348633, 4.0, 7.1999998092651367),
+                   V(8.0, 5.5999999046325684, 8.0),
+                   V(9.3999996185302734, 2.5999999046325684, 6.5999999046325684),
+                   V(9.6000003814697266, 2.5999999046325684, 6.4000000953674316),
+                   V(9.6000003814697266, 5.5999999046325684, 6.4000000953674316),
+                   V(6.4000000953674316, 4.0, 9.8000001907348633)};
+  hull.facets = {{0, 1, 2},  {2, 1, 3},  {0, 2, 3},  {1, 0, 4},  {3, 1, 4},   {0, 3, 5},  {4, 0, 5},
+                 {4, 5, 6},  {6, 5, 7},  {4, 6, 8},  {6, 7, 9},  {3, 4, 9},   {4, 8, 9},  {8, 6, 9},
+                 {3, 9, 10}, {9, 7, 10}, {5, 3, 11}, {7, 5, 11}, {3, 10, 11}, {10, 7, 11}};
   for (const std::vector<int>& f : hull.facets) {
     const V& a = hull.vertices[f[0]];
     const V n = (hull.vertices[f[1]] - a).cross(hull.vertices[f[2]] - a).normalized();
@@ -344,7 +344,7 @@ ConvexPolytope fdm6_grown_wall_hull() {
 }
 
 TEST(StrictFreeSpace, RaysEnteringAGrownHullBetweenNearlyCoplanarFacetsAreJudged) {
-  const double tol = 0.000399119;  // the map's
+  const double tol = 0.000399119; // the map's
   const ConvexPolytope hull = fdm6_grown_wall_hull();
   // A small face at x = 3.2 facing +x (on the map, part of face 3132): its
   // rays pass the hull's front where the map's wall has a gap, and meet
@@ -356,7 +356,7 @@ TEST(StrictFreeSpace, RaysEnteringAGrownHullBetweenNearlyCoplanarFacetsAreJudged
   EXPECT_LT(deepest_signed_distance(hull.planes, lost), -3.0 * tol);
   Result<PreparedMesh> prepared = prepare_mesh(m, tol);
   ASSERT_TRUE(prepared.ok());
-  const double margin = 10.0;  // the hull lies this far from the face, beyond the scene's box
+  const double margin = 10.0; // the hull lies this far from the face, beyond the scene's box
   BarOptions bars{kExactBarHalfLengthInTolerances * tol, false, ValidityMode::exact,
                   uncapped_free_space_reach(prepared.value(), margin), margin};
   const auto scene = test::index_scene(m, tol, bars);
@@ -372,8 +372,10 @@ TEST(StrictFreeSpace, RaysEnteringAGrownHullBetweenNearlyCoplanarFacetsAreJudged
       for (const Plane& p : interior.planes) {
         if (p.normal.x() == 0.0) continue;
         const double t = (p.offset - p.normal.y() * y - p.normal.z() * z) / p.normal.x();
-        if (p.normal.x() < 0.0) enter = std::max(enter, t);
-        else leave = std::min(leave, t);
+        if (p.normal.x() < 0.0)
+          enter = std::max(enter, t);
+        else
+          leave = std::min(leave, t);
       }
       if (!(enter < leave) || deepest_signed_distance(interior.planes, V(0.5 * (enter + leave), y, z)) >= 0.0) continue;
       bool on_facet = false;

@@ -35,9 +35,9 @@ int add_facing(Mesh& m, const V& a, const V& b, const V& c, const V& front) {
 
 struct ThinScene {
   Mesh mesh;
-  std::vector<int> fan;     // slivers fanned from one corner: one triangle together
-  int lone = -1;            // a sliver far from everything
-  int along_floor = -1;     // a sliver along the floor's edge, in its plane
+  std::vector<int> fan; // slivers fanned from one corner: one triangle together
+  int lone = -1;        // a sliver far from everything
+  int along_floor = -1; // a sliver along the floor's edge, in its plane
 };
 
 ThinScene thin_scene() {
@@ -47,8 +47,7 @@ ThinScene thin_scene() {
   // Ten slivers between x = 20 .. 30 on z = 0 and one corner 0.1 off that
   // line: each 1 wide at the line, 20-30 long, so its height is under
   // 0.005 (half tol); together the triangle (20, 2, 0), (30, 2, 0), (0, 2, 0.1).
-  for (int i = 20; i < 30; ++i)
-    s.fan.push_back(add_facing(s.mesh, V(i, 2, 0), V(i + 1, 2, 0), V(0, 2, 0.1), up));
+  for (int i = 20; i < 30; ++i) s.fan.push_back(add_facing(s.mesh, V(i, 2, 0), V(i + 1, 2, 0), V(0, 2, 0.1), up));
   s.lone = add_facing(s.mesh, V(0, 4, -3), V(10, 4, -3), V(5, 4, -3.005), up);
   s.along_floor = add_facing(s.mesh, V(-5, 0, 5), V(5, 0, 5), V(0, 0, 5.004), up);
   return s;
@@ -96,7 +95,7 @@ TEST(FaceCoverage, AFanThatIsOneTriangleGetsOneFlatHull) {
   EXPECT_EQ(hull.faces, s.fan);
   EXPECT_TRUE(hull.planar);
   EXPECT_EQ(hull.thickness, 0.0);
-  EXPECT_EQ(hull.polytope.vertices.size(), 3u);  // the fan's outline, not its 12 points
+  EXPECT_EQ(hull.polytope.vertices.size(), 3u); // the fan's outline, not its 12 points
   const int lone_hull = claiming_hull(d->covering, s.lone);
   ASSERT_GE(lone_hull, 0);
   EXPECT_EQ(d->covering.hulls[lone_hull].faces, std::vector<int>{s.lone});
@@ -104,7 +103,7 @@ TEST(FaceCoverage, AFanThatIsOneTriangleGetsOneFlatHull) {
   EXPECT_EQ(claiming_hull(d->covering, s.along_floor), -1);
   EXPECT_EQ(d->covering.statistics.faces_given_flat_hulls, 11);
   EXPECT_EQ(d->covering.statistics.faces_left_uncovered, 0);
-  EXPECT_EQ(d->covering.hulls.size(), 3u);  // floor, fan, lone sliver
+  EXPECT_EQ(d->covering.hulls.size(), 3u); // floor, fan, lone sliver
 }
 
 // Without the thin faces' hulls the audit's re-check finds them uncovered:
@@ -114,11 +113,11 @@ TEST(FaceCoverage, TheRecheckFindsThinFacesLeftUncovered) {
   const auto d = decompose_and_check(s.mesh, {}, kTol);
   ASSERT_TRUE(d);
   Covering without = d->covering;
-  without.hulls.erase(std::remove_if(without.hulls.begin(), without.hulls.end(),
-                                     [&](const CoveringHull& h) {
-                                       return h.faces.front() == s.fan.front() || h.faces.front() == s.lone;
-                                     }),
-                      without.hulls.end());
+  without.hulls.erase(
+      std::remove_if(
+          without.hulls.begin(), without.hulls.end(),
+          [&](const CoveringHull& h) { return h.faces.front() == s.fan.front() || h.faces.front() == s.lone; }),
+      without.hulls.end());
   ASSERT_EQ(without.hulls.size(), 1u);
   const validate::CheckReport report = validate::check_covering_independently(d->prepared, without);
   EXPECT_EQ(report.faces_uncovered, 11) << report.summary();

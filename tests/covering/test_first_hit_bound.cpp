@@ -23,8 +23,8 @@ using V = Eigen::Vector3d;
 // its rays in one view but not in another, and a roof far above that ends
 // them in every view.
 enum class Between {
-  kSheetWithinTheCoarseStandOff,  // a coarse view stands off past it
-  kCeilingWithACrack,             // a fine view passes through the crack
+  kSheetWithinTheCoarseStandOff, // a coarse view stands off past it
+  kCeilingWithACrack,            // a fine view passes through the crack
 };
 
 constexpr double kFine = 0.001;

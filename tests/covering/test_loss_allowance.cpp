@@ -26,8 +26,8 @@ using test::kGrooveDepth;
 double clearance(const Mesh& m, const V& p) {
   double best = std::numeric_limits<double>::infinity();
   for (const Eigen::Vector3i& t : m.triangles)
-    best = std::min(best, (closest_point_on_triangle(p, m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]) - p)
-                              .norm());
+    best = std::min(best,
+                    (closest_point_on_triangle(p, m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]) - p).norm());
   return best;
 }
 
@@ -89,7 +89,7 @@ TEST(MaxDeviation, TooSmallAnAllowanceLeavesTheGrooveOpen) {
 TEST(AgentRadius, NoBallClearOfTheTrianglesReachesIntoAHull) {
   const Mesh m = grooved_floor();
   DecomposeOptions options;
-  options.agent_radius = 0.3;  // wider than the groove, which it still sags into
+  options.agent_radius = 0.3; // wider than the groove, which it still sags into
   const Decomposition relaxed = decompose_with(m, options);
   const double r = *options.agent_radius;
   const double tol = relaxed.prepared.tolerance.length;

@@ -28,7 +28,7 @@ std::unique_ptr<test::IndexedScene> indexed(const Mesh& m) {
 
 TEST(MeshRay, ARayThroughTheEdgeTwoTrianglesShareMeetsThem) {
   Mesh m;
-  add_quad(m, V(0, 0, 0), V(2, 0, 0), V(2, 0, 2), V(0, 0, 2));  // its diagonal runs (0,0,0)-(2,0,2)
+  add_quad(m, V(0, 0, 0), V(2, 0, 0), V(2, 0, 2), V(0, 0, 2)); // its diagonal runs (0,0,0)-(2,0,2)
   const auto s = indexed(m);
   std::vector<int> scratch;
   for (const V& through : {V(1, 0, 1), V(0.5, 0, 0.5), V(1.3, 0, 0.7)}) {
@@ -41,7 +41,7 @@ TEST(MeshRay, ARayThroughTheEdgeTwoTrianglesShareMeetsThem) {
 
 TEST(MeshRay, TellsWhichSideItMeetsAndACoincidentFrontMakesItOpen) {
   Mesh m;
-  add_quad(m, V(0, 0, 0), V(1, 0, 0), V(1, 0, 1), V(0, 0, 1));  // facing one way
+  add_quad(m, V(0, 0, 0), V(1, 0, 0), V(1, 0, 1), V(0, 0, 1)); // facing one way
   const auto one = indexed(m);
   std::vector<int> scratch;
   const V normal = one->index.face_normals[0];
@@ -102,7 +102,7 @@ bool leaves_through_a_facet(const HullInterior& interior, const V& p, const V& d
     // Planes that stay within kOnePlaneInTolerances tol of each other share
     // one facet.
     if (f.size() < 3 || std::abs(interior.planes[k].signed_distance(exit)) > kOnePlaneInTolerances * tol) continue;
-    bool inside = true;  // on the inner side of each edge of the convex facet
+    bool inside = true; // on the inner side of each edge of the convex facet
     for (size_t e = 0; e < f.size() && inside; ++e)
       inside = (f[(e + 1) % f.size()] - f[e]).cross(exit - f[e]).dot(interior.planes[k].normal) >= -1e-9;
     if (inside) return true;
@@ -124,7 +124,7 @@ TEST(HullInterior, NearlyCoplanarFacetsStillCloseTheInterior) {
   int failures = 0, checked = 0;
   for (int trial = 0; trial < 20; ++trial) {
     std::vector<V> points;
-    for (int i = 0; i < 24; ++i) points.push_back(V(u(rng), u(rng), 3 * tol * u(rng)));  // the bumpy floor
+    for (int i = 0; i < 24; ++i) points.push_back(V(u(rng), u(rng), 3 * tol * u(rng))); // the bumpy floor
     for (const V& top : {V(0, 0, 0.2), V(1, 0, 0.2), V(1, 1, 0.2), V(0, 1, 0.2)}) points.push_back(top);
     ConvexHullBuilder builder;
     std::optional<ConvexPolytope> hull =
@@ -153,7 +153,7 @@ struct WallLookingIntoBox {
   ConvexPolytope box;
 
   WallLookingIntoBox() {
-    add_quad(mesh, V(0, 0, 0), V(0, 1, 0), V(0, 1, 1), V(0, 0, 1));  // faces +x
+    add_quad(mesh, V(0, 0, 0), V(0, 1, 0), V(0, 1, 1), V(0, 0, 1)); // faces +x
     ConvexHullBuilder builder;
     Mesh hull;
     add_box(hull, V(0.5, 0, 0), V(1.5, 1, 1), true);

@@ -75,16 +75,18 @@ Scene patch_scene(std::mt19937& rng) {
 // facing towards the polygon or away.
 void add_parallel_face(Scene& s, double depth, bool facing_polygon) {
   const V a = s.world(-5, -5, depth), b = s.world(10, -5, depth), c = s.world(-5, 10, depth);
-  if (facing_polygon) add_triangle(s.mesh, a, b, c);  // counter-clockwise from the normal
-  else add_triangle(s.mesh, a, c, b);
+  if (facing_polygon)
+    add_triangle(s.mesh, a, b, c); // counter-clockwise from the normal
+  else
+    add_triangle(s.mesh, a, c, b);
 }
 
 struct Prism {
   std::unique_ptr<test::IndexedScene> scene;
   FlatPolygon polygon;
   std::vector<Plane> sides;
-  double allowed = 0.0;  // allowed_prism_thickness
-  double used = 0.0;     // what prism_polytope used
+  double allowed = 0.0; // allowed_prism_thickness
+  double used = 0.0;    // what prism_polytope used
   ConvexPolytope polytope;
 };
 
@@ -129,8 +131,7 @@ void expect_top_is_polygon(const Prism& p) {
     for (size_t i = 0; i < facet.size(); ++i) {
       newell += p.polytope.vertices[facet[i]].cross(p.polytope.vertices[facet[(i + 1) % facet.size()]]);
       size_t match = 0;
-      while (match < polygon.corners.size() &&
-             (polygon.corners[match] - p.polytope.vertices[facet[i]]).norm() > 1e-9)
+      while (match < polygon.corners.size() && (polygon.corners[match] - p.polytope.vertices[facet[i]]).norm() > 1e-9)
         ++match;
       ASSERT_LT(match, polygon.corners.size()) << "top vertex not a polygon corner";
       EXPECT_EQ(p.polytope.vertex_ids[facet[i]], polygon.corner_vertices[match]);
@@ -257,12 +258,11 @@ TEST(PlanarPrism, BevelKeepsTheCapBesideAFaceLeavingAnEdgeInward) {
     s.mesh.material_ids.push_back(0);
     const Prism p = build_prism(s, cap, ValidityMode::paper, 0.05);
     EXPECT_EQ(p.allowed, cap) << "trial " << trial;
-    size_t j = 0;  // the polygon's edge from a (its corners start elsewhere)
+    size_t j = 0; // the polygon's edge from a (its corners start elsewhere)
     while (j < p.polygon.corners.size() && (p.polygon.corners[j] - a).norm() > 1e-9) ++j;
     ASSERT_LT(j, p.polygon.corners.size());
     EXPECT_LT(p.sides[j].normal.dot(p.polygon.sides[j].normal), 1.0 - 1e-6) << "edge " << j << " not beveled";
-    for (int k = 0; k <= 20; ++k)
-      EXPECT_LE(depth_inside(p.polytope, a + (c - a) * (k / 20.0)), kPrismTol);
+    for (int k = 0; k <= 20; ++k) EXPECT_LE(depth_inside(p.polytope, a + (c - a) * (k / 20.0)), kPrismTol);
   }
 }
 
@@ -291,7 +291,7 @@ TEST(PlanarPrism, BackToBackCoincidentFaceGivesThicknessZero) {
   for (int trial = 0; trial < 20; ++trial) {
     for (bool facing_polygon : {false, true}) {
       Scene s = patch_scene(rng);
-      add_parallel_face(s, 0.5 * kPrismTol * sym(rng), facing_polygon);  // within tol of the polygon's plane
+      add_parallel_face(s, 0.5 * kPrismTol * sym(rng), facing_polygon); // within tol of the polygon's plane
       const Prism p = build_prism(s, 0.4);
       if (facing_polygon) {
         // Its normal points away from the prism: a second copy of the

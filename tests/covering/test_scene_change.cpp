@@ -89,8 +89,7 @@ TEST(SceneChange, PatchesNoEditCanReachHoldAndKeepTheirHulls) {
   const Mesh building = demo_building();
   const DecomposeOptions o = test::options_with_small_cells(building);
   const Bake before = bake(building, o, true);
-  Result<detail::SceneSnapshot> snapshot =
-      detail::read_scene_snapshot(before.snapshot());
+  Result<detail::SceneSnapshot> snapshot = detail::read_scene_snapshot(before.snapshot());
   ASSERT_TRUE(snapshot.ok()) << snapshot.status().message();
   // Its islands have tolerances of their own: hulls are checked in views of
   // several, and sweeps followed past their own reach.
@@ -182,8 +181,7 @@ TEST(SceneChange, AWallTakenOutFarAwayReachesAPrismThroughTheSweepsItStopped) {
   // Through the cache: F's cell is stale, merged again, and the covering valid.
   test::TempDir dir;
   CellCacheReport report;
-  ASSERT_TRUE(
-      decompose_with_cell_cache(*before.prepared, o, dir.path("cache"), report).ok());
+  ASSERT_TRUE(decompose_with_cell_cache(*before.prepared, o, dir.path("cache"), report).ok());
   const PreparedMesh edited = prepare_mesh(floor_between_walls(false), std::nullopt).value();
   Result<Covering> rebaked = decompose_with_cell_cache(edited, o, dir.path("cache"), report);
   ASSERT_TRUE(rebaked.ok());
@@ -222,9 +220,9 @@ TEST(SceneChange, AReBakeTrustingTheSnapshotIsValidAndAsSmallAsAFullReCheck) {
   }
   // The same scene again: nothing changed, nothing re-checked.
   CellCacheReport again;
-  ASSERT_TRUE(decompose_with_cell_cache(prepare_mesh(edits_of(building).back().first, std::nullopt).value(), o,
-                                        trusting, again)
-                  .ok());
+  ASSERT_TRUE(
+      decompose_with_cell_cache(prepare_mesh(edits_of(building).back().first, std::nullopt).value(), o, trusting, again)
+          .ok());
   EXPECT_EQ(again.changed_faces, 0);
   EXPECT_EQ(again.patches_rechecked, 0);
   EXPECT_EQ(again.merged, 0);
@@ -246,10 +244,9 @@ TEST(SceneChange, ASnapshotIsCheckedBeforeUseAndOtherOptionsReCheckEverything) {
   EXPECT_EQ(snapshot.cell_checksums.size(), before.cells.size());
   EXPECT_FALSE(before.change_since(snapshot).everything);
   DecomposeOptions capped = o;
-  capped.free_space_reach = 100.0;  // rays run on past a cap: no bound
+  capped.free_space_reach = 100.0; // rays run on past a cap: no bound
   const Bake capped_bake = bake(building, capped, true);
-  EXPECT_TRUE(capped_bake.change_since(detail::read_scene_snapshot(capped_bake.snapshot()).value())
-                  .everything);
+  EXPECT_TRUE(capped_bake.change_since(detail::read_scene_snapshot(capped_bake.snapshot()).value()).everything);
   DecomposeOptions other = o;
   other.seed += 1;
   EXPECT_TRUE(bake(building, other, false).change_since(snapshot).everything);

@@ -86,7 +86,7 @@ TEST(ShadowSplit, ASplitReusedFromCallToCallGivesWhatAFreshOneGives) {
     clip_to_column(piece, triangle, dir, clipped, spare);
     EXPECT_TRUE(clipped == clip_polygon_to_planes(piece, column_planes(triangle, dir), 0.0)) << "trial " << trial;
   }
-  EXPECT_GT(cut, 300);  // pieces were cut, not only passed whole
+  EXPECT_GT(cut, 300); // pieces were cut, not only passed whole
 }
 
 // The narrowest width of convex polygon `polygon` over its edges'

@@ -115,7 +115,8 @@ TEST(StagedDecomposition, AnEditInvalidatesOnlyTheHullsItReaches) {
   std::vector<std::string> cells(new_bake->cell_count()), stale(new_bake->cell_count());
   for (int c = 0; c < new_bake->cell_count(); ++c) {
     const std::vector<int>& faces = new_bake->cell_faces(c);
-    const bool has_box = std::any_of(faces.begin(), faces.end(), [&](int f) { return f >= box_faces && f < box_faces + 12; });
+    const bool has_box =
+        std::any_of(faces.begin(), faces.end(), [&](int f) { return f >= box_faces && f < box_faces + 12; });
     const bool same_faces = new_bake->cell_key(c) == old_bake->cell_key(c);
     std::string why;
     if (same_faces && new_bake->still_valid(c, old_cells[c], &why)) {

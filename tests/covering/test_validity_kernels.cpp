@@ -48,8 +48,8 @@ using test::random_unit;
 void add_anchor(Mesh& m, const V& where) {
   const int base = static_cast<int>(m.positions.size());
   m.positions.insert(m.positions.end(), {where, where + V(0.1, 0, 0), where + V(0, 0.1, 0), where + V(0, 0, 0.1)});
-  for (const Eigen::Vector3i& t : {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 1, 3), Eigen::Vector3i(1, 2, 3),
-                                   Eigen::Vector3i(0, 3, 2)}) {
+  for (const Eigen::Vector3i& t :
+       {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 1, 3), Eigen::Vector3i(1, 2, 3), Eigen::Vector3i(0, 3, 2)}) {
     m.triangles.push_back(t + Eigen::Vector3i::Constant(base));
     m.material_ids.push_back(0);
   }
@@ -65,7 +65,7 @@ void add_triangle_on_edge(Mesh& m, const V& mid, const V& across, const V& w, do
 
 // A closed tetrahedron, faces wound outward: every edge manifold, no bars.
 Mesh tetrahedron(V a, V b, V c, const V& d) {
-  if ((b - a).cross(c - a).dot(d - a) > 0.0) std::swap(b, c);  // d behind a-b-c
+  if ((b - a).cross(c - a).dot(d - a) > 0.0) std::swap(b, c); // d behind a-b-c
   Mesh m;
   m.positions = {a, b, c, d};
   m.triangles = {{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {0, 2, 3}};
@@ -99,9 +99,7 @@ BoxHull random_box_hull(std::mt19937& rng, ConvexHullBuilder& qhull) {
 // Reference for condition 1, in the box's frame: a point is strictly inside
 // when deeper than tol behind every face; a segment enters when its clipped
 // parameter interval against the box shrunk by tol is not empty.
-bool strictly_inside(const BoxHull& b, const V& p) {
-  return ((b.local(p).cwiseAbs() - b.half).array() < -kTol).all();
-}
+bool strictly_inside(const BoxHull& b, const V& p) { return ((b.local(p).cwiseAbs() - b.half).array() < -kTol).all(); }
 bool segment_enters(const BoxHull& b, const V& p, const V& q) {
   const V a = b.local(p), d = b.local(q) - a, inner = b.half - V::Constant(kTol);
   double enter = 0.0, leave = 1.0;
@@ -241,11 +239,11 @@ TEST(ValidityKernels, Condition3BarThroughASolidHull) {
   std::vector<int> scratch;
   for (int trial = 0; trial < 40; ++trial) {
     const BoxHull b = random_box_hull(rng, qhull);
-    const double diag = b.half.norm();  // every box point is within 2 diag of an inner one
+    const double diag = b.half.norm(); // every box point is within 2 diag of an inner one
     const V inner = b.world(b.half.cwiseProduct(V(sym(rng), sym(rng), sym(rng))) * 0.9);
     const V n = random_unit(rng), across = n.cross(random_unit(rng)).normalized();
     const double s = diag * (4.0 + unit(rng));
-    const V mid = inner + s * n;  // an open edge's midpoint, far from the box
+    const V mid = inner + s * n; // an open edge's midpoint, far from the box
     // One triangle normal to n: the bar of its edge at `mid` runs along n
     // through `inner`; the other edges' bars pass over 2 diag to the side.
     Mesh m;
@@ -315,7 +313,7 @@ TEST(ValidityKernels, Condition3BarThroughAFlatPolygon) {
     while (nt.dot(np) < 0.7);
     const V across = nt.cross(random_unit(rng)).normalized();
     const double s = 6.0 + unit(rng);
-    const V mid = target + s * nt;  // in front of the polygon by >= 4.2
+    const V mid = target + s * nt; // in front of the polygon by >= 4.2
     // A triangle normal to nt, wholly in front (its corners within 5 of
     // `mid`, less than 3.6 nearer the polygon's plane). Only the bar of the
     // edge at `mid` can cross: the others run 2.7 or more to its side,
@@ -357,10 +355,10 @@ TEST(ValidityKernels, Condition4FaceBelowTouchingThePolygonInterior) {
     EXPECT_EQ(check_flat_polygon(indexed(below(q - 2.0 * kTol * n, -1.0), 0.1)->index, polygon, kNoPatch, scratch),
               Validity::valid)
         << "lowered by 2 tol";
-    EXPECT_EQ(check_flat_polygon(indexed(below(apex, 1.0), 0.1)->index, polygon, kNoPatch, scratch),
-              Validity::valid)
+    EXPECT_EQ(check_flat_polygon(indexed(below(apex, 1.0), 0.1)->index, polygon, kNoPatch, scratch), Validity::valid)
         << "above";
-    EXPECT_EQ(check_flat_polygon(indexed(below(apex, -1.0), 0.1)->index, polygon, [](int) { return true; }, scratch),
+    EXPECT_EQ(check_flat_polygon(
+                  indexed(below(apex, -1.0), 0.1)->index, polygon, [](int) { return true; }, scratch),
               Validity::valid)
         << "in the patch";
     EXPECT_EQ(check_flat_polygon(indexed(below(beside(rng, polygon), -1.0), 0.1)->index, polygon, kNoPatch, scratch),

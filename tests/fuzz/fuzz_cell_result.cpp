@@ -43,7 +43,8 @@ int fuzz_one_cell_result(const std::uint8_t* data, std::size_t size) {
   DecomposeOptions options;
   options.cell_size = kSmallSceneCellSize;
   options.threads = 1;
-  Result<std::unique_ptr<StagedDecomposition>> staged = StagedDecomposition::prepare(std::move(prepared).value(), options);
+  Result<std::unique_ptr<StagedDecomposition>> staged =
+      StagedDecomposition::prepare(std::move(prepared).value(), options);
   if (!staged.ok() || staged.value()->cell_count() < 2) return 0;
   const StagedDecomposition& s = *staged.value();
   std::vector<std::string> cells;

@@ -29,16 +29,15 @@ struct Target {
   const char* name;
   Body body;
 };
-const Target kTargets[] = {
-    {kMeshImport, fuzz_one_mesh_import},
-    {kRuntimeFile, fuzz_one_runtime_file},
-    {kHullObj, fuzz_one_hull_obj},
-    {kCellResult, fuzz_one_cell_result},
-    {kSceneSnapshot, fuzz_one_scene_snapshot}};
+const Target kTargets[] = {{kMeshImport, fuzz_one_mesh_import},
+                           {kRuntimeFile, fuzz_one_runtime_file},
+                           {kHullObj, fuzz_one_hull_obj},
+                           {kCellResult, fuzz_one_cell_result},
+                           {kSceneSnapshot, fuzz_one_scene_snapshot}};
 
 struct Input {
   std::string target;
-  std::string kind;  // "corpus" or "regressions"
+  std::string kind; // "corpus" or "regressions"
   fs::path file;
 };
 
@@ -77,8 +76,8 @@ TEST_P(FuzzReplay, RunsWithoutCrashing) {
   std::ifstream in(input.file, std::ios::binary);
   ASSERT_TRUE(in) << input.file;
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const auto target = std::find_if(std::begin(kTargets), std::end(kTargets),
-                                   [&](const Target& t) { return input.target == t.name; });
+  const auto target =
+      std::find_if(std::begin(kTargets), std::end(kTargets), [&](const Target& t) { return input.target == t.name; });
   ASSERT_NE(target, std::end(kTargets));
   EXPECT_EQ(target->body(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()), 0);
 }
@@ -89,8 +88,8 @@ INSTANTIATE_TEST_SUITE_P(Files, FuzzReplay, testing::ValuesIn(inputs()), test_na
 TEST(FuzzCorpus, EveryTargetHasSeeds) {
   for (const Target& t : kTargets) {
     const std::vector<Input> all = inputs();
-    EXPECT_TRUE(std::any_of(all.begin(), all.end(),
-                            [&](const Input& i) { return i.target == t.name && i.kind == "corpus"; }))
+    EXPECT_TRUE(
+        std::any_of(all.begin(), all.end(), [&](const Input& i) { return i.target == t.name && i.kind == "corpus"; }))
         << "no seed in " << HULLCOVER_FUZZ_DIR << "/corpus/" << t.name;
   }
 }

@@ -85,7 +85,7 @@ TEST(AabbTree, OverlappingMatchesBruteForceOnGridBoxes) {
           for (int k = 0; k < 3; ++k) touch |= boxes[i].max[k] == query.min[k] || boxes[i].min[k] == query.max[k];
           touching += touch;
         }
-      std::vector<int> got = {-7};  // appends: what is already there stays
+      std::vector<int> got = {-7}; // appends: what is already there stays
       tree.overlapping(query, got);
       ASSERT_EQ(got.front(), -7);
       got.erase(got.begin());
@@ -126,7 +126,7 @@ TEST(AabbTree, AnyOverlappingVisitsWhatOverlappingListsAndStopsAtTheFirstYes) {
     ASSERT_EQ(visited, std::vector<int>(listed.begin(), first == listed.end() ? first : first + 1)) << "query " << q;
     stopped_early += first != listed.end() && first + 1 != listed.end();
   }
-  EXPECT_GT(stopped_early, 30);  // the early stop was put to the test
+  EXPECT_GT(stopped_early, 30); // the early stop was put to the test
 }
 
 TEST(AabbTree, OverlappingMatchesBruteForceOnContinuousBoxes) {
@@ -159,14 +159,14 @@ TEST(AabbTree, OverlappingMatchesBruteForceOnContinuousBoxes) {
 // a coordinate no float holds must still find it, and one missing it by a
 // hair of a double must not: inner boxes only ever round outward.
 TEST(AabbTree, OverlappingIsExactWhereFloatsCannotHoldTheCorners) {
-  const double base = 1.0e6 / 3.0;  // float spacing 0.03125 here
+  const double base = 1.0e6 / 3.0; // float spacing 0.03125 here
   std::vector<Aabb> boxes;
   for (int i = 0; i < 64; ++i) {
     const V min(base + 0.1 * i + 0.01, base - 0.05 * i, base + 1e-3 * i);
     boxes.push_back(box(min, min + V(0.07, 0.03, 0.0013)));
   }
   const AabbTree tree(boxes);
-  const double hair = 1e-9;  // far above a double's spacing here, far below a float's
+  const double hair = 1e-9; // far above a double's spacing here, far below a float's
   for (int i = 0; i < 64; ++i) {
     for (int axis = 0; axis < 3; ++axis) {
       for (bool above : {true, false}) {
@@ -199,9 +199,9 @@ TEST(AabbTree, OverlappingIsExactWhereFloatsCannotHoldTheCorners) {
 }
 
 TEST(AabbTree, EmptyBoxesAreNeverReported) {
-  std::vector<Aabb> boxes(5);  // default boxes: empty
-  boxes.push_back(box(V(0, 0, 0), V(1, -1, 1)));  // inverted on y
-  boxes.push_back(box(V(0, 0, 0), V(0, 0, 0)));   // a point: not empty
+  std::vector<Aabb> boxes(5);                    // default boxes: empty
+  boxes.push_back(box(V(0, 0, 0), V(1, -1, 1))); // inverted on y
+  boxes.push_back(box(V(0, 0, 0), V(0, 0, 0)));  // a point: not empty
   const AabbTree tree(boxes);
   EXPECT_FALSE(tree.empty());
   std::vector<int> got;
@@ -219,7 +219,7 @@ TEST(AabbTree, AnEmptyQueryOverlapsNothing) {
   std::vector<Aabb> boxes = {box(V(0, 0, 0), V(10, 10, 10))};
   const AabbTree tree(boxes);
   std::vector<int> got;
-  tree.overlapping(box(V(5, 5, 5), V(3, 3, 3)), got);  // min > max: no point
+  tree.overlapping(box(V(5, 5, 5), V(3, 3, 3)), got); // min > max: no point
   EXPECT_TRUE(got.empty());
 }
 
@@ -305,8 +305,8 @@ void check_nearest_along_segment(double offset, unsigned seed) {
     for (int i = 0; i < 600; ++i) {
       const V min(u(rng), u(rng), u(rng));
       V extent(size(rng), size(rng), size(rng));
-      if (kind(rng) == 0) extent.setZero();  // a point
-      if (kind(rng) == 0) extent[kind(rng) % 3] = -1.0;  // empty
+      if (kind(rng) == 0) extent.setZero();             // a point
+      if (kind(rng) == 0) extent[kind(rng) % 3] = -1.0; // empty
       boxes.push_back(box(min, min + extent));
     }
     const AabbTree tree(boxes);
@@ -316,9 +316,12 @@ void check_nearest_along_segment(double offset, unsigned seed) {
       const V from(u(rng), u(rng), u(rng));
       V to(u(rng), u(rng), u(rng));
       switch (q % 5) {
-        case 0: to[q % 3] = from[q % 3]; break;                   // flat on one axis
-        case 1: to = from; to[q % 3] += u(rng) - offset; break;   // along one axis
-        case 2: to = from; break;                                  // a point
+        case 0: to[q % 3] = from[q % 3]; break; // flat on one axis
+        case 1:
+          to = from;
+          to[q % 3] += u(rng) - offset;
+          break;                  // along one axis
+        case 2: to = from; break; // a point
         default: break;
       }
       std::vector<int> calls;
@@ -331,7 +334,7 @@ void check_nearest_along_segment(double offset, unsigned seed) {
         return met;
       };
       tree.nearest_along_segment(from, to, margin, slack, meet);
-      double best = kInf;  // the first meeting, over all items
+      double best = kInf; // the first meeting, over all items
       for (const Aabb& b : boxes) best = std::min(best, reference_entry(from, to, b, 0.0));
       std::vector<char> called(boxes.size(), 0);
       for (int i : calls) {
@@ -359,9 +362,7 @@ TEST(AabbTree, NearestAlongSegmentMeetsEveryCandidateNearerThanTheFirstMeetingPl
   check_nearest_along_segment(0.0, 23);
 }
 
-TEST(AabbTree, NearestAlongSegmentMeetsEveryCandidateFarFromTheOrigin) {
-  check_nearest_along_segment(3.0e6, 25);
-}
+TEST(AabbTree, NearestAlongSegmentMeetsEveryCandidateFarFromTheOrigin) { check_nearest_along_segment(3.0e6, 25); }
 
 // Coordinates beyond the float range (a hostile or corrupt file that got
 // past the readers): the inner boxes clamp to the largest float or
@@ -369,14 +370,14 @@ TEST(AabbTree, NearestAlongSegmentMeetsEveryCandidateFarFromTheOrigin) {
 TEST(AabbTree, BoxesBeyondTheFloatRangeAreStillFound) {
   std::vector<Aabb> boxes;
   for (int i = 0; i < 40; ++i) {
-    const double x = (i % 2 == 0 ? 1.0 : -1.0) * 1e39 * (1 + i);  // |x| > FLT_MAX (3.4e38)
+    const double x = (i % 2 == 0 ? 1.0 : -1.0) * 1e39 * (1 + i); // |x| > FLT_MAX (3.4e38)
     boxes.push_back(box(V(x, 0, 0), V(x + 1e30, 1, 1)));
   }
   boxes.push_back(box(V(-1e300, -1e300, -1e300), V(-1e299, -1e299, -1e299)));
   const AabbTree tree(boxes);
   for (int i = 0; i < static_cast<int>(boxes.size()); ++i) {
     std::vector<int> got;
-    tree.overlapping(box(boxes[i].max, boxes[i].max), got);  // touching its far corner
+    tree.overlapping(box(boxes[i].max, boxes[i].max), got); // touching its far corner
     EXPECT_EQ(got, std::vector<int>{i}) << "box " << i;
     got.clear();
     Aabb beyond = box(boxes[i].max, boxes[i].max);
@@ -398,15 +399,15 @@ TEST(AabbTree, BoxesBeyondTheFloatRangeAreStillFound) {
   std::vector<int> expected(40);
   for (int i = 0; i < 40; ++i) expected[i] = i;
   EXPECT_EQ(sorted(calls), expected);
-  EXPECT_EQ(best, reference_entry(from, to, boxes[39], 0.0));  // -4e40, the leftmost
+  EXPECT_EQ(best, reference_entry(from, to, boxes[39], 0.0)); // -4e40, the leftmost
 }
 
 // Exact coordinates: integer boxes, axis-aligned segments of power-of-two
 // length (so the slab test rounds nothing), margin 0 and no pruning (slack
 // larger than the segment). `calls` gets the boxes met, `touched` those the
 // closed segment touches.
-void grid_segment_queries(const std::function<void(const std::vector<int>& calls, const std::vector<int>& touched,
-                                                   int query)>& check) {
+void grid_segment_queries(
+    const std::function<void(const std::vector<int>& calls, const std::vector<int>& touched, int query)>& check) {
   std::mt19937 rng(24);
   std::vector<Aabb> boxes;
   for (int i = 0; i < 400; ++i) boxes.push_back(random_grid_box(rng, true));
@@ -464,7 +465,7 @@ void check_nearest_to_point(double offset, unsigned seed) {
     const V extent(size(rng), size(rng), size(rng));
     boxes.push_back(box(min, min + extent));
     points.push_back(min + V(share(rng), share(rng), share(rng)).cwiseProduct(extent));
-    if (i % 10 == 0) boxes.back() = Aabb{};  // empty: never asked
+    if (i % 10 == 0) boxes.back() = Aabb{}; // empty: never asked
   }
   const AabbTree tree(boxes);
   for (int q = 0; q < 300; ++q) {

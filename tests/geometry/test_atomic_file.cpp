@@ -21,7 +21,6 @@ namespace {
 
 using test::TempDir;
 
-
 // Whether the folder's file system makes unnamed files; where it does not,
 // a killed writer may leave its named temporary file (documented).
 bool makes_unnamed_files(const std::string& folder) {

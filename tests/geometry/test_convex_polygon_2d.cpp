@@ -53,7 +53,7 @@ TEST(ConvexPolygon2d, SubtractionLeavesDisjointPiecesOutsideTheCutter) {
 // and one merely touching the cutter along an edge.
 TEST(ConvexPolygon2d, APieceApartFromTheCutterComesBackWhole) {
   const P cutter = square(0, 0, 1);
-  const P beside = square(-2, 3, 5);  // across the lines x = 0 and x = 1, above y = 1
+  const P beside = square(-2, 3, 5); // across the lines x = 0 and x = 1, above y = 1
   const auto above = subtract_convex_polygon(beside, cutter);
   ASSERT_EQ(above.size(), 1u);
   EXPECT_EQ(above[0], beside);
@@ -104,7 +104,7 @@ TEST(ConvexPolygon2d, ApartAndOverlappingSubtractionAreTheWholeSubtraction) {
       continue;
     }
     ++overlapping;
-    pieces.assign(1, P{{9, 9}});  // appended to, never cleared
+    pieces.assign(1, P{{9, 9}}); // appended to, never cleared
     subtract_overlapping_convex_polygon(piece, cutter, pieces, storage);
     ASSERT_EQ(std::vector<P>(pieces.begin() + 1, pieces.end()), whole) << "trial " << trial;
   }

@@ -14,7 +14,7 @@ namespace {
 std::vector<Eigen::Vector3d> cube_points(const Eigen::Vector3d& offset) {
   std::vector<Eigen::Vector3d> p;
   for (int i = 0; i < 8; ++i) p.push_back(offset + Eigen::Vector3d(i & 1, (i >> 1) & 1, (i >> 2) & 1));
-  p.push_back(offset + Eigen::Vector3d(0.5, 0.5, 0.5));  // interior: not a vertex
+  p.push_back(offset + Eigen::Vector3d(0.5, 0.5, 0.5)); // interior: not a vertex
   return p;
 }
 
@@ -32,7 +32,8 @@ TEST(ConvexHullBuilder, CubeFarFromTheOriginHasSixSquareFacets) {
     const auto& facet = hull.value().facets[f];
     Eigen::Vector3d n = Eigen::Vector3d::Zero();
     for (size_t i = 0; i < facet.size(); ++i)
-      n += (hull.value().vertices[facet[i]] - offset).cross(hull.value().vertices[facet[(i + 1) % facet.size()]] - offset);
+      n += (hull.value().vertices[facet[i]] - offset)
+               .cross(hull.value().vertices[facet[(i + 1) % facet.size()]] - offset);
     EXPECT_GT(n.dot(hull.value().planes[f].normal), 0.0);
   }
 }
@@ -50,11 +51,11 @@ TEST(SegmentEntersInterior, CountsOnlyDepthBeyondTheTolerance) {
   ASSERT_TRUE(hull.ok());
   const auto& planes = hull.value().planes;
   const double tol = 1e-3;
-  EXPECT_TRUE(segment_enters_interior(planes, {-1, 0.5, 0.5}, {2, 0.5, 0.5}, tol));   // through
-  EXPECT_FALSE(segment_enters_interior(planes, {-1, 0, 0.5}, {2, 0, 0.5}, tol));      // along a face
-  EXPECT_FALSE(segment_enters_interior(planes, {-1, 0.0005, 0.5}, {2, 0.0005, 0.5}, tol));  // within tol of it
+  EXPECT_TRUE(segment_enters_interior(planes, {-1, 0.5, 0.5}, {2, 0.5, 0.5}, tol));        // through
+  EXPECT_FALSE(segment_enters_interior(planes, {-1, 0, 0.5}, {2, 0, 0.5}, tol));           // along a face
+  EXPECT_FALSE(segment_enters_interior(planes, {-1, 0.0005, 0.5}, {2, 0.0005, 0.5}, tol)); // within tol of it
   EXPECT_TRUE(segment_enters_interior(planes, {-1, 0.01, 0.5}, {2, 0.01, 0.5}, tol));
-  EXPECT_FALSE(segment_enters_interior(planes, {-1, 2, 2}, {-0.5, 2, 2}, tol));      // away
+  EXPECT_FALSE(segment_enters_interior(planes, {-1, 2, 2}, {-0.5, 2, 2}, tol)); // away
   EXPECT_LT(deepest_signed_distance(planes, {0.5, 0.5, 0.5}), -0.4);
 }
 
@@ -104,13 +105,13 @@ TEST(SplitPolygon, EachSideIsTheClipBitForBit) {
     for (size_t i = 0; i < cut_off.size(); ++i) EXPECT_TRUE(outer[i] == cut_off[i]) << "trial " << trial;
     both_sides += !kept.empty() && !cut_off.empty();
   }
-  EXPECT_GT(both_sides, 500);  // the planes do cut, not only pass by
+  EXPECT_GT(both_sides, 500); // the planes do cut, not only pass by
 }
 
 TEST(ClipPolygonInto, ReusesItsOutputAndMatchesClipPolygon) {
   const Plane x_below_one{{1, 0, 0}, 1.0};
   const std::vector<Eigen::Vector3d> square = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}};
-  std::vector<Eigen::Vector3d> out = {{9, 9, 9}};  // stale content is cleared
+  std::vector<Eigen::Vector3d> out = {{9, 9, 9}}; // stale content is cleared
   clip_polygon_into(square, x_below_one, 0.25, out);
   const std::vector<Eigen::Vector3d> expected = clip_polygon(square, x_below_one, 0.25);
   ASSERT_EQ(out.size(), expected.size());

@@ -53,8 +53,7 @@ const char* cloud_name(Cloud c) {
 std::vector<V> random_cloud(Cloud kind, int n, std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::normal_distribution<double> g(0.0, 1.0);
-  const Eigen::Matrix3d rotation =
-      Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
+  const Eigen::Matrix3d rotation = Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
   std::vector<V> points;
   for (int i = 0; i < n; ++i) {
     V p(u(rng), u(rng), u(rng));
@@ -128,8 +127,8 @@ double outside_by(const ConvexPolytope& hull, const V& p) {
     if (newell.dot(plane.normal) <= 0.0) return ::testing::AssertionFailure() << "facet " << f << " wound inward";
     for (size_t k = 0; k < hull.vertices.size(); ++k)
       if (plane.signed_distance(hull.vertices[k]) > tol)
-        return ::testing::AssertionFailure() << "vertex " << k << " in front of facet " << f << " by "
-                                             << plane.signed_distance(hull.vertices[k]);
+        return ::testing::AssertionFailure()
+               << "vertex " << k << " in front of facet " << f << " by " << plane.signed_distance(hull.vertices[k]);
   }
   for (const auto& [edge, uses] : directed)
     if (uses != 1 || directed.count({edge.second, edge.first}) != 1)
@@ -161,7 +160,7 @@ TEST(IncrementalHull, GrowingPointByPointMatchesQhull) {
       std::mt19937 rng(seed);
       const std::vector<V> points = random_cloud(kind, kPoints, rng);
       const std::vector<int> ids = iota_ids(points.size());
-      const double tol = 1e-5 * extent_of(points);  // the library's default, relative to the scene
+      const double tol = 1e-5 * extent_of(points); // the library's default, relative to the scene
       ConvexHullBuilder qhull;
       Result<ConvexPolytope> start =
           qhull.build({points.begin(), points.begin() + kStart}, {ids.begin(), ids.begin() + kStart});
@@ -179,7 +178,7 @@ TEST(IncrementalHull, GrowingPointByPointMatchesQhull) {
           expect_volume_matches(*grown, reference.value(), tol);
           hull = std::move(*grown);
         } else {
-          hull = std::move(reference).value();  // what the caller does: rebuild
+          hull = std::move(reference).value(); // what the caller does: rebuild
         }
       }
       // Failures are for degenerate triangles, not the rule.
@@ -226,9 +225,9 @@ TEST(IncrementalHull, APointFarPastASharpEdgeIsNotTakenAsOnTheHull) {
   ConvexHullBuilder qhull;
   const ConvexPolytope wedge = qhull.build(points, iota_ids(points.size())).value();
   const double tol = 1e-3;
-  const V past_the_edge(-0.005, 0.0, 0.5);  // 5 tol from the wedge
+  const V past_the_edge(-0.005, 0.0, 0.5); // 5 tol from the wedge
   ASSERT_GT(outside_by(wedge, past_the_edge), 0.0);
-  ASSERT_LT(outside_by(wedge, past_the_edge), kVisibleBeyondTolerances * tol);  // within a sliver of every plane
+  ASSERT_LT(outside_by(wedge, past_the_edge), kVisibleBeyondTolerances * tol); // within a sliver of every plane
   ASSERT_GT(distance_to_facet_fans(wedge, past_the_edge), 4 * tol);
   const std::optional<ConvexPolytope> grown = add_point_to_hull(wedge, past_the_edge, 6, tol);
   if (grown) {
@@ -275,7 +274,7 @@ TEST(PointHull, MatchesQhullOnRandomClouds) {
       const double tol = kPointHullRelativeTolerance * extent_of(points);
       ASSERT_TRUE(is_hull_of(*hull, points, points.size(), tol));
       expect_volume_matches(*hull, reference.value(), tol);
-      if (kind == Cloud::cube) {  // general position: the same extreme points
+      if (kind == Cloud::cube) { // general position: the same extreme points
         std::set<int> ours(hull->vertex_ids.begin(), hull->vertex_ids.end());
         std::set<int> theirs(reference.value().vertex_ids.begin(), reference.value().vertex_ids.end());
         EXPECT_EQ(ours, theirs);

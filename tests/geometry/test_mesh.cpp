@@ -56,7 +56,7 @@ TEST(ValidateMesh, RejectsMaterialIdsOfTheWrongLength) {
 TEST(TriangleAreaVector, PointsToTheCounterClockwiseFront) {
   const Mesh m = one_triangle();
   const Eigen::Vector3d n = triangle_area_vector(m, 0);
-  EXPECT_DOUBLE_EQ(n.z(), 1.0);  // twice the area 0.5, towards +z
+  EXPECT_DOUBLE_EQ(n.z(), 1.0); // twice the area 0.5, towards +z
   EXPECT_FALSE(triangle_has_repeated_vertex(m, 0));
 }
 

@@ -31,13 +31,13 @@ ConvexPolytope cube(const V& offset, double side = 1.0) {
 TEST(RegionOutsideInterior, OnlyABoxClearOfTheShrunkHullWithRoomToSpare) {
   const ConvexPolytope hull = cube(V::Zero());
   const double tol = 1e-3;
-  EXPECT_TRUE(region_outside_interior(hull.planes, region_box({2, 0, 0}, {3, 1, 1}), tol));          // beside it
-  EXPECT_TRUE(region_outside_interior(hull.planes, region_box({-1, -1, 1}, {2, 2, 3}), tol));        // on top, touching
-  EXPECT_TRUE(region_outside_interior(hull.planes, region_box({0, 0, 1 - 0.4 * tol}, {1, 1, 2}), tol));  // 0.4 tol in
+  EXPECT_TRUE(region_outside_interior(hull.planes, region_box({2, 0, 0}, {3, 1, 1}), tol));   // beside it
+  EXPECT_TRUE(region_outside_interior(hull.planes, region_box({-1, -1, 1}, {2, 2, 3}), tol)); // on top, touching
+  EXPECT_TRUE(region_outside_interior(hull.planes, region_box({0, 0, 1 - 0.4 * tol}, {1, 1, 2}), tol)); // 0.4 tol in
   // Within tol of the top but with less than the slack to spare: not skipped.
   EXPECT_FALSE(region_outside_interior(hull.planes, region_box({0, 0, 1 - 0.6 * tol}, {1, 1, 2}), tol));
-  EXPECT_FALSE(region_outside_interior(hull.planes, region_box({0.4, 0.4, 0.4}, {0.6, 0.6, 0.6}), tol));  // inside
-  EXPECT_FALSE(region_outside_interior(hull.planes, region_box({-1, -1, -1}, {2, 2, 2}), tol));  // round it
+  EXPECT_FALSE(region_outside_interior(hull.planes, region_box({0.4, 0.4, 0.4}, {0.6, 0.6, 0.6}), tol)); // inside
+  EXPECT_FALSE(region_outside_interior(hull.planes, region_box({-1, -1, -1}, {2, 2, 2}), tol));          // round it
   EXPECT_FALSE(region_outside_interior(hull.planes, Aabb{}, tol));
   EXPECT_FALSE(region_outside_interior({}, region_box({2, 0, 0}, {3, 1, 1}), tol));
   // A plane whose normal is not finite settles nothing.
@@ -68,11 +68,12 @@ TEST(RegionOutsideInterior, NoPointOfABoxSaidOutsideTestsInside) {
     if (!said_outside) continue;
     for (int i = 0; i < 16; ++i) {
       V p;
-      for (int k = 0; k < 3; ++k) p[k] = i < 8 ? ((i >> k) & 1 ? high[k] : low[k]) : low[k] + unit(rng) * (high[k] - low[k]);
+      for (int k = 0; k < 3; ++k)
+        p[k] = i < 8 ? ((i >> k) & 1 ? high[k] : low[k]) : low[k] + unit(rng) * (high[k] - low[k]);
       ASSERT_GE(deepest_signed_distance(hull.planes, p), -tol) << "trial " << trial;
     }
   }
-  EXPECT_GT(outside, 500);  // both answers were put to the test
+  EXPECT_GT(outside, 500); // both answers were put to the test
   EXPECT_GT(not_outside, 500);
 }
 
@@ -100,7 +101,7 @@ TEST(InteriorRegionTest, AsksTheLargestFacetsOfAHullThatFillsLittleOfItsBox) {
   // The box's far corners are off the slab: outside, by its big faces.
   EXPECT_TRUE(test.outside(region_box(V(0, 0, 6), V(3, 10, 10))));
   EXPECT_TRUE(test.outside(region_box(V(6, 0, 0), V(10, 10, 3))));
-  EXPECT_FALSE(test.outside(region_box(V(4, 4, 4), V(6, 6, 6))));  // across the slab
+  EXPECT_FALSE(test.outside(region_box(V(4, 4, 4), V(6, 6, 6)))); // across the slab
   std::mt19937 rng(53);
   std::uniform_real_distribution<double> coordinate(0.0, 10.0), extent(0.0, 3.0);
   int outside = 0;

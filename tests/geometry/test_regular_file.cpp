@@ -23,7 +23,7 @@ TEST(RegularFile, ReadsARegularFileWhole) {
 TEST(RegularFile, RefusesFifosDevicesFoldersAndMissingPaths) {
   const test::TempDir dir;
   ASSERT_EQ(mkfifo(dir.path("pipe").c_str(), 0600), 0);
-  EXPECT_EQ(read_regular_file(dir.path("pipe")).status().code(), StatusCode::unreadable_file);  // returns, not waits
+  EXPECT_EQ(read_regular_file(dir.path("pipe")).status().code(), StatusCode::unreadable_file); // returns, not waits
   EXPECT_EQ(read_regular_file("/dev/zero").status().code(), StatusCode::unreadable_file);
   EXPECT_EQ(read_regular_file(dir.path("")).status().code(), StatusCode::unreadable_file);
   EXPECT_EQ(read_regular_file(dir.path("missing")).status().code(), StatusCode::file_not_found);

@@ -35,10 +35,10 @@ TEST(SegmentDistance, SkewParallelAndPointCases) {
 
 TEST(TriangleDistance, KnownConfigurations) {
   const V floor[3] = {V(0, 0, 0), V(2, 0, 0), V(0, 0, 2)};
-  const V above[3] = {V(0, 1, 0), V(2, 1, 0), V(0, 1, 2)};          // parallel, 1 above
-  const V crossing[3] = {V(0.5, -1, 0.5), V(0.5, 1, 0.5), V(0.6, 0, -3)};  // pierces the floor
-  const V edge_to_edge[3] = {V(3, 0, -1), V(3, 0, 3), V(5, 0, 1)};  // side x = 3 faces the floor's hypotenuse end
-  const V touching[3] = {V(2, 0, 0), V(3, 1, 0), V(3, -1, 0)};      // shares the floor's corner
+  const V above[3] = {V(0, 1, 0), V(2, 1, 0), V(0, 1, 2)};                // parallel, 1 above
+  const V crossing[3] = {V(0.5, -1, 0.5), V(0.5, 1, 0.5), V(0.6, 0, -3)}; // pierces the floor
+  const V edge_to_edge[3] = {V(3, 0, -1), V(3, 0, 3), V(5, 0, 1)};        // side x = 3 faces the floor's hypotenuse end
+  const V touching[3] = {V(2, 0, 0), V(3, 1, 0), V(3, -1, 0)};            // shares the floor's corner
   EXPECT_NEAR(triangle_distance(floor, above), 1.0, kUnitRounding);
   EXPECT_NEAR(triangle_distance(floor, crossing), 0.0, kUnitRounding);
   EXPECT_NEAR(triangle_distance(floor, edge_to_edge), 1.0, kUnitRounding);
@@ -60,7 +60,7 @@ TEST(TriangleDistance, AgreesWithSamplingAndIgnoresRotation) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
   const auto random_point = [&] { return V(coordinate(rng), coordinate(rng), coordinate(rng)); };
-  const auto samples = [](const V (&t)[3]) {
+  const auto samples = [](const V(&t)[3]) {
     std::vector<V> out;
     for (int i = 0; i <= kSamplesPerSide; ++i)
       for (int j = 0; i + j <= kSamplesPerSide; ++j)
@@ -100,7 +100,7 @@ TEST(TrianglesWithin, AnswersAsTheDistanceComparedAtEveryThreshold) {
     for (const double threshold : {0.0, std::nextafter(d, 0.0), d, std::nextafter(d, 10.0), 0.5 * d, 2.0 * d + 0.1})
       EXPECT_EQ(triangles_within(s, t, threshold), d <= threshold) << "pair " << k << " at " << threshold;
   }
-  EXPECT_GT(apart, 1000);  // most pairs are apart, so the thresholds below d are asked
+  EXPECT_GT(apart, 1000); // most pairs are apart, so the thresholds below d are asked
   // Corners that are no numbers: the distance is infinity, met only by it.
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
   const V s[3] = {V(nan, nan, nan), V(nan, nan, nan), V(nan, nan, nan)};

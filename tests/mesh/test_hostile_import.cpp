@@ -55,7 +55,8 @@ void expect_failure(const Result<ImportedMesh>& r, StatusCode code, const std::s
 
 TEST(HostileImport, DataUriAndABufferBesideTheSceneAreRead) {
   TempDir dir;
-  const Result<ImportedMesh> inline_data = import_in(dir, "a.gltf", gltf_with(std::string("data:application/octet-stream;base64,") + kTriangleBase64));
+  const Result<ImportedMesh> inline_data =
+      import_in(dir, "a.gltf", gltf_with(std::string("data:application/octet-stream;base64,") + kTriangleBase64));
   ASSERT_TRUE(inline_data.ok()) << inline_data.status().message();
   EXPECT_EQ(inline_data.value().mesh.triangles.size(), 1u);
   std::filesystem::create_directories(dir.path("scene/bin"));
@@ -67,7 +68,7 @@ TEST(HostileImport, DataUriAndABufferBesideTheSceneAreRead) {
 
 TEST(HostileImport, ABufferOutsideTheFolderIsNotRead) {
   TempDir dir;
-  const std::string secret = dir.write("secret.bin", triangle_bytes());  // beside the folder, readable
+  const std::string secret = dir.write("secret.bin", triangle_bytes()); // beside the folder, readable
   expect_failure(import_in(dir, "up.gltf", gltf_with("../secret.bin")), StatusCode::reference_outside_folder,
                  "secret.bin");
   expect_failure(import_in(dir, "absolute.gltf", gltf_with(secret)), StatusCode::reference_outside_folder,
@@ -77,8 +78,7 @@ TEST(HostileImport, ABufferOutsideTheFolderIsNotRead) {
   expect_failure(import_in(dir, "net.gltf", gltf_with("http://example.com/t.bin")),
                  StatusCode::reference_outside_folder, "example.com");
   std::filesystem::create_symlink(secret, dir.path("scene/link.bin"));
-  expect_failure(import_in(dir, "link.gltf", gltf_with("link.bin")), StatusCode::reference_outside_folder,
-                 "link.bin");
+  expect_failure(import_in(dir, "link.gltf", gltf_with("link.bin")), StatusCode::reference_outside_folder, "link.bin");
 }
 
 TEST(HostileImport, AnObjMaterialLibraryOutsideTheFolderIsNotRead) {
@@ -110,9 +110,9 @@ TEST(HostileImport, DeclaredCountsMustFitTheBytesPresent) {
                            "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\n"
                            "property float y\nproperty float z\nend_header\n0123456789"),
                  StatusCode::unreadable_file, "4000000000");
-  expect_failure(import_in(dir, "empty_element.ply",
-                           "ply\nformat ascii 1.0\nelement nothing 999999999999\nend_header\n"),
-                 StatusCode::unreadable_file, "no properties");
+  expect_failure(
+      import_in(dir, "empty_element.ply", "ply\nformat ascii 1.0\nelement nothing 999999999999\nend_header\n"),
+      StatusCode::unreadable_file, "no properties");
   std::string stl(84, '\0');
   stl[80] = '\xff';
   stl[81] = '\xff';
@@ -184,7 +184,7 @@ void expect_refused(const Result<ImportedMesh>& r, const std::string& mentions, 
 
 TEST(HostileImport, PlyListLengthsMustFitTheBytesLeft) {
   TempDir dir;
-  constexpr std::uint32_t kBinaryLength = std::uint32_t{1} << 27;  // Assimp sized this list at 1 GiB
+  constexpr std::uint32_t kBinaryLength = std::uint32_t{1} << 27; // Assimp sized this list at 1 GiB
   for (bool big_endian : {false, true}) {
     const std::string ply = binary_face_declaring(kBinaryLength, big_endian);
     ASSERT_LT(ply.size(), 256u);
@@ -195,7 +195,7 @@ TEST(HostileImport, PlyListLengthsMustFitTheBytesLeft) {
   negative += ply_bytes(std::int8_t{-1}, false) + ply_bytes(0, false);
   expect_refused(import_in(dir, "negative.ply", negative), "-1", "negative");
 
-  constexpr std::uint32_t kAsciiLength = std::uint32_t{1} << 26;  // 1 GiB in Assimp
+  constexpr std::uint32_t kAsciiLength = std::uint32_t{1} << 26; // 1 GiB in Assimp
   const std::string vertices = "0 0 0\n1 0 0\n0 1 0\n";
   const std::string ascii = ply_header("ascii", 3, 1) + vertices + std::to_string(kAsciiLength) + " 0 1 2\n";
   expect_refused(import_in(dir, "ascii.ply", ascii), std::to_string(kAsciiLength), "bytes left");
@@ -216,9 +216,10 @@ TEST(HostileImport, PlyIsCheckedAsAssimpReadsIt) {
   // Token by token: a list of one item (67108864), then an empty one.
   expect_refused(import_in(dir, "lines.ply", ply_header("ascii", 3, 2) + vertices + "1\n67108864\n0\n"), "67108864",
                  "one element a line");
-  const std::string flagged = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                              "property float z\nelement face 1\nproperty int flags\n"
-                              "property list int int vertex_indices\nend_header\n";
+  const std::string flagged =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty int flags\n"
+      "property list int int vertex_indices\nend_header\n";
   expect_refused(import_in(dir, "plus.ply", flagged + vertices + "5+67108864 3 0 1 2\n"), "'5+67108864'",
                  "reads whole");
   std::string camera = binary_tetrahedron(false);
@@ -229,7 +230,7 @@ TEST(HostileImport, PlyIsCheckedAsAssimpReadsIt) {
   dropped.replace(dropped.find("property list"), 0, "obj_info scanner\n");
   expect_refused(import_in(dir, "dropped.ply", dropped), "property list", "drop");
   std::string newline_first = binary_tetrahedron(false);
-  newline_first.replace(newline_first.find("end_header\n") + 11, 1, "\n");  // first byte of x = 0x0A
+  newline_first.replace(newline_first.find("end_header\n") + 11, 1, "\n"); // first byte of x = 0x0A
   expect_refused(import_in(dir, "newline.ply", newline_first), "0x0A", "Assimp");
 }
 
@@ -245,7 +246,7 @@ TEST(HostileImport, SoundPlyFilesStillImport) {
   const Result<ImportedMesh> ascii = import_in(dir, "quad.ply", quad);
   ASSERT_TRUE(ascii.ok()) << ascii.status().message();
   EXPECT_EQ(ascii.value().mesh.triangles.size(), 2u);
-  std::string crlf = quad;  // Windows line ends, and a comment naming the header's end
+  std::string crlf = quad; // Windows line ends, and a comment naming the header's end
   for (std::size_t at = crlf.find('\n'); at != std::string::npos; at = crlf.find('\n', at + 2))
     crlf.replace(at, 1, "\r\n");
   crlf.replace(crlf.find("element"), 0, "comment end_header\r\n");

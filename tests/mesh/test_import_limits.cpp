@@ -97,7 +97,8 @@ TEST(ImportLimits, AnObjMaterialLibraryOutsideTheFolderIsRefusedByItsText) {
   const TempDir dir;
   for (const std::string name : {"/etc/passwd", "../outside.mtl", "sub/../../x.mtl", "http://host/x.mtl",
                                  "file:///etc/passwd", "a\\..\\x.mtl"}) {
-    const Result<ImportedMesh> r = import_mesh(dir.write("s.obj", "mtllib ok.mtl " + name + "\n" + kTriangle + "f 1 2 3\n"));
+    const Result<ImportedMesh> r =
+        import_mesh(dir.write("s.obj", "mtllib ok.mtl " + name + "\n" + kTriangle + "f 1 2 3\n"));
     ASSERT_FALSE(r.ok()) << name;
     EXPECT_EQ(r.status().code(), StatusCode::reference_outside_folder) << name;
     EXPECT_NE(r.status().message().find(name), std::string::npos) << r.status().message();

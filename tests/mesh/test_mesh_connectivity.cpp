@@ -23,9 +23,9 @@ TEST(Connectivity, ClosedBoxIsAManifoldOfGenusZero) {
   const MeshConnectivity c = build_connectivity(m, kTol);
   EXPECT_EQ(c.edges.size(), 18u);
   EXPECT_EQ(count_edges(c, EdgeKind::manifold), 18);
-  EXPECT_EQ(static_cast<int>(m.positions.size()) - static_cast<int>(c.edges.size()) +
-                static_cast<int>(m.triangles.size()),
-            2);  // Euler characteristic of a sphere
+  EXPECT_EQ(
+      static_cast<int>(m.positions.size()) - static_cast<int>(c.edges.size()) + static_cast<int>(m.triangles.size()),
+      2); // Euler characteristic of a sphere
   EXPECT_EQ(c.component_count, 1);
   for (const Eigen::Vector3i& n : c.face_neighbours) EXPECT_TRUE((n.array() >= 0).all());
 }
@@ -34,13 +34,13 @@ TEST(Connectivity, OpenQuadHasFourBoundaryEdges) {
   const MeshConnectivity c = build_connectivity(quad(), kTol);
   EXPECT_EQ(count_edges(c, EdgeKind::boundary), 4);
   EXPECT_EQ(count_edges(c, EdgeKind::manifold), 1);
-  EXPECT_EQ(c.face_neighbours[0][2], 1);  // corner 2 of face 0 runs 2 -> 0
-  EXPECT_EQ(c.face_neighbours[1][0], 0);  // corner 0 of face 1 runs 0 -> 2
+  EXPECT_EQ(c.face_neighbours[0][2], 1); // corner 2 of face 0 runs 2 -> 0
+  EXPECT_EQ(c.face_neighbours[1][0], 0); // corner 0 of face 1 runs 0 -> 2
 }
 
 TEST(Connectivity, FlippedFaceIsAnOrientationConflictAndNoNeighbour) {
   Mesh m = quad();
-  m.triangles[1] = {2, 0, 3};  // uses 2 -> 0, the same direction as face 0 does
+  m.triangles[1] = {2, 0, 3}; // uses 2 -> 0, the same direction as face 0 does
   const MeshConnectivity c = build_connectivity(m, kTol);
   EXPECT_EQ(count_edges(c, EdgeKind::orientation_conflict), 1);
   EXPECT_EQ(count_edges(c, EdgeKind::manifold), 0);
@@ -50,7 +50,7 @@ TEST(Connectivity, FlippedFaceIsAnOrientationConflictAndNoNeighbour) {
 TEST(Connectivity, ThreeFacesOnOneEdgeAreNonManifold) {
   Mesh m = quad();
   m.positions.emplace_back(0.5, 0.5, 1.0);
-  m.triangles.emplace_back(0, 4, 2);  // a fin standing on the diagonal
+  m.triangles.emplace_back(0, 4, 2); // a fin standing on the diagonal
   m.material_ids.push_back(0);
   const MeshConnectivity c = build_connectivity(m, kTol);
   EXPECT_EQ(count_edges(c, EdgeKind::non_manifold), 1);
@@ -61,7 +61,7 @@ TEST(Connectivity, ComponentsJoinFacesThatShareOnlyAVertex) {
   Mesh m;
   add_box(m, {0, 0, 0}, {1, 1, 1});
   add_box(m, {5, 0, 0}, {6, 1, 1});
-  add_box(m, {1, 1, 1}, {2, 2, 2});  // touches the first box at one corner
+  add_box(m, {1, 1, 1}, {2, 2, 2}); // touches the first box at one corner
   const WeldResult w = weld_vertices(m, kTol);
   const MeshConnectivity c = build_connectivity(w.mesh, kTol);
   EXPECT_EQ(c.component_count, 2);
@@ -75,9 +75,9 @@ TEST(Connectivity, ZeroAreaUsesTheSmallestAltitudeAgainstTheTolerance) {
   m.triangles = {{0, 1, 2}, {3, 4, 5}, {0, 0, 1}};
   m.material_ids = {0, 0, 0};
   const MeshConnectivity c = build_connectivity(m, kTol);
-  EXPECT_EQ(c.zero_area[0], 1);  // altitude 0.5e-6 < tol
-  EXPECT_EQ(c.zero_area[1], 0);  // altitude 2e-6 > tol
-  EXPECT_EQ(c.zero_area[2], 1);  // collapsed
+  EXPECT_EQ(c.zero_area[0], 1); // altitude 0.5e-6 < tol
+  EXPECT_EQ(c.zero_area[1], 0); // altitude 2e-6 > tol
+  EXPECT_EQ(c.zero_area[2], 1); // collapsed
   EXPECT_TRUE((c.face_edges[2].array() < 0).all());
   EXPECT_EQ(count_zero_area_faces(c), 2);
 }

@@ -74,13 +74,13 @@ TEST(ImportMesh, TriangulatesPolygonsAndKeepsMaterials) {
   const Result<ImportedMesh> r = import_mesh(path);
   ASSERT_TRUE(r.ok()) << r.status().message();
   const Mesh& m = r.value().mesh;
-  ASSERT_EQ(m.triangles.size(), 2u + 3u);  // a quad and a pentagon
+  ASSERT_EQ(m.triangles.size(), 2u + 3u); // a quad and a pentagon
   const auto name_of = [&](int t) { return m.material_names.at(m.material_ids[t]); };
   EXPECT_EQ(name_of(0), "stone");
   EXPECT_EQ(name_of(4), "grass");
   double area = 0;
   for (int t = 0; t < 5; ++t) area += 0.5 * triangle_area_vector(m, t).z();
-  EXPECT_NEAR(area, 1.0 + 1.0 + 0.5, 1e-6);  // all fronts +z, nothing lost
+  EXPECT_NEAR(area, 1.0 + 1.0 + 0.5, 1e-6); // all fronts +z, nothing lost
 }
 
 // Every format hullcover promises, written by Assimp's own exporters from the
@@ -102,9 +102,12 @@ TEST(ImportMesh, ReadsEveryPromisedFormat) {
   // Assimp 5.2.5 pads blocks wrongly (upstream assimp#4686), so its files are
   // malformed; the importer is not at fault.
   for (const std::string format : {"obj", "plyb", "ply", "stlb", "glb2", "gltf2", "fbxa"}) {
-    const std::string extension = format == "plyb" ? "ply" : format == "stlb" ? "stl" : format == "glb2" ? "glb"
-                                                           : format == "gltf2" ? "gltf" : format == "fbxa" ? "fbx"
-                                                                                                          : format;
+    const std::string extension = format == "plyb"    ? "ply"
+                                  : format == "stlb"  ? "stl"
+                                  : format == "glb2"  ? "glb"
+                                  : format == "gltf2" ? "gltf"
+                                  : format == "fbxa"  ? "fbx"
+                                                      : format;
     const std::string path = dir.path("demo-" + format + "." + extension);
     ASSERT_EQ(exporter.Export(scene, format, path), AI_SUCCESS) << format << ": " << exporter.GetErrorString();
     const Result<ImportedMesh> r = import_mesh(path);
@@ -121,7 +124,7 @@ TEST(ImportMesh, ReadsEveryPromisedFormat) {
 
 struct BadInput {
   const char* name;
-  const char* content;  // nullptr: do not create the file
+  const char* content; // nullptr: do not create the file
   StatusCode expected;
 };
 
@@ -157,9 +160,11 @@ INSTANTIATE_TEST_SUITE_P(
                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
                  "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n",
                  StatusCode::index_out_of_range},
-        BadInput{"garbage.stl", "\x01\x02\x03 this is not an stl file at all, just noise \x7f\x10", StatusCode::unreadable_file},
+        BadInput{"garbage.stl", "\x01\x02\x03 this is not an stl file at all, just noise \x7f\x10",
+                 StatusCode::unreadable_file},
         BadInput{"garbage.glb", "glTF\x02\x00\x00\x00 truncated", StatusCode::unreadable_file},
-        BadInput{"truncated.gltf", "{\"asset\":{\"version\":\"2.0\"},\"meshes\":[{\"primitives\":[", StatusCode::unreadable_file}),
+        BadInput{"truncated.gltf", "{\"asset\":{\"version\":\"2.0\"},\"meshes\":[{\"primitives\":[",
+                 StatusCode::unreadable_file}),
     [](const ::testing::TestParamInfo<BadInput>& param_info) { return test::file_test_name(param_info.param.name); });
 
 TEST(ImportMesh, DirectoryIsNotASceneFile) {

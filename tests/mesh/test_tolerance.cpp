@@ -57,7 +57,7 @@ TEST(ChooseTolerance, FloorFollowsMagnitudeAndNeverLetsTheUserGoBelowIt) {
 
 TEST(ChooseTolerance, InputRoundingErrorRaisesTheFloor) {
   Mesh m = unit_box_at({0, 0, 0});
-  m.coordinate_error = 1e-3;  // e.g. coordinates that went through float16
+  m.coordinate_error = 1e-3; // e.g. coordinates that went through float16
   const Result<Tolerance> t = choose_tolerance(m, std::nullopt);
   ASSERT_TRUE(t.ok());
   EXPECT_DOUBLE_EQ(t.value().floor, kRoundingErrorsPerPlaneTest * 1e-3);

@@ -30,7 +30,8 @@ TEST(WeldVertices, JoinsCornersStoredPerFace) {
 TEST(WeldVertices, MergesWithinTheRadiusOnlyAcrossCellBorders) {
   const double r = 1e-3;
   // Pairs straddling a hash-cell border (0) at 0.9 r, and one pair at 1.1 r.
-  const Mesh m = soup({{-0.45 * r, 0, 0}, {0.45 * r, 0, 0}, {5, 0, 0}, {10, -0.55 * r, 0}, {10, 0.55 * r, 0}, {5, 5, 0}});
+  const Mesh m =
+      soup({{-0.45 * r, 0, 0}, {0.45 * r, 0, 0}, {5, 0, 0}, {10, -0.55 * r, 0}, {10, 0.55 * r, 0}, {5, 5, 0}});
   const WeldResult w = weld_vertices(m, r);
   EXPECT_EQ(w.new_index_of_input_vertex[0], w.new_index_of_input_vertex[1]);
   EXPECT_NE(w.new_index_of_input_vertex[3], w.new_index_of_input_vertex[4]);
@@ -84,9 +85,9 @@ TEST(WeldVertices, RandomClustersMatchBruteForceGuarantees) {
   for (size_t a = 0; a < w.mesh.positions.size(); ++a)
     for (size_t b = a + 1; b < w.mesh.positions.size(); ++b)
       ASSERT_GT((w.mesh.positions[a] - w.mesh.positions[b]).squaredNorm(), r * r) << a << " " << b;
-  EXPECT_LT(w.mesh.positions.size(), points.size());  // the clusters did weld
+  EXPECT_LT(w.mesh.positions.size(), points.size()); // the clusters did weld
 
-  const WeldResult again = weld_vertices(m, r);  // deterministic
+  const WeldResult again = weld_vertices(m, r); // deterministic
   EXPECT_EQ(again.new_index_of_input_vertex, w.new_index_of_input_vertex);
 }
 

@@ -33,9 +33,8 @@ struct PeerFigures {
 void PrintTo(const PeerFigures& p, std::ostream* os) { *os << p.scene; }
 
 constexpr PeerFigures kMeasured[] = {
-    {"threejs-collision-world.glb", 0.906}, {"recast-nav_test.obj", 0.914},
-    {"recast-dungeon.obj", 0.902},          {"recast-undulating.obj", 0.986},
-    {"sauerbraten-fdm6.obj", 0.865},        {"sauerbraten-pandora.obj", 0.937},
+    {"threejs-collision-world.glb", 0.906}, {"recast-nav_test.obj", 0.914},      {"recast-dungeon.obj", 0.902},
+    {"recast-undulating.obj", 0.986},       {"sauerbraten-fdm6.obj", 0.865},     {"sauerbraten-pandora.obj", 0.937},
     {"stanford-bunny-res2.ply", 0.995},     {"thor-art56-gearplate.stl", 0.964},
 };
 constexpr double kRangeHalfWidth = 0.1;
@@ -73,8 +72,8 @@ TEST_P(PeerHulls, LoseALargeShareOfFreeSpaceAndSurface) {
 
 INSTANTIATE_TEST_SUITE_P(SharedScenes, PeerHulls, ::testing::ValuesIn(kMeasured),
                          [](const ::testing::TestParamInfo<PeerFigures>& param_info) {
-                           return test::file_test_name(param_info.param.scene);
-                         });
+  return test::file_test_name(param_info.param.scene);
+});
 
 // The independent re-check on a peer's hulls: volume approximations leave
 // much of the surface off their hulls and hold mesh vertices inside.
@@ -85,9 +84,10 @@ TEST(Recheck, PeerHullsLeaveSurfaceUncoveredAndHoldVertices) {
   const PreparedMesh prepared = prepare_mesh(mesh.value().mesh, std::nullopt).value();
   Result<HullSet> peer = load_hull_set(dir + "/../peer-hulls/recast-nav_test.vhacd.obj");
   ASSERT_TRUE(peer.ok());
-  const CheckReport r = recheck_hulls(prepared, hulls_under_check(peer.value().hulls), 0.1 * prepared.tolerance.diagonal);
+  const CheckReport r =
+      recheck_hulls(prepared, hulls_under_check(peer.value().hulls), 0.1 * prepared.tolerance.diagonal);
   const double uncovered = r.uncovered_area / r.total_area;
-  EXPECT_GT(uncovered, 0.2) << uncovered;  // volume approximations leave much of the surface off their hulls
+  EXPECT_GT(uncovered, 0.2) << uncovered; // volume approximations leave much of the surface off their hulls
   EXPECT_LT(uncovered, 1.0) << uncovered;
   EXPECT_GT(r.vertices_inside, 0);
 }

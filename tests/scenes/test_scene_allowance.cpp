@@ -38,7 +38,7 @@ TEST(AgentCovering, CollisionWorldAtACharactersRadiusAuditsClean) {
   ASSERT_TRUE(report.ok()) << report.status().message();
   const AllowanceReport& a = report.value().probe.allowance;
   EXPECT_GT(a.centre_rays, 100000);
-  EXPECT_GT(a.enclosed_balls, 0);  // balls under the floors' open edges meet hulls in enclosed space
+  EXPECT_GT(a.enclosed_balls, 0); // balls under the floors' open edges meet hulls in enclosed space
   EXPECT_EQ(a.reach_lost, 0) << "ball at " << a.deepest_reach.centre.transpose() << " into hull "
                              << a.deepest_reach.hull;
   EXPECT_EQ(a.undecided, 0);

@@ -43,14 +43,10 @@ struct SceneCase {
 void PrintTo(const SceneCase& c, std::ostream* os) { *os << c.scene; }
 
 constexpr SceneCase kCases[] = {
-    {"threejs-collision-world.glb", 1.0, true},
-    {"recast-nav_test.obj", 1.0, true},
-    {"recast-undulating.obj", 1.0, false},
-    {"recast-dungeon.obj", 2.0, false},
-    {"sauerbraten-fdm6.obj", 2.0, false},
-    {"sauerbraten-pandora.obj", 2.0, false},
-    {"stanford-bunny-res2.ply", 2.0, false},
-    {"thor-art56-gearplate.stl", 2.0, false},
+    {"threejs-collision-world.glb", 1.0, true}, {"recast-nav_test.obj", 1.0, true},
+    {"recast-undulating.obj", 1.0, false},      {"recast-dungeon.obj", 2.0, false},
+    {"sauerbraten-fdm6.obj", 2.0, false},       {"sauerbraten-pandora.obj", 2.0, false},
+    {"stanford-bunny-res2.ply", 2.0, false},    {"thor-art56-gearplate.stl", 2.0, false},
 };
 
 // Points of free space an independent strict checker found inside the
@@ -72,7 +68,8 @@ constexpr FreePoint kFreePoints[] = {
     {"sauerbraten-fdm6.obj", -21.605, 24.599, -275.401,
      "beyond the open edge (-32,56,-248)-(-32,48,-240), up to its first hit (not a back)"},
     {"sauerbraten-fdm6.obj", -193.989, 127.989, 16.0,
-     "on an opening ray of face 4051's edge whose first hit (face 9173) is a front: a sliver the old witness grid missed"},
+     "on an opening ray of face 4051's edge whose first hit (face 9173) is a front: a sliver the old witness grid "
+     "missed"},
     {"recast-dungeon.obj", -9.2179, 2.7811, 1.5312,
      "on the tilted opening fan of face 3204's edge, before its first hit (face 3272's front): a hull's interior "
      "lost a facet where nearly coplanar facets met, and rays leaving there went unjudged"},
@@ -188,8 +185,8 @@ TEST_P(SharedSceneCovering, EveryHullIsValidNoSpaceOrContactIsLostAndEveryExport
 
 INSTANTIATE_TEST_SUITE_P(Scenes, SharedSceneCovering, ::testing::ValuesIn(kCases),
                          [](const ::testing::TestParamInfo<SceneCase>& param_info) {
-                           return test::file_test_name(param_info.param.scene);
-                         });
+  return test::file_test_name(param_info.param.scene);
+});
 
 // Dissolving on a real map: fewer hulls, every one valid (decompose_and_check
 // re-checks), and still the same bytes each time (it moves faces in a fixed
@@ -223,15 +220,15 @@ TEST(Decompose, CollisionWorldWallPolygonLeavesTheWindowAboveTheRampOpen) {
   EXPECT_GT(d->covering.statistics.rejections[static_cast<int>(Validity::polygon_spans_gap)], 0);
   const Eigen::Vector3d in_window(-53.9056, 15.4398, -24.1025), across(1.0, 0.0, 0.0);
   const Mesh& mesh = d->prepared.mesh;
-  for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) {  // the triangles leave it open
+  for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) { // the triangles leave it open
     const Eigen::Vector3i& t = mesh.triangles[f];
     const Eigen::Vector3d &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
     const Eigen::Vector3d n = (b - a).cross(c - a);
     const double at = n.dot(a - in_window) / n.dot(across);
     if (!(std::abs(at) <= 0.5)) continue;
     const Eigen::Vector3d p = in_window + at * across;
-    const bool inside = n.dot((b - a).cross(p - a)) >= 0 && n.dot((c - b).cross(p - b)) >= 0 &&
-                        n.dot((a - c).cross(p - c)) >= 0;
+    const bool inside =
+        n.dot((b - a).cross(p - a)) >= 0 && n.dot((c - b).cross(p - b)) >= 0 && n.dot((a - c).cross(p - c)) >= 0;
     ASSERT_FALSE(inside) << "face " << f << " lies across the window";
   }
   EXPECT_FALSE(test::segment_hits_covering(d->covering, in_window - 0.5 * across, in_window + 0.5 * across, d->tol()));

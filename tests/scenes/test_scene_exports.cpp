@@ -46,8 +46,8 @@ void check_engine_exports(const std::string& scene, const PreparedMesh& prepared
   // The Khronos validator, where scripts/setup.sh installed it.
   const std::filesystem::path tools = std::filesystem::path(HULLCOVER_SOURCE_DIR) / "tests/tools/gltf-validator";
   if (std::filesystem::exists(tools / "node_modules/gltf-validator")) {
-    const std::string command = "node " + (tools / "validate_glb.mjs").string() + " " + out.path("hulls.glb") + " >" +
-                                out.path("report.json");
+    const std::string command =
+        "node " + (tools / "validate_glb.mjs").string() + " " + out.path("hulls.glb") + " >" + out.path("report.json");
     ASSERT_EQ(std::system(command.c_str()), 0);
     const auto report = nlohmann::json::parse(test::slurp(out.path("report.json")));
     EXPECT_EQ(report["issues"]["numErrors"].get<int>(), 0) << scene;
@@ -60,8 +60,10 @@ void check_engine_exports(const std::string& scene, const PreparedMesh& prepared
   for (const bool unreal : {true, false}) {
     app::ColliderExportOptions names;
     names.with_scene = true;
-    if (unreal) names.ucx_name = "Level";
-    else names.godot_names = true;
+    if (unreal)
+      names.ucx_name = "Level";
+    else
+      names.godot_names = true;
     const std::string path = out.path(unreal ? "ucx.obj" : "godot.obj");
     ASSERT_TRUE(app::export_colliders(hulls, tol, &prepared.mesh, names, path).ok());
     const Result<validate::HullSet> set = validate::load_hull_set(path);
@@ -78,9 +80,11 @@ void check_engine_exports(const std::string& scene, const PreparedMesh& prepared
   const Result<validate::AuditReport> report = validate::run_audit(prepared, set.value(), audit);
   ASSERT_TRUE(report.ok()) << report.status().message();
   const validate::AllowanceReport& a = report.value().probe.allowance;
-  std::printf("%s: audit of the .glb: farthest lost point %.6g from the mesh (thickness %.6g), %ld strict lost rays, "
-              "%s\n", scene.c_str(), a.max_lost_deviation, glb.value().thickness, report.value().probe.lost_rays(),
-              report.value().clean() ? "CLEAN" : "not clean");
+  std::printf(
+      "%s: audit of the .glb: farthest lost point %.6g from the mesh (thickness %.6g), %ld strict lost rays, "
+      "%s\n",
+      scene.c_str(), a.max_lost_deviation, glb.value().thickness, report.value().probe.lost_rays(),
+      report.value().clean() ? "CLEAN" : "not clean");
   EXPECT_LE(a.max_lost_deviation, glb.value().thickness + tol);
   EXPECT_EQ(a.beyond_deviation, 0);
   EXPECT_EQ(report.value().recheck.faces_uncovered, 0);

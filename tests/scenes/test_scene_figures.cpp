@@ -22,7 +22,7 @@ struct SourcesFigures {
   int non_manifold_edges;
   int degenerate_triangles;
   int inconsistent_orientation_edges;
-  int unreferenced_vertices;  // from SOURCES.md's notes ("Things to expect")
+  int unreferenced_vertices; // from SOURCES.md's notes ("Things to expect")
 };
 
 const SourcesFigures kScenes[] = {
@@ -89,8 +89,8 @@ TEST_P(SharedScene, FiguresMatchSourcesAtATenTimesFinerTolerance) {
 
 INSTANTIATE_TEST_SUITE_P(Sources, SharedScene, ::testing::ValuesIn(kScenes),
                          [](const ::testing::TestParamInfo<SourcesFigures>& param_info) {
-                           return test::file_test_name(param_info.param.file);
-                         });
+  return test::file_test_name(param_info.param.file);
+});
 
 } // namespace
 } // namespace hullcover

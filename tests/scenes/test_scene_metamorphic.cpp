@@ -53,7 +53,7 @@ TEST_P(SceneMetamorphic, TransformedSceneAuditsCleanWithTheSameHullCount) {
   std::printf("%s untransformed: %ld hulls\n", GetParam(), reference);
   for (const test::MeshTransform& t : test::metamorphic_transforms()) {
     const long count = clean_hull_count(test::transformed(mesh, t.map), t.name);
-    std::printf("%s %s: %ld hulls\n", GetParam(), t.name.c_str(), count);  // the figures docs/results/covering.md quotes
+    std::printf("%s %s: %ld hulls\n", GetParam(), t.name.c_str(), count); // the figures docs/results/covering.md quotes
     EXPECT_LE(std::abs(count - reference), std::floor(t.hull_count_spread * reference))
         << t.name << ": " << count << " hulls, " << reference << " untransformed";
   }
@@ -62,8 +62,8 @@ TEST_P(SceneMetamorphic, TransformedSceneAuditsCleanWithTheSameHullCount) {
 INSTANTIATE_TEST_SUITE_P(Scenes, SceneMetamorphic,
                          ::testing::Values("recast-nav_test.obj", "threejs-collision-world.glb"),
                          [](const ::testing::TestParamInfo<const char*>& param_info) {
-                           return test::file_test_name(param_info.param);
-                         });
+  return test::file_test_name(param_info.param);
+});
 
 } // namespace
 } // namespace hullcover::validate

@@ -42,9 +42,9 @@ inline std::vector<Probe> probes(int count) {
   std::uniform_real_distribution<double> where(0.0, 40.0);
   std::vector<Probe> out;
   for (int i = 0; i < count; ++i) {
-    const bvh::QueryShape shape = i % 3 == 0 ? bvh::QueryShape::sphere(1.0)
-                             : i % 3 == 1 ? bvh::QueryShape::capsule(0.6, 1.0)
-                                          : bvh::QueryShape::box(V(0.8, 0.5, 1.2));
+    const bvh::QueryShape shape = i % 3 == 0   ? bvh::QueryShape::sphere(1.0)
+                                  : i % 3 == 1 ? bvh::QueryShape::capsule(0.6, 1.0)
+                                               : bvh::QueryShape::box(V(0.8, 0.5, 1.2));
     Eigen::Isometry3d pose = at(V(where(rng), where(rng), where(rng)));
     pose.linear() = Eigen::Quaterniond(Eigen::Vector4d::Random().normalized()).toRotationMatrix();
     out.push_back({{shape, pose, 1 << 20}, {pose.translation(), pose.linear().col(0), 15.0}});

@@ -26,25 +26,25 @@ extern char** environ;
 namespace hullcover::test {
 
 struct ChildSpec {
-  std::vector<std::string> argv;  ///< argv[0] is the program's path
+  std::vector<std::string> argv; ///< argv[0] is the program's path
   std::string working_dir;
-  std::string stdout_path, stderr_path;  ///< created or truncated; stdin is /dev/null
-  std::vector<std::string> extra_env;    ///< "NAME=value", after the parent's environment
+  std::string stdout_path, stderr_path; ///< created or truncated; stdin is /dev/null
+  std::vector<std::string> extra_env;   ///< "NAME=value", after the parent's environment
 };
 
 struct ChildLimits {
-  std::chrono::milliseconds wall{60000};       ///< killed (SIGKILL) after this: a hang
-  std::uint64_t address_space_bytes = 4ull << 30;  ///< RLIMIT_AS of the child; 0: none
-  int parallel = 4;  ///< children at once (a hung one sleeps, so more than the cores)
+  std::chrono::milliseconds wall{60000};          ///< killed (SIGKILL) after this: a hang
+  std::uint64_t address_space_bytes = 4ull << 30; ///< RLIMIT_AS of the child; 0: none
+  int parallel = 4;                               ///< children at once (a hung one sleeps, so more than the cores)
 };
 
 struct ChildOutcome {
-  bool exited = false;  ///< ended by exit(); `status` holds its code
+  bool exited = false; ///< ended by exit(); `status` holds its code
   int status = -1;
-  int signal = 0;  ///< the signal that ended it (SIGKILL when timed out)
+  int signal = 0; ///< the signal that ended it (SIGKILL when timed out)
   bool timed_out = false;
   double seconds = 0.0;
-  double peak_rss_mb = 0.0;  ///< ru_maxrss of the child
+  double peak_rss_mb = 0.0; ///< ru_maxrss of the child
 };
 
 namespace detail {
@@ -68,12 +68,12 @@ inline PreparedChild prepare_child(const ChildSpec& spec) {
 }
 
 [[noreturn]] inline void exec_child(const ChildSpec& spec, const PreparedChild& p, const ChildLimits& limits) {
-  setpgid(0, 0);  // its own group, so a kill reaches anything it starts
+  setpgid(0, 0); // its own group, so a kill reaches anything it starts
   if (limits.address_space_bytes > 0) {
     const rlimit address_space{limits.address_space_bytes, limits.address_space_bytes};
     setrlimit(RLIMIT_AS, &address_space);
   }
-  const rlimit no_core{0, 0};  // a crash is reported by its signal; no core files in the tree
+  const rlimit no_core{0, 0}; // a crash is reported by its signal; no core files in the tree
   setrlimit(RLIMIT_CORE, &no_core);
   const int in = open("/dev/null", O_RDONLY);
   const int out = open(spec.stdout_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -128,13 +128,13 @@ inline std::vector<ChildOutcome> run_children(const std::vector<ChildSpec>& spec
         o.signal = WIFSIGNALED(raw) ? WTERMSIG(raw) : 0;
         o.timed_out = r.killed;
         o.seconds = seconds;
-        o.peak_rss_mb = static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux reports kilobytes
+        o.peak_rss_mb = static_cast<double>(usage.ru_maxrss) / 1024.0; // Linux reports kilobytes
         running.erase(running.begin() + static_cast<std::ptrdiff_t>(i));
         continue;
       }
       if (!r.killed && Clock::now() - r.start > limits.wall) {
-        kill(-r.pid, SIGKILL);  // the child's own group (setpgid above) ...
-        kill(r.pid, SIGKILL);   // ... and the child, should it not have made one yet
+        kill(-r.pid, SIGKILL); // the child's own group (setpgid above) ...
+        kill(r.pid, SIGKILL);  // ... and the child, should it not have made one yet
         r.killed = true;
       }
       ++i;

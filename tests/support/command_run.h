@@ -11,14 +11,14 @@
 namespace hullcover::test {
 
 struct CommandRun {
-  int status = -1;  ///< exit status; -1 when it did not exit (a signal)
+  int status = -1; ///< exit status; -1 when it did not exit (a signal)
   std::string out, err;
 };
 
 /// `hullcover ARGUMENTS`, its output kept in `dir`.
 inline CommandRun run_hullcover(const TempDir& dir, const std::string& arguments) {
-  const std::string command = std::string(HULLCOVER_EXECUTABLE) + " " + arguments + " >" + dir.path("stdout") +
-                              " 2>" + dir.path("stderr") + " </dev/null";
+  const std::string command = std::string(HULLCOVER_EXECUTABLE) + " " + arguments + " >" + dir.path("stdout") + " 2>" +
+                              dir.path("stderr") + " </dev/null";
   const int raw = std::system(command.c_str());
   CommandRun r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;

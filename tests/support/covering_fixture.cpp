@@ -13,7 +13,8 @@ namespace hullcover::test {
 
 int Decomposed::hull_of_face(int f) const {
   for (size_t h = 0; h < covering.hulls.size(); ++h)
-    if (std::binary_search(covering.hulls[h].faces.begin(), covering.hulls[h].faces.end(), f)) return static_cast<int>(h);
+    if (std::binary_search(covering.hulls[h].faces.begin(), covering.hulls[h].faces.end(), f))
+      return static_cast<int>(h);
   return -1;
 }
 

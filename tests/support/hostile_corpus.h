@@ -35,11 +35,11 @@ inline constexpr const char* kCanaryEnvironmentName = "HULLCOVER_HOSTILE_CANARY"
 struct HostileCase {
   std::string category, name;
   std::string folder;
-  std::vector<std::string> args;  ///< hullcover's arguments
-  std::uint64_t input_bytes = 0;  ///< bytes of the files the case names as input
+  std::vector<std::string> args; ///< hullcover's arguments
+  std::uint64_t input_bytes = 0; ///< bytes of the files the case names as input
   std::vector<int> allowed_exits{0, 2};
-  std::optional<int> expected_exit;  ///< controls: valid input must still work
-  bool must_refuse_outside = false;  ///< exit 2 with the "outside the scene file's folder" line
+  std::optional<int> expected_exit; ///< controls: valid input must still work
+  bool must_refuse_outside = false; ///< exit 2 with the "outside the scene file's folder" line
 
   std::string scene() const { return folder + "/scene"; }
   std::string out() const { return folder + "/out"; }
@@ -120,10 +120,10 @@ struct ReferenceKind {
 };
 inline const std::vector<ReferenceKind>& reference_kinds() {
   static const std::vector<ReferenceKind> kinds = {
-      {"dotdot", false, false},         {"absolute", false, true},         {"absolute-climbing", false, false},
-      {"file-uri", false, false},       {"http-uri", false, false},        {"proc-environ", false, true},
-      {"dev-zero", false, true},        {"dev-urandom", false, true},      {"etc-passwd", false, true},
-      {"fifo", false, false},           {"symlink-file", false, false},    {"symlink-dir", false, false},
+      {"dotdot", false, false},         {"absolute", false, true},           {"absolute-climbing", false, false},
+      {"file-uri", false, false},       {"http-uri", false, false},          {"proc-environ", false, true},
+      {"dev-zero", false, true},        {"dev-urandom", false, true},        {"etc-passwd", false, true},
+      {"fifo", false, false},           {"symlink-file", false, false},      {"symlink-dir", false, false},
       {"symlink-chain", false, false},  {"climb-through-sub", false, false}, {"percent-dotdot", true, false},
       {"backslash-dotdot", true, false}};
   return kinds;
@@ -138,15 +138,15 @@ inline std::string reference_text(const HostileCase& c, const std::string& kind,
   const std::string target = c.outside() + "/" + canary;
   if (kind == "dotdot") return "../outside/" + canary;
   if (kind == "absolute") return target;
-  if (kind == "absolute-climbing") return "/../outside/" + canary;  // climbs even when joined to the folder
+  if (kind == "absolute-climbing") return "/../outside/" + canary; // climbs even when joined to the folder
   if (kind == "file-uri") return "file://" + target;
-  if (kind == "http-uri") return "http://127.0.0.1:9/" + canary;  // the discard port: refused at once if tried
+  if (kind == "http-uri") return "http://127.0.0.1:9/" + canary; // the discard port: refused at once if tried
   if (kind == "proc-environ") return "/proc/self/environ";
   if (kind == "dev-zero") return "/dev/zero";
   if (kind == "dev-urandom") return "/dev/urandom";
   if (kind == "etc-passwd") return "/etc/passwd";
   if (kind == "fifo") {
-    mkfifo((c.scene() + "/fifo." + ext).c_str(), 0644);  // inside the folder, but a read would block forever
+    mkfifo((c.scene() + "/fifo." + ext).c_str(), 0644); // inside the folder, but a read would block forever
     return "fifo." + ext;
   }
   if (kind == "symlink-file") {
@@ -167,7 +167,7 @@ inline std::string reference_text(const HostileCase& c, const std::string& kind,
     return "sub/../../outside/" + canary;
   }
   if (kind == "percent-dotdot") return "%2e%2e/outside/" + canary;
-  return "..\\outside\\" + canary;  // backslash-dotdot
+  return "..\\outside\\" + canary; // backslash-dotdot
 }
 
 // ---- encoders ------------------------------------------------------------
@@ -231,7 +231,7 @@ struct GltfParts {
   std::string nodes = R"([{"mesh":0}])";
   std::string roots = "[0]";
   std::string count = "3";
-  std::string extra;  ///< e.g. `,"images":[...]`
+  std::string extra; ///< e.g. `,"images":[...]`
 };
 
 inline std::string gltf_json(const GltfParts& p) {
@@ -239,8 +239,10 @@ inline std::string gltf_json(const GltfParts& p) {
   return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":)" + p.roots + R"(}],"nodes":)" + p.nodes +
          R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
          R"("accessors":[{"bufferView":0,"componentType":5126,"count":)" +
-         p.count + R"(,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],)"
-         R"("bufferViews":[{"buffer":0,"byteLength":)" + length + R"(}],"buffers":[{"byteLength":)" + length +
+         p.count +
+         R"(,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],)"
+         R"("bufferViews":[{"buffer":0,"byteLength":)" +
+         length + R"(}],"buffers":[{"byteLength":)" + length +
          (p.uri.empty() ? std::string() : R"(,"uri":")" + p.uri + "\"") + "}]" + p.extra + "}";
 }
 
@@ -307,7 +309,8 @@ inline std::string hcw_boxes(const std::vector<std::pair<double, double>>& boxes
         put_f64(payload, side ? hi : -lo);
       }
     for (int f = 0; f < 6; ++f) put_u32(payload, 4);
-    const std::uint32_t quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    const std::uint32_t quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                       {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
     for (const auto& q : quads)
       for (std::uint32_t v : q) put_u32(payload, v);
     put_u32(payload, 6);

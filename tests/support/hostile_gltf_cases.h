@@ -32,9 +32,9 @@ inline void add_gltf_cases(HostileCorpus& corpus) {
     HostileCase& c = corpus.add(cat, "buffer-beside-over-max-file-size");
     HostileCorpus::input(c, "t.bin", HostileCorpus::triangle_bytes(1000));
     const std::string scene = HostileCorpus::input(c, "s.gltf", with([](GltfParts& p) {
-      p.uri = "t.bin";
-      p.buffer_bytes = 36000;
-    }));
+                                                     p.uri = "t.bin";
+                                                     p.buffer_bytes = 36000;
+                                                   }));
     c.args = {"info", scene, "--max-file-size", "10000"};
   }
   const std::string glb_json = with([](GltfParts& p) { p.uri.clear(); });
@@ -43,7 +43,7 @@ inline void add_gltf_cases(HostileCorpus& corpus) {
   decompose_case(corpus, cat, "control-decompose-glb", "s.glb", good_glb).expected_exit = 0;
 
   add_reference_cases(corpus, cat, "buffer-", "s.gltf", "bin", true, false, [&](const std::string& ref) {
-    std::string escaped;  // a JSON string: '\\' stands for one backslash
+    std::string escaped; // a JSON string: '\\' stands for one backslash
     for (char ch : ref) escaped += ch == '\\' ? std::string("\\\\") : std::string(1, ch);
     return with([&](GltfParts& p) { p.uri = escaped; });
   });
@@ -58,8 +58,8 @@ inline void add_gltf_cases(HostileCorpus& corpus) {
   }
   {
     HostileCase& c = corpus.add(cat, "glb-buffer-dotdot");
-    c.args = {"info", HostileCorpus::input(c, "s.glb", glb(with([](GltfParts& p) { p.uri = "../outside/canary.bin"; }),
-                                                           std::string()))};
+    c.args = {"info", HostileCorpus::input(
+                          c, "s.glb", glb(with([](GltfParts& p) { p.uri = "../outside/canary.bin"; }), std::string()))};
     c.must_refuse_outside = true;
   }
 
@@ -73,15 +73,18 @@ inline void add_gltf_cases(HostileCorpus& corpus) {
   const std::vector<std::pair<std::string, GltfParts>> hierarchies = {
       {"nodes-chain-100k", {data_uri(HostileCorpus::triangle_bytes(1)), 36, chain(100000), "[0]", "3", ""}},
       {"nodes-chain-300", {data_uri(HostileCorpus::triangle_bytes(1)), 36, chain(300), "[0]", "3", ""}},
-      {"nodes-cycle", {data_uri(HostileCorpus::triangle_bytes(1)), 36,
-                       R"([{"children":[1],"mesh":0},{"children":[0]}])", "[0]", "3", ""}},
-      {"node-own-child", {data_uri(HostileCorpus::triangle_bytes(1)), 36, R"([{"children":[0],"mesh":0}])", "[0]", "3", ""}},
-      {"node-two-parents", {data_uri(HostileCorpus::triangle_bytes(1)), 36,
-                            R"([{"children":[2]},{"children":[2]},{"mesh":0}])", "[0,1]", "3", ""}},
-      {"node-child-out-of-range", {data_uri(HostileCorpus::triangle_bytes(1)), 36, R"([{"children":[7],"mesh":0}])",
-                                   "[0]", "3", ""}},
-      {"node-child-negative", {data_uri(HostileCorpus::triangle_bytes(1)), 36, R"([{"children":[-1],"mesh":0}])",
-                               "[0]", "3", ""}},
+      {"nodes-cycle",
+       {data_uri(HostileCorpus::triangle_bytes(1)), 36, R"([{"children":[1],"mesh":0},{"children":[0]}])", "[0]", "3",
+        ""}},
+      {"node-own-child",
+       {data_uri(HostileCorpus::triangle_bytes(1)), 36, R"([{"children":[0],"mesh":0}])", "[0]", "3", ""}},
+      {"node-two-parents",
+       {data_uri(HostileCorpus::triangle_bytes(1)), 36, R"([{"children":[2]},{"children":[2]},{"mesh":0}])", "[0,1]",
+        "3", ""}},
+      {"node-child-out-of-range",
+       {data_uri(HostileCorpus::triangle_bytes(1)), 36, R"([{"children":[7],"mesh":0}])", "[0]", "3", ""}},
+      {"node-child-negative",
+       {data_uri(HostileCorpus::triangle_bytes(1)), 36, R"([{"children":[-1],"mesh":0}])", "[0]", "3", ""}},
       {"node-mesh-out-of-range", {data_uri(HostileCorpus::triangle_bytes(1)), 36, R"([{"mesh":99}])", "[0]", "3", ""}},
       {"scene-root-out-of-range", {data_uri(HostileCorpus::triangle_bytes(1)), 36, R"([{"mesh":0}])", "[5]", "3", ""}},
       {"nodes-not-array", {data_uri(HostileCorpus::triangle_bytes(1)), 36, R"({"0":{"mesh":0}})", "[0]", "3", ""}},
@@ -106,10 +109,12 @@ inline void add_gltf_cases(HostileCorpus& corpus) {
   // Data URIs and declared sizes.
   const std::vector<std::pair<std::string, std::string>> sizes = {
       {"data-uri-no-comma", with([](GltfParts& p) { p.uri = "data:application/octet-stream;base64"; })},
-      {"data-uri-bad-chars", with([](GltfParts& p) { p.uri = "data:application/octet-stream;base64,@@@@!!!!" + std::string(44, '*'); })},
+      {"data-uri-bad-chars",
+       with([](GltfParts& p) { p.uri = "data:application/octet-stream;base64,@@@@!!!!" + std::string(44, '*'); })},
       {"data-uri-short", with([](GltfParts& p) { p.uri = data_uri(std::string(12, '\0')); })},
       {"data-uri-empty", with([](GltfParts& p) { p.uri = "data:;base64,"; })},
-      {"data-uri-not-base64", with([](GltfParts& p) { p.uri = "data:application/octet-stream," + std::string(48, 'A'); })},
+      {"data-uri-not-base64",
+       with([](GltfParts& p) { p.uri = "data:application/octet-stream," + std::string(48, 'A'); })},
       {"data-uri-length-huge", with([](GltfParts& p) { p.buffer_bytes = 1ull << 40; })},
       {"accessor-count-beyond-buffer", with([](GltfParts& p) { p.count = "1000"; })},
       {"accessor-count-3e9", with([](GltfParts& p) { p.count = "3000000000"; })},

@@ -51,8 +51,8 @@ inline void add_hcw_cases(HostileCorpus& corpus) {
     query("truncated-" + std::to_string(size), one.substr(0, size));
   // Bit flips: the stale checksum catches those in the payload; with the
   // checksum made to match, the checks behind it must.
-  for (std::size_t at : {std::size_t{0}, hcw::kVersion, hcw::kHullCount, hcw::kPayloadBytes + 7, hcw::kChecksum + 1,
-                         std::size_t{200}}) {
+  for (std::size_t at :
+       {std::size_t{0}, hcw::kVersion, hcw::kHullCount, hcw::kPayloadBytes + 7, hcw::kChecksum + 1, std::size_t{200}}) {
     std::string flipped = one;
     flipped[at] = static_cast<char>(flipped[at] ^ 0x10);
     query("flip-stale-" + std::to_string(at), flipped);
@@ -86,8 +86,8 @@ inline void add_hcw_cases(HostileCorpus& corpus) {
     change(bytes);
     query("payload-" + name, with_valid_checksum(bytes));
   };
-  for (const auto& [name, at] : std::vector<std::pair<std::string, std::size_t>>{
-           {"V", hcw::kV}, {"F", hcw::kF}, {"P", hcw::kP}, {"I", hcw::kI}})
+  for (const auto& [name, at] :
+       std::vector<std::pair<std::string, std::size_t>>{{"V", hcw::kV}, {"F", hcw::kF}, {"P", hcw::kP}, {"I", hcw::kI}})
     payload(name + "-max", [at = at](std::string& b) { set_u32(b, at, 0xffffffffu); });
   payload("V-2", [](std::string& b) { set_u32(b, hcw::kV, 2); });
   payload("P-below-F", [](std::string& b) { set_u32(b, hcw::kP, 5); });
@@ -126,17 +126,19 @@ inline void add_audit_hull_cases(HostileCorpus& corpus) {
   const std::string cat = "audit";
   // Fast settings (a few hundred rays and proxies on a unit quad): the
   // hostile part is the hull file, not the work asked for.
-  const auto audit = [&](const std::string& name, const std::string& hulls_name, const std::string& hulls) -> HostileCase& {
+  const auto audit = [&](const std::string& name, const std::string& hulls_name,
+                         const std::string& hulls) -> HostileCase& {
     HostileCase& c = corpus.add(cat, name);
     const std::string scene = HostileCorpus::input(c, "s.obj", kQuadObj);
     const std::string path = hulls_name.empty() ? hulls : HostileCorpus::input(c, hulls_name, hulls);
-    c.args = {"audit", scene, path, "--resolution", "0.1", "--proxies", "50", "--json", c.out() + "/a.json",
-              "--octree", c.out() + "/a.bt"};
-    c.allowed_exits = {0, 1, 2};  // 1: the verdict "space lost", documented for audit
+    c.args = {"audit",          scene, path,     "--resolution",      "0.1",
+              "--proxies",      "50",  "--json", c.out() + "/a.json", "--octree",
+              c.out() + "/a.bt"};
+    c.allowed_exits = {0, 1, 2}; // 1: the verdict "space lost", documented for audit
     return c;
   };
   audit("control-flat-hull", "h.obj", "o h\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").expected_exit = 0;
-  audit("control-box-hcw", "h.hcw", hcw_boxes({{0.0, 1.0}})).expected_exit = 1;  // fills the quad's front space
+  audit("control-box-hcw", "h.hcw", hcw_boxes({{0.0, 1.0}})).expected_exit = 1; // fills the quad's front space
   {
     HostileCase& c = audit("control-default-settings", "h.obj", "o h\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
     c.args.resize(3);
@@ -145,7 +147,8 @@ inline void add_audit_hull_cases(HostileCorpus& corpus) {
   std::string coplanar = "o h\n", duplicates = "o h\n", cloud = "o h\n", groups;
   std::mt19937 generator(3);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  for (int i = 0; i < 1000; ++i) coplanar += "v " + std::to_string(unit(generator)) + " " + std::to_string(unit(generator)) + " 0.5\n";
+  for (int i = 0; i < 1000; ++i)
+    coplanar += "v " + std::to_string(unit(generator)) + " " + std::to_string(unit(generator)) + " 0.5\n";
   coplanar += "f 1 2 3\n";
   for (int i = 0; i < 1000; ++i) duplicates += "v 0.25 0.25 0.25\n";
   duplicates += "v 0.5 0.5 0.5\nf 1 2 1001\n";
@@ -219,16 +222,23 @@ inline void add_command_line_cases(HostileCorpus& corpus) {
       on_quad(std::string("audit") + option + "-" + v,
               {"audit", "QUAD", "SCENE/s.obj", "--resolution", "0.1", "--proxies", "50", option, v});
   const std::vector<std::pair<std::string, std::vector<std::string>>> decompose_values = {
-      {"threads-4", {"--threads", "4"}},          {"tries-0", {"--tries", "0"}},
-      {"tries-65537", {"--tries", "65537"}},      {"max-hull-vertices-7", {"--max-hull-vertices", "7"}},
+      {"threads-4", {"--threads", "4"}},
+      {"tries-0", {"--tries", "0"}},
+      {"tries-65537", {"--tries", "65537"}},
+      {"max-hull-vertices-7", {"--max-hull-vertices", "7"}},
       {"max-hull-vertices-2e9", {"--max-hull-vertices", "2000000000"}},
-      {"seed-minus-1", {"--seed", "-1"}},         {"seed-2pow64", {"--seed", "18446744073709551616"}},
-      {"reach-nan", {"--reach", "nan"}},          {"reach-1e-300", {"--reach", "1e-300"}},
-      {"bar-length-1e-300", {"--bar-length", "1e-300"}}, {"prism-cap-1e308", {"--prism-cap", "1e308"}},
-      {"near-merge-inf", {"--near-merge", "inf"}}, {"max-file-size-10", {"--max-file-size", "10"}},
+      {"seed-minus-1", {"--seed", "-1"}},
+      {"seed-2pow64", {"--seed", "18446744073709551616"}},
+      {"reach-nan", {"--reach", "nan"}},
+      {"reach-1e-300", {"--reach", "1e-300"}},
+      {"bar-length-1e-300", {"--bar-length", "1e-300"}},
+      {"prism-cap-1e308", {"--prism-cap", "1e308"}},
+      {"near-merge-inf", {"--near-merge", "inf"}},
+      {"max-file-size-10", {"--max-file-size", "10"}},
       {"max-file-size-max", {"--max-file-size", "18446744073709551615"}},
       {"max-file-size-2pow64", {"--max-file-size", "18446744073709551616"}},
-      {"max-node-depth-0", {"--max-node-depth", "0"}}, {"max-node-depth-1", {"--max-node-depth", "1"}},
+      {"max-node-depth-0", {"--max-node-depth", "0"}},
+      {"max-node-depth-1", {"--max-node-depth", "1"}},
       {"max-triangles-1", {"--max-triangles", "1"}},
   };
   for (const auto& [name, more] : decompose_values) on_quad("decompose-" + name, plus(decompose, more));
@@ -249,7 +259,8 @@ inline void add_command_line_cases(HostileCorpus& corpus) {
     // A read-only folder (root, which runs CI, may write there anyway).
     HostileCase& c = on_quad("output-read-only-folder", {"decompose", "QUAD", "-o", "OUT/ro/h.obj", "-q"});
     std::filesystem::create_directories(c.out() + "/ro");
-    std::filesystem::permissions(c.out() + "/ro", std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+    std::filesystem::permissions(c.out() + "/ro",
+                                 std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
   }
   // query values on a valid runtime file.
   const std::vector<std::pair<std::string, std::vector<std::string>>> queries = {

@@ -27,8 +27,11 @@ inline HostileCase& info_case(HostileCorpus& corpus, const std::string& category
 inline HostileCase& decompose_case(HostileCorpus& corpus, const std::string& category, const std::string& name,
                                    const std::string& file, const std::string& content) {
   HostileCase& c = corpus.add(category, name);
-  c.args = {"decompose", HostileCorpus::input(c, file, content), "-o", c.out() + "/h.obj", "--json",
-            c.out() + "/h.json", "--world", c.out() + "/w.hcw", "-q"};
+  c.args = {"decompose", HostileCorpus::input(c, file, content),
+            "-o",        c.out() + "/h.obj",
+            "--json",    c.out() + "/h.json",
+            "--world",   c.out() + "/w.hcw",
+            "-q"};
   return c;
 }
 
@@ -129,7 +132,7 @@ inline void add_ply_cases(HostileCorpus& corpus) {
   const std::string ascii_body = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
   std::string le_body = HostileCorpus::triangle_bytes(1) + std::string("\3", 1);
   for (std::uint32_t i : {0u, 1u, 2u}) put_u32(le_body, i);
-  std::string be_body = le_body;  // every 4-byte word reversed; the list's count byte (at 36) stays
+  std::string be_body = le_body; // every 4-byte word reversed; the list's count byte (at 36) stays
   for (std::size_t at = 0; at + 4 <= be_body.size(); at += at == 32 ? 5 : 4) {
     std::swap(be_body[at], be_body[at + 3]);
     std::swap(be_body[at + 1], be_body[at + 2]);
@@ -151,7 +154,7 @@ inline void add_ply_cases(HostileCorpus& corpus) {
   put_u32(list_count_2pow27, 1u << 27);
   for (std::uint32_t i : {0u, 1u, 2u}) put_u32(list_count_2pow27, i);
   std::string nan_body;
-  for (int i = 0; i < 9; ++i) put_u32(nan_body, 0x7fc00000u);  // float32 quiet NaN
+  for (int i = 0; i < 9; ++i) put_u32(nan_body, 0x7fc00000u); // float32 quiet NaN
   nan_body += le_body.substr(36);
   const std::vector<std::pair<std::string, std::string>> files = {
       {"header-cut", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nprop"},
@@ -161,7 +164,8 @@ inline void add_ply_cases(HostileCorpus& corpus) {
       {"magic-only", "ply\n"},
       {"not-ply-magic", "plx\nformat ascii 1.0\nend_header\n"},
       {"vertex-count-4e9-ascii", ply_header("ascii", "element vertex 4000000000\nproperty float x\n") + "0\n"},
-      {"vertex-count-20-digits", ply_header("ascii", "element vertex 99999999999999999999\nproperty float x\n") + "0\n"},
+      {"vertex-count-20-digits",
+       ply_header("ascii", "element vertex 99999999999999999999\nproperty float x\n") + "0\n"},
       {"vertex-count-negative", ply_header("ascii", "element vertex -3\nproperty float x\n") + "0\n"},
       {"property-unknown-type", ply_header("ascii", "element vertex 3\nproperty banana x\n") + "0\n0\n0\n"},
       {"list-float-count", ply_header("ascii", vertex + "element face 1\nproperty list float int vi\n") + ascii_body},
@@ -201,7 +205,8 @@ inline void add_stl_cases(HostileCorpus& corpus) {
   const std::array<float, 12> nan_normal = {nan, nan, nan, 0, 0, 0, 1, 0, 0, 0, 1, 0};
   const std::array<float, 12> nan_vertex = {0, 0, 1, nan, 0, 0, 1, 0, 0, 0, 1, 0};
   const std::array<float, 12> inf_vertex = {0, 0, 1, 0, 0, 0, inf, 0, 0, 0, 1, 0};
-  const std::string facet = "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n";
+  const std::string facet =
+      "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n";
   info_case(corpus, cat, "control-binary", "s.stl", binary_stl(1, {good})).expected_exit = 0;
   info_case(corpus, cat, "control-ascii", "s.stl", "solid s\n" + facet + "endsolid s\n").expected_exit = 0;
   const std::vector<std::pair<std::string, std::string>> files = {
@@ -214,11 +219,13 @@ inline void add_stl_cases(HostileCorpus& corpus) {
       {"ascii-truncated", "solid s\n" + facet.substr(0, 50)},
       {"ascii-solid-only", "solid"},
       {"ascii-no-endsolid", "solid s\n" + facet + facet},
-      {"ascii-coords-1e39", "solid s\nfacet normal 0 0 1\nouter loop\nvertex 1e39 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
-                            "endloop\nendfacet\nendsolid s\n"},
+      {"ascii-coords-1e39",
+       "solid s\nfacet normal 0 0 1\nouter loop\nvertex 1e39 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+       "endloop\nendfacet\nendsolid s\n"},
       {"ascii-vertex-outside-facet", "solid s\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendsolid s\n"},
-      {"ascii-five-vertex-loop", "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
-                                 "vertex 1 1 0\nvertex 2 2 0\nendloop\nendfacet\nendsolid s\n"},
+      {"ascii-five-vertex-loop",
+       "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+       "vertex 1 1 0\nvertex 2 2 0\nendloop\nendfacet\nendsolid s\n"},
       {"nan-normals", binary_stl(1, {nan_normal})},
       {"nan-vertex", binary_stl(1, {nan_vertex})},
       {"inf-vertex", binary_stl(1, {inf_vertex})},

@@ -21,7 +21,7 @@ struct IndexedScene {
   IndexedScene(PreparedMesh mesh, const BarOptions& bars)
       : prepared(std::move(mesh)), data(build_scene_index(prepared, bars)),
         index(data, prepared.tolerance.length, prepared.tolerance.largest_island) {}
-  IndexedScene(const IndexedScene&) = delete;  // `index` refers to `data`, `data` to `prepared`
+  IndexedScene(const IndexedScene&) = delete; // `index` refers to `data`, `data` to `prepared`
   IndexedScene& operator=(const IndexedScene&) = delete;
   PreparedMesh prepared;
   SceneIndexData data;

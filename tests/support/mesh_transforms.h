@@ -48,7 +48,7 @@ inline Mesh transformed(const Mesh& mesh, const Eigen::Affine3d& map) {
   if (determinant < 0.0)
     for (Eigen::Vector3i& t : out.triangles) std::swap(t[1], t[2]);
   out.coordinate_error = mesh.coordinate_error * std::cbrt(std::abs(determinant));
-  out.coordinate_relative_error = 0.0;  // it bounded the magnitudes before the move
+  out.coordinate_relative_error = 0.0; // it bounded the magnitudes before the move
   return out;
 }
 
@@ -67,8 +67,8 @@ inline std::vector<MeshTransform> metamorphic_transforms() {
   for (const double offset : {1e5, 1e7}) {
     Eigen::Affine3d move = Eigen::Affine3d::Identity();
     move.translation() = Eigen::Vector3d::Constant(offset);
-    transforms.push_back({"translated by " + std::to_string(offset), move,
-                          offset > 1e5 ? kFarHullCountSpread : kHullCountSpread});
+    transforms.push_back(
+        {"translated by " + std::to_string(offset), move, offset > 1e5 ? kFarHullCountSpread : kHullCountSpread});
   }
   for (int k = 0; k < 2; ++k) {
     Eigen::Affine3d turn = Eigen::Affine3d::Identity();

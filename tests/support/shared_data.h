@@ -35,9 +35,9 @@ inline const char* const kSharedScenes[] = {
 
 /// Skips the current test, with a message saying why, when the shared
 /// scenes are absent; otherwise binds `dir` to their directory.
-#define HULLCOVER_REQUIRE_SHARED_SCENES(dir)                                                      \
-  const auto dir##_found = ::hullcover::test::shared_scenes_dir();                                \
-  if (!dir##_found)                                                                               \
-    GTEST_SKIP() << "../shared/data/scenes not found (a clone without the project's shared "      \
-                    "folder); set HULLCOVER_SHARED_DIR to run this test";                         \
+#define HULLCOVER_REQUIRE_SHARED_SCENES(dir)                                                 \
+  const auto dir##_found = ::hullcover::test::shared_scenes_dir();                           \
+  if (!dir##_found)                                                                          \
+    GTEST_SKIP() << "../shared/data/scenes not found (a clone without the project's shared " \
+                    "folder); set HULLCOVER_SHARED_DIR to run this test";                    \
   const std::string dir = *dir##_found

@@ -40,7 +40,7 @@ TEST(AccessibleSpace, DecomposedBuildingIsCleanAndAClosedDoorwayIsCaught) {
   EXPECT_EQ(clean.front.lost, 0);
   EXPECT_EQ(clean.opening.lost, 0);
   EXPECT_EQ(clean.lost_cells, 0);
-  EXPECT_GT(clean.front.enclosed, 0);  // inside the wall boxes and stairs
+  EXPECT_GT(clean.front.enclosed, 0); // inside the wall boxes and stairs
 
   // The same hulls plus one that fills the doorway.
   std::vector<bvh::RuntimeHull> closed = bvh::runtime_hulls(d->covering);
@@ -58,12 +58,12 @@ TEST(AccessibleSpace, AHullAboveTheTerrainIsCaught) {
                    [](double x, double z) { return 0.2 * std::sin(x) * std::cos(z); });
   const auto d = test::decompose_and_check(terrain);
   ASSERT_TRUE(d);
-  ProbeOptions metre;  // capped at a metre: the cap an agent's reach would give
+  ProbeOptions metre; // capped at a metre: the cap an agent's reach would give
   metre.probe_distance = 1.0;
   metre.resolution = 0.1;
   EXPECT_EQ(probe(*d, bvh::runtime_hulls(d->covering), metre).front.lost, 0);
   std::vector<bvh::RuntimeHull> hulls = bvh::runtime_hulls(d->covering);
-  hulls.push_back(box_hull(V(2, 0.25, 2), V(3, 0.6, 3)));  // floating above the ground
+  hulls.push_back(box_hull(V(2, 0.25, 2), V(3, 0.6, 3))); // floating above the ground
   const ProbeReport r = probe(*d, hulls, metre);
   EXPECT_GT(r.front.lost, 0);
   EXPECT_EQ(r.front.deepest.hull, static_cast<int>(hulls.size()) - 1);
@@ -119,7 +119,7 @@ TEST(AccessibleSpace, RefusesBadOptions) {
   o.probe_distance = -1.0;
   EXPECT_EQ(probe_accessible_space(d->prepared, *triangles, *world, o).status().code(), StatusCode::invalid_argument);
   o.probe_distance = 1.0;
-  o.resolution = 1e-9;  // more than the octree's 16 levels
+  o.resolution = 1e-9; // more than the octree's 16 levels
   EXPECT_EQ(probe_accessible_space(d->prepared, *triangles, *world, o).status().code(), StatusCode::invalid_argument);
 }
 
@@ -128,7 +128,7 @@ TEST(Recheck, AVertexPokingIntoAHullIsCaught) {
   ASSERT_TRUE(d);
   std::vector<bvh::RuntimeHull> hulls = bvh::runtime_hulls(d->covering);
   EXPECT_EQ(recheck_hulls(d->prepared, hulls_under_check(hulls), d->covering.bar_half_length).total(), 0);
-  hulls.push_back(box_hull(V(4.5, 2.5, -4.2), V(5.2, 3.4, -3.5)));  // around the building's back right top corner
+  hulls.push_back(box_hull(V(4.5, 2.5, -4.2), V(5.2, 3.4, -3.5))); // around the building's back right top corner
   const CheckReport poked = recheck_hulls(d->prepared, hulls_under_check(hulls), d->covering.bar_half_length);
   EXPECT_GT(poked.vertices_inside, 0);
   EXPECT_GT(poked.edges_inside, 0);
@@ -138,8 +138,8 @@ TEST(Recheck, AVertexPokingIntoAHullIsCaught) {
 // its sides is off the hull (a flat hull has no side facets to say so).
 TEST(Recheck, AFlatHullClaimingAFaceBesideItsPolygonIsCaught) {
   Mesh m;
-  add_quad(m, V(0, 0, 0), V(1, 0, 0), V(1, 1, 0), V(0, 1, 0));  // faces 0, 1
-  add_quad(m, V(3, 0, 0), V(4, 0, 0), V(4, 1, 0), V(3, 1, 0));  // faces 2, 3, same plane
+  add_quad(m, V(0, 0, 0), V(1, 0, 0), V(1, 1, 0), V(0, 1, 0)); // faces 0, 1
+  add_quad(m, V(3, 0, 0), V(4, 0, 0), V(4, 1, 0), V(3, 1, 0)); // faces 2, 3, same plane
   const PreparedMesh prepared = prepare_mesh(m, std::nullopt).value();
   const FlatPolygon square = make_flat_polygon(prepared.mesh.positions, {0, 1, 2, 3}, V(0, 0, 1), 1e-6);
   CoveringHull hull;
@@ -172,7 +172,7 @@ TEST(Behaviour, TheDecomposedBuildingCollidesLikeItsTrianglesAndABlobDoesNot) {
   ASSERT_TRUE(other.ok());
   EXPECT_GT(other.value().false_contacts, 5);
   EXPECT_GT(other.value().max_normal_angle, 90.0);
-  EXPECT_GT(other.value().missed, 10);  // the terrain has no hull at all
+  EXPECT_GT(other.value().missed, 10); // the terrain has no hull at all
   o.proxies = 0;
   EXPECT_EQ(compare_behaviour(d->prepared, *triangles, *hulls, o).status().code(), StatusCode::invalid_argument);
 }

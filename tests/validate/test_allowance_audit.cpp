@@ -71,7 +71,7 @@ TEST(AllowanceAudit, AgentRadiusPassesTheAgentCoveringAndCatchesAFloatingHull) {
   EXPECT_EQ(agent.probe.allowance.reach_lost, 0);
   EXPECT_EQ(agent.probe.allowance.undecided, 0);
   EXPECT_EQ(agent.behaviour.missed, 0);
-  EXPECT_DOUBLE_EQ(agent.behaviour.size, *options.agent_radius);  // proxies of the agent's size
+  EXPECT_DOUBLE_EQ(agent.behaviour.size, *options.agent_radius); // proxies of the agent's size
   EXPECT_TRUE(agent.clean()) << agent.recheck.summary();
 
   // A block hanging 0.4 above the floor: balls of radius 0.3 fit beside and
@@ -142,7 +142,7 @@ TEST(AllowanceAudit, AFlatHullRisingAboveAFacesPlaneFarAwayStillCoversTheFace) {
   test::add_quad_facing(m, V(4.2, 0, 0), V(4.2, -1, 0), V(4.2, -1, 6), V(4.2, 0, 6), V(-1, 0, 0));
   DecomposeOptions options;
   options.agent_radius = 0.3;
-  const auto d = test::decompose_and_check(m, options, tol);  // re-checks coverage of claimed faces
+  const auto d = test::decompose_and_check(m, options, tol); // re-checks coverage of claimed faces
   ASSERT_TRUE(d);
   // The case at hand: the slope and the strip in one flat hull, rising above
   // the strip's plane (y = 0) by more than the re-check's on-hull distance.
@@ -178,31 +178,31 @@ TEST(AllowanceAudit, AFlatHullRisingAboveAFacesPlaneFarAwayStillCoversTheFace) {
 TEST(AllowanceAudit, APointBesideAColumnIsJudgedOnTheFacesOwnRaysNotOneSlippingPastAnEdge) {
   constexpr double kPandoraTolerance = 0.017492032471957054;
   const std::vector<std::array<V, 3>> faces = {
-      {{V(416, 416, -306), V(416, 416, -304), V(408, 416, -320)}},  // 52657: the far panel
-      {{V(464, 416, -144), V(496, 432, -144), V(496, 416, -144)}},  // 38452: the ceiling
-      {{V(464, 416, -144), V(464, 432, -144), V(496, 432, -144)}},  // 38453
-      {{V(496, 432, -256), V(496, 416, -302), V(496, 416, -256)}},  // 54441: the wall
-      {{V(496, 432, -256), V(496, 432, -302), V(496, 416, -302)}},  // 54442
-      {{V(496, 432, -192), V(496, 416, -256), V(496, 416, -192)}},  // 54498
-      {{V(496, 432, -192), V(496, 432, -256), V(496, 416, -256)}},  // 54499
-      {{V(496, 432, -144), V(496, 416, -192), V(496, 416, -144)}},  // 54506
-      {{V(496, 432, -144), V(496, 432, -192), V(496, 416, -192)}},  // 54507
-      {{V(496, 416, -302), V(496, 432, -302), V(494, 432, -304)}},  // 44546: the bevel
-      {{V(494, 432, -304), V(496, 400, -302), V(496, 416, -302)}},  // 44547
-      {{V(494, 432, -304), V(494, 416, -304), V(496, 400, -302)}},  // 44551
+      {{V(416, 416, -306), V(416, 416, -304), V(408, 416, -320)}}, // 52657: the far panel
+      {{V(464, 416, -144), V(496, 432, -144), V(496, 416, -144)}}, // 38452: the ceiling
+      {{V(464, 416, -144), V(464, 432, -144), V(496, 432, -144)}}, // 38453
+      {{V(496, 432, -256), V(496, 416, -302), V(496, 416, -256)}}, // 54441: the wall
+      {{V(496, 432, -256), V(496, 432, -302), V(496, 416, -302)}}, // 54442
+      {{V(496, 432, -192), V(496, 416, -256), V(496, 416, -192)}}, // 54498
+      {{V(496, 432, -192), V(496, 432, -256), V(496, 416, -256)}}, // 54499
+      {{V(496, 432, -144), V(496, 416, -192), V(496, 416, -144)}}, // 54506
+      {{V(496, 432, -144), V(496, 432, -192), V(496, 416, -192)}}, // 54507
+      {{V(496, 416, -302), V(496, 432, -302), V(494, 432, -304)}}, // 44546: the bevel
+      {{V(494, 432, -304), V(496, 400, -302), V(496, 416, -302)}}, // 44547
+      {{V(494, 432, -304), V(494, 416, -304), V(496, 400, -302)}}, // 44551
   };
   Mesh m;
   for (const auto& f : faces) test::add_triangle(m, f[0], f[1], f[2]);
   Result<PreparedMesh> prepared = prepare_mesh(m, kPandoraTolerance);
   ASSERT_TRUE(prepared.ok()) << prepared.status().message();
   ConvexHullBuilder builder;
-  Result<ConvexPolytope> behind_bevel = builder.build({V(496, 400, -302), V(494, 400, -304), V(528, 400, -304),
-                                                       V(528, 416, -302), V(494, 432, -304), V(528, 400, -302),
-                                                       V(496, 432, -302)});
+  Result<ConvexPolytope> behind_bevel =
+      builder.build({V(496, 400, -302), V(494, 400, -304), V(528, 400, -304), V(528, 416, -302), V(494, 432, -304),
+                     V(528, 400, -302), V(496, 432, -302)});
   ASSERT_TRUE(behind_bevel.ok()) << behind_bevel.status().message();
   HullSet set;
   set.hulls.push_back(bvh::make_runtime_hull(std::move(behind_bevel).value(), 0));
-  for (const auto& f : faces) set.hulls.push_back(bvh::flat_triangle_hull(f[0], f[1], f[2]));  // coverage
+  for (const auto& f : faces) set.hulls.push_back(bvh::flat_triangle_hull(f[0], f[1], f[2])); // coverage
   AuditOptions options;
   options.probe.allowance = {0.3, std::nullopt};
   options.behaviour.proxies = 100;
@@ -239,7 +239,7 @@ TEST(AllowanceAudit, ALongRayBesideAFilledVoidIsDecidedAndAnOpeningAboveItIsCaug
     set.hulls = h;
     AuditOptions options;
     options.probe.allowance = {0.3, std::nullopt, max_evaluations};
-    options.probe.resolution = 0.2;  // a few rays: each is long work
+    options.probe.resolution = 0.2; // a few rays: each is long work
     options.behaviour.proxies = 30;
     Result<AuditReport> r = run_audit(scene.prepared, set, options);
     EXPECT_TRUE(r.ok()) << r.status().message();
@@ -257,7 +257,7 @@ TEST(AllowanceAudit, ALongRayBesideAFilledVoidIsDecidedAndAnOpeningAboveItIsCaug
   EXPECT_GT(bounded.undecided, 0);
   EXPECT_EQ(bounded.reach_lost, 0);
   const RayPoint& given_up = bounded.first_undecided;
-  EXPECT_TRUE(given_up.face == 2 || given_up.face == 3) << given_up.face;  // the floor strip's two triangles
+  EXPECT_TRUE(given_up.face == 2 || given_up.face == 3) << given_up.face; // the floor strip's two triangles
   EXPECT_FALSE(given_up.opening);
   EXPECT_GE(given_up.point.x(), 0.0);
   EXPECT_LE(given_up.point.x(), 0.4);
@@ -266,8 +266,7 @@ TEST(AllowanceAudit, ALongRayBesideAFilledVoidIsDecidedAndAnOpeningAboveItIsCaug
   EXPECT_NEAR(given_up.point.z(), -0.37, 0.08);
 
   Mesh opened = m;
-  test::add_quad_facing(opened, V(0.1, 10, -0.15), V(0.3, 10, -0.15), V(0.3, 10, -0.05), V(0.1, 10, -0.05),
-                        V(0, 1, 0));
+  test::add_quad_facing(opened, V(0.1, 10, -0.15), V(0.3, 10, -0.15), V(0.3, 10, -0.05), V(0.1, 10, -0.05), V(0, 1, 0));
   const auto o = test::decompose_and_check(opened, {}, 1e-3);
   ASSERT_TRUE(o);
   const AllowanceReport caught = agent_audit(*o, hulls);

@@ -85,7 +85,7 @@ TEST(Audit, TheVerdictCountsLossesNotBarsOrShallowFalseContacts) {
                                        AuditFinding::contacts_missed, AuditFinding::false_contacts}));
   probe = {};
   probe.front.lost = 1;
-  probe.lost_cells = 1;  // a picture of the lost rays, not a finding of its own
+  probe.lost_cells = 1; // a picture of the lost rays, not a finding of its own
   EXPECT_EQ(audit_findings(probe, {}, {}), (std::vector<AuditFinding>{AuditFinding::front_space_lost}));
 }
 
@@ -104,7 +104,7 @@ TEST(Audit, ACoveringAuditsTheSameFromObjAndFromTheRuntimeFile) {
   ASSERT_EQ(from_obj.value().hulls.size(), from_hcw.value().hulls.size());
   int flat = 0;
   for (const bvh::RuntimeHull& h : from_obj.value().hulls) flat += polytope_volume(h.shape) == 0.0;
-  EXPECT_GT(flat, 0);  // the test means something only with flat hulls in it
+  EXPECT_GT(flat, 0); // the test means something only with flat hulls in it
   const Result<AuditReport> a = run_audit(d->prepared, from_obj.value(), quick_options());
   const Result<AuditReport> b = run_audit(d->prepared, from_hcw.value(), quick_options());
   ASSERT_TRUE(a.ok() && b.ok());

@@ -249,15 +249,19 @@ TEST(AuditThreads, ParallelForOrderedCommitsEveryIndexInOrderOnTheCaller) {
   parallel_for_ordered(
       kCount, 4, kBatch, [&](int i) { ++runs[i]; },
       [&](int i) {
-        EXPECT_EQ(runs[i].load(), 1) << i;  // its batch is done before it is committed
-        committed.push_back(i);
-        on_caller = on_caller && std::this_thread::get_id() == caller;
+    EXPECT_EQ(runs[i].load(), 1) << i; // its batch is done before it is committed
+    committed.push_back(i);
+    on_caller = on_caller && std::this_thread::get_id() == caller;
       });
   std::vector<int> expected(kCount);
   for (int i = 0; i < kCount; ++i) expected[i] = i;
   EXPECT_EQ(committed, expected);
   EXPECT_TRUE(on_caller);
-  EXPECT_THROW(parallel_for(kCount, 4, [](int i) { if (i == 500) throw std::runtime_error("job 500"); }),
+  EXPECT_THROW(parallel_for(
+                   kCount, 4,
+                   [](int i) {
+    if (i == 500) throw std::runtime_error("job 500");
+                   }),
                std::runtime_error);
   EXPECT_EQ(threads_to_use(3), 3);
   EXPECT_GE(threads_to_use(0), 1);

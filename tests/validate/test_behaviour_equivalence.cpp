@@ -29,13 +29,13 @@ using V = Eigen::Vector3d;
 Mesh deathtrap_rail() {
   const double y0 = 72, y1 = 88;
   const std::vector<std::array<V, 4>> quads = {
-      {{V(-344, y0, -8), V(-336, y0, -8), V(-336, y1, -8), V(-344, y1, -8)}},  // floor, up
-      {{V(-344, y0, 8), V(-344, y1, 8), V(-336, y1, 8), V(-336, y0, 8)}},      // ceiling, down
-      {{V(-338, y0, -8), V(-338, y1, -8), V(-338, y1, -4), V(-338, y0, -4)}},  // back wall below the rail, +x
-      {{V(-338, y0, 4), V(-338, y1, 4), V(-338, y1, 8), V(-338, y0, 8)}},      // back wall above it, +x
-      {{V(-338, y0, -4), V(-338, y1, -4), V(-336, y1, -4), V(-336, y0, -4)}},  // rail bottom, down
-      {{V(-338, y0, 4), V(-336, y0, 4), V(-336, y1, 4), V(-338, y1, 4)}},      // rail top, up
-      {{V(-336, y0, -4), V(-336, y1, -4), V(-336, y1, 4), V(-336, y0, 4)}},    // rail front, +x
+      {{V(-344, y0, -8), V(-336, y0, -8), V(-336, y1, -8), V(-344, y1, -8)}}, // floor, up
+      {{V(-344, y0, 8), V(-344, y1, 8), V(-336, y1, 8), V(-336, y0, 8)}},     // ceiling, down
+      {{V(-338, y0, -8), V(-338, y1, -8), V(-338, y1, -4), V(-338, y0, -4)}}, // back wall below the rail, +x
+      {{V(-338, y0, 4), V(-338, y1, 4), V(-338, y1, 8), V(-338, y0, 8)}},     // back wall above it, +x
+      {{V(-338, y0, -4), V(-338, y1, -4), V(-336, y1, -4), V(-336, y0, -4)}}, // rail bottom, down
+      {{V(-338, y0, 4), V(-336, y0, 4), V(-336, y1, 4), V(-338, y1, 4)}},     // rail top, up
+      {{V(-336, y0, -4), V(-336, y1, -4), V(-336, y1, 4), V(-336, y0, 4)}},   // rail front, +x
   };
   Mesh m;
   for (const auto& q : quads) {
@@ -49,11 +49,11 @@ AuditReport audit_with(const PreparedMesh& prepared, const bvh::RuntimeHull& sol
   HullSet set;
   set.hulls.push_back(solid);
   const Mesh& m = prepared.mesh;
-  for (const Eigen::Vector3i& t : m.triangles)  // every face on a hull's surface
+  for (const Eigen::Vector3i& t : m.triangles) // every face on a hull's surface
     set.hulls.push_back(bvh::flat_triangle_hull(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]));
   AuditOptions options;
   options.behaviour.proxies = 3000;
-  options.behaviour.size = 5.785637389259717;  // deathtrap's default proxy size
+  options.behaviour.size = 5.785637389259717; // deathtrap's default proxy size
   Result<AuditReport> r = run_audit(prepared, set, options);
   EXPECT_TRUE(r.ok()) << r.status().message();
   return r.ok() ? r.value() : AuditReport{};
@@ -71,7 +71,7 @@ TEST(Behaviour, AProxyReachingThroughAnOpeningIntoEnclosedSpaceTakesNothingFree)
   EXPECT_EQ(b.deep_false_contacts, 0) << b.deepest_false.depth << " into hull " << b.deepest_false.hull << " from "
                                       << b.deepest_false.centre.transpose();
   EXPECT_FALSE(test::has_finding(rail, AuditFinding::false_contacts));
-  EXPECT_EQ(rail.probe.front.lost + rail.probe.opening.lost, 0);  // the rays agree: enclosed
+  EXPECT_EQ(rail.probe.front.lost + rail.probe.opening.lost, 0); // the rays agree: enclosed
 
   // Control: a hull in the free space behind the back walls, where the
   // proxies stand, is lost space to both.

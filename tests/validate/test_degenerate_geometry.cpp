@@ -62,10 +62,10 @@ long strict_clean_hull_count(const Mesh& mesh, std::optional<double> tolerance =
   EXPECT_TRUE(audit.ok()) << audit.status().message();
   if (!audit.ok()) return -1;
   const AuditReport& r = audit.value();
-  EXPECT_TRUE(r.clean()) << test::finding_names(r.findings) << "\n" << r.recheck.summary() << "\nfront lost "
-                         << r.probe.front.lost << " opening lost " << r.probe.opening.lost << " deepest "
-                         << r.probe.max_lost_depth << " missed " << r.behaviour.missed << " deep false "
-                         << r.behaviour.deep_false_contacts;
+  EXPECT_TRUE(r.clean()) << test::finding_names(r.findings) << "\n"
+                         << r.recheck.summary() << "\nfront lost " << r.probe.front.lost << " opening lost "
+                         << r.probe.opening.lost << " deepest " << r.probe.max_lost_depth << " missed "
+                         << r.behaviour.missed << " deep false " << r.behaviour.deep_false_contacts;
   EXPECT_GT(r.probe.front.rays, 0);
   return static_cast<long>(d->covering.hulls.size());
 }
@@ -93,7 +93,7 @@ void add_open_topped_box(Mesh& m, const V& lo, const V& hi) {
 
 // ---- Near-coplanar noise ----------------------------------------------------
 
-constexpr int kGridCells = 8;  // per side; cells are one unit: "the face size" is 1
+constexpr int kGridCells = 8; // per side; cells are one unit: "the face size" is 1
 
 std::vector<double> grid_lines() {
   std::vector<double> lines;
@@ -113,8 +113,8 @@ std::function<double(double, double)> noise(double a, double base) {
 }
 
 struct NoiseCase {
-  double amplitude;  // of the face size
-  bool block;        // the noisy grid tops a closed block; else it is an open floor
+  double amplitude; // of the face size
+  bool block;       // the noisy grid tops a closed block; else it is an open floor
 };
 
 class NearCoplanarNoise : public testing::TestWithParam<NoiseCase> {};
@@ -151,9 +151,9 @@ INSTANTIATE_TEST_SUITE_P(Amplitudes, NearCoplanarNoise,
                                          NoiseCase{1e-2, false}, NoiseCase{1e-9, true}, NoiseCase{1e-6, true},
                                          NoiseCase{1e-4, true}, NoiseCase{1e-2, true}),
                          [](const testing::TestParamInfo<NoiseCase>& p) {
-                           return std::string(p.param.block ? "BlockTop" : "Floor") + "_1em" +
-                                  std::to_string(static_cast<int>(std::lround(-std::log10(p.param.amplitude))));
-                         });
+  return std::string(p.param.block ? "BlockTop" : "Floor") + "_1em" +
+         std::to_string(static_cast<int>(std::lround(-std::log10(p.param.amplitude))));
+});
 
 // ---- Slivers and needles ----------------------------------------------------
 
@@ -168,9 +168,9 @@ Mesh block_with_sliver_top() {
   add_open_topped_box(m, V(0, 0, 0), V(2, 1, 2));
   const V a(0, 1, 0), b(2, 1, 0), c(2, 1, 2), d(0, 1, 2);
   const V p = 0.5 * (a + c) + (c - a).norm() / kAspect * (b - 0.5 * (a + c)).normalized();
-  add_triangle(m, a, p, b);  // counter-clockwise seen from above (+y)
+  add_triangle(m, a, p, b); // counter-clockwise seen from above (+y)
   add_triangle(m, b, p, c);
-  add_triangle(m, c, p, a);  // the sliver
+  add_triangle(m, c, p, a); // the sliver
   add_triangle(m, a, d, c);
   return m;
 }
@@ -183,8 +183,8 @@ Mesh block_with_needle_top() {
   const V a(0, 1, 0), b(2, 1, 0), c(2, 1, 2), d(0, 1, 2);
   const V e = c + (c - a).norm() / kAspect * (a - c).normalized();
   add_triangle(m, e, b, a);
-  add_triangle(m, e, c, b);  // needle
-  add_triangle(m, e, d, c);  // needle
+  add_triangle(m, e, c, b); // needle
+  add_triangle(m, e, d, c); // needle
   add_triangle(m, e, a, d);
   return m;
 }
@@ -196,8 +196,8 @@ TEST(DegenerateGeometry, SliversAndNeedlesAtTheDefaultAndAFineTolerance) {
   const double short_side = std::sqrt(8.0) / kAspect;
   // Far enough below the short side that its triangles keep a normal.
   const double fine_tol = short_side / 64.0;
-  for (const auto& [name, mesh] : {std::make_pair("sliver", block_with_sliver_top()),
-                                   std::make_pair("needle", block_with_needle_top())}) {
+  for (const auto& [name, mesh] :
+       {std::make_pair("sliver", block_with_sliver_top()), std::make_pair("needle", block_with_needle_top())}) {
     EXPECT_EQ(strict_clean_hull_count(mesh), 1) << name << " at the default tolerance";
     EXPECT_EQ(strict_clean_hull_count(mesh, fine_tol), 1) << name << " at " << fine_tol;
   }
@@ -223,7 +223,7 @@ TEST(DegenerateGeometry, DuplicateFacesDoNotAddHulls) {
   add_box(block, V(0, 0, 0), V(2, 1, 3));
   Mesh floor;
   add_quad_facing(floor, V(0, 0, 0), V(4, 0, 0), V(4, 0, 4), V(0, 0, 4), kUp);
-  add_quad_facing(floor, V(4, 0, 0), V(5, 0.5, 0), V(5, 0.5, 4), V(4, 0, 4), V(-0.5, 1, 0));  // a ramp up from it
+  add_quad_facing(floor, V(4, 0, 0), V(5, 0.5, 0), V(5, 0.5, 4), V(4, 0, 4), V(-0.5, 1, 0)); // a ramp up from it
   for (const auto& [name, mesh] : {std::make_pair("block", block), std::make_pair("floor", floor)}) {
     const long once = strict_clean_hull_count(mesh);
     ASSERT_GT(once, 0) << name;
@@ -235,7 +235,7 @@ TEST(DegenerateGeometry, DuplicateFacesDoNotAddHulls) {
     one.material_ids.push_back(0);
     const long with_one = strict_clean_hull_count(one);
     EXPECT_GT(with_one, 0) << name;
-    EXPECT_LE(with_one, once + 1) << name;  // at worst the doubled face on its own
+    EXPECT_LE(with_one, once + 1) << name; // at worst the doubled face on its own
   }
 }
 
@@ -256,7 +256,7 @@ TEST(DegenerateGeometry, FlippedDuplicatesMakeADoubleSidedSurface) {
   add_quad_facing(floor, V(0, 0, 0), V(4, 0, 0), V(4, 0, 4), V(0, 0, 4), kUp);
   const long floor_hulls = strict_clean_hull_count(with_every_face_twice(floor, true));
   EXPECT_GE(floor_hulls, 1);
-  EXPECT_LE(floor_hulls, 2);  // one flat polygon per winding
+  EXPECT_LE(floor_hulls, 2); // one flat polygon per winding
 }
 
 // One face wound the other way among its neighbours (their common edges are
@@ -271,7 +271,7 @@ TEST(DegenerateGeometry, AFlippedFaceAmongItsNeighbours) {
   add_box(block, lo, hi);
   Mesh floor;
   add_height_field(floor, {0, 1, 2, 3}, {0, 1, 2, 3}, [](double, double) { return 0.0; });
-  const int middle = static_cast<int>(floor.triangles.size()) / 2;  // a triangle of the centre cell
+  const int middle = static_cast<int>(floor.triangles.size()) / 2; // a triangle of the centre cell
   std::vector<std::pair<Mesh, Aabb>> cases;
   for (int t = 0; t < static_cast<int>(block.triangles.size()); ++t) {
     Mesh m = block;
@@ -307,7 +307,7 @@ TEST(DegenerateGeometry, TJunctionsOnAClosedBlock) {
   add_open_topped_box(m, V(0, 0, 0), V(2, 1, 2));
   add_quad_facing(m, V(0, 1, 0), V(1, 1, 0), V(1, 1, 2), V(0, 1, 2), kUp);
   add_quad_facing(m, V(1, 1, 0), V(2, 1, 0), V(2, 1, 2), V(1, 1, 2), kUp);
-  ASSERT_GT(edges_of_kind(m, EdgeKind::boundary), 0);  // the T-junctions are there
+  ASSERT_GT(edges_of_kind(m, EdgeKind::boundary), 0); // the T-junctions are there
   EXPECT_EQ(strict_clean_hull_count(m), 1);
 }
 
@@ -319,7 +319,7 @@ TEST(DegenerateGeometry, NonManifoldFanOfFourPages) {
   for (const double degrees : {0.0, 70.0, 160.0, 250.0}) {
     const double a = degrees * M_PI / 180.0;
     const V out(std::cos(a), std::sin(a), 0.0);
-    const V front = V::UnitZ().cross(out);  // turning counter-clockwise about the spine
+    const V front = V::UnitZ().cross(out); // turning counter-clockwise about the spine
     add_quad_facing(m, spine_lo, spine_lo + 2 * out, spine_hi + 2 * out, spine_hi, front);
   }
   ASSERT_EQ(edges_of_kind(m, EdgeKind::non_manifold), 1);
@@ -344,11 +344,11 @@ TEST(DegenerateGeometry, BlocksTouchingAlongOneEdge) {
 TEST(DegenerateGeometry, SingleTriangleComponentsFloatingInAScene) {
   Mesh m;
   add_quad_facing(m, V(-5, 0, -5), V(5, 0, -5), V(5, 0, 5), V(-5, 0, 5), kUp);
-  add_triangle(m, V(-3, 2, -3), V(-3, 2, -2), V(-2, 2, -3));    // facing up
-  add_triangle(m, V(2, 1.5, 2), V(3, 1.5, 2), V(2, 1.5, 3));    // facing down
-  add_triangle(m, V(0, 1, 0), V(1, 1, 0), V(0.5, 2, 0));        // standing, facing +z
-  add_triangle(m, V(-2, 3, 2), V(-1, 3.5, 2.5), V(-2.5, 3.2, 3));  // tilted
-  add_triangle(m, V(3, 0.5, -3), V(3, 0.5, -2.99), V(3.01, 0.5, -3));  // tiny, facing up
+  add_triangle(m, V(-3, 2, -3), V(-3, 2, -2), V(-2, 2, -3));          // facing up
+  add_triangle(m, V(2, 1.5, 2), V(3, 1.5, 2), V(2, 1.5, 3));          // facing down
+  add_triangle(m, V(0, 1, 0), V(1, 1, 0), V(0.5, 2, 0));              // standing, facing +z
+  add_triangle(m, V(-2, 3, 2), V(-1, 3.5, 2.5), V(-2.5, 3.2, 3));     // tilted
+  add_triangle(m, V(3, 0.5, -3), V(3, 0.5, -2.99), V(3.01, 0.5, -3)); // tiny, facing up
   const PreparedMesh prepared = prepare_mesh(m, std::nullopt).value();
   ASSERT_EQ(prepared.connectivity.component_count, 6);
   EXPECT_GT(strict_clean_hull_count(m), 0);
@@ -380,12 +380,12 @@ TEST(DegenerateGeometry, TouchingKitPieces) {
 // do. Every face crossing into another slab is judged by its own front rays.
 TEST(DegenerateGeometry, InterpenetratingKitPieces) {
   Mesh m;
-  add_box(m, V(-0.5, -0.3, -0.5), V(6.5, 0.1, 5.5));   // floor slab
-  add_box(m, V(-0.2, -0.2, -0.2), V(6.2, 3, 0.2));     // back wall
-  add_box(m, V(-0.2, -0.2, 4.8), V(6.2, 3, 5.2));      // front wall
-  add_box(m, V(-0.2, -0.2, -0.2), V(0.2, 3, 5.2));     // left wall, through both ends
-  add_box(m, V(5.8, -0.2, -0.2), V(6.2, 3, 5.2));      // right wall
-  add_box(m, V(2.5, -0.1, 2.0), V(3.5, 1.2, 3.0));     // a crate sunk into the floor
+  add_box(m, V(-0.5, -0.3, -0.5), V(6.5, 0.1, 5.5)); // floor slab
+  add_box(m, V(-0.2, -0.2, -0.2), V(6.2, 3, 0.2));   // back wall
+  add_box(m, V(-0.2, -0.2, 4.8), V(6.2, 3, 5.2));    // front wall
+  add_box(m, V(-0.2, -0.2, -0.2), V(0.2, 3, 5.2));   // left wall, through both ends
+  add_box(m, V(5.8, -0.2, -0.2), V(6.2, 3, 5.2));    // right wall
+  add_box(m, V(2.5, -0.1, 2.0), V(3.5, 1.2, 3.0));   // a crate sunk into the floor
   EXPECT_GT(strict_clean_hull_count(m), 0);
 }
 

@@ -18,7 +18,7 @@ namespace {
 
 using V = Eigen::Vector3d;
 
-constexpr double kTolerance = 1e-3;  // scene units: stated, not derived, so the offsets below are exact multiples
+constexpr double kTolerance = 1e-3; // scene units: stated, not derived, so the offsets below are exact multiples
 
 struct Judge {
   PreparedMesh prepared;
@@ -46,8 +46,8 @@ Judge judge_of(const Mesh& mesh) {
 // diagonally, open all the way (nothing ahead of it).
 Mesh slope_and_far_marker() {
   Mesh m;
-  test::add_triangle(m, V(-1, -1, 1), V(1, -1, -1), V(0, 1, 0));          // front (1, 0, 1)/sqrt 2
-  test::add_triangle(m, V(120, -10, 110), V(120, -9, 110), V(120, -10, 112));  // front +x, off the column
+  test::add_triangle(m, V(-1, -1, 1), V(1, -1, -1), V(0, 1, 0));              // front (1, 0, 1)/sqrt 2
+  test::add_triangle(m, V(120, -10, 110), V(120, -9, 110), V(120, -10, 112)); // front +x, off the column
   return m;
 }
 
@@ -75,19 +75,19 @@ TEST(EnclosedSpace, APointWithinTolBesideAnOpenColumnIsFreeAndBeyondItIsNot) {
 // back faces the floor), with a far marker so the box reaches above it.
 Mesh floor_under_one_sided_top() {
   Mesh m;
-  test::add_quad_facing(m, V(0, 0, 0), V(10, 0, 0), V(10, 10, 0), V(0, 10, 0), V(0, 0, 1));  // floor
-  test::add_quad_facing(m, V(2, 2, 2), V(8, 2, 2), V(8, 8, 2), V(2, 8, 2), V(0, 0, 1));      // table top
-  test::add_triangle(m, V(50, 50, 20), V(51, 50, 20), V(50, 51, 20));                          // marker, up
+  test::add_quad_facing(m, V(0, 0, 0), V(10, 0, 0), V(10, 10, 0), V(0, 10, 0), V(0, 0, 1)); // floor
+  test::add_quad_facing(m, V(2, 2, 2), V(8, 2, 2), V(8, 8, 2), V(2, 8, 2), V(0, 0, 1));     // table top
+  test::add_triangle(m, V(50, 50, 20), V(51, 50, 20), V(50, 51, 20));                       // marker, up
   return m;
 }
 
 TEST(EnclosedSpace, UnderAOneSidedTopIsEnclosedBesideItAndAboveItIsFree) {
   const Judge j = judge_of(floor_under_one_sided_top());
-  EXPECT_TRUE(j.enclosed->holds(V(5, 5, 1), kTolerance));    // the floor's ray ends on the top's back
-  EXPECT_FALSE(j.enclosed->holds(V(1, 5, 1), kTolerance));   // beside the top: the floor's ray escapes
-  EXPECT_FALSE(j.enclosed->holds(V(5, 5, 3), kTolerance));   // above: the top's own ray escapes
-  EXPECT_FALSE(j.enclosed->holds(V(5, 5, 30), kTolerance));  // above the mesh's box: every column is tried
-  EXPECT_TRUE(j.enclosed->holds(V(5, 5, -1), kTolerance));   // below the floor: behind every face
+  EXPECT_TRUE(j.enclosed->holds(V(5, 5, 1), kTolerance));   // the floor's ray ends on the top's back
+  EXPECT_FALSE(j.enclosed->holds(V(1, 5, 1), kTolerance));  // beside the top: the floor's ray escapes
+  EXPECT_FALSE(j.enclosed->holds(V(5, 5, 3), kTolerance));  // above: the top's own ray escapes
+  EXPECT_FALSE(j.enclosed->holds(V(5, 5, 30), kTolerance)); // above the mesh's box: every column is tried
+  EXPECT_TRUE(j.enclosed->holds(V(5, 5, -1), kTolerance));  // below the floor: behind every face
 }
 
 } // namespace

@@ -85,7 +85,7 @@ TEST(HullSetGlb, ReadsTheDeclaredColliderOncePlacedByItsNode) {
   const TwoTetrahedra t;
   const auto set = read_bytes(dir, glb_of(t.gltf, t.bin));
   ASSERT_TRUE(set.ok()) << set.status().message();
-  ASSERT_EQ(set.value().hulls.size(), 1u);  // declared twice, one collider; the render node is not a hull
+  ASSERT_EQ(set.value().hulls.size(), 1u); // declared twice, one collider; the render node is not a hull
   EXPECT_NEAR(set.value().hulls[0].box.min.x(), 4.0, 1e-12);
   EXPECT_NEAR(set.value().hulls[0].box.max.x(), 5.0, 1e-12);
 }
@@ -101,30 +101,40 @@ TEST(HullSetGlb, WithoutDeclaredCollidersEveryMeshNodeIsAHull) {
 
 TEST(HullSetGlb, DamagedFilesAreRefusedWithAMessage) {
   TempDir dir;
-  const std::vector<std::pair<const char*, std::function<void(TwoTetrahedra&)>>> cases = {
-      {"accessor past its view", [](TwoTetrahedra& t) { t.gltf["accessors"][0]["count"] = 5; }},
-      {"huge count", [](TwoTetrahedra& t) { t.gltf["accessors"][0]["count"] = 4000000000u; }},
-      {"view past the chunk", [](TwoTetrahedra& t) { t.gltf["bufferViews"][1]["byteLength"] = 49; }},
-      {"offset overflow", [](TwoTetrahedra& t) { t.gltf["bufferViews"][0]["byteOffset"] = 18446744073709551615u; }},
-      {"index past the vertices", [](TwoTetrahedra& t) { t.bin[48] = 9; }},
-      {"external buffer", [](TwoTetrahedra& t) { t.gltf["buffers"][0]["uri"] = "../../etc/passwd"; }},
-      {"node cycle", [](TwoTetrahedra& t) {
-         t.gltf["nodes"][0]["children"] = {1};
-         t.gltf["nodes"][1]["children"] = {0};
-       }},
-      {"child of itself", [](TwoTetrahedra& t) { t.gltf["nodes"][1]["children"] = {1}; }},
-      {"two parents", [](TwoTetrahedra& t) {
-         t.gltf["nodes"].push_back(Json{{"children", {1}}});
-         t.gltf["nodes"][0]["children"] = {1};
-       }},
-      {"collider names no node", [](TwoTetrahedra& t) {
-         t.gltf["nodes"][1]["extensions"]["KHR_physics_rigid_bodies"]["collider"]["geometry"]["node"] = 7;
-       }},
+  const std::vector<std::pair<const char*, std::function<void(TwoTetrahedra&)>>> cases =
+      {
+          {"accessor past its view", [](TwoTetrahedra& t) { t.gltf["accessors"][0]["count"] = 5; }},
+          {"huge count", [](TwoTetrahedra& t) { t.gltf["accessors"][0]["count"] = 4000000000u; }},
+          {"view past the chunk", [](TwoTetrahedra& t) { t.gltf["bufferViews"][1]["byteLength"] = 49; }},
+          {"offset overflow", [](TwoTetrahedra& t) { t.gltf["bufferViews"][0]["byteOffset"] = 18446744073709551615u; }},
+          {"index past the vertices", [](TwoTetrahedra& t) { t.bin[48] = 9; }},
+          {"external buffer", [](TwoTetrahedra& t) { t.gltf["buffers"][0]["uri"] = "../../etc/passwd"; }},
+          {"node cycle",
+           [](TwoTetrahedra& t) {
+    t.gltf["nodes"][0]["children"] = {1};
+    t.gltf["nodes"][1]["children"] = {0};
+           }},
+          {"child of itself", [](TwoTetrahedra& t) { t.gltf["nodes"][1]["children"] = {1}; }},
+          {"two parents",
+           [](TwoTetrahedra& t) {
+    t.gltf["nodes"].push_back(Json{{"children", {1}}});
+    t.gltf["nodes"][0]["children"] = {1};
+           }},
+                                                                                 {"collider names no node",
+                                                                                  [](TwoTetrahedra& t) {
+    t.gltf["nodes"][1]["extensions"]["KHR_physics_rigid_bodies"]["collider"]["geometry"]["node"] = 7;
+                                                                                  }},
       {"not triangles", [](TwoTetrahedra& t) { t.gltf["meshes"][0]["primitives"][0]["mode"] = 1; }},
       {"positions as shorts", [](TwoTetrahedra& t) { t.gltf["accessors"][0]["componentType"] = 5123; }},
-      {"translation not numbers", [](TwoTetrahedra& t) { t.gltf["nodes"][1]["translation"] = {"a", 0, 0}; }},
-      {"beyond float range", [](TwoTetrahedra& t) { t.gltf["nodes"][1]["scale"] = {1e300, 1, 1}; }},
-  };
+      {"translation not numbers",
+       [](TwoTetrahedra& t) {
+    t.gltf["nodes"][1]["translation"] = {"a", 0, 0};
+       }},
+      {"beyond float range",
+       [](TwoTetrahedra& t) {
+    t.gltf["nodes"][1]["scale"] = {1e300, 1, 1};
+       }},
+      };
   for (const auto& [name, damage] : cases) {
     TwoTetrahedra t;
     damage(t);

@@ -77,9 +77,10 @@ long clean_hull_count(const Mesh& mesh, double scale, const std::string& what) {
   EXPECT_TRUE(audit.ok()) << what << ": " << audit.status().message();
   if (!audit.ok()) return -1;
   const validate::BehaviourReport& b = audit.value().behaviour;
-  EXPECT_TRUE(audit.value().clean()) << what << ": " << audit.value().findings.size() << " kinds of finding; deep false "
-                                     << b.deep_false_contacts << " (boxes " << b.deep_false_boxes << ") depth "
-                                     << b.max_false_depth << " tol " << d->tol() << " proxy " << b.size;
+  EXPECT_TRUE(audit.value().clean()) << what << ": " << audit.value().findings.size()
+                                     << " kinds of finding; deep false " << b.deep_false_contacts << " (boxes "
+                                     << b.deep_false_boxes << ") depth " << b.max_false_depth << " tol " << d->tol()
+                                     << " proxy " << b.size;
   EXPECT_GT(audit.value().probe.front.rays, 0) << what;
   return static_cast<long>(d->covering.hulls.size());
 }
@@ -93,10 +94,10 @@ TEST(Metamorphic, TransformedScenesAuditCleanWithTheSameHullCount) {
       const std::string what = std::string(scene.name) + ", " + t.name;
       const double scale = std::cbrt(std::abs(t.map.linear().determinant()));
       const long count = clean_hull_count(test::transformed(mesh, t.map), scale, what);
-      std::printf("%s: %ld hulls (%ld untransformed)\n", what.c_str(), count, reference);  // the figures docs/results quotes
-      EXPECT_LE(std::abs(count - reference), std::floor(t.hull_count_spread * reference)) << what << ": " << count
-                                                                                       << " hulls, " << reference
-                                                                                       << " untransformed";
+      std::printf("%s: %ld hulls (%ld untransformed)\n", what.c_str(), count,
+                  reference); // the figures docs/results quotes
+      EXPECT_LE(std::abs(count - reference), std::floor(t.hull_count_spread * reference))
+          << what << ": " << count << " hulls, " << reference << " untransformed";
     }
   }
 }

@@ -108,7 +108,7 @@ TEST(StrictProbe, ASlabHoveringWithinTheStandOffLosesSpace) {
   const double tol = 1e-3;
   const ProbeReport r = strict_probe(m, {box_hull(V(6, 0.2 * tol, 1), V(8, 2.8 * tol, 3))}, {}, tol);
   EXPECT_GT(r.front.lost, 0);
-  EXPECT_NEAR(r.front.deepest.depth, 1.3 * tol, 1e-9);  // half its thickness
+  EXPECT_NEAR(r.front.deepest.depth, 1.3 * tol, 1e-9); // half its thickness
   EXPECT_EQ(strict_probe(m, {box_hull(V(6, 0.2 * tol, 1), V(8, 1.9 * tol, 3))}, {}, tol).front.lost, 0);
 }
 
@@ -132,17 +132,17 @@ TEST(StrictProbe, AFloorRunningIntoAClosedPillarIsClean) {
   const ProbeReport r = strict_probe(m, {box_hull(V(-1, 0, -1), V(1, 3, 1))});
   EXPECT_EQ(r.front.lost, 0);
   EXPECT_EQ(r.opening.lost, 0);
-  EXPECT_GT(r.front.enclosed, 0);  // the floor under the pillar
+  EXPECT_GT(r.front.enclosed, 0); // the floor under the pillar
 }
 
 // A face far smaller than the ray spacing still gets rays: the hull in
 // front of it is found, from that face.
 TEST(StrictProbe, ATinyFaceInFrontOfAHullIsStillProbed) {
   Mesh m;
-  test::add_triangle(m, V(0, 0, 0), V(0, 0, 0.01), V(0.01, 0, 0));  // face 0, facing up
+  test::add_triangle(m, V(0, 0, 0), V(0, 0, 0.01), V(0.01, 0, 0)); // face 0, facing up
   add_quad_facing(m, V(3, 0, -5), V(13, 0, -5), V(13, 0, 5), V(3, 0, 5), kUpward);
   ProbeOptions coarse;
-  coarse.resolution = 1.0;  // a hundred times the tiny face
+  coarse.resolution = 1.0; // a hundred times the tiny face
   const ProbeReport r = strict_probe(m, {box_hull(V(-0.1, 0.5, -0.1), V(0.1, 0.7, 0.1))}, coarse);
   EXPECT_GT(r.front.lost, 0);
   EXPECT_EQ(r.front.deepest.face, 0);
@@ -176,7 +176,7 @@ TEST(StrictProbe, AFlatHullLosesNothing) {
   Mesh m;
   add_quad_facing(m, V(0, 0, 0), V(2, 0, 0), V(2, 0, 2), V(0, 0, 2), kUpward);
   FlatPolygon square;
-  square.corners = {V(0, 1, 0), V(0, 1, 2), V(2, 1, 2), V(2, 1, 0)};  // counter-clockwise seen from above
+  square.corners = {V(0, 1, 0), V(0, 1, 2), V(2, 1, 2), V(2, 1, 0)}; // counter-clockwise seen from above
   square.corner_vertices = {-1, -1, -1, -1};
   square.plane = {kUpward, 1.0};
   square.sides = polygon_side_planes(square.corners, kUpward);
@@ -198,18 +198,18 @@ TEST(StrictProbe, AFlatHullLosesNothing) {
 TEST(StrictProbe, ARayPassingASharpTipByMoreThanTolDoesNotMeetIt) {
   const double tol = 0.0210516;
   Mesh m;
-  test::add_triangle(m, V(-434, 69, -6), V(-435, 69, -6), V(-435, 69, 0));     // the rail's top
-  add_quad_facing(m, V(-435, 64, -6), V(-434, 64, -6), V(-434, 72, -6), V(-435, 72, -6), V(0, 0, 1));  // post, near
-  test::add_triangle(m, V(-435, 69, -8), V(-440, 69, -13), V(-440, 68, -13));  // the tip
+  test::add_triangle(m, V(-434, 69, -6), V(-435, 69, -6), V(-435, 69, 0));                            // the rail's top
+  add_quad_facing(m, V(-435, 64, -6), V(-434, 64, -6), V(-434, 72, -6), V(-435, 72, -6), V(0, 0, 1)); // post, near
+  test::add_triangle(m, V(-435, 69, -8), V(-440, 69, -13), V(-440, 68, -13));                         // the tip
   const Mesh open = m;
-  add_quad_facing(m, V(-435, 64, -8), V(-434, 64, -8), V(-434, 72, -8), V(-435, 72, -8), V(0, 0, -1));  // post, far
+  add_quad_facing(m, V(-435, 64, -8), V(-434, 64, -8), V(-434, 72, -8), V(-435, 72, -8), V(0, 0, -1)); // post, far
   ConvexHullBuilder builder;
-  const Result<ConvexPolytope> wedge = builder.build({V(-434, 72, -8), V(-435, 72, -6), V(-435, 64, -6),
-                                                      V(-434, 64, -8), V(-434, 64, -6), V(-434, 72, -6)});
+  const Result<ConvexPolytope> wedge = builder.build(
+      {V(-434, 72, -8), V(-435, 72, -6), V(-435, 64, -6), V(-434, 64, -8), V(-434, 64, -6), V(-434, 72, -6)});
   ASSERT_TRUE(wedge.ok()) << wedge.status().message();
   const std::vector<bvh::RuntimeHull> hulls = {bvh::make_runtime_hull(wedge.value(), 0)};
   ProbeOptions fine;
-  fine.resolution = 0.01;  // rays every 0.01 along the rail's edge, through the tip's reach
+  fine.resolution = 0.01; // rays every 0.01 along the rail's edge, through the tip's reach
   const ProbeReport enclosed = strict_probe(m, hulls, fine, tol);
   EXPECT_EQ(enclosed.opening.lost, 0) << "deepest " << enclosed.opening.deepest.depth << " at x "
                                       << enclosed.opening.deepest.point.x();

@@ -45,8 +45,8 @@ using Stretches = std::vector<std::pair<std::pair<double, double>, int>>;
 
 // One open ray that loses space, as the report needs it.
 struct LostRay {
-  LostPlace deepest;  // its deepest point inside a hull
-  int pieces = 0;     // how many of ItemRays::pieces are its own (in order)
+  LostPlace deepest; // its deepest point inside a hull
+  int pieces = 0;    // how many of ItemRays::pieces are its own (in order)
 };
 
 // What one work item's rays found: one face's front rays, or one open
@@ -58,7 +58,7 @@ struct ItemRays {
   // The lost rays' new lengths, stretch by stretch: added to the tally one
   // by one, the sum is that of one thread tracing every ray in order.
   std::vector<double> pieces;
-  AllowanceReport allowance;  // the allowance's figures of these rays alone (options unset)
+  AllowanceReport allowance; // the allowance's figures of these rays alone (options unset)
 };
 
 // Traces rays and decides them against the hulls. Const: one tracer serves
@@ -86,8 +86,8 @@ public:
     // With an agent radius, a ball centred up to r beyond the box reaches
     // into it: rays run that much farther (no hull lies out there, so the
     // strict probe's verdict is the same).
-    world_ = grown(world_, kRayStandOffInTolerances * prepared.tolerance.largest_length() +
-                               allowance.agent_radius.value_or(0.0));
+    world_ = grown(
+        world_, kRayStandOffInTolerances * prepared.tolerance.largest_length() + allowance.agent_radius.value_or(0.0));
     hull_tree_ = AabbTree(boxes);
     if (allowance.any())
       judge_ = std::make_unique<const probe::AllowanceJudge>(prepared, triangles, hulls, hull_tol_, allowance);
@@ -144,7 +144,7 @@ private:
         if (inside->depth > deepest.depth)
           deepest = {start + inside->deepest_at * ray.direction, ray.face, h, inside->depth, ray.opening};
       }
-      return std::numeric_limits<double>::infinity();  // visit every hull along the segment, not the nearest
+      return std::numeric_limits<double>::infinity(); // visit every hull along the segment, not the nearest
     });
     if (stretches.empty()) return;
     std::sort(stretches.begin(), stretches.end());
@@ -166,10 +166,10 @@ private:
   const bvh::TriangleWorld& triangles_;
   const std::vector<bvh::RuntimeHull>& hulls_;
   std::optional<double> cap_;
-  std::vector<double> hull_tol_;  // per hull: the tolerance at its box
+  std::vector<double> hull_tol_; // per hull: the tolerance at its box
   Aabb world_;
   AabbTree hull_tree_;
-  std::unique_ptr<const probe::AllowanceJudge> judge_;  // with an allowance only
+  std::unique_ptr<const probe::AllowanceJudge> judge_; // with an allowance only
 };
 
 // Adds the items' findings to the report, one item after another in item
@@ -220,10 +220,10 @@ private:
     // left out of the picture; the rays have counted it. Judged here first:
     // OctoMap converts the coordinate to an int before its own check, which
     // is undefined for one far out (a hull at 1e38).
-    if (!(local.cwiseAbs().maxCoeff() < tree_.getResolution() * kOctreeKeysEachSide)) return;  // NaN too
-    if (tree_.coordToKeyChecked(
-            octomap::point3d(static_cast<float>(local.x()), static_cast<float>(local.y()), static_cast<float>(local.z())),
-            key))
+    if (!(local.cwiseAbs().maxCoeff() < tree_.getResolution() * kOctreeKeysEachSide)) return; // NaN too
+    if (tree_.coordToKeyChecked(octomap::point3d(static_cast<float>(local.x()), static_cast<float>(local.y()),
+                                                 static_cast<float>(local.z())),
+                                key))
       lost_keys_.insert(key);
   }
 
@@ -231,7 +231,8 @@ private:
   void note(const LostPlace& place) {
     report_.max_lost_depth = std::max(report_.max_lost_depth, place.depth);
     std::vector<LostPlace>& worst = report_.worst;
-    const auto same_hull = std::find_if(worst.begin(), worst.end(), [&](const LostPlace& w) { return w.hull == place.hull; });
+    const auto same_hull =
+        std::find_if(worst.begin(), worst.end(), [&](const LostPlace& w) { return w.hull == place.hull; });
     if (same_hull != worst.end()) {
       if (same_hull->depth >= place.depth) return;
       worst.erase(same_hull);
@@ -270,14 +271,14 @@ Result<ProbeReport> probe_accessible_space(const PreparedMesh& prepared, const b
   if ((allowance.agent_radius && !(*allowance.agent_radius > 2.0 * prepared.tolerance.largest_length() &&
                                    std::isfinite(*allowance.agent_radius))) ||
       (allowance.max_deviation && !positive_length(*allowance.max_deviation)))
-    return Status{StatusCode::invalid_argument,
-                  "the agent radius must be a finite length above twice the tolerance, the max deviation a positive length"};
+    return Status{
+        StatusCode::invalid_argument,
+        "the agent radius must be a finite length above twice the tolerance, the max deviation a positive length"};
   if (allowance.max_evaluations_per_ray < 2)
     return Status{StatusCode::invalid_argument, "a ray needs at least 2 evaluations (its two ends)"};
   if (0.5 * diagonal / report.resolution > kMaxCellsPerAxis)
     return Status{StatusCode::invalid_argument, "resolution too fine: the octree has 16 levels (32768 cells a side)"};
-  if (threads < 0)
-    return Status{StatusCode::invalid_argument, "the thread count must be 0 (every core) or more"};
+  if (threads < 0) return Status{StatusCode::invalid_argument, "the thread count must be 0 (every core) or more"};
   threads = threads_to_use(threads);
   try {
     report.allowance.options = allowance;

@@ -97,8 +97,8 @@ void note_undecided(const ProbeRay& ray, const Eigen::Vector3d& at, AllowanceRep
 AllowanceJudge::AllowanceJudge(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles,
                                const bvh::HullWorld& hulls, const std::vector<double>& hull_tolerance,
                                const AllowanceOptions& options)
-    : prepared_(prepared), hulls_(hulls), hull_tree_(hull_boxes(hulls)),
-      enclosed_(prepared, triangles), options_(options) {
+    : prepared_(prepared), hulls_(hulls), hull_tree_(hull_boxes(hulls)), enclosed_(prepared, triangles),
+      options_(options) {
   const Mesh& mesh = prepared.mesh;
   std::vector<bvh::RuntimeHull> faces;
   for (size_t f = 0; f < mesh.triangles.size(); ++f) {
@@ -150,13 +150,12 @@ void AllowanceJudge::judge(const ProbeRay& ray, const Eigen::Vector3d& start, do
 
 // The farthest point of stretch [from, to] from the mesh, within tol; with
 // E, also whether some point lies farther than E + tol.
-void AllowanceJudge::farthest_lost(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to,
-                                   int hull, double tol, AllowanceReport& out) const {
+void AllowanceJudge::farthest_lost(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to, int hull,
+                                   double tol, AllowanceReport& out) const {
   ++out.lost_stretches;
   // With E the stretch is judged against E + tol; with r alone only
   // measured (an infinite limit is never broken).
-  const double limit = options_.max_deviation ? *options_.max_deviation + tol
-                                                     : std::numeric_limits<double>::infinity();
+  const double limit = options_.max_deviation ? *options_.max_deviation + tol : std::numeric_limits<double>::infinity();
   const auto sample = [&](double t) {
     Sample s;
     s.t = t;
@@ -172,7 +171,7 @@ void AllowanceJudge::farthest_lost(const ProbeRay& ray, const Eigen::Vector3d& s
   keep(open.back().a);
   keep(open.back().b);
   int evaluations = 2;
-  std::optional<double> given_up_at;  // where the interval being halved began
+  std::optional<double> given_up_at; // where the interval being halved began
   while (!open.empty()) {
     const Interval i = open.back();
     open.pop_back();
@@ -213,7 +212,7 @@ std::vector<std::pair<double, double>> AllowanceJudge::near_hulls(const Eigen::V
   hull_tree_.nearest_along_segment(start + from * dir, start + to * dir, grow, 0.0, [&](int h) {
     const auto stretch = within_grown_planes(hulls_.hulls()[h].shape.planes, start, dir, from, to, grow);
     if (stretch.first <= stretch.second) near.push_back(stretch);
-    return std::numeric_limits<double>::infinity();  // visit every hull along the segment
+    return std::numeric_limits<double>::infinity(); // visit every hull along the segment
   });
   std::sort(near.begin(), near.end());
   std::vector<std::pair<double, double>> merged;
@@ -231,8 +230,7 @@ std::vector<std::pair<double, double>> AllowanceJudge::near_hulls(const Eigen::V
 // boundary; a thin hull (a wedge's edge) may hold no point that deep, and a
 // point the ball reaches just under a face's edge would be judged on that
 // face's ray by the ray casts' tolerance. Judged at a point genuinely inside.
-AllowanceJudge::BallReach AllowanceJudge::ball_takes_free_space(const Eigen::Vector3d& c, double r,
-                                                                double tol) const {
+AllowanceJudge::BallReach AllowanceJudge::ball_takes_free_space(const Eigen::Vector3d& c, double r, double tol) const {
   std::vector<int> near;
   Aabb around;
   around.extend(c);
@@ -279,8 +277,8 @@ void AllowanceJudge::reachable_balls(const ProbeRay& ray, const Eigen::Vector3d&
   }
 }
 
-void AllowanceJudge::balls_over(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to,
-                                double tol, int& evaluations, AllowanceReport& out) const {
+void AllowanceJudge::balls_over(const ProbeRay& ray, const Eigen::Vector3d& start, double from, double to, double tol,
+                                int& evaluations, AllowanceReport& out) const {
   const double r = *options_.agent_radius;
   // A centre nearer any hull than this puts its ball deeper than tol into it
   // beyond the probe's stand-off: the strict definition's rays start that

@@ -31,9 +31,9 @@ struct DistanceBounds {
 struct Sample {
   double t = 0.0;
   DistanceBounds mesh, hulls;
-  int face = -1;  ///< the nearest mesh face
-  int hull = -1;  ///< the nearest hull
-  Eigen::Vector3d nearest = Eigen::Vector3d::Zero();  ///< on the nearest hull (locates the meeting when touching)
+  int face = -1;                                     ///< the nearest mesh face
+  int hull = -1;                                     ///< the nearest hull
+  Eigen::Vector3d nearest = Eigen::Vector3d::Zero(); ///< on the nearest hull (locates the meeting when touching)
 };
 
 /// Judges open rays against an allowance. Judging is const and writes only
@@ -82,7 +82,7 @@ private:
   const bvh::HullWorld& hulls_;
   AabbTree hull_tree_;
   std::shared_ptr<const bvh::HullWorld> mesh_;
-  std::vector<int> face_of_;  // mesh face id of mesh_'s hull i
+  std::vector<int> face_of_; // mesh face id of mesh_'s hull i
   EnclosedSpace enclosed_;
   // Per hull, shrunk by the margin a ball may reach in, at the tolerance of
   // the hull's place (agent radius only).

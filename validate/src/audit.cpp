@@ -54,8 +54,7 @@ Result<AuditReport> audit(const PreparedMesh& prepared, const HullSet& set, cons
   const auto progress = [&](double fraction) {
     if (options.progress) options.progress(fraction);
   };
-  report.recheck =
-      recheck_hulls(prepared, hulls_under_check(set.hulls), bar_half_length, allowance.any(), threads);
+  report.recheck = recheck_hulls(prepared, hulls_under_check(set.hulls), bar_half_length, allowance.any(), threads);
   progress(kRecheckShareOfAudit);
   const Result<Worlds> worlds = build_worlds(prepared, set);
   if (!worlds.ok()) return worlds.status();
@@ -107,9 +106,10 @@ std::vector<AuditFinding> audit_findings(const ProbeReport& probe, const CheckRe
   // right: the rays judge it there. An agent radius promises spheres and
   // capsules of that size exact contacts, E or not (the knobs combine as
   // both promises: README "Agent-exact coverings").
-  const long judged_false = exact                            ? behaviour.deep_false_contacts
-                            : allowance.options.agent_radius ? behaviour.deep_false_contacts - behaviour.deep_false_boxes
-                                                             : 0;
+  const long judged_false = exact ? behaviour.deep_false_contacts
+                            : allowance.options.agent_radius
+                                ? behaviour.deep_false_contacts - behaviour.deep_false_boxes
+                                : 0;
   if (judged_false != 0) findings.push_back(AuditFinding::false_contacts);
   if (allowance.beyond_deviation != 0) findings.push_back(AuditFinding::deviation_exceeded);
   if (allowance.reach_lost != 0) findings.push_back(AuditFinding::reachable_space_lost);

@@ -67,7 +67,7 @@ Result<BehaviourReport> compare_behaviour(const PreparedMesh& prepared, const bv
   std::normal_distribution<double> g(0.0, 1.0);
   const double s = report.size;
   double angle_sum = 0.0;
-  std::optional<probe::EnclosedSpace> enclosed;  // built at the first deep false contact
+  std::optional<probe::EnclosedSpace> enclosed; // built at the first deep false contact
   try {
     for (int i = 0; i < options.proxies; ++i) {
       const int f = faces[pick(rng)];
@@ -81,8 +81,9 @@ Result<BehaviourReport> compare_behaviour(const PreparedMesh& prepared, const bv
       Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
       const double lift = s * (2.0 * u(rng) - 0.5);
       pose.translation() = on_face + n * lift;
-      pose.linear() = Eigen::Quaterniond(Eigen::Vector4d(g(rng), g(rng), g(rng), g(rng)).normalized()).toRotationMatrix();
-      const double tol = prepared.face_tolerance(f);  // the place's: the pose sits at face f
+      pose.linear() =
+          Eigen::Quaterniond(Eigen::Vector4d(g(rng), g(rng), g(rng), g(rng)).normalized()).toRotationMatrix();
+      const double tol = prepared.face_tolerance(f); // the place's: the pose sits at face f
       const double stand_off = kRayStandOffInTolerances * tol;
       double free_to = 0.0;
       if (!accessible(triangles, mesh, on_face + n * stand_off, n, prepared.tolerance.diagonal, free_to)) continue;
@@ -106,7 +107,8 @@ Result<BehaviourReport> compare_behaviour(const PreparedMesh& prepared, const bv
         // direction (a proxy in a corner touches several faces; any of them
         // may be deepest).
         double best = -1.0;
-        for (const bvh::Contact& c : on_triangles.contacts) best = std::max(best, c.normal.dot(on_hulls.contacts[0].normal));
+        for (const bvh::Contact& c : on_triangles.contacts)
+          best = std::max(best, c.normal.dot(on_hulls.contacts[0].normal));
         const double angle = std::acos(std::clamp(best, -1.0, 1.0)) * 180.0 / M_PI;
         report.max_normal_angle = std::max(report.max_normal_angle, angle);
         angle_sum += angle;

@@ -89,12 +89,12 @@ bool EnclosedSpace::on_open_ray(const Eigen::Vector3d& p, const Eigen::Vector3d&
 // 0.3: a point 0.0126 behind a wall, under a ceiling, was called free). The
 // face's nearest genuine ray is cast instead, when within tol of p.
 bool EnclosedSpace::holds(const Eigen::Vector3d& p, double tol) const {
-  std::vector<int> tried;  // normals whose ray through p itself was cast
+  std::vector<int> tried; // normals whose ray through p itself was cast
   const Aabb near_p = grown(Aabb{p, p}, tol);
   // A column point within tol of p lies in bounds_ only when p's box does;
   // elsewhere the boxes, cut at bounds_, may miss it: every column is tried.
-  const bool indexed = (near_p.min.array() >= bounds_.min.array()).all() &&
-                       (near_p.max.array() <= bounds_.max.array()).all();
+  const bool indexed =
+      (near_p.min.array() >= bounds_.min.array()).all() && (near_p.max.array() <= bounds_.max.array()).all();
   if (!indexed) {
     for (size_t i = 0; i < prisms_.size(); ++i)
       if (open_through(p, static_cast<int>(i), tol, tried)) return false;

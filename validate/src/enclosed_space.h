@@ -41,7 +41,7 @@ private:
 
   const PreparedMesh& prepared_;
   const bvh::TriangleWorld& triangles_;
-  std::vector<Eigen::Vector3d> normals_;  // every distinct unit face normal
+  std::vector<Eigen::Vector3d> normals_; // every distinct unit face normal
   /// A face's front column: in front of `front`, behind its `sides`
   /// (polygon_side_planes); `normal` indexes normals_, `face` the mesh.
   struct FrontPrism {

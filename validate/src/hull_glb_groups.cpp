@@ -18,7 +18,7 @@ namespace {
 
 using Json = nlohmann::json;
 
-constexpr std::uint32_t kGlbMagic = 0x46546C67;  // "glTF"
+constexpr std::uint32_t kGlbMagic = 0x46546C67; // "glTF"
 constexpr std::uint32_t kChunkJson = 0x4E4F534A;
 constexpr std::uint32_t kChunkBin = 0x004E4942;
 constexpr std::uint64_t kGlbHeaderBytes = 12;
@@ -33,7 +33,7 @@ constexpr double kLargestHullCoordinate = std::numeric_limits<float>::max();
 
 std::uint32_t word_at(const std::string& bytes, std::uint64_t at) {
   std::uint32_t word = 0;
-  std::memcpy(&word, bytes.data() + at, 4);  // GLB is little-endian, as every platform hullcover builds on
+  std::memcpy(&word, bytes.data() + at, 4); // GLB is little-endian, as every platform hullcover builds on
   return word;
 }
 
@@ -74,8 +74,9 @@ const Json& object_member(const Json& object, const char* key) {
 }
 
 class GlbHullReader {
- public:
-  GlbHullReader(const std::string& path, const Json& gltf, const std::string& bin) : path_(path), gltf_(gltf), bin_(bin) {}
+public:
+  GlbHullReader(const std::string& path, const Json& gltf, const std::string& bin)
+      : path_(path), gltf_(gltf), bin_(bin) {}
 
   Status damaged(const std::string& why) const { return {StatusCode::unreadable_file, path_ + ": glTF: " + why}; }
 
@@ -125,7 +126,8 @@ class GlbHullReader {
     for (const Json& primitive : mesh["primitives"]) {
       if (count_of(primitive, "mode", kModeTriangles) != std::optional<std::uint64_t>(kModeTriangles))
         return damaged("node " + std::to_string(node) + ": a primitive that is not triangles");
-      const Json* attributes = primitive.is_object() && primitive.contains("attributes") ? &primitive["attributes"] : nullptr;
+      const Json* attributes =
+          primitive.is_object() && primitive.contains("attributes") ? &primitive["attributes"] : nullptr;
       const Json* position = attributes ? element(gltf_, "accessors", *attributes, "POSITION") : nullptr;
       if (!position) return damaged("node " + std::to_string(node) + ": a primitive without positions");
       const size_t first = out.positions.size();
@@ -152,7 +154,7 @@ class GlbHullReader {
     return Status::success();
   }
 
- private:
+private:
   static std::optional<Eigen::Affine3d> local_transform(const Json& node) {
     const auto numbers = [&](const char* key, size_t count, std::vector<double>& out) {
       if (!node.contains(key)) return true;
@@ -170,7 +172,7 @@ class GlbHullReader {
       return std::nullopt;
     Eigen::Affine3d local = Eigen::Affine3d::Identity();
     if (!matrix.empty()) {
-      local.matrix() = Eigen::Map<const Eigen::Matrix4d>(matrix.data());  // column-major, as glTF
+      local.matrix() = Eigen::Map<const Eigen::Matrix4d>(matrix.data()); // column-major, as glTF
       return local;
     }
     if (!t.empty()) local.translate(Eigen::Vector3d(t[0], t[1], t[2]));
@@ -238,7 +240,7 @@ class GlbHullReader {
     if (Status s = locate(accessor, size, start, stride, count); !s.ok()) return s;
     for (std::uint64_t k = 0; k < count; ++k) {
       std::uint32_t index = 0;
-      std::memcpy(&index, bin_.data() + start + k * stride, size);  // little-endian: the low bytes come first
+      std::memcpy(&index, bin_.data() + start + k * stride, size); // little-endian: the low bytes come first
       if (index >= vertex_count) return damaged("an index names no vertex");
       out.push_back(index);
     }
@@ -254,7 +256,9 @@ class GlbHullReader {
 } // namespace
 
 Result<HullGroups> read_glb_hull_groups(const std::string& path, const std::string& bytes) {
-  const auto damaged = [&](const std::string& why) { return Status{StatusCode::unreadable_file, path + ": GLB: " + why}; };
+  const auto damaged = [&](const std::string& why) {
+    return Status{StatusCode::unreadable_file, path + ": GLB: " + why};
+  };
   if (bytes.size() < kGlbHeaderBytes + kChunkHeaderBytes || word_at(bytes, 0) != kGlbMagic || word_at(bytes, 4) != 2)
     return damaged("not a glTF 2 binary");
   const std::uint64_t json_bytes = word_at(bytes, 12);
@@ -265,7 +269,8 @@ Result<HullGroups> read_glb_hull_groups(const std::string& path, const std::stri
   const std::uint64_t bin_header = kGlbHeaderBytes + kChunkHeaderBytes + json_bytes;
   if (bytes.size() >= bin_header + kChunkHeaderBytes && word_at(bytes, bin_header + 4) == kChunkBin) {
     const std::uint64_t bin_bytes = word_at(bytes, bin_header);
-    if (bin_bytes > bytes.size() - bin_header - kChunkHeaderBytes) return damaged("the binary chunk runs past the file");
+    if (bin_bytes > bytes.size() - bin_header - kChunkHeaderBytes)
+      return damaged("the binary chunk runs past the file");
     bin = bytes.substr(bin_header + kChunkHeaderBytes, bin_bytes);
   }
   if (json_nesting_depth(text) > kMaxHullGltfNesting)
@@ -282,7 +287,8 @@ Result<HullGroups> read_glb_hull_groups(const std::string& path, const std::stri
   const Json& omi_shapes = object_member(object_member(gltf, "extensions"), "OMI_physics_shape");
   for (size_t i = 0; i < nodes.size(); ++i) {
     const Json& extensions = object_member(nodes[i], "extensions");
-    const Json& geometry = object_member(object_member(object_member(extensions, "KHR_physics_rigid_bodies"), "collider"), "geometry");
+    const Json& geometry =
+        object_member(object_member(object_member(extensions, "KHR_physics_rigid_bodies"), "collider"), "geometry");
     if (is_true(geometry, "convexHull")) {
       const std::optional<std::uint64_t> node = index_into(gltf, "nodes", geometry, "node");
       const std::optional<std::uint64_t> mesh = node ? index_into(gltf, "meshes", nodes[*node], "mesh") : std::nullopt;
@@ -299,7 +305,8 @@ Result<HullGroups> read_glb_hull_groups(const std::string& path, const std::stri
   }
   if (colliders.empty())
     for (size_t i = 0; i < nodes.size(); ++i)
-      if (const std::optional<std::uint64_t> mesh = index_into(gltf, "meshes", nodes[i], "mesh")) colliders.insert({i, *mesh});
+      if (const std::optional<std::uint64_t> mesh = index_into(gltf, "meshes", nodes[i], "mesh"))
+        colliders.insert({i, *mesh});
   HullGroups out;
   for (const auto& [node, mesh] : colliders)
     if (Status s = reader.add_group(node, gltf["meshes"][mesh], out); !s.ok()) return s;

@@ -39,8 +39,9 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 Plane group_plane(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& winding) {
   const Eigen::Vector3d& a = points.front();
   const auto farthest = [&](const auto& distance) {
-    return *std::max_element(points.begin(), points.end(),
-                             [&](const Eigen::Vector3d& p, const Eigen::Vector3d& q) { return distance(p) < distance(q); });
+    return *std::max_element(points.begin(), points.end(), [&](const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
+      return distance(p) < distance(q);
+    });
   };
   const Eigen::Vector3d b = farthest([&](const Eigen::Vector3d& p) { return (p - a).squaredNorm(); });
   const Eigen::Vector3d c = farthest([&](const Eigen::Vector3d& p) { return (p - a).cross(b - a).squaredNorm(); });
@@ -66,8 +67,9 @@ std::optional<bvh::RuntimeHull> group_hull(ConvexHullBuilder& builder, const std
   for (int v : ids) points.push_back(vertices[v]);
   const double flatness = kDefaultRelativeTolerance * bounding_box_of(points).diagonal();
   const Plane plane = group_plane(points, group.winding);
-  const bool in_plane = std::all_of(points.begin(), points.end(),
-                                    [&](const Eigen::Vector3d& p) { return std::abs(plane.signed_distance(p)) <= flatness; });
+  const bool in_plane = std::all_of(points.begin(), points.end(), [&](const Eigen::Vector3d& p) {
+    return std::abs(plane.signed_distance(p)) <= flatness;
+  });
   if (!in_plane) {
     Result<ConvexPolytope> solid = builder.build(points);
     if (!solid.ok()) return std::nullopt;
@@ -82,7 +84,7 @@ std::optional<bvh::RuntimeHull> group_hull(ConvexHullBuilder& builder, const std
 Result<HullGroups> read_obj_groups(const std::string& path, const std::string& content) {
   std::istringstream in(content);
   std::vector<Eigen::Vector3d> vertices;
-  std::vector<HullGroup> groups(1);  // group 0: faces before any o/g line
+  std::vector<HullGroup> groups(1); // group 0: faces before any o/g line
   std::string line;
   int number = 0;
   while (std::getline(in, line)) {
@@ -95,8 +97,8 @@ Result<HullGroups> read_obj_groups(const std::string& path, const std::string& c
       if (!(words >> v.x() >> v.y() >> v.z()) || !v.allFinite())
         return Status{StatusCode::unreadable_file, path + ":" + std::to_string(number) + ": bad vertex"};
       if (v.cwiseAbs().maxCoeff() > kLargestHullCoordinate)
-        return Status{StatusCode::unreadable_file, path + ":" + std::to_string(number) +
-                                                       ": vertex beyond the float32 range a scene can have"};
+        return Status{StatusCode::unreadable_file,
+                      path + ":" + std::to_string(number) + ": vertex beyond the float32 range a scene can have"};
       vertices.push_back(v);
     } else if (tag == "o" || tag == "g") {
       if (!groups.back().vertices.empty()) groups.emplace_back();
@@ -108,7 +110,7 @@ Result<HullGroups> read_obj_groups(const std::string& path, const std::string& c
       std::string corner;
       std::vector<Eigen::Vector3d> face;
       while (words >> corner) {
-        const long index = std::strtol(corner.c_str(), nullptr, 10);  // "7/2/5" reads as 7
+        const long index = std::strtol(corner.c_str(), nullptr, 10); // "7/2/5" reads as 7
         const long resolved = index < 0 ? static_cast<long>(vertices.size()) + index : index - 1;
         if (index == 0 || resolved < 0 || resolved >= static_cast<long>(vertices.size()))
           return Status{StatusCode::unreadable_file,
@@ -146,9 +148,9 @@ namespace detail {
 void keep_named_colliders(HullGroups& groups) {
   const auto keep_if = [&](const auto& named) {
     if (std::none_of(groups.groups.begin(), groups.groups.end(), named)) return false;
-    groups.groups.erase(std::remove_if(groups.groups.begin(), groups.groups.end(),
-                                       [&](const HullGroup& g) { return !named(g); }),
-                        groups.groups.end());
+    groups.groups.erase(
+        std::remove_if(groups.groups.begin(), groups.groups.end(), [&](const HullGroup& g) { return !named(g); }),
+        groups.groups.end());
     return true;
   };
   if (keep_if([](const HullGroup& g) { return g.name.rfind("UCX_", 0) == 0; })) return;

@@ -16,9 +16,9 @@ namespace hullcover::validate::probe {
 /// One probe ray, before its stand-off from the surface.
 struct ProbeRay {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();     ///< on the face or the open edge, scene units
-  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();  ///< unit
-  int face = -1;         ///< the face it leaves (an open edge's face)
-  bool opening = false;  ///< beyond an open edge rather than in front of a face
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ(); ///< unit
+  int face = -1;                                        ///< the face it leaves (an open edge's face)
+  bool opening = false;                                 ///< beyond an open edge rather than in front of a face
 };
 
 /// The front rays of mesh face `face` (none when it has no surface): its

@@ -103,7 +103,7 @@ bool segment_deeper_than(const std::vector<HalfSpace>& hs, const Eigen::Vector3d
 
 bool segment_crosses_flat(const CheckedHull& c, const Eigen::Vector3d& p, const Eigen::Vector3d& q, double tol) {
   const double dp = c.front.n.dot(p) - c.front.d, dq = c.front.n.dot(q) - c.front.d;
-  if (std::abs(dp - dq) <= tol) return false;  // runs along the plane
+  if (std::abs(dp - dq) <= tol) return false; // runs along the plane
   if ((dp > tol && dq > tol) || (dp < -tol && dq < -tol)) return false;
   const Eigen::Vector3d x = p + (q - p) * (dp / (dp - dq));
   return depth_inside(c.sides, x) > tol;

@@ -18,17 +18,17 @@ namespace hullcover::validate::recheck {
 
 /// The inner side of a plane: n.x <= d.
 struct HalfSpace {
-  Eigen::Vector3d n;  ///< unit, outward
+  Eigen::Vector3d n; ///< unit, outward
   double d;
 };
 
 /// A hull as the re-check sees it.
 struct CheckedHull {
-  std::vector<HalfSpace> facets;  ///< solid: one per facet; flat: front, back, then the sides
+  std::vector<HalfSpace> facets; ///< solid: one per facet; flat: front, back, then the sides
   bool flat = false;
-  HalfSpace front;               ///< flat: the polygon's plane
-  std::vector<HalfSpace> sides;  ///< flat: in-plane edge half-spaces, outward
-  Eigen::Vector3d lo, hi;        ///< the vertices' bounding box
+  HalfSpace front;              ///< flat: the polygon's plane
+  std::vector<HalfSpace> sides; ///< flat: in-plane edge half-spaces, outward
+  Eigen::Vector3d lo, hi;       ///< the vertices' bounding box
   /// The tolerance of tests on this hull, scene units: the scene's at its
   /// box (hullcover/mesh/tolerance.h, PlaceTolerance).
   double tol = 0.0;

@@ -20,8 +20,7 @@ MeshFacts read_mesh_facts(const PreparedMesh& prepared, double bar_half_length) 
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
     for (int k = 0; k < 3; ++k) {
       edge_faces[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}].push_back(f);
-      facts.longest_edge =
-          std::max(facts.longest_edge, (mesh.positions[t[k]] - mesh.positions[t[(k + 1) % 3]]).norm());
+      facts.longest_edge = std::max(facts.longest_edge, (mesh.positions[t[k]] - mesh.positions[t[(k + 1) % 3]]).norm());
     }
     const Eigen::Vector3d a = mesh.positions[t[0]];
     const Eigen::Vector3d cr = (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a);

@@ -22,10 +22,10 @@ struct Segment {
 
 /// The mesh as the re-check sees it.
 struct MeshFacts {
-  std::vector<Eigen::Vector3d> normal;     ///< unit normal of each face with a surface, else zero
-  std::vector<char> has_surface;           ///< area beyond tol x the face's longest edge
-  std::vector<std::pair<int, int>> edges;  ///< each undirected edge once (smaller id first), sorted
-  std::vector<Segment> bars;               ///< condition 3: one across each open edge's midpoint, along the normal
+  std::vector<Eigen::Vector3d> normal;    ///< unit normal of each face with a surface, else zero
+  std::vector<char> has_surface;          ///< area beyond tol x the face's longest edge
+  std::vector<std::pair<int, int>> edges; ///< each undirected edge once (smaller id first), sorted
+  std::vector<Segment> bars;              ///< condition 3: one across each open edge's midpoint, along the normal
   double longest_edge = 0.0;
 };
 

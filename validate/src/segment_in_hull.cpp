@@ -35,22 +35,22 @@ double lowest(const std::vector<DepthLine>& lines, double t, int& which) {
 // lies where the lowest falling line crosses the lowest rising one (or at
 // an end); halving brackets that crossing, then the two lines active there
 // give it exactly. Returns the depth and sets `at`.
-double deepest_over(const std::vector<DepthLine>& falling, const std::vector<DepthLine>& rising, double flat,
-                    double lo, double hi, double& at) {
+double deepest_over(const std::vector<DepthLine>& falling, const std::vector<DepthLine>& rising, double flat, double lo,
+                    double hi, double& at) {
   int f = -1, r = -1;
   const auto gap = [&](double t) { return lowest(falling, t, f) - lowest(rising, t, r); };
   const auto depth = [&](double t) { return std::min({lowest(falling, t, f), lowest(rising, t, r), flat}); };
-  if (falling.empty()) return depth(at = hi);  // never falls: deepest at the end
-  if (rising.empty()) return depth(at = lo);   // never rises: deepest at the start
-  if (gap(lo) <= 0.0) return depth(at = lo);   // the falling lines are already the lower ones
-  if (gap(hi) >= 0.0) return depth(at = hi);   // the rising lines are still the lower ones
+  if (falling.empty()) return depth(at = hi); // never falls: deepest at the end
+  if (rising.empty()) return depth(at = lo);  // never rises: deepest at the start
+  if (gap(lo) <= 0.0) return depth(at = lo);  // the falling lines are already the lower ones
+  if (gap(hi) >= 0.0) return depth(at = hi);  // the rising lines are still the lower ones
   double a = lo, b = hi;
   for (int i = 0; i < kHalvings && b - a > 0.0; ++i) {
     const double mid = 0.5 * (a + b);
     if (mid <= a || mid >= b) break;
     (gap(mid) > 0.0 ? a : b) = mid;
   }
-  gap(0.5 * (a + b));  // sets f and r: the lines active at the crossing
+  gap(0.5 * (a + b)); // sets f and r: the lines active at the crossing
   const DepthLine& down = falling[f];
   const DepthLine& up = rising[r];
   const double crossing = std::clamp((down.a - up.a) / (down.b - up.b), a, b);

@@ -15,9 +15,9 @@ namespace hullcover::validate::probe {
 
 /// The stretch of a segment strictly inside a hull.
 struct InsideStretch {
-  double from = 0.0, to = 0.0;  ///< distances along the segment (scene units), from < to
-  double depth = 0.0;           ///< the deepest point's depth inside the hull (scene units, > tol)
-  double deepest_at = 0.0;      ///< where along the segment that point lies
+  double from = 0.0, to = 0.0; ///< distances along the segment (scene units), from < to
+  double depth = 0.0;          ///< the deepest point's depth inside the hull (scene units, > tol)
+  double deepest_at = 0.0;     ///< where along the segment that point lies
 };
 
 /// The part of the segment start + t dir, t in [0, length] (`dir` unit),

@@ -46,7 +46,7 @@ bool is_single_face(const HullUnderCheck& hull) {
 
 // How far a face is from lying on a hull's boundary with its normal out.
 struct FaceOffHull {
-  double in_front = 0.0;  // the farthest hull vertex in front of the face's plane (0 for a thin face: no plane)
+  double in_front = 0.0; // the farthest hull vertex in front of the face's plane (0 for a thin face: no plane)
   // The face's farthest corner from the hull's surface, inside or outside;
   // and from the hull itself (0 for a corner in it).
   double corner_off = 0.0;
@@ -156,8 +156,7 @@ public:
   Rechecker(const PreparedMesh& prepared, double bar_half_length, bool inside_allowed)
       : inside_allowed_(inside_allowed), mesh_(prepared.mesh),
         largest_on_hull_(kOnHullInTolerances * prepared.tolerance.largest_length()),
-        facts_(recheck::read_mesh_facts(prepared, bar_half_length)),
-        scene_(referenced_bounding_box(mesh_)),
+        facts_(recheck::read_mesh_facts(prepared, bar_half_length)), scene_(referenced_bounding_box(mesh_)),
         cell_(std::max(facts_.longest_edge, scene_.diagonal() / recheck::kMaxCellsAlongDiagonal)),
         grids_(recheck::build_candidate_grids(mesh_, facts_, cell_, scene_.min)) {}
 
@@ -235,8 +234,8 @@ private:
       for (size_t fi = 0; fi < hull.shape->facets.size(); ++fi)
         if (const HalfSpace& plane = c.facets[fi]; plane.n.dot(p) - plane.d > c.tol) {
           ++out.hulls_not_convex;
-          note(out, where + "not convex: a vertex " + std::to_string(plane.n.dot(p) - plane.d) + " in front of a facet of " +
-               std::to_string(hull.shape->facets.size()));
+          note(out, where + "not convex: a vertex " + std::to_string(plane.n.dot(p) - plane.d) +
+                        " in front of a facet of " + std::to_string(hull.shape->facets.size()));
           return;
         }
   }
@@ -250,8 +249,8 @@ private:
         const FaceOffHull off = face_off_hull(mesh_, facts_.normal[f], mesh_.triangles[f], hull, c);
         ++out.faces_off_hull;
         note(out, where + "face " + std::to_string(f) + " not on the hull with its normal out (" +
-             std::to_string(off.in_front) + " in front, a corner " + std::to_string(off.corner_off) +
-             " off its surface)");
+                      std::to_string(off.in_front) + " in front, a corner " + std::to_string(off.corner_off) +
+                      " off its surface)");
       }
     }
   }
@@ -287,8 +286,8 @@ private:
   }
 
   // Conditions 1 and 3 (solid): no mesh vertex, edge part or bar strictly inside.
-  void check_solid(const std::string& where, const CheckedHull& c, const Eigen::Vector3d& lo,
-                   const Eigen::Vector3d& hi, CheckReport& out) const {
+  void check_solid(const std::string& where, const CheckedHull& c, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                   CheckReport& out) const {
     for (int v : grids_.vertices.query(lo, hi))
       if (depth_inside(c.facets, mesh_.positions[v]) > c.tol) {
         ++out.vertices_inside;
@@ -310,7 +309,7 @@ private:
 
   const bool inside_allowed_;
   const Mesh& mesh_;
-  const double largest_on_hull_;  // the largest island's on-hull distance
+  const double largest_on_hull_; // the largest island's on-hull distance
   // A point this close to hull c's surface is on it.
   static double on_hull(const CheckedHull& c) { return kOnHullInTolerances * c.tol; }
   const recheck::MeshFacts facts_;
@@ -344,8 +343,7 @@ std::vector<HullUnderCheck> hulls_under_check(const std::vector<bvh::RuntimeHull
   return out;
 }
 
-CheckReport check_covering_independently(const PreparedMesh& prepared, const Covering& covering,
-                                         bool inside_allowed) {
+CheckReport check_covering_independently(const PreparedMesh& prepared, const Covering& covering, bool inside_allowed) {
   return recheck_hulls(prepared, hulls_under_check(covering), covering.bar_half_length, inside_allowed);
 }
 
@@ -384,7 +382,7 @@ CheckReport recheck_hulls(const PreparedMesh& prepared, const std::vector<HullUn
   parallel_for_ordered(
       rechecker.face_count(), threads, kPartsPerBatch,
       [&](int f) {
-        rechecker.check_face_coverage(f, claimed[f] != 0, hulls, checked, hull_grid, parts[f % kPartsPerBatch]);
+    rechecker.check_face_coverage(f, claimed[f] != 0, hulls, checked, hull_grid, parts[f % kPartsPerBatch]);
       },
       add_part);
   return report;

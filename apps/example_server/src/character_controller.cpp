@@ -177,8 +177,7 @@ Status find_start_positions(const bvh::HullWorld& world, const CharacterControll
   positions.clear();
   for (std::int64_t attempt = 0; attempt < tries && static_cast<int>(positions.size()) < count; ++attempt) {
     Eigen::Vector3d origin;
-    for (int axis = 0; axis < 3; ++axis)
-      origin[axis] = box.min[axis] + unit(random) * (box.max[axis] - box.min[axis]);
+    for (int axis = 0; axis < 3; ++axis) origin[axis] = box.min[axis] + unit(random) * (box.max[axis] - box.min[axis]);
     bvh::RayRequest ray;
     ray.origin = origin;
     ray.direction = -settings.up;

@@ -46,13 +46,13 @@ struct ControllerSettings {
 
 /// Queries one thread ran, by kind, and what the controller did with them.
 struct QueryCounts {
-  std::int64_t sweeps = 0;       ///< HullWorld::sweep calls
-  std::int64_t contacts = 0;     ///< HullWorld::contacts calls (penetration checks)
-  std::int64_t overlaps = 0;     ///< HullWorld::overlap calls (the final inside check)
-  std::int64_t sweep_hits = 0;   ///< sweeps that met a hull (each followed by a slide)
-  std::int64_t recoveries = 0;   ///< contacts that found a capsule inside a hull and pushed it out
-  std::int64_t respawns = 0;     ///< characters that fell out of the level and were put back
-  std::int64_t steps = 0;        ///< character steps taken
+  std::int64_t sweeps = 0;     ///< HullWorld::sweep calls
+  std::int64_t contacts = 0;   ///< HullWorld::contacts calls (penetration checks)
+  std::int64_t overlaps = 0;   ///< HullWorld::overlap calls (the final inside check)
+  std::int64_t sweep_hits = 0; ///< sweeps that met a hull (each followed by a slide)
+  std::int64_t recoveries = 0; ///< contacts that found a capsule inside a hull and pushed it out
+  std::int64_t respawns = 0;   ///< characters that fell out of the level and were put back
+  std::int64_t steps = 0;      ///< character steps taken
 
   /// Every query, of every kind.
   std::int64_t queries() const { return sweeps + contacts + overlaps; }
@@ -62,13 +62,13 @@ struct QueryCounts {
 /// One character: its own state and its own random stream, so a thread that
 /// owns it needs no lock and a run is repeatable from its seed.
 struct Character {
-  int id = 0;                                            ///< index in the whole run
-  Eigen::Vector3d start = Eigen::Vector3d::Zero();       ///< free start position (capsule centre)
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();    ///< current capsule centre
-  double heading = 0.0;                                  ///< walking direction, radians in the ground plane
-  double fall_speed = 0.0;                               ///< current speed down, >= 0
-  double path_length = 0.0;                              ///< scene units moved in all, respawns not counted
-  std::mt19937_64 random;                                ///< this character's random walk
+  int id = 0;                                         ///< index in the whole run
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();    ///< free start position (capsule centre)
+  Eigen::Vector3d position = Eigen::Vector3d::Zero(); ///< current capsule centre
+  double heading = 0.0;                               ///< walking direction, radians in the ground plane
+  double fall_speed = 0.0;                            ///< current speed down, >= 0
+  double path_length = 0.0;                           ///< scene units moved in all, respawns not counted
+  std::mt19937_64 random;                             ///< this character's random walk
 };
 
 /// Moves characters through a world shared read-only between threads.
@@ -98,8 +98,8 @@ public:
 private:
   const hullcover::bvh::HullWorld& world_;
   ControllerSettings settings_;
-  Eigen::Isometry3d upright_;         // the capsule's rotation: local z to `up`
-  Eigen::Vector3d ground_x_, ground_y_;  // unit, spanning the ground plane
+  Eigen::Isometry3d upright_;           // the capsule's rotation: local z to `up`
+  Eigen::Vector3d ground_x_, ground_y_; // unit, spanning the ground plane
 
   Eigen::Isometry3d pose_at(const Eigen::Vector3d& position) const;
   /// Sweeps and slides `character` by `motion`; sets `grounded` when a hull

@@ -59,7 +59,7 @@ struct ServerOptions {
   int threads = 4;
   std::int64_t sweeps_per_thread = 10000;
   std::uint64_t seed = 1;
-  int up_axis = 1;  // 0 x, 1 y, 2 z
+  int up_axis = 1; // 0 x, 1 y, 2 z
   std::optional<double> units_per_metre, radius, half_height, skin;
 };
 
@@ -154,7 +154,8 @@ bool parse_command_line(int argc, char** argv, ServerOptions& options, bool& hel
         return complain("--sweeps is a count >= 1, not '" + value + "'");
       options.sweeps_per_thread = integer;
     } else if (arg == "--seed") {
-      if (!parse_integer(value, 0, INT64_MAX, integer)) return complain("--seed is an integer >= 0, not '" + value + "'");
+      if (!parse_integer(value, 0, INT64_MAX, integer))
+        return complain("--seed is an integer >= 0, not '" + value + "'");
       options.seed = static_cast<std::uint64_t>(integer);
     } else if (arg == "--up") {
       if (value != "x" && value != "y" && value != "z") return complain("--up is x, y or z, not '" + value + "'");

@@ -31,7 +31,6 @@ namespace py = pybind11;
 namespace hullcover::python {
 namespace {
 
-
 // An (n, 3) array's rows, checked.
 std::vector<Eigen::Vector3d> rows_of(const Points& a, const char* what) {
   if (a.ndim() != 2 || a.shape(1) != 3) throw py::value_error(std::string(what) + " must be an (n, 3) array");
@@ -54,15 +53,16 @@ Points array_of(const std::vector<Eigen::Vector3d>& rows) {
 Mesh mesh_of(const Points& vertices, const Indices& faces) {
   Mesh mesh;
   mesh.positions = rows_of(vertices, "vertices");
-  if (faces.ndim() != 2 || faces.shape(1) != 3) throw py::value_error("faces must be an (m, 3) array of vertex indices");
+  if (faces.ndim() != 2 || faces.shape(1) != 3)
+    throw py::value_error("faces must be an (m, 3) array of vertex indices");
   auto f = faces.unchecked<2>();
   for (py::ssize_t i = 0; i < faces.shape(0); ++i) {
     Eigen::Vector3i t;
     for (int k = 0; k < 3; ++k) {
       const std::int64_t v = f(i, k);
       if (v < 0 || v >= static_cast<std::int64_t>(mesh.positions.size()))
-        throw py::value_error("faces[" + std::to_string(i) + "] names a vertex that does not exist: " +
-                              std::to_string(v));
+        throw py::value_error("faces[" + std::to_string(i) +
+                              "] names a vertex that does not exist: " + std::to_string(v));
       t[k] = static_cast<int>(v);
     }
     mesh.triangles.push_back(t);
@@ -80,8 +80,8 @@ PreparedMesh prepared_of(const Points& vertices, const Indices& faces, std::opti
 py::list hull_arrays(const Decomposition& d) {
   py::list out;
   for (const CoveringHull& hull : d.covering.hulls) {
-    py::array_t<std::int32_t> fanned({static_cast<py::ssize_t>(triangles_of_facets(hull.polytope.facets)),
-                                      static_cast<py::ssize_t>(3)});
+    py::array_t<std::int32_t> fanned(
+        {static_cast<py::ssize_t>(triangles_of_facets(hull.polytope.facets)), static_cast<py::ssize_t>(3)});
     auto w = fanned.mutable_unchecked<2>();
     py::ssize_t row = 0;
     for (const std::vector<int>& facet : hull.polytope.facets)
@@ -106,7 +106,7 @@ std::shared_ptr<Decomposition> run_decompose(const Points& vertices, const Indic
   auto d = std::make_shared<Decomposition>();
   d->prepared = prepared_of(vertices, faces, tol);
   Result<Covering> covering = [&] {
-    py::gil_scoped_release unlocked;  // every core while Python waits
+    py::gil_scoped_release unlocked; // every core while Python waits
     return decompose(d->prepared, options);
   }();
   if (!covering.ok()) raise(covering.status());
@@ -260,19 +260,20 @@ PYBIND11_MODULE(_hullcover, m) {
 
   py::class_<Decomposition, std::shared_ptr<Decomposition>>(m, "Decomposition")
       .def("hulls", &hull_arrays)
-      .def("report_json",
-           [](const Decomposition& d) { return covering_json(d.covering).dump(); })
+      .def("report_json", [](const Decomposition& d) { return covering_json(d.covering).dump(); })
       .def("tolerance", [](const Decomposition& d) { return d.covering.tolerance.length; })
       .def("hull_count", [](const Decomposition& d) { return d.covering.hulls.size(); })
       .def("world", [](const Decomposition& d) { return world_of(bvh::runtime_hulls(d.covering)); })
-      .def("write_obj",
-           [](const Decomposition& d, const std::string& path) {
-             if (Status s = write_covering_obj(d.covering, path); !s.ok()) raise(s);
-           })
-      .def("write_world",
-           [](const Decomposition& d, const std::string& path) {
-             if (Status s = bvh::write_covering_runtime_file(d.covering, path); !s.ok()) raise(s);
-           })
+      .def(
+          "write_obj",
+          [](const Decomposition& d, const std::string& path) {
+    if (Status s = write_covering_obj(d.covering, path); !s.ok()) raise(s);
+          })
+      .def(
+          "write_world",
+          [](const Decomposition& d, const std::string& path) {
+    if (Status s = bvh::write_covering_runtime_file(d.covering, path); !s.ok()) raise(s);
+          })
       .def("write_json", [](const Decomposition& d, const std::string& path, const std::string& extra) {
         if (Status s = write_covering_json(d.covering, nlohmann::json::parse(extra), path); !s.ok()) raise(s);
       });
@@ -282,9 +283,9 @@ PYBIND11_MODULE(_hullcover, m) {
       [](const Points& vertices, const Indices& faces, std::optional<double> tol, int threads,
          std::optional<double> cell_size, std::optional<double> agent_radius, std::optional<double> max_deviation,
          std::optional<double> near_merge_distance, int max_hull_vertices, std::optional<int> max_hull_triangles) {
-        return run_decompose(vertices, faces, tol,
-                             options_of(threads, cell_size, agent_radius, max_deviation, near_merge_distance,
-                                        max_hull_vertices, max_hull_triangles));
+    return run_decompose(vertices, faces, tol,
+                         options_of(threads, cell_size, agent_radius, max_deviation, near_merge_distance,
+                                    max_hull_vertices, max_hull_triangles));
       },
       py::arg("vertices"), py::arg("faces"), py::arg("tol") = py::none(), py::arg("threads") = 0,
       py::arg("cell_size") = py::none(), py::arg("agent_radius") = py::none(), py::arg("max_deviation") = py::none(),
@@ -292,17 +293,17 @@ PYBIND11_MODULE(_hullcover, m) {
       py::arg("max_hull_triangles") = py::none());
 
   py::class_<World, WorldPtr>(m, "World")
-      .def_static("load",
-                  [](const std::string& path) {
-                    Result<std::vector<bvh::RuntimeHull>> hulls = bvh::read_runtime_file(path);
-                    if (!hulls.ok()) raise(hulls.status());
-                    return world_of(std::move(hulls).value());
-                  })
+      .def_static(
+          "load",
+          [](const std::string& path) {
+    Result<std::vector<bvh::RuntimeHull>> hulls = bvh::read_runtime_file(path);
+    if (!hulls.ok()) raise(hulls.status());
+    return world_of(std::move(hulls).value());
+          })
       .def("__len__", [](const World& w) { return w.hulls().size(); })
       .def("cast_rays", &cast_rays, py::arg("origins"), py::arg("directions"),
            py::arg("max_distance") = std::numeric_limits<double>::infinity())
-      .def("overlaps", &overlaps, py::arg("shape"), py::arg("centres"), py::arg("radius"),
-           py::arg("half_height") = 0.0)
+      .def("overlaps", &overlaps, py::arg("shape"), py::arg("centres"), py::arg("radius"), py::arg("half_height") = 0.0)
       .def("contacts", &deepest_contacts, py::arg("shape"), py::arg("centres"), py::arg("radius"),
            py::arg("half_height") = 0.0);
 
@@ -310,14 +311,14 @@ PYBIND11_MODULE(_hullcover, m) {
       "audit",
       [](const Points& vertices, const Indices& faces, const py::object& hulls, std::optional<double> tol,
          std::optional<double> agent_radius, std::optional<double> max_deviation, int proxies, std::uint64_t seed) {
-        validate::AuditOptions options;
-        options.behaviour.proxies = proxies;
-        options.behaviour.seed = seed;
-        options.probe.allowance.agent_radius = agent_radius;
-        options.probe.allowance.max_deviation = max_deviation;
-        if (py::isinstance<Decomposition>(hulls))
-          return run_audit_json(vertices, faces, "", hulls.cast<const Decomposition*>(), tol, options);
-        return run_audit_json(vertices, faces, hulls.cast<std::string>(), nullptr, tol, options);
+    validate::AuditOptions options;
+    options.behaviour.proxies = proxies;
+    options.behaviour.seed = seed;
+    options.probe.allowance.agent_radius = agent_radius;
+    options.probe.allowance.max_deviation = max_deviation;
+    if (py::isinstance<Decomposition>(hulls))
+      return run_audit_json(vertices, faces, "", hulls.cast<const Decomposition*>(), tol, options);
+    return run_audit_json(vertices, faces, hulls.cast<std::string>(), nullptr, tol, options);
       },
       py::arg("vertices"), py::arg("faces"), py::arg("hulls"), py::arg("tol") = py::none(),
       py::arg("agent_radius") = py::none(), py::arg("max_deviation") = py::none(), py::arg("proxies") = 3000,

@@ -58,18 +58,18 @@ void bind_staged_bake(py::module_& m) {
       "decompose_file",
       [](const std::string& path, std::optional<double> tol, int threads, std::optional<double> cell_size,
          std::optional<double> agent_radius, std::optional<double> max_deviation) {
-        auto d = std::make_shared<Decomposition>();
-        Result<Covering> covering = [&]() -> Result<Covering> {
-          py::gil_scoped_release unlocked;
-          Result<PreparedMesh> prepared = prepared_from_file(path, tol);
-          if (!prepared.ok()) return prepared.status();
-          d->prepared = std::move(prepared).value();
-          return decompose(d->prepared, options_of(threads, cell_size, agent_radius, max_deviation, std::nullopt,
-                                                   kDefaultMaxHullVertices, std::nullopt));
-        }();
-        if (!covering.ok()) raise(covering.status());
-        d->covering = std::move(covering).value();
-        return d;
+    auto d = std::make_shared<Decomposition>();
+    Result<Covering> covering = [&]() -> Result<Covering> {
+      py::gil_scoped_release unlocked;
+      Result<PreparedMesh> prepared = prepared_from_file(path, tol);
+      if (!prepared.ok()) return prepared.status();
+      d->prepared = std::move(prepared).value();
+      return decompose(d->prepared, options_of(threads, cell_size, agent_radius, max_deviation, std::nullopt,
+                                               kDefaultMaxHullVertices, std::nullopt));
+    }();
+    if (!covering.ok()) raise(covering.status());
+    d->covering = std::move(covering).value();
+    return d;
       },
       py::arg("path"), py::arg("tol") = py::none(), py::arg("threads") = 0, py::arg("cell_size") = py::none(),
       py::arg("agent_radius") = py::none(), py::arg("max_deviation") = py::none());
@@ -80,47 +80,51 @@ void bind_staged_bake(py::module_& m) {
           [](const std::string& path, std::optional<double> tol, int threads, std::optional<double> cell_size,
              std::optional<double> agent_radius, std::optional<double> max_deviation,
              std::optional<double> near_merge_distance, int max_hull_vertices, std::optional<int> max_hull_triangles) {
-            return load_staged(path, tol,
-                               options_of(threads, cell_size, agent_radius, max_deviation, near_merge_distance,
-                                          max_hull_vertices, max_hull_triangles));
+    return load_staged(path, tol,
+                       options_of(threads, cell_size, agent_radius, max_deviation, near_merge_distance,
+                                  max_hull_vertices, max_hull_triangles));
           },
           py::arg("path"), py::arg("tol") = py::none(), py::arg("threads") = 0, py::arg("cell_size") = py::none(),
           py::arg("agent_radius") = py::none(), py::arg("max_deviation") = py::none(),
           py::arg("near_merge_distance") = py::none(), py::arg("max_hull_vertices") = kDefaultMaxHullVertices,
           py::arg("max_hull_triangles") = py::none())
       .def("cell_count", [](const StagedBake& b) { return b.staged->cell_count(); })
-      .def("cell_face_count",
-           [](const StagedBake& b, int cell) {
-             check_cell(b, cell);
-             return b.staged->cell_faces(cell).size();
-           })
-      .def("cell_key",
-           [](const StagedBake& b, int cell) {
-             check_cell(b, cell);
-             return b.staged->cell_key(cell);
-           })
-      .def("merge_cell",
-           [](const StagedBake& b, int cell) {
-             check_cell(b, cell);
-             Result<std::string> bytes = [&] {
-               py::gil_scoped_release unlocked;
-               return b.staged->merge_cell(cell);
-             }();
-             if (!bytes.ok()) raise(bytes.status());
-             return py::bytes(bytes.value());
-           })
-      .def("still_valid",
-           [](const StagedBake& b, int cell, const py::bytes& bytes) {
-             check_cell(b, cell);
-             const std::string content = bytes;
-             std::string why;
-             bool valid = false;
-             {
-               py::gil_scoped_release unlocked;
-               valid = b.staged->still_valid(cell, content, &why);
-             }
-             return py::make_tuple(valid, why);
-           })
+      .def(
+          "cell_face_count",
+          [](const StagedBake& b, int cell) {
+    check_cell(b, cell);
+    return b.staged->cell_faces(cell).size();
+          })
+      .def(
+          "cell_key",
+          [](const StagedBake& b, int cell) {
+    check_cell(b, cell);
+    return b.staged->cell_key(cell);
+          })
+      .def(
+          "merge_cell",
+          [](const StagedBake& b, int cell) {
+    check_cell(b, cell);
+    Result<std::string> bytes = [&] {
+      py::gil_scoped_release unlocked;
+      return b.staged->merge_cell(cell);
+    }();
+    if (!bytes.ok()) raise(bytes.status());
+    return py::bytes(bytes.value());
+          })
+      .def(
+          "still_valid",
+          [](const StagedBake& b, int cell, const py::bytes& bytes) {
+    check_cell(b, cell);
+    const std::string content = bytes;
+    std::string why;
+    bool valid = false;
+    {
+      py::gil_scoped_release unlocked;
+      valid = b.staged->still_valid(cell, content, &why);
+    }
+    return py::make_tuple(valid, why);
+          })
       .def("finish", [](const StagedBake& b, const std::vector<py::bytes>& cells) {
         std::vector<std::string> contents(cells.begin(), cells.end());
         auto d = std::make_shared<Decomposition>();

@@ -19,7 +19,7 @@
 namespace hullcover::app::bench {
 namespace {
 
-constexpr double kWidth = 1200.0, kHeight = 860.0;  // points (SVG) or pixels (PNG)
+constexpr double kWidth = 1200.0, kHeight = 860.0; // points (SVG) or pixels (PNG)
 constexpr double kMargin = 60.0, kLegendHeight = 70.0;
 
 struct Colour {
@@ -36,7 +36,8 @@ constexpr std::array<Colour, 8> kPalette = {{{0.0, 0.45, 0.70},
                                              {0.94, 0.89, 0.26}}};
 
 // Distinct values of `key` in the order rows first show them.
-std::vector<std::string> first_seen(const std::vector<BenchRow>& rows, const std::function<std::string(const BenchRow&)>& key) {
+std::vector<std::string> first_seen(const std::vector<BenchRow>& rows,
+                                    const std::function<std::string(const BenchRow&)>& key) {
   std::vector<std::string> out;
   for (const BenchRow& r : rows)
     if (std::find(out.begin(), out.end(), key(r)) == out.end()) out.push_back(key(r));
@@ -54,12 +55,12 @@ double tick_step(double top) {
 
 struct Panel {
   const char* title;
-  std::function<double(const BenchRow&, const std::vector<BenchRow>&)> value;  // NaN: no point
-  bool reference_line_at_one;  // speed-ups: 1 is "as fast as the triangles"
+  std::function<double(const BenchRow&, const std::vector<BenchRow>&)> value; // NaN: no point
+  bool reference_line_at_one; // speed-ups: 1 is "as fast as the triangles"
 };
 
 double hulls_percent(const BenchRow& row, const std::vector<BenchRow>& rows) {
-  const BenchRow* base = exact_row_of(rows, row.scene);  // the scene's exact row, else its first
+  const BenchRow* base = exact_row_of(rows, row.scene); // the scene's exact row, else its first
   if (!base || base->hulls == 0)
     base = &*std::find_if(rows.begin(), rows.end(), [&](const BenchRow& r) { return r.scene == row.scene; });
   return base->hulls > 0 ? 100.0 * static_cast<double>(row.hulls) / static_cast<double>(base->hulls) : NAN;
@@ -72,14 +73,17 @@ void text_at(cairo_t* cr, double x, double y, const std::string& text, double al
   cairo_show_text(cr, text.c_str());
 }
 
-void draw_panel(cairo_t* cr, const Panel& panel, const std::vector<BenchRow>& rows, const std::vector<std::string>& scenes,
-                const std::vector<std::string>& settings, double x0, double y0, double w, double h) {
+void draw_panel(cairo_t* cr, const Panel& panel, const std::vector<BenchRow>& rows,
+                const std::vector<std::string>& scenes, const std::vector<std::string>& settings, double x0, double y0,
+                double w, double h) {
   double top = panel.reference_line_at_one ? 1.0 : 100.0;
   for (const BenchRow& r : rows)
     if (const double v = panel.value(r, rows); std::isfinite(v)) top = std::max(top, v);
   const double step = tick_step(top * 1.1);
   top = std::ceil(top * 1.1 / step) * step;
-  const auto px = [&](size_t i) { return settings.size() > 1 ? x0 + w * (0.05 + 0.9 * i / (settings.size() - 1.0)) : x0 + w / 2; };
+  const auto px = [&](size_t i) {
+    return settings.size() > 1 ? x0 + w * (0.05 + 0.9 * i / (settings.size() - 1.0)) : x0 + w / 2;
+  };
   const auto py = [&](double v) { return y0 + h - h * v / top; };
 
   cairo_set_source_rgb(cr, 0, 0, 0);
@@ -87,7 +91,7 @@ void draw_panel(cairo_t* cr, const Panel& panel, const std::vector<BenchRow>& ro
   text_at(cr, x0 + w / 2, y0 - 12, panel.title, 0.5);
   cairo_set_font_size(cr, 11);
   cairo_set_line_width(cr, 1);
-  for (double v = 0; v <= top + step / 2; v += step) {  // grid and y labels
+  for (double v = 0; v <= top + step / 2; v += step) { // grid and y labels
     cairo_set_source_rgb(cr, 0.88, 0.88, 0.88);
     cairo_move_to(cr, x0, py(v));
     cairo_line_to(cr, x0 + w, py(v));
@@ -121,13 +125,15 @@ void draw_panel(cairo_t* cr, const Panel& panel, const std::vector<BenchRow>& ro
         if (r.scene != scenes[s] || r.setting != settings[i]) continue;
         const double v = panel.value(r, rows);
         if (!std::isfinite(v)) continue;
-        if (drawing) cairo_line_to(cr, px(i), py(v));
-        else cairo_move_to(cr, px(i), py(v));
+        if (drawing)
+          cairo_line_to(cr, px(i), py(v));
+        else
+          cairo_move_to(cr, px(i), py(v));
         drawing = true;
       }
     }
     cairo_stroke(cr);
-    for (size_t i = 0; i < settings.size(); ++i)  // markers
+    for (size_t i = 0; i < settings.size(); ++i) // markers
       for (const BenchRow& r : rows)
         if (r.scene == scenes[s] && r.setting == settings[i] && std::isfinite(panel.value(r, rows))) {
           cairo_arc(cr, px(i), py(panel.value(r, rows)), 3.5, 0, 2 * M_PI);
@@ -142,16 +148,18 @@ void draw(cairo_t* cr, const std::vector<BenchRow>& rows) {
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   const std::vector<std::string> scenes = first_seen(rows, [](const BenchRow& r) { return r.scene; });
   const std::vector<std::string> settings = first_seen(rows, [](const BenchRow& r) { return r.setting; });
-  const Panel panels[] = {
-      {"yes/no speed-up (triangles / hulls)", [](const BenchRow& r, const auto&) { return r.queries.touches.speedup(); }, true},
-      {"contacts speed-up (triangles / hulls)", [](const BenchRow& r, const auto&) { return r.queries.contacts.speedup(); }, true},
-      {"ray speed-up (triangles / hulls)", [](const BenchRow& r, const auto&) { return r.queries.ray.speedup(); }, true},
-      {"hulls, % of exact", hulls_percent, false}};
+  const Panel panels[] = {{"yes/no speed-up (triangles / hulls)",
+                           [](const BenchRow& r, const auto&) { return r.queries.touches.speedup(); }, true},
+                          {"contacts speed-up (triangles / hulls)",
+                           [](const BenchRow& r, const auto&) { return r.queries.contacts.speedup(); }, true},
+                          {"ray speed-up (triangles / hulls)",
+                           [](const BenchRow& r, const auto&) { return r.queries.ray.speedup(); }, true},
+                          {"hulls, % of exact", hulls_percent, false}};
   const double pw = (kWidth - 3 * kMargin) / 2, ph = (kHeight - kLegendHeight - 3 * kMargin) / 2;
   for (int p = 0; p < 4; ++p)
     draw_panel(cr, panels[p], rows, scenes, settings, kMargin + (p % 2) * (pw + kMargin),
                kMargin / 1.5 + (p / 2) * (ph + kMargin), pw, ph);
-  cairo_set_font_size(cr, 12);  // legend
+  cairo_set_font_size(cr, 12); // legend
   const double legend_y = kHeight - kLegendHeight + 20, column = (kWidth - 2 * kMargin) / 4;
   for (size_t s = 0; s < scenes.size(); ++s) {
     const double x = kMargin + column * (s % 4), y = legend_y + 22 * (s / 4);
@@ -192,8 +200,10 @@ Status write_bench_plot(const std::vector<BenchRow>& rows, const std::string& pa
     drawing_failed = cairo_status(cr) != CAIRO_STATUS_SUCCESS;
     cairo_destroy(cr);
     if (drawing_failed) return false;
-    if (svg) cairo_surface_finish(surface.get());
-    else cairo_surface_write_to_png_stream(surface.get(), write_cairo_bytes_to_stream, out);
+    if (svg)
+      cairo_surface_finish(surface.get());
+    else
+      cairo_surface_write_to_png_stream(surface.get(), write_cairo_bytes_to_stream, out);
     return true;
   });
   if (drawing_failed) return {StatusCode::internal_error, path + ": cairo could not draw the plot"};

@@ -68,26 +68,28 @@ Status write_bench_csv(const std::vector<BenchRow>& rows, const std::string& pat
         << r.query_radius << ',' << r.query_half_height << ',' << r.queries.touches.hull_us << ','
         << r.queries.touches.triangle_us << ',' << r.queries.touches.speedup() << ',' << r.queries.contacts.hull_us
         << ',' << r.queries.contacts.triangle_us << ',' << r.queries.contacts.speedup() << ','
-        << (exact_contacts > 0.0 ? std::to_string(r.queries.contacts.speedup() / exact_contacts) : std::string())
-        << ',' << r.queries.ray.hull_us << ',' << r.queries.ray.triangle_us << ',' << r.queries.ray.speedup() << ','
+        << (exact_contacts > 0.0 ? std::to_string(r.queries.contacts.speedup() / exact_contacts) : std::string()) << ','
+        << r.queries.ray.hull_us << ',' << r.queries.ray.triangle_us << ',' << r.queries.ray.speedup() << ','
         << r.audit_seconds << ',' << (r.clean ? "yes" : "no") << ',' << csv_field(r.findings) << ',' << r.front_rays
         << ',' << r.front_lost << ',' << r.opening_rays << ',' << r.opening_lost << ',' << r.max_lost_depth << ','
-        << r.max_lost_deviation << ',' << r.centre_rays << ',' << r.reach_lost << ',' << r.undecided << ','
-        << r.proxies << ',' << r.missed_contacts << ',' << r.false_contacts << ',' << r.coverage_percent << '\n';
+        << r.max_lost_deviation << ',' << r.centre_rays << ',' << r.reach_lost << ',' << r.undecided << ',' << r.proxies
+        << ',' << r.missed_contacts << ',' << r.false_contacts << ',' << r.coverage_percent << '\n';
   }
   return write_file_atomically(path, out.str());
 }
 
 std::string bench_markdown(const std::vector<BenchRow>& rows) {
   std::ostringstream out;
-  out << "| scene | setting | decompose | hulls (vs exact) | hulls/face | facets, vertices/hull | .hcw | yes/no | contacts "
-         "| ray | strict lost rays, deepest | farthest lost from mesh | reach lost | missed, false | coverage | audit |\n"
+  out << "| scene | setting | decompose | hulls (vs exact) | hulls/face | facets, vertices/hull | .hcw | yes/no | "
+         "contacts "
+         "| ray | strict lost rays, deepest | farthest lost from mesh | reach lost | missed, false | coverage | audit "
+         "|\n"
          "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|\n";
   for (const BenchRow& r : rows) {
     const std::optional<double> change = hull_change_percent(rows, r);
     out << "| " << r.scene << " | " << r.setting << " | " << format("%.1f s", r.decompose_seconds) << " | "
-        << grouped(r.hulls) << (change && r.setting != "exact" ? format(" (%+.0f%%)", *change) : std::string())
-        << " | " << format("%.3f", r.hulls_per_face) << " | " << format("%.1f", r.facets_per_hull) << ", "
+        << grouped(r.hulls) << (change && r.setting != "exact" ? format(" (%+.0f%%)", *change) : std::string()) << " | "
+        << format("%.3f", r.hulls_per_face) << " | " << format("%.1f", r.facets_per_hull) << ", "
         << format("%.1f", r.vertices_per_hull) << " | " << format("%.0f KB", r.runtime_bytes / 1024.0) << " | "
         << speedup(r.queries.touches) << " | " << speedup(r.queries.contacts) << " | " << speedup(r.queries.ray)
         << " | " << grouped(r.front_lost + r.opening_lost) << ", " << format("%.3g", r.max_lost_depth) << " | "

@@ -78,7 +78,8 @@ Result<BenchRow> bench_setting(const PreparedMesh& prepared, const SceneSpec& sc
   count_shapes(covering.value(), row);
 
   row.runtime_path =
-      (std::filesystem::path(options.out_dir) / (scene_path.stem().string() + "." + setting.file_label() + ".hcw")).string();
+      (std::filesystem::path(options.out_dir) / (scene_path.stem().string() + "." + setting.file_label() + ".hcw"))
+          .string();
   if (Status s = bvh::write_runtime_file(bvh::runtime_hulls(covering.value()), row.runtime_path); !s.ok()) return s;
   std::error_code size_error;
   row.runtime_bytes = static_cast<long>(std::filesystem::file_size(row.runtime_path, size_error));

@@ -30,9 +30,9 @@ std::string for_file(const std::string& text) {
 
 double LengthSpec::resolve(double units_per_metre, double diagonal) const {
   switch (unit) {
-  case Unit::metres: return value * units_per_metre;
-  case Unit::diagonal_percent: return value / 100.0 * diagonal;
-  case Unit::scene: break;
+    case Unit::metres: return value * units_per_metre;
+    case Unit::diagonal_percent: return value / 100.0 * diagonal;
+    case Unit::scene: break;
   }
   return value;
 }
@@ -89,7 +89,8 @@ std::string Setting::file_label() const {
 Result<std::vector<Setting>> sweep_settings(const std::vector<std::string>& agent_radii,
                                             const std::vector<std::string>& max_deviations) {
   if (agent_radii.empty() || max_deviations.empty())
-    return Status(StatusCode::invalid_argument, "the sweep needs at least one agent radius and one max deviation (0 = off)");
+    return Status(StatusCode::invalid_argument,
+                  "the sweep needs at least one agent radius and one max deviation (0 = off)");
   std::vector<LengthSpec> radii, deviations;
   for (const std::string& text : agent_radii) {
     Result<LengthSpec> r = parse_length(text);

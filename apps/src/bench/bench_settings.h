@@ -18,7 +18,7 @@ struct LengthSpec {
   enum class Unit { scene, metres, diagonal_percent };
   double value = 0.0;
   Unit unit = Unit::scene;
-  std::string text;  ///< as written, for labels
+  std::string text; ///< as written, for labels
 
   /// Scene units, given the scene's scale (units per metre) and diagonal.
   double resolve(double units_per_metre, double diagonal) const;
@@ -34,7 +34,7 @@ struct LengthSpec {
 /// a size relative to the object, as a character is to a level.
 struct SceneSpec {
   std::string path;
-  std::optional<double> units_per_metre;  ///< none: an object
+  std::optional<double> units_per_metre; ///< none: an object
 
   /// Scene units per metre, given the scene's diagonal.
   double metre(double diagonal) const;

@@ -44,7 +44,8 @@ private:
 // Runs one kind of query on every pose, rounds alternating between the two
 // worlds, and gives microseconds per query on each.
 template <typename HullQuery, typename TriangleQuery>
-Result<QueryTiming> time_side_by_side(int count, double min_seconds, HullQuery hull_query, TriangleQuery triangle_query) {
+Result<QueryTiming> time_side_by_side(int count, double min_seconds, HullQuery hull_query,
+                                      TriangleQuery triangle_query) {
   QueryTiming timing;
   if (count == 0) return timing;
   double hull_seconds = 0.0, triangle_seconds = 0.0;
@@ -96,13 +97,23 @@ Result<QueryTimings> time_queries(const bvh::HullWorld& hulls, const bvh::Triang
   const bvh::QueryShape capsule = bvh::QueryShape::capsule(poses.radius, poses.half_height);
   bvh::TouchResult touch;
   Result<QueryTiming> touches = time_side_by_side(
-      n, min_seconds, [&](int i) { return hulls.touches({capsule, poses.poses[i]}, touch); },
-      [&](int i) { return triangles.touches({capsule, poses.poses[i]}, touch); });
+      n, min_seconds,
+      [&](int i) {
+    return hulls.touches({capsule, poses.poses[i]}, touch);
+      },
+      [&](int i) {
+    return triangles.touches({capsule, poses.poses[i]}, touch);
+  });
   if (!touches.ok()) return touches.status();
   bvh::ContactResult contact;
   Result<QueryTiming> contacts = time_side_by_side(
-      n, min_seconds, [&](int i) { return hulls.contacts({capsule, poses.poses[i], 8}, contact); },
-      [&](int i) { return triangles.contacts({capsule, poses.poses[i], 8}, contact); });
+      n, min_seconds,
+      [&](int i) {
+    return hulls.contacts({capsule, poses.poses[i], 8}, contact);
+      },
+      [&](int i) {
+    return triangles.contacts({capsule, poses.poses[i], 8}, contact);
+  });
   if (!contacts.ok()) return contacts.status();
   bvh::RayResult hit;
   Result<QueryTiming> rays = time_side_by_side(

@@ -16,8 +16,8 @@ namespace hullcover::app::bench {
 
 /// Capsule poses and rays near the surfaces of a mesh.
 struct QueryPoses {
-  double radius = 0.0, half_height = 0.0;  ///< the capsule, scene units
-  double ray_length = 0.0;                 ///< 4 radii
+  double radius = 0.0, half_height = 0.0; ///< the capsule, scene units
+  double ray_length = 0.0;                ///< 4 radii
   /// Randomly rotated, centred -0.5 to 1.5 radii in front of a point drawn
   /// uniformly (by area) on the faces: about a third touch, as a moving
   /// character's queries do.
@@ -41,9 +41,9 @@ struct QueryTiming {
 
 /// The three queries a server asks most, each timed on every pose.
 struct QueryTimings {
-  QueryTiming touches;   ///< yes/no: does the capsule touch anything
-  QueryTiming contacts;  ///< up to 8 contacts of the capsule, deepest first
-  QueryTiming ray;       ///< first hit along each ray
+  QueryTiming touches;  ///< yes/no: does the capsule touch anything
+  QueryTiming contacts; ///< up to 8 contacts of the capsule, deepest first
+  QueryTiming ray;      ///< first hit along each ray
 };
 
 /// Times each query kind over all poses, alternating rounds on the hulls

@@ -37,7 +37,7 @@ std::vector<std::string> collider_names(size_t count, const ColliderExportOption
   std::vector<std::string> names;
   for (size_t h = 0; h < count; ++h) {
     if (!options.ucx_name.empty())
-      names.push_back("UCX_" + options.ucx_name + "_" + padded(h, 2));  // Unreal numbers them _00, _01, ...
+      names.push_back("UCX_" + options.ucx_name + "_" + padded(h, 2)); // Unreal numbers them _00, _01, ...
     else if (options.godot_names)
       names.push_back("hull_" + padded(h, 3) + "-convcolonly");
     else
@@ -49,8 +49,10 @@ std::vector<std::string> collider_names(size_t count, const ColliderExportOption
 } // namespace
 
 void add_collider_export_options(CLI::App* command, ColliderExportOptions& options) {
-  command->add_option("--format", options.format, "glb (glTF binary, physics extensions) or obj; default from the "
-                                                   "output's extension")
+  command
+      ->add_option("--format", options.format,
+                   "glb (glTF binary, physics extensions) or obj; default from the "
+                   "output's extension")
       ->check(CLI::IsMember({"glb", "obj"}));
   auto* ucx = command->add_option("--ucx", options.ucx_name,
                                   "Unreal names: hull i is UCX_NAME_<ii>, the collision of the mesh NAME (with "
@@ -59,16 +61,19 @@ void add_collider_export_options(CLI::App* command, ColliderExportOptions& optio
       ->excludes(ucx);
   std::string engines;
   for (const std::string& name : engine_names()) engines += (engines.empty() ? "" : ", ") + name;
-  command->add_option("--engine", options.engine,
-                      "Engine whose convex-collider limits every hull must meet: " + engines +
-                          " (any: 256 vertices, 255 polygons, 255 triangles)")
+  command
+      ->add_option("--engine", options.engine,
+                   "Engine whose convex-collider limits every hull must meet: " + engines +
+                       " (any: 256 vertices, 255 polygons, 255 triangles)")
       ->check(CLI::IsMember(engine_names()))
       ->capture_default_str();
-  command->add_option("--flat-thickness", options.flat_thickness,
-                      "Thickness given to flat hulls, scene units (default: 2 mm, the thinnest the engines cook, "
-                      "and at least 4 tol); behind the face, or half each side of a double-sided sheet")
+  command
+      ->add_option("--flat-thickness", options.flat_thickness,
+                   "Thickness given to flat hulls, scene units (default: 2 mm, the thinnest the engines cook, "
+                   "and at least 4 tol); behind the face, or half each side of a double-sided sheet")
       ->check(positive_number());
-  command->add_option("--units-per-metre", options.units_per_metre, "Scene units in a metre (for the default thickness)")
+  command
+      ->add_option("--units-per-metre", options.units_per_metre, "Scene units in a metre (for the default thickness)")
       ->check(positive_number())
       ->capture_default_str();
   command->add_flag("--with-scene", options.with_scene, "Also carry the scene's triangles as a render mesh");
@@ -97,7 +102,8 @@ Result<ColliderExportReport> export_colliders(const std::vector<bvh::RuntimeHull
   if (!breaches.empty()) {
     std::string message = std::to_string(breaches.size()) + " hull limit(s) broken:";
     for (size_t i = 0; i < std::min(breaches.size(), kBreachesListed); ++i) message += "\n  " + breaches[i];
-    if (breaches.size() > kBreachesListed) message += "\n  and " + std::to_string(breaches.size() - kBreachesListed) + " more";
+    if (breaches.size() > kBreachesListed)
+      message += "\n  and " + std::to_string(breaches.size() - kBreachesListed) + " more";
     return Status{StatusCode::invalid_argument, message};
   }
   const std::vector<std::string> names = collider_names(thick.hulls.size(), options);

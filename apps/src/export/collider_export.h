@@ -25,16 +25,16 @@ enum class ColliderFormat { glb, obj };
 
 /// What an export is asked for (the command line's options).
 struct ColliderExportOptions {
-  std::string format;          ///< "glb", "obj", or "" (from the output's extension)
-  std::string ucx_name;        ///< Unreal naming: UCX_<ucx_name>_<NN>; "" off
-  bool godot_names = false;    ///< Godot naming: hull_<NNN>-convcolonly
-  std::string engine = "any";  ///< engine_named
+  std::string format;         ///< "glb", "obj", or "" (from the output's extension)
+  std::string ucx_name;       ///< Unreal naming: UCX_<ucx_name>_<NN>; "" off
+  bool godot_names = false;   ///< Godot naming: hull_<NNN>-convcolonly
+  std::string engine = "any"; ///< engine_named
   /// Thickness of flat hulls, scene units; default the engine's smallest
   /// (EngineLimits::min_thickness_metres x units_per_metre), at least
   /// kFlatThicknessInTolerances x tol.
   std::optional<double> flat_thickness;
-  double units_per_metre = 1.0;  ///< scene units in a metre
-  bool with_scene = false;       ///< carry the scene's triangles as a render mesh
+  double units_per_metre = 1.0; ///< scene units in a metre
+  bool with_scene = false;      ///< carry the scene's triangles as a render mesh
 };
 
 /// A flat hull is never thinner than this many tolerances, so the audit,
@@ -45,10 +45,10 @@ inline constexpr double kFlatThicknessInTolerances = 4.0;
 struct ColliderExportReport {
   ColliderFormat format = ColliderFormat::glb;
   int hulls = 0;
-  int flat_thickened = 0;     ///< flat hulls given a thickness
-  int split = 0;              ///< of those, split across both sides of a double-sided sheet
-  double thickness = 0.0;     ///< scene units
-  std::string engine;         ///< the limits checked
+  int flat_thickened = 0; ///< flat hulls given a thickness
+  int split = 0;          ///< of those, split across both sides of a double-sided sheet
+  double thickness = 0.0; ///< scene units
+  std::string engine;     ///< the limits checked
 };
 
 /// Adds the export options (--format, --ucx, --godot, --engine,

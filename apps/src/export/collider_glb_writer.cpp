@@ -27,7 +27,7 @@ constexpr std::uint64_t kLargestGlb = std::numeric_limits<std::uint32_t>::max();
 
 // The binary chunk and the JSON that describes it, built together.
 class GlbBuilder {
- public:
+public:
   // Adds a mesh of `positions` and `triangles` and returns its index.
   int add_mesh(const std::vector<Eigen::Vector3f>& positions, const std::vector<std::uint32_t>& triangles,
                const std::string& name) {
@@ -36,8 +36,10 @@ class GlbBuilder {
       low = low.cwiseMin(p);
       high = high.cwiseMax(p);
     }
-    const int position_view = add_view(positions.data(), positions.size() * sizeof(Eigen::Vector3f), kTargetArrayBuffer);
-    const int index_view = add_view(triangles.data(), triangles.size() * sizeof(std::uint32_t), kTargetElementArrayBuffer);
+    const int position_view =
+        add_view(positions.data(), positions.size() * sizeof(Eigen::Vector3f), kTargetArrayBuffer);
+    const int index_view =
+        add_view(triangles.data(), triangles.size() * sizeof(std::uint32_t), kTargetElementArrayBuffer);
     const int position_accessor = static_cast<int>(accessors_.size());
     accessors_.push_back({{"bufferView", position_view},
                           {"componentType", kComponentFloat},
@@ -45,8 +47,10 @@ class GlbBuilder {
                           {"type", "VEC3"},
                           {"min", {low.x(), low.y(), low.z()}},
                           {"max", {high.x(), high.y(), high.z()}}});
-    accessors_.push_back(
-        {{"bufferView", index_view}, {"componentType", kComponentUnsignedInt}, {"count", triangles.size()}, {"type", "SCALAR"}});
+    accessors_.push_back({{"bufferView", index_view},
+                          {"componentType", kComponentUnsignedInt},
+                          {"count", triangles.size()},
+                          {"type", "SCALAR"}});
     meshes_.push_back({{"name", name},
                        {"primitives",
                         {{{"attributes", {{"POSITION", position_accessor}}},
@@ -60,11 +64,11 @@ class GlbBuilder {
   nlohmann::json meshes() const { return meshes_; }
   const std::string& bin() const { return bin_; }
 
- private:
+private:
   int add_view(const void* data, size_t bytes, int target) {
     views_.push_back({{"buffer", 0}, {"byteOffset", bin_.size()}, {"byteLength", bytes}, {"target", target}});
     bin_.append(static_cast<const char*>(data), bytes);
-    bin_.resize((bin_.size() + 3) / 4 * 4, '\0');  // every view starts 4-byte aligned
+    bin_.resize((bin_.size() + 3) / 4 * 4, '\0'); // every view starts 4-byte aligned
     return static_cast<int>(views_.size()) - 1;
   }
 
@@ -76,7 +80,7 @@ class GlbBuilder {
 
 void append_word(std::string& out, std::uint32_t word) {
   char bytes[4];
-  std::memcpy(bytes, &word, 4);  // GLB is little-endian, as every platform hullcover builds on
+  std::memcpy(bytes, &word, 4); // GLB is little-endian, as every platform hullcover builds on
   out.append(bytes, 4);
 }
 
@@ -101,11 +105,12 @@ Status write_collider_glb(const std::vector<ConvexPolytope>& hulls, const std::v
     const int mesh = builder.add_mesh(positions, triangles, names[h]);
     const int node = static_cast<int>(nodes.size());
     shapes.push_back({{"type", "convex"}, {"convex", {{"mesh", mesh}}}});
-    nodes.push_back({{"name", names[h]},
-                     {"mesh", mesh},
-                     {"extensions",
-                      {{"KHR_physics_rigid_bodies", {{"collider", {{"geometry", {{"node", node}, {"convexHull", true}}}}}}},
-                       {"OMI_physics_body", {{"collider", {{"shape", static_cast<int>(shapes.size()) - 1}}}}}}}});
+    nodes.push_back(
+        {{"name", names[h]},
+         {"mesh", mesh},
+         {"extensions",
+          {{"KHR_physics_rigid_bodies", {{"collider", {{"geometry", {{"node", node}, {"convexHull", true}}}}}}},
+           {"OMI_physics_body", {{"collider", {{"shape", static_cast<int>(shapes.size()) - 1}}}}}}}});
   }
   if (render.mesh && !render.mesh->triangles.empty()) {
     std::vector<Eigen::Vector3f> positions;
@@ -130,7 +135,7 @@ Status write_collider_glb(const std::vector<ConvexPolytope>& hulls, const std::v
       {"buffers", {{{"byteLength", builder.bin().size()}}}},
   };
   std::string json = document.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-  json.resize((json.size() + 3) / 4 * 4, ' ');  // the JSON chunk is padded with spaces
+  json.resize((json.size() + 3) / 4 * 4, ' '); // the JSON chunk is padded with spaces
   const std::uint64_t total = 12 + 8 + json.size() + 8 + builder.bin().size();
   if (total > kLargestGlb) return {StatusCode::invalid_argument, "the hulls need more than glTF's 4 GiB"};
   std::string glb;

@@ -25,8 +25,8 @@ namespace hullcover::app {
 
 /// The scene's triangles to carry beside the hulls, as one render node.
 struct RenderMesh {
-  const Mesh* mesh = nullptr;  ///< nothing when null
-  std::string name;            ///< the node's and mesh's name
+  const Mesh* mesh = nullptr; ///< nothing when null
+  std::string name;           ///< the node's and mesh's name
 };
 
 /// Writes `hulls` (facets fanned into triangles) as nodes named `names`

@@ -18,9 +18,9 @@ enum class TargetEngine { any, jolt, physx, physx_gpu, unity, godot, unreal };
 /// Limits of one engine's convex collider. A count of 0 is no limit.
 struct EngineLimits {
   const char* name = "";
-  int max_vertices = 0;   ///< vertices of one hull
-  int max_polygons = 0;   ///< facets (polygons) of one hull
-  int max_triangles = 0;  ///< triangles once its facets are fanned
+  int max_vertices = 0;  ///< vertices of one hull
+  int max_polygons = 0;  ///< facets (polygons) of one hull
+  int max_triangles = 0; ///< triangles once its facets are fanned
   /// Thinnest hull the engine's hull builder takes, metres: flatter point
   /// sets fail to cook or are dropped (Jolt's hull tolerance is 1 mm,
   /// PhysX's plane tolerance 0.7 mm; twice the largest of them).

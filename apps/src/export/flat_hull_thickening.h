@@ -26,10 +26,10 @@ namespace hullcover::app {
 
 /// Hulls ready for an engine, and what thickening did.
 struct ThickenedHulls {
-  std::vector<ConvexPolytope> hulls;  ///< one per input hull, same order
-  int flat = 0;                       ///< flat hulls given a thickness
-  int split = 0;                      ///< of those, split across both sides (double-sided sheets)
-  double thickness = 0.0;             ///< scene units
+  std::vector<ConvexPolytope> hulls; ///< one per input hull, same order
+  int flat = 0;                      ///< flat hulls given a thickness
+  int split = 0;                     ///< of those, split across both sides (double-sided sheets)
+  double thickness = 0.0;            ///< scene units
 };
 
 /// Gives every flat hull of `hulls` the thickness `thickness` (scene units,

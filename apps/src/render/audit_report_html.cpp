@@ -26,12 +26,12 @@ std::string escaped(const std::string& text) {
   std::string out;
   out.reserve(text.size());
   for (char c : text) switch (c) {
-    case '&': out += "&amp;"; break;
-    case '<': out += "&lt;"; break;
-    case '>': out += "&gt;"; break;
-    case '"': out += "&quot;"; break;
-    case '\'': out += "&#39;"; break;
-    default: out += c;
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&#39;"; break;
+      default: out += c;
     }
   return out;
 }
@@ -43,8 +43,7 @@ std::string base64(const std::string& bytes) {
   for (size_t i = 0; i < bytes.size(); i += 3) {
     const size_t left = std::min<size_t>(3, bytes.size() - i);
     unsigned group = 0;
-    for (size_t k = 0; k < 3; ++k)
-      group = (group << 8) | (k < left ? static_cast<unsigned char>(bytes[i + k]) : 0u);
+    for (size_t k = 0; k < 3; ++k) group = (group << 8) | (k < left ? static_cast<unsigned char>(bytes[i + k]) : 0u);
     for (size_t k = 0; k < 4; ++k) out += k <= left ? kAlphabet[(group >> (18 - 6 * k)) & 63] : '=';
   }
   return out;
@@ -72,9 +71,10 @@ void append_json(std::string& out, const nlohmann::json& value) {
     }
     out += "</table>";
   } else if (value.is_array()) {
-    const bool plain = std::none_of(value.begin(), value.end(),
-                                    [](const nlohmann::json& v) { return v.is_structured(); });
-    if (value.empty()) out += "none";
+    const bool plain =
+        std::none_of(value.begin(), value.end(), [](const nlohmann::json& v) { return v.is_structured(); });
+    if (value.empty())
+      out += "none";
     else if (plain) {
       for (size_t i = 0; i < value.size(); ++i) {
         if (i > 0) out += ", ";
@@ -124,8 +124,9 @@ void append_places_table(std::string& out, const std::vector<LostSpacePlace>& pl
     out += "<p>The audit located no lost space.</p>\n";
     return;
   }
-  out += "<table id=\"places\"><tr><th>#</th><th>found by</th><th>point</th><th>depth or distance</th>"
-         "<th>hull</th><th>face</th></tr>";
+  out +=
+      "<table id=\"places\"><tr><th>#</th><th>found by</th><th>point</th><th>depth or distance</th>"
+      "<th>hull</th><th>face</th></tr>";
   for (size_t i = 0; i < places.size(); ++i) {
     const LostSpacePlace& p = places[i];
     out += "<tr><td>" + std::to_string(i + 1) + "</td><td>" + escaped(p.kind) + "</td><td>" + point_text(p.point) +
@@ -161,8 +162,8 @@ std::vector<LostSpacePlace> lost_space_places(const validate::AuditReport& repor
       a.deepest_reach.face);
   // Undecided is a violation with no hull to name: the place it was given up.
   if (a.undecided > 0 && a.first_undecided.face >= 0)
-    places.push_back({"first ray out of evaluations (undecided)", a.first_undecided.point, 0.0, -1,
-                      a.first_undecided.face});
+    places.push_back(
+        {"first ray out of evaluations (undecided)", a.first_undecided.point, 0.0, -1, a.first_undecided.face});
   const validate::FalseContactPlace& f = report.behaviour.deepest_false;
   add("deepest false contact", f.point, f.depth, f.hull, f.face);
   return places;
@@ -188,8 +189,9 @@ Result<std::string> audit_report_html(const AuditHtmlInput& input) {
                                 : (allowance ? "more taken than the allowance" : "accessible space lost");
     const std::vector<LostSpacePlace> places = lost_space_places(report);
 
-    std::string out = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>hullcover audit: " +
-                      escaped(verdict) + "</title><style>" + kStyle + "</style></head><body>\n";
+    std::string out =
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>hullcover audit: " + escaped(verdict) +
+        "</title><style>" + kStyle + "</style></head><body>\n";
     out += "<div id=\"verdict\" class=\"" + std::string(report.clean() ? "clean" : "violation") +
            "\" style=\"background:" + (report.clean() ? kCleanBannerColour : kViolationBannerColour) + "\">" +
            escaped(verdict) + "<div class=\"why\">" + escaped(why) + "</div></div>\n";
@@ -210,7 +212,7 @@ Result<std::string> audit_report_html(const AuditHtmlInput& input) {
       return s;
 
     const double diagonal = referenced_bounding_box(*input.scene).diagonal();
-    for (size_t i = 0; i < places.size(); ++i) {  // numbered as the table's rows
+    for (size_t i = 0; i < places.size(); ++i) { // numbered as the table's rows
       const double radius = places[i].hull >= 0 ? std::min(places[i].depth, kMaxMarkerFraction * diagonal)
                                                 : kUndecidedMarkerFraction * diagonal;
       content.markers.push_back({places[i].point, radius, Marker{}.colour, std::to_string(i + 1)});
@@ -244,7 +246,7 @@ Result<std::string> audit_report_html(const AuditHtmlInput& input) {
     append_json(out, input.figures);
     out += "\n</body></html>\n";
     return out;
-  } catch (const std::exception& e) {  // out of memory, or a figure of an unexpected type
+  } catch (const std::exception& e) { // out of memory, or a figure of an unexpected type
     return Status{StatusCode::internal_error, std::string("could not write the HTML report: ") + e.what()};
   }
 }

@@ -29,21 +29,21 @@ inline constexpr const char* kViolationBannerColour = "#c5221f";
 
 /// Everything the report shows.
 struct AuditHtmlInput {
-  const Mesh* scene = nullptr;                           ///< the audited scene (required)
-  const std::vector<bvh::RuntimeHull>* hulls = nullptr;  ///< the audited hulls (required)
-  const validate::AuditReport* report = nullptr;         ///< the audit (required)
-  nlohmann::json figures;  ///< the audit's figures as `--json` writes them: shown in full
+  const Mesh* scene = nullptr;                          ///< the audited scene (required)
+  const std::vector<bvh::RuntimeHull>* hulls = nullptr; ///< the audited hulls (required)
+  const validate::AuditReport* report = nullptr;        ///< the audit (required)
+  nlohmann::json figures;                               ///< the audit's figures as `--json` writes them: shown in full
   std::string mesh_path, hulls_path;
-  UpAxis up = UpAxis::y;  ///< the scene's up axis, for the pictures
+  UpAxis up = UpAxis::y; ///< the scene's up axis, for the pictures
 };
 
 /// One place the audit located lost space, for the pictures and the table.
 struct LostSpacePlace {
-  std::string kind;  ///< which figure found it ("front rays", "opening rays", "false contact", ...)
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< scene coordinates
-  double depth = 0.0;  ///< how deep it lies in the hull, scene units (0 with no hull)
-  int hull = -1;       ///< the hull it lies in; -1 where the audit gave up a ray undecided
-  int face = -1;       ///< the face whose ray or proxy found it (-1 unknown)
+  std::string kind; ///< which figure found it ("front rays", "opening rays", "false contact", ...)
+  Eigen::Vector3d point = Eigen::Vector3d::Zero(); ///< scene coordinates
+  double depth = 0.0;                              ///< how deep it lies in the hull, scene units (0 with no hull)
+  int hull = -1;                                   ///< the hull it lies in; -1 where the audit gave up a ray undecided
+  int face = -1;                                   ///< the face whose ray or proxy found it (-1 unknown)
 };
 
 /// Every located place of the report: the deepest lost point per hull, the

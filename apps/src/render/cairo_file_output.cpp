@@ -34,7 +34,8 @@ Status write_png_atomically(cairo_surface_t* surface, const std::string& path) {
   // A failed write is the file's (the atomic writer names the reason); any
   // other cairo failure is the picture's.
   if (!written.ok() && encoded != CAIRO_STATUS_SUCCESS && encoded != CAIRO_STATUS_WRITE_ERROR)
-    return {StatusCode::internal_error, path + ": cairo could not encode the picture: " + cairo_status_to_string(encoded)};
+    return {StatusCode::internal_error,
+            path + ": cairo could not encode the picture: " + cairo_status_to_string(encoded)};
   return written;
 }
 
@@ -42,8 +43,8 @@ Result<std::string> png_bytes(cairo_surface_t* surface) {
   std::string bytes;
   if (const cairo_status_t encoded = cairo_surface_write_to_png_stream(surface, append_cairo_bytes, &bytes);
       encoded != CAIRO_STATUS_SUCCESS)
-    return Status{StatusCode::internal_error, std::string("cairo could not encode a picture: ") +
-                                                  cairo_status_to_string(encoded)};
+    return Status{StatusCode::internal_error,
+                  std::string("cairo could not encode a picture: ") + cairo_status_to_string(encoded)};
   return bytes;
 }
 

@@ -71,9 +71,10 @@ void split_crossing_pieces(std::vector<CellPiece>& cell, const PieceDepths& dept
       const auto difference = [&](const ImageCorner& c) {
         return inverse_depth(cell[i], c, depths) - inverse_depth(other, c, depths);
       };
-      clip(cell[i].polygon, difference, behind);  // smaller inverse depth: farther
-      clip(cell[i].polygon, [&](const ImageCorner& c) { return -difference(c); }, in_front);
-      if (behind.size() < 3 || in_front.size() < 3) continue;  // the crossing only grazes it
+      clip(cell[i].polygon, difference, behind); // smaller inverse depth: farther
+      clip(
+          cell[i].polygon, [&](const ImageCorner& c) { return -difference(c); }, in_front);
+      if (behind.size() < 3 || in_front.size() < 3) continue; // the crossing only grazes it
       CellPiece second{in_front, cell[i].source, cell[i].key};
       cell[i].polygon = behind;
       cell.push_back(std::move(second));
@@ -84,8 +85,8 @@ void order_cell_pieces(std::vector<CellPiece>& cell, const PieceDepths& depths) 
   const size_t n = cell.size();
   if (n < 2) return;
   std::stable_sort(cell.begin(), cell.end(), [](const CellPiece& a, const CellPiece& b) { return a.key > b.key; });
-  std::vector<std::vector<size_t>> after(n);  // after[i]: pieces painted after i
-  std::vector<int> waiting(n, 0);             // predecessors not yet painted
+  std::vector<std::vector<size_t>> after(n); // after[i]: pieces painted after i
+  std::vector<int> waiting(n, 0);            // predecessors not yet painted
   for (size_t i = 0; i < n; ++i)
     for (size_t j = i + 1; j < n; ++j) {
       const int order = occlusion_order(cell[i], cell[j], depths);
@@ -104,7 +105,7 @@ void order_cell_pieces(std::vector<CellPiece>& cell, const PieceDepths& depths) 
     size_t pick = n;
     for (size_t i = 0; i < n && pick == n; ++i)
       if (!painted[i] && waiting[i] == 0) pick = i;
-    for (size_t i = 0; i < n && pick == n; ++i)  // a cycle: the farthest left
+    for (size_t i = 0; i < n && pick == n; ++i) // a cycle: the farthest left
       if (!painted[i]) pick = i;
     painted[pick] = true;
     ordered.push_back(cell[pick]);

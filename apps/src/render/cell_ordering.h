@@ -12,9 +12,9 @@ namespace hullcover::app::render {
 
 /// One piece of a cell being ordered.
 struct CellPiece {
-  std::vector<ImageCorner> polygon;  ///< convex, image pixels
-  unsigned source = 0;               ///< the painter's piece it is (a part of)
-  double key = 0.0;                  ///< depth at its centre, scene units: the order when nothing else decides
+  std::vector<ImageCorner> polygon; ///< convex, image pixels
+  unsigned source = 0;              ///< the painter's piece it is (a part of)
+  double key = 0.0;                 ///< depth at its centre, scene units: the order when nothing else decides
 };
 
 /// What the ordering asks of the painter about a piece's plane.
@@ -25,7 +25,7 @@ struct PieceDepths {
   std::function<double(unsigned source, double x, double y)> depth_at;
   /// The rank of piece `source` (among equal depths, higher on top).
   std::function<unsigned(unsigned source)> rank;
-  double same_depth = 0.0;  ///< depths closer than this tie (scene units)
+  double same_depth = 0.0; ///< depths closer than this tie (scene units)
 };
 
 /// Splits pieces of `cell` whose planes cross inside their overlap along the

@@ -57,8 +57,8 @@ private:
 
   Aabb box_;
   Eigen::Vector3d up_;
-  Eigen::Vector3d horizontal_forward_;  // zero for a view from straight above or below
-  double roof_height_ = 0.0;            // along up_
+  Eigen::Vector3d horizontal_forward_; // zero for a view from straight above or below
+  double roof_height_ = 0.0;           // along up_
 };
 
 } // namespace hullcover::app::render

@@ -68,7 +68,8 @@ void FacetPainter::add(const PaintedFacet& facet) {
   std::vector<SpaceCorner> space, in_front;
   for (const Eigen::Vector3d& c : corners) space.push_back({c, facet.outlined});
   const double near = camera_.near_depth();
-  clip(space, [&](const SpaceCorner& c) { return near - camera_.project(c.p).depth; }, in_front);
+  clip(
+      space, [&](const SpaceCorner& c) { return near - camera_.project(c.p).depth; }, in_front);
   if (in_front.size() < 3) return;
   std::vector<ImageCorner> image;
   double min_x = size_.width, max_x = 0.0, min_y = size_.height, max_y = 0.0;
@@ -91,16 +92,20 @@ void FacetPainter::add(const PaintedFacet& facet) {
   std::vector<ImageCorner> upper, row, left, piece;
   for (int r = first_row; r <= last_row; ++r) {
     const double top = r * kCellPixels, bottom = top + kCellPixels;
-    clip(image, [&](const ImageCorner& c) { return top - c.y; }, upper);
-    clip(upper, [&](const ImageCorner& c) { return c.y - bottom; }, row);
+    clip(
+        image, [&](const ImageCorner& c) { return top - c.y; }, upper);
+    clip(
+        upper, [&](const ImageCorner& c) { return c.y - bottom; }, row);
     if (row.size() < 3) continue;
     for (int col = first_col; col <= last_col; ++col) {
       const double west = col * kCellPixels, east = west + kCellPixels;
-      clip(row, [&](const ImageCorner& c) { return west - c.x; }, left);
-      clip(left, [&](const ImageCorner& c) { return c.x - east; }, piece);
+      clip(
+          row, [&](const ImageCorner& c) { return west - c.x; }, left);
+      clip(
+          left, [&](const ImageCorner& c) { return c.x - east; }, piece);
       if (piece.size() < 3) continue;
-      Piece p{static_cast<unsigned>(r * columns_ + col), facet_index, 0.0, static_cast<unsigned>(corners_.size()),
-              static_cast<unsigned>(piece.size()), fill, outline};
+      Piece p{static_cast<unsigned>(r * columns_ + col), facet_index, 0.0,    static_cast<unsigned>(corners_.size()),
+              static_cast<unsigned>(piece.size()),       fill,        outline};
       double cx = 0.0, cy = 0.0;
       for (const ImageCorner& c : piece) {
         cx += c.x / piece.size();
@@ -108,7 +113,7 @@ void FacetPainter::add(const PaintedFacet& facet) {
         corners_.push_back({static_cast<float>(c.x), static_cast<float>(c.y), c.outline});
       }
       p.key = depth_at(p, cx, cy);
-      if (!std::isfinite(p.key)) p.key = camera_.project(centroid).depth;  // seen edge-on
+      if (!std::isfinite(p.key)) p.key = camera_.project(centroid).depth; // seen edge-on
       pieces_.push_back(p);
     }
   }
@@ -144,7 +149,7 @@ void FacetPainter::fill(cairo_t* cr, const CellPiece& piece) const {
       cairo_line_to(cr, c[(k + 1) % c.size()].x, c[(k + 1) % c.size()].y);
     }
   cairo_set_source_rgb(cr, p.outline.r, p.outline.g, p.outline.b);
-  cairo_set_line_width(cr, 2.0 * kOutlinePixels * surface_scale_);  // half of it is clipped away
+  cairo_set_line_width(cr, 2.0 * kOutlinePixels * surface_scale_); // half of it is clipped away
   cairo_stroke(cr);
   cairo_restore(cr);
 }
@@ -192,7 +197,7 @@ void FacetPainter::paint(cairo_t* cr) const {
 
 void FacetPainter::paint_markers(cairo_t* cr) const {
   struct Disc {
-    double radius;  // surface pixels
+    double radius; // surface pixels
     ImagePoint at;
     const Marker* marker;
   };
@@ -200,7 +205,8 @@ void FacetPainter::paint_markers(cairo_t* cr) const {
   for (const Marker& m : markers_) {
     const ImagePoint p = camera_.project(m.centre);
     if (p.depth > camera_.near_depth())
-      discs.push_back({std::max(kMinMarkerPixels * surface_scale_, m.radius * camera_.pixels_per_unit(p.depth)), p, &m});
+      discs.push_back(
+          {std::max(kMinMarkerPixels * surface_scale_, m.radius * camera_.pixels_per_unit(p.depth)), p, &m});
   }
   std::stable_sort(discs.begin(), discs.end(), [](const Disc& a, const Disc& b) { return a.at.depth > b.at.depth; });
   for (const Disc& disc : discs) {
@@ -209,10 +215,10 @@ void FacetPainter::paint_markers(cairo_t* cr) const {
     const Rgb& c = disc.marker->colour;
     cairo_pattern_t* ball = cairo_pattern_create_radial(p.x - kHighlightOffset * radius,
                                                         p.y - kHighlightOffset * radius, 0.0, p.x, p.y, radius);
-    cairo_pattern_add_color_stop_rgb(ball, 0.0, std::min(1.0, c.r + kHighlightLift), std::min(1.0, c.g + kHighlightLift),
-                                     std::min(1.0, c.b + kHighlightLift));
+    cairo_pattern_add_color_stop_rgb(ball, 0.0, std::min(1.0, c.r + kHighlightLift),
+                                     std::min(1.0, c.g + kHighlightLift), std::min(1.0, c.b + kHighlightLift));
     cairo_pattern_add_color_stop_rgb(ball, 1.0, c.r * kBallShadow, c.g * kBallShadow, c.b * kBallShadow);
-    cairo_new_path(cr);  // a label's text leaves a current point the arc would join
+    cairo_new_path(cr); // a label's text leaves a current point the arc would join
     cairo_arc(cr, p.x, p.y, radius, 0.0, 2.0 * M_PI);
     cairo_set_source(cr, ball);
     cairo_fill_preserve(cr);
@@ -228,7 +234,7 @@ void FacetPainter::paint_markers(cairo_t* cr) const {
     cairo_set_font_size(cr, std::max(kLeastLabelPixels * surface_scale_, kLabelToRadius * radius));
     cairo_text_extents_t extents;
     cairo_text_extents(cr, disc.marker->label.c_str(), &extents);
-    if (extents.width > 2.0 * radius) continue;  // it would hide the ball
+    if (extents.width > 2.0 * radius) continue; // it would hide the ball
     cairo_move_to(cr, p.x - extents.x_bearing - 0.5 * extents.width, p.y - extents.y_bearing - 0.5 * extents.height);
     cairo_set_source_rgb(cr, 1.0, 1.0, 1.0);
     cairo_show_text(cr, disc.marker->label.c_str());

@@ -34,7 +34,7 @@ struct Rgb {
 
 /// One convex polygon to draw.
 struct PaintedFacet {
-  std::vector<Eigen::Vector3d> corners;  ///< scene units, in order around the polygon
+  std::vector<Eigen::Vector3d> corners; ///< scene units, in order around the polygon
   Rgb colour;
   /// Lit from whichever side faces the camera (single-sided scene faces,
   /// as the paper's Fig. 8 reverses their normals). Otherwise the polygon
@@ -47,16 +47,16 @@ struct PaintedFacet {
   bool over_coplanar = false;
   /// Among pieces at the same depth, higher ranks are drawn later (on top).
   unsigned rank = 0;
-  bool outlined = false;  ///< its edges drawn in a darker shade of its colour
-  double outline_shade = 0.55;  ///< that shade: the fill's channels times this, in [0, 1]
+  bool outlined = false;       ///< its edges drawn in a darker shade of its colour
+  double outline_shade = 0.55; ///< that shade: the fill's channels times this, in [0, 1]
 };
 
 /// A disc drawn over everything at a scene point.
 struct Marker {
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< scene units
-  double radius = 0.0;  ///< scene units; drawn no smaller than kMinMarkerPixels
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero(); ///< scene units
+  double radius = 0.0;                              ///< scene units; drawn no smaller than kMinMarkerPixels
   Rgb colour{0.85, 0.0, 0.0};
-  std::string label;  ///< drawn on the disc when it fits (the number of a table row)
+  std::string label; ///< drawn on the disc when it fits (the number of a table row)
 };
 
 /// Smallest marker radius, pixels of the final picture: a lost place is seen however shallow.
@@ -96,20 +96,20 @@ public:
 
 private:
   struct Corner {
-    float x, y;    // surface pixels
-    bool outline;  // the edge to the next corner lies on the facet's outline
+    float x, y;   // surface pixels
+    bool outline; // the edge to the next corner lies on the facet's outline
   };
   struct FacetPlane {
     Eigen::Vector3d normal;
-    double offset;     // normal . p = offset
-    double allowance;  // how much nearer it counts (DepthTies::over_coplanar or 0)
+    double offset;    // normal . p = offset
+    double allowance; // how much nearer it counts (DepthTies::over_coplanar or 0)
     unsigned rank;
   };
   struct Piece {
-    unsigned cell;   // row-major index of its screen cell
-    unsigned facet;  // into planes_
-    double key;      // its plane's depth at its own centre, less the allowance
-    unsigned first, count;  // into corners_
+    unsigned cell;         // row-major index of its screen cell
+    unsigned facet;        // into planes_
+    double key;            // its plane's depth at its own centre, less the allowance
+    unsigned first, count; // into corners_
     Rgb fill, outline;
   };
 
@@ -121,8 +121,8 @@ private:
   ImageSize size_;
   DepthTies ties_;
   double surface_scale_;
-  int columns_;            // screen cells across
-  Eigen::Vector3d light_;  // unit, from the scene towards the light
+  int columns_;           // screen cells across
+  Eigen::Vector3d light_; // unit, from the scene towards the light
   std::vector<FacetPlane> planes_;
   std::vector<Piece> pieces_;
   std::vector<Corner> corners_;

@@ -13,14 +13,14 @@ namespace hullcover::app::render {
 
 /// A polygon corner in space, with the flag of the edge leaving it.
 struct SpaceCorner {
-  Eigen::Vector3d p;  ///< scene units
-  bool outline;       ///< the edge to the next corner lies on the original polygon's outline
+  Eigen::Vector3d p; ///< scene units
+  bool outline;      ///< the edge to the next corner lies on the original polygon's outline
 };
 
 /// A polygon corner on the image, with the flag of the edge leaving it.
 struct ImageCorner {
-  double x, y;   ///< pixels
-  bool outline;  ///< the edge to the next corner lies on the original polygon's outline
+  double x, y;  ///< pixels
+  bool outline; ///< the edge to the next corner lies on the original polygon's outline
 };
 
 /// The point a fraction `t` of the way from `a` to `b`, on no outline.
@@ -46,7 +46,7 @@ void clip(const std::vector<Corner>& polygon, const Value& value, std::vector<Co
     if (va <= 0.0) out.push_back(a);
     if ((va <= 0.0) != (vb <= 0.0)) {
       Corner cut = between(a, b, va / (va - vb));
-      cut.outline = va > 0.0 && a.outline;  // entering: the rest of the edge is the polygon's
+      cut.outline = va > 0.0 && a.outline; // entering: the rest of the edge is the polygon's
       out.push_back(cut);
     }
   }
@@ -74,11 +74,12 @@ inline std::vector<ImageCorner> convex_overlap(const std::vector<ImageCorner>& a
     const ImageCorner& p = b[i];
     const ImageCorner& q = b[(i + 1) % b.size()];
     // Positive on the outer side of edge p-q for either winding.
-    clip(result,
-         [&](const ImageCorner& c) {
-           return -std::copysign(1.0, orientation) * ((q.x - p.x) * (c.y - p.y) - (q.y - p.y) * (c.x - p.x));
-         },
-         next);
+    clip(
+        result,
+        [&](const ImageCorner& c) {
+      return -std::copysign(1.0, orientation) * ((q.x - p.x) * (c.y - p.y) - (q.y - p.y) * (c.x - p.x));
+        },
+        next);
     result.swap(next);
   }
   if (result.size() < 3) result.clear();

@@ -29,9 +29,9 @@ Status bad(const std::string& what, const std::string& text, const std::string& 
 SceneAxes scene_axes(UpAxis up) {
   using V = Eigen::Vector3d;
   switch (up) {
-  case UpAxis::x: return {V::UnitX(), -V::UnitZ(), V::UnitY()};
-  case UpAxis::z: return {V::UnitZ(), -V::UnitY(), V::UnitX()};
-  case UpAxis::y: break;
+    case UpAxis::x: return {V::UnitX(), -V::UnitZ(), V::UnitY()};
+    case UpAxis::z: return {V::UnitZ(), -V::UnitY(), V::UnitX()};
+    case UpAxis::y: break;
   }
   return {V::UnitY(), V::UnitZ(), V::UnitX()};
 }
@@ -59,8 +59,8 @@ Result<ViewAngles> parse_view(const std::string& text) {
 Result<ImageSize> parse_image_size(const std::string& text) {
   long width = 0, height = 0;
   int consumed = 0;
-  const std::string expected = "expected WIDTHxHEIGHT in pixels, each from " + std::to_string(kMinImageSide) +
-                               " to " + std::to_string(kMaxImageSide);
+  const std::string expected = "expected WIDTHxHEIGHT in pixels, each from " + std::to_string(kMinImageSide) + " to " +
+                               std::to_string(kMaxImageSide);
   // Digits and one 'x' only, and short enough that no number can overflow.
   constexpr size_t kLongestSizeText = 2 * 6 + 1;
   if (text.size() > kLongestSizeText || text.find_first_not_of("0123456789x") != std::string::npos ||
@@ -102,9 +102,12 @@ SceneCamera::SceneCamera(const Aabb& box, const SceneAxes& axes, const ViewAngle
   const double usable_w = size.width * (1.0 - 2.0 * kFrameMargin), usable_h = size.height * (1.0 - 2.0 * kFrameMargin);
   const double span_x = max_x - min_x, span_y = max_y - min_y;
   // A box seen edge-on spans nothing one way: the other way decides.
-  if (span_x > 0.0 && span_y > 0.0) scale_ = std::min(usable_w / span_x, usable_h / span_y);
-  else if (span_x > 0.0) scale_ = usable_w / span_x;
-  else if (span_y > 0.0) scale_ = usable_h / span_y;
+  if (span_x > 0.0 && span_y > 0.0)
+    scale_ = std::min(usable_w / span_x, usable_h / span_y);
+  else if (span_x > 0.0)
+    scale_ = usable_w / span_x;
+  else if (span_y > 0.0)
+    scale_ = usable_h / span_y;
   offset_x_ = 0.5 * size.width - scale_ * 0.5 * (min_x + max_x);
   offset_y_ = 0.5 * size.height + scale_ * 0.5 * (min_y + max_y);
 }
@@ -118,8 +121,7 @@ ImagePoint SceneCamera::project(const Eigen::Vector3d& p) const {
 
 double SceneCamera::plane_depth_at(const Eigen::Vector3d& normal, double offset, double x, double y) const {
   // The ray eye + t * direction, with direction . forward = 1, is at depth t.
-  const Eigen::Vector3d direction =
-      forward_ + ((x - offset_x_) / scale_) * right_ + ((offset_y_ - y) / scale_) * up_;
+  const Eigen::Vector3d direction = forward_ + ((x - offset_x_) / scale_) * right_ + ((offset_y_ - y) / scale_) * up_;
   const double along = normal.dot(direction);
   if (along == 0.0) return std::numeric_limits<double>::infinity();
   return (offset - normal.dot(eye_)) / along;

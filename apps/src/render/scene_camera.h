@@ -41,8 +41,8 @@ inline constexpr double kIsometricElevationDeg = 35.26438968275;
 /// A direction to look from: azimuth around the up axis from the front,
 /// towards the right, and elevation above the ground plane.
 struct ViewAngles {
-  double azimuth_deg = 45.0;                           ///< degrees, any value
-  double elevation_deg = kIsometricElevationDeg;       ///< degrees, in [-90, 90]
+  double azimuth_deg = 45.0;                     ///< degrees, any value
+  double elevation_deg = kIsometricElevationDeg; ///< degrees, in [-90, 90]
 };
 
 /// Reads "iso" (azimuth 45, elevation 35.26), "top" (0, 90), "front" (0, 0)
@@ -101,8 +101,8 @@ public:
 
 private:
   Eigen::Vector3d eye_, forward_, up_, right_;
-  double scale_ = 1.0;             // pixels per unit of the image plane at depth 1
-  double offset_x_ = 0.0, offset_y_ = 0.0;  // pixels added after scaling
+  double scale_ = 1.0;                     // pixels per unit of the image plane at depth 1
+  double offset_x_ = 0.0, offset_y_ = 0.0; // pixels added after scaling
   double near_depth_ = 0.0;
 };
 

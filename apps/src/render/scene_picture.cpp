@@ -31,7 +31,7 @@ constexpr double kPaleMix = 0.6;
 // drawn this many times larger each way and scaled down for smooth edges,
 // when the larger surface stays within kMaxSupersampledPixels.
 constexpr int kSupersampling = 2;
-constexpr long kMaxSupersampledPixels = 64L << 20;  // 256 MiB at 4 bytes a pixel
+constexpr long kMaxSupersampledPixels = 64L << 20; // 256 MiB at 4 bytes a pixel
 constexpr Rgb kSceneGrey{0.8, 0.8, 0.8};
 // Scene faces are outlined faintly: a dense mesh would otherwise turn black.
 constexpr double kSceneOutlineShade = 0.82;
@@ -105,7 +105,7 @@ void add_hulls(FacetPainter& painter, const PictureContent& content, const CutAw
       for (int i : indices) facet.corners.push_back(shape.vertices[i]);
       facet.colour = colour;
       facet.over_coplanar = true;
-      facet.rank = static_cast<unsigned>(h + 1);  // over the scene's rank 0
+      facet.rank = static_cast<unsigned>(h + 1); // over the scene's rank 0
       facet.outlined = true;
       painter.add(facet);
     }
@@ -138,8 +138,8 @@ Result<SurfacePtr> draw_scene_picture(const PictureContent& content, const Pictu
                        cairo_surface_destroy);
     if (cairo_surface_status(drawn.get()) != CAIRO_STATUS_SUCCESS ||
         (picture && cairo_surface_status(picture.get()) != CAIRO_STATUS_SUCCESS))
-      return Status{StatusCode::internal_error,
-                    "cairo could not make a " + std::to_string(size.width) + "x" + std::to_string(size.height) + " image"};
+      return Status{StatusCode::internal_error, "cairo could not make a " + std::to_string(size.width) + "x" +
+                                                    std::to_string(size.height) + " image"};
     const SceneAxes axes = scene_axes(options.up);
     const SceneCamera camera(box, axes, options.view, drawn_size);
     const CutAway cut(box, axes, camera.forward());
@@ -173,7 +173,7 @@ Result<SurfacePtr> draw_scene_picture(const PictureContent& content, const Pictu
     SurfacePtr& result = picture ? picture : drawn;
     cairo_surface_flush(result.get());
     return Result<SurfacePtr>(std::move(result));
-  } catch (const std::exception& e) {  // out of memory collecting pieces
+  } catch (const std::exception& e) { // out of memory collecting pieces
     return Status{StatusCode::internal_error, std::string("could not draw the picture: ") + e.what()};
   }
 }

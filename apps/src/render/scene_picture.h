@@ -24,13 +24,13 @@ struct PictureOptions {
   ViewAngles view;
   ImageSize size;
   UpAxis up = UpAxis::y;
-  bool cut = false;  ///< leave out roofs and front walls (cut_away.h)
+  bool cut = false; ///< leave out roofs and front walls (cut_away.h)
 };
 
 /// What to draw. The camera frames the scene's bounding box.
 struct PictureContent {
   const Mesh* scene = nullptr;                          ///< required
-  const std::vector<bvh::RuntimeHull>* hulls = nullptr;  ///< none: the scene alone
+  const std::vector<bvh::RuntimeHull>* hulls = nullptr; ///< none: the scene alone
   std::vector<Marker> markers;                          ///< drawn over everything
   /// Hulls drawn pale, so markers over them stand out (the audit's picture
   /// of lost space), but for the `highlighted` ones (indices into `hulls`).

@@ -59,8 +59,8 @@ Result<ConvexPolytope> ConvexHullBuilder::build(const std::vector<Eigen::Vector3
   qhT* qh = &qh_storage;
   qh_zero(qh, error_sink_);
   char flags[] = "qhull";
-  const int exit_code = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coordinates.data(), False, flags,
-                                     nullptr, error_sink_);
+  const int exit_code =
+      qh_new_qhull(qh, 3, static_cast<int>(points.size()), coordinates.data(), False, flags, nullptr, error_sink_);
   Result<ConvexPolytope> result = Status{StatusCode::degenerate_scene, "Qhull error " + std::to_string(exit_code)};
   if (exit_code == 0) {
     ConvexPolytope hull;

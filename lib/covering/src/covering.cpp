@@ -21,9 +21,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 Status check_options(const DecomposeOptions& o) {
   if (o.bar_half_length && !(std::isfinite(*o.bar_half_length) && *o.bar_half_length > 0.0))
@@ -39,7 +37,8 @@ Status check_options(const DecomposeOptions& o) {
   if (o.max_deviation && !(std::isfinite(*o.max_deviation) && *o.max_deviation >= 0.0))
     return {StatusCode::invalid_argument, "max deviation must be a length >= 0"};
   if (has_allowance(o) && o.conditions != ValidityMode::exact)
-    return {StatusCode::invalid_argument, "agent radius and max deviation relax exact mode: use them with exact conditions"};
+    return {StatusCode::invalid_argument,
+            "agent radius and max deviation relax exact mode: use them with exact conditions"};
   if (o.cell_size && !(std::isfinite(*o.cell_size) && *o.cell_size >= 0.0))
     return {StatusCode::invalid_argument, "cell size must be a length >= 0 (0: no cells)"};
   if (o.threads < 0) return {StatusCode::invalid_argument, "threads must be >= 0 (0: every core)"};
@@ -136,9 +135,8 @@ Covering finish_stages(const DecompositionStages& stages, std::vector<CellResult
   // The seam pass runs per island (no edge joins two islands), each island
   // one seam cell (the whole scene one, with --cell-size 0); islands in
   // parallel.
-  const CellLayout seams = options.cell_size && *options.cell_size == 0.0
-                               ? lay_out_cells(prepared, stages.islands, 0.0)
-                               : lay_out_islands(prepared, stages.islands);
+  const CellLayout seams = options.cell_size && *options.cell_size == 0.0 ? lay_out_cells(prepared, stages.islands, 0.0)
+                                                                          : lay_out_islands(prepared, stages.islands);
   const int seam_count = static_cast<int>(seams.faces_of_cell.size());
   std::vector<std::vector<Patch>> seam_patches(seam_count);
   std::vector<std::vector<int>> seam_origins(seam_count);
@@ -167,14 +165,13 @@ Covering finish_stages(const DecompositionStages& stages, std::vector<CellResult
   std::vector<std::unique_ptr<PatchMerger>> seam_mergers(seam_count);
   std::vector<int> seam_order(seam_count);
   std::iota(seam_order.begin(), seam_order.end(), 0);
-  std::stable_sort(seam_order.begin(), seam_order.end(), [&](int a, int b) {
-    return seams.faces_of_cell[a].size() > seams.faces_of_cell[b].size();
-  });
+  std::stable_sort(seam_order.begin(), seam_order.end(),
+                   [&](int a, int b) { return seams.faces_of_cell[a].size() > seams.faces_of_cell[b].size(); });
   const Clock::time_point seams_start = Clock::now();
   run_in_parallel(seam_count, threads, seam_order, [&](int s) {
-    seam_mergers[s] = std::make_unique<PatchMerger>(stages.index_of_island(seams.island_of_cell[s]), seam_options,
-                                                    seams, s, std::move(seam_patches[s]), std::move(seam_origins[s]),
-                                                    seam_stats[s]);
+    seam_mergers[s] =
+        std::make_unique<PatchMerger>(stages.index_of_island(seams.island_of_cell[s]), seam_options, seams, s,
+                                      std::move(seam_patches[s]), std::move(seam_origins[s]), seam_stats[s]);
     seam_mergers[s]->run_seams();
   });
   stats.seconds_seams = seconds_since(seams_start);
@@ -201,11 +198,11 @@ Covering finish_stages(const DecompositionStages& stages, std::vector<CellResult
     for (int i = run * kHullsPerRun; i < std::min(hull_count, (run + 1) * kHullsPerRun); ++i) {
       const auto [s, id] = alive[i];
       const PatchMerger& merger = *seam_mergers[s];
-      const bool unchanged = id < static_cast<int>(seam_versions[s].size()) &&
-                             merger.patches()[id].version == seam_versions[s][id];
+      const bool unchanged =
+          id < static_cast<int>(seam_versions[s].size()) && merger.patches()[id].version == seam_versions[s][id];
       PatchHull made = unchanged ? std::move(seam_hulls[s][id])
-                                 : make_patch_hull(stages, stages.index_of_island(seams.island_of_cell[s]), merger,
-                                                   id, builder, scratch);
+                                 : make_patch_hull(stages, stages.index_of_island(seams.island_of_cell[s]), merger, id,
+                                                   builder, scratch);
       count_hull_making(output_stats[i], made);
       covering.hulls[i] = std::move(made.hull);
     }
@@ -232,8 +229,7 @@ Result<Covering> decompose(const PreparedMesh& prepared, const DecomposeOptions&
     Result<std::unique_ptr<detail::DecompositionStages>> stages = detail::prepare_stages(prepared, options);
     if (!stages.ok()) return stages.status();
     const Clock::time_point start = Clock::now();
-    std::vector<detail::CellResult> results =
-        detail::merge_cells(*stages.value(), threads_to_use(options.threads));
+    std::vector<detail::CellResult> results = detail::merge_cells(*stages.value(), threads_to_use(options.threads));
     return detail::finish_stages(*stages.value(), std::move(results), seconds_since(start));
   } catch (const std::exception& e) {
     return Status{StatusCode::internal_error, std::string("decomposition failed: ") + e.what()};

@@ -106,7 +106,9 @@ nlohmann::json covering_json(const Covering& covering) {
         {"solids_kept_as_grown", s.solids_kept_as_grown},
         {"rejections", rejections}}},
       {"seconds",
-       {{"index", s.seconds_index}, {"merging", s.seconds_merging}, {"seams", s.seconds_seams},
+       {{"index", s.seconds_index},
+        {"merging", s.seconds_merging},
+        {"seams", s.seconds_seams},
         {"output", s.seconds_output},
         {"total", s.seconds_index + s.seconds_merging + s.seconds_output}}},
   };

@@ -23,7 +23,7 @@ constexpr int kTemporaryNameAttempts = 64;
 constexpr mode_t kNewFileMode = 0666;
 
 struct DestinationParts {
-  std::string folder;  ///< "." for a bare file name
+  std::string folder; ///< "." for a bare file name
   std::string name;
 };
 
@@ -77,7 +77,7 @@ public:
   bool finish_content() {
     errno = 0;
     if (std::fflush(stream_) != 0 || std::ferror(stream_) != 0 || ::fsync(fileno(stream_)) != 0) {
-      if (errno == 0) errno = EIO;  // an earlier write set the error flag and errno moved on
+      if (errno == 0) errno = EIO; // an earlier write set the error flag and errno moved on
       return false;
     }
     return true;
@@ -91,10 +91,10 @@ public:
   // stop signal may not wait for, are all new files. Otherwise it gets a
   // temporary name, which replace() renames over `path`.
   bool name_and_close(const std::string& path) {
-    if (named_path_.empty()) {  // the name comes from the open descriptor
+    if (named_path_.empty()) { // the name comes from the open descriptor
       if (::linkat(AT_FDCWD, descriptor_path().c_str(), AT_FDCWD, path.c_str(), AT_SYMLINK_FOLLOW) == 0) {
         if (close_stream()) return in_place_ = true;
-        const int saved = errno;  // a failure leaves no file where there was none
+        const int saved = errno; // a failure leaves no file where there was none
         ::unlink(path.c_str());
         errno = saved;
         return false;
@@ -123,9 +123,7 @@ public:
   }
 
 private:
-  std::string sibling_prefix() const {
-    return destination_.folder + "/." + destination_.name + kTemporaryInfix;
-  }
+  std::string sibling_prefix() const { return destination_.folder + "/." + destination_.name + kTemporaryInfix; }
 
   // The unnamed file, as a path linkat can link from.
   std::string descriptor_path() const { return "/proc/self/fd/" + std::to_string(fileno(stream_)); }
@@ -144,7 +142,7 @@ private:
     for (int attempt = 0; attempt < kTemporaryNameAttempts; ++attempt) {
       std::string candidate = prefix + std::to_string(attempt);
       if (::linkat(AT_FDCWD, descriptor.c_str(), AT_FDCWD, candidate.c_str(), AT_SYMLINK_FOLLOW) == 0) {
-        named_path_ = std::move(candidate);  // no allocation between naming the file and recording it
+        named_path_ = std::move(candidate); // no allocation between naming the file and recording it
         return close_stream();
       }
       if (errno != EEXIST) return false;
@@ -155,7 +153,7 @@ private:
   DestinationParts destination_;
   std::FILE* stream_ = nullptr;
   std::string named_path_;
-  bool in_place_ = false;  ///< linked at the destination itself: nothing to rename
+  bool in_place_ = false; ///< linked at the destination itself: nothing to rename
 };
 
 // Holds back, on this thread, the signals that stop a program by default
@@ -204,7 +202,7 @@ Status write_file_atomically(const std::string& path, const FileContentWriter& w
 
 Status write_file_atomically(const std::string& path, const std::string& content) {
   return write_file_atomically(path, [&content](std::FILE* out) {
-    std::fwrite(content.data(), 1, content.size(), out);  // a short write sets the error flag, checked after
+    std::fwrite(content.data(), 1, content.size(), out); // a short write sets the error flag, checked after
     return true;
   });
 }

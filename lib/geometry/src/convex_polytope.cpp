@@ -39,7 +39,7 @@ bool box_outside_plane(const Plane& plane, const Eigen::Vector3d& magnitude, con
   // half extents along the normal's signs.
   const double deepest = plane.normal.dot(centre) - plane.offset - magnitude.dot(half);
   const double needed = -tol + kRegionOutsideSlackInTolerances * tol;
-  if (deepest < needed) return false;  // most boxes a walk opens: no need to bound the rounding
+  if (deepest < needed) return false; // most boxes a walk opens: no need to bound the rounding
   // Every term above, and the point tests it stands for, round at the
   // magnitude of what they add up.
   const double size = std::abs(plane.offset) + magnitude.dot(centre.cwiseAbs() + half);
@@ -68,7 +68,8 @@ InteriorRegionTest::InteriorRegionTest(const ConvexPolytope& hull, const Aabb& b
     if (facet.empty()) continue;
     Eigen::Vector3d twice = Eigen::Vector3d::Zero();
     for (size_t i = 1; i + 1 < facet.size(); ++i)
-      twice += (hull.vertices[facet[i]] - hull.vertices[facet[0]]).cross(hull.vertices[facet[i + 1]] - hull.vertices[facet[0]]);
+      twice += (hull.vertices[facet[i]] - hull.vertices[facet[0]])
+                   .cross(hull.vertices[facet[i + 1]] - hull.vertices[facet[0]]);
     by_area.push_back({-twice.norm(), static_cast<int>(f)});
     six_volumes += std::abs(twice.dot(hull.vertices[facet[0]] - hull.vertices.front()));
   }

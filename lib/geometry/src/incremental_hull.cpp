@@ -31,9 +31,7 @@ std::optional<ConvexPolytope> add_point_to_hull(const ConvexPolytope& hull, cons
   // as this runs for most merges and a map allocates per edge.
   struct DirectedEdge {
     int from, to, facet;
-    bool operator<(const DirectedEdge& other) const {
-      return from != other.from ? from < other.from : to < other.to;
-    }
+    bool operator<(const DirectedEdge& other) const { return from != other.from ? from < other.from : to < other.to; }
   };
   std::vector<DirectedEdge> owner;
   size_t edge_count = 0;
@@ -45,7 +43,7 @@ std::optional<ConvexPolytope> add_point_to_hull(const ConvexPolytope& hull, cons
   }
   std::sort(owner.begin(), owner.end());
   for (size_t i = 1; i < owner.size(); ++i)
-    if (!(owner[i - 1] < owner[i])) return std::nullopt;  // an edge used twice the same way: not a surface
+    if (!(owner[i - 1] < owner[i])) return std::nullopt; // an edge used twice the same way: not a surface
   const auto owner_of = [&](int from, int to) {
     const DirectedEdge key{from, to, -1};
     const auto it = std::lower_bound(owner.begin(), owner.end(), key);
@@ -67,7 +65,7 @@ std::optional<ConvexPolytope> add_point_to_hull(const ConvexPolytope& hull, cons
     for (size_t i = 0; i < poly.size(); ++i) {
       const int u = poly[i], v = poly[(i + 1) % poly.size()];
       const int across = owner_of(v, u);
-      if (across < 0) return std::nullopt;  // not closed
+      if (across < 0) return std::nullopt; // not closed
       if (!visible[across]) new_triangles.push_back({u, v, new_vertex});
     }
   }

@@ -23,21 +23,18 @@ double largest_coordinate_magnitude(const Mesh& mesh) {
 Status validate_mesh(const Mesh& mesh) {
   if (mesh.triangles.empty()) return {StatusCode::empty_scene, "the scene has no triangles"};
   if (mesh.material_ids.size() != mesh.triangles.size())
-    return {StatusCode::invalid_argument,
-            "material_ids has " + std::to_string(mesh.material_ids.size()) + " entries for " +
-                std::to_string(mesh.triangles.size()) + " triangles"};
+    return {StatusCode::invalid_argument, "material_ids has " + std::to_string(mesh.material_ids.size()) +
+                                              " entries for " + std::to_string(mesh.triangles.size()) + " triangles"};
   const auto vertex_count = static_cast<long long>(mesh.positions.size());
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     for (int k = 0; k < 3; ++k) {
       const int v = mesh.triangles[t][k];
       if (v < 0 || v >= vertex_count)
-        return {StatusCode::index_out_of_range,
-                "triangle " + std::to_string(t) + " names vertex " + std::to_string(v) + " but there are " +
-                    std::to_string(vertex_count) + " vertices"};
+        return {StatusCode::index_out_of_range, "triangle " + std::to_string(t) + " names vertex " + std::to_string(v) +
+                                                    " but there are " + std::to_string(vertex_count) + " vertices"};
       if (!mesh.positions[v].allFinite())
-        return {StatusCode::non_finite_coordinate,
-                "vertex " + std::to_string(v) + " (used by triangle " + std::to_string(t) +
-                    ") has a NaN or infinite coordinate"};
+        return {StatusCode::non_finite_coordinate, "vertex " + std::to_string(v) + " (used by triangle " +
+                                                       std::to_string(t) + ") has a NaN or infinite coordinate"};
     }
   }
   return Status::success();

@@ -48,11 +48,12 @@ std::vector<int> convex_hull_2d(const std::vector<Eigen::Vector2d>& points, doub
   for (int pass = 0; pass < 2; ++pass) {
     const size_t chain_start = hull.size();
     for (int idx : order) {
-      while (hull.size() >= chain_start + 2 && cross(points[hull[hull.size() - 2]], points[hull.back()], points[idx]) <= 0.0)
+      while (hull.size() >= chain_start + 2 &&
+             cross(points[hull[hull.size() - 2]], points[hull.back()], points[idx]) <= 0.0)
         hull.pop_back();
       hull.push_back(idx);
     }
-    hull.pop_back();  // the chain's last point starts the other chain
+    hull.pop_back(); // the chain's last point starts the other chain
     std::reverse(order.begin(), order.end());
   }
   // Drop corners within tol of their neighbours or of the line through them;
@@ -89,7 +90,7 @@ std::vector<Plane> polygon_side_planes(const std::vector<Eigen::Vector3d>& corne
     const Eigen::Vector3d& a = corners[i];
     const Eigen::Vector3d& b = corners[(i + 1) % corners.size()];
     Plane p;
-    p.normal = (b - a).cross(normal).normalized();  // counter-clockwise: edge x normal points out
+    p.normal = (b - a).cross(normal).normalized(); // counter-clockwise: edge x normal points out
     p.offset = p.normal.dot(a);
     planes.push_back(p);
   }
@@ -100,8 +101,8 @@ std::vector<Plane> polygon_side_planes(const std::vector<Eigen::Vector3d>& corne
 
 namespace hullcover {
 
-std::pair<double, double> extent_along(const std::vector<Eigen::Vector3d>& positions, const std::vector<int>& vertex_ids,
-                                       const Eigen::Vector3d& normal) {
+std::pair<double, double> extent_along(const std::vector<Eigen::Vector3d>& positions,
+                                       const std::vector<int>& vertex_ids, const Eigen::Vector3d& normal) {
   double low = normal.dot(positions[vertex_ids.front()]), high = low;
   for (int v : vertex_ids) {
     low = std::min(low, normal.dot(positions[v]));

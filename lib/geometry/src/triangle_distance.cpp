@@ -64,7 +64,7 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> closest_points_of_segments(const Eig
       s = std::clamp(-c / a, 0.0, 1.0);
     } else {
       const double b = d1.dot(d2), denominator = a * e - b * b;
-      s = denominator > 0.0 ? std::clamp((b * f - c * e) / denominator, 0.0, 1.0) : 0.0;  // parallel: any s
+      s = denominator > 0.0 ? std::clamp((b * f - c * e) / denominator, 0.0, 1.0) : 0.0; // parallel: any s
       t = (b * s + f) / e;
       if (t < 0.0) {
         t = 0.0;
@@ -95,7 +95,7 @@ namespace {
 // bounded test, so they agree to the last bit.
 template <class Take>
 void triangle_pair_candidates(const Eigen::Vector3d (&s)[3], const Eigen::Vector3d (&t)[3], Take&& take) {
-  const auto corners_against = [&take](const Eigen::Vector3d (&from)[3], const Eigen::Vector3d (&onto)[3]) {
+  const auto corners_against = [&take](const Eigen::Vector3d(&from)[3], const Eigen::Vector3d(&onto)[3]) {
     const Eigen::Vector3d normal = (onto[1] - onto[0]).cross(onto[2] - onto[0]);
     for (int i = 0; i < 3; ++i) {
       const Eigen::Vector3d& p = from[i];

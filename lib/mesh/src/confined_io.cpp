@@ -30,13 +30,15 @@ ConfinedIOSystem::Verdict ConfinedIOSystem::judge(const char* file, std::filesys
   // never a file here, and the importer must not reach the network.
   const std::string text(file);
   if (text != scene_path_ && text.find("://") != std::string::npos) return Verdict::outside;
-  const std::filesystem::path resolved = std::filesystem::weakly_canonical(std::filesystem::absolute(text, error), error);
+  const std::filesystem::path resolved =
+      std::filesystem::weakly_canonical(std::filesystem::absolute(text, error), error);
   if (error) return Verdict::outside;
   if (text != scene_path_ && !lies_under(resolved, folder_)) return Verdict::outside;
   // A FIFO or a device inside the folder would block or never end.
   if (std::filesystem::exists(resolved, error) && !std::filesystem::is_regular_file(resolved, error))
     return Verdict::outside;
-  if (std::filesystem::is_regular_file(resolved, error) && std::filesystem::file_size(resolved, error) > max_file_bytes_)
+  if (std::filesystem::is_regular_file(resolved, error) &&
+      std::filesystem::file_size(resolved, error) > max_file_bytes_)
     return Verdict::too_large;
   if (resolved_out != nullptr) *resolved_out = resolved;
   return Verdict::allowed;

@@ -43,7 +43,7 @@ private:
   void note(const char* file, Verdict verdict) const;
 
   std::string scene_path_;
-  std::filesystem::path folder_;  // canonical
+  std::filesystem::path folder_; // canonical
   std::uint64_t max_file_bytes_;
   // Kept by Exists too (const in Assimp's interface): an importer may ask
   // before it opens, and give up quietly on a no.

@@ -101,8 +101,7 @@ Status check_nodes(const Json& gltf, const ImportLimits& limits) {
     const auto [node, depth] = pending.back();
     pending.pop_back();
     ++reached;
-    if (depth > limits.max_node_depth)
-      return deeper_than_limit("glTF node hierarchy", limits);
+    if (depth > limits.max_node_depth) return deeper_than_limit("glTF node hierarchy", limits);
     for (const std::size_t c : children[node]) pending.push_back({c, depth + 1});
   }
   if (reached != n) return damaged_gltf("the node hierarchy has a cycle");
@@ -196,8 +195,7 @@ Status check_gltf(const std::string& path, std::ifstream& in, std::uint64_t file
     text.resize(static_cast<std::size_t>(file_bytes));
     in.read(text.data(), static_cast<std::streamsize>(file_bytes));
   }
-  if (json_nesting_depth(text) > limits.max_node_depth)
-    return deeper_than_limit("glTF JSON nested", limits);
+  if (json_nesting_depth(text) > limits.max_node_depth) return deeper_than_limit("glTF JSON nested", limits);
   const Json gltf = Json::parse(text, nullptr, false);
   if (gltf.is_discarded() || !gltf.is_object()) return damaged_gltf("the JSON does not parse to an object");
   if (Status references = check_references(gltf); !references.ok()) return references;

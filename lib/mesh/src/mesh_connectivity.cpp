@@ -8,7 +8,7 @@ namespace hullcover {
 namespace {
 
 struct DirectedEdge {
-  int v0, v1;  // sorted pair
+  int v0, v1; // sorted pair
   int face, corner;
   bool operator<(const DirectedEdge& o) const {
     return std::tie(v0, v1, face, corner) < std::tie(o.v0, o.v1, o.face, o.corner);
@@ -28,7 +28,8 @@ bool is_zero_area(const Mesh& mesh, int t, double tolerance) {
   const Eigen::Vector3i& tri = mesh.triangles[t];
   double longest_squared = 0.0;
   for (int k = 0; k < 3; ++k)
-    longest_squared = std::max(longest_squared, (mesh.positions[tri[(k + 1) % 3]] - mesh.positions[tri[k]]).squaredNorm());
+    longest_squared =
+        std::max(longest_squared, (mesh.positions[tri[(k + 1) % 3]] - mesh.positions[tri[k]]).squaredNorm());
   // Smallest altitude = 2 * area / longest edge; compared squared.
   return triangle_area_vector(mesh, t).squaredNorm() <= tolerance * tolerance * longest_squared;
 }
@@ -38,7 +39,7 @@ EdgeKind classify(const Mesh& mesh, const std::vector<EdgeUse>& uses, int first,
   if (count > 2) return EdgeKind::non_manifold;
   const auto start_vertex = [&](const EdgeUse& u) { return mesh.triangles[u.face][u.corner]; };
   return start_vertex(uses[first]) == start_vertex(uses[first + 1]) ? EdgeKind::orientation_conflict
-                                                                     : EdgeKind::manifold;
+                                                                    : EdgeKind::manifold;
 }
 
 } // namespace

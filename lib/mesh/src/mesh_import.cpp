@@ -76,8 +76,7 @@ Result<std::vector<PlacedNode>> place_nodes(const aiScene& scene, const ImportLi
   while (!pending.empty()) {
     auto [item, depth] = pending.back();
     pending.pop_back();
-    if (depth > limits.max_node_depth)
-      return detail::deeper_than_limit("node hierarchy", limits);
+    if (depth > limits.max_node_depth) return detail::deeper_than_limit("node hierarchy", limits);
     item.world = item.world * to_eigen(item.node->mTransformation);
     for (unsigned i = 0; i < item.node->mNumMeshes; ++i) faces += scene.mMeshes[item.node->mMeshes[i]]->mNumFaces;
     if (faces > triangle_limit)
@@ -88,7 +87,8 @@ Result<std::vector<PlacedNode>> place_nodes(const aiScene& scene, const ImportLi
                                               : "by default one per " + std::to_string(kInputBytesPerDefaultTriangle) +
                                                     " bytes of the files read; raise it with --max-triangles") +
                         ")"};
-    for (unsigned c = item.node->mNumChildren; c-- > 0;) pending.push_back({{item.node->mChildren[c], item.world}, depth + 1});
+    for (unsigned c = item.node->mNumChildren; c-- > 0;)
+      pending.push_back({{item.node->mChildren[c], item.world}, depth + 1});
     placed.push_back(item);
   }
   return placed;
@@ -125,7 +125,8 @@ Result<ImportedMesh> import_with_assimp(const std::string& path, const ImportLim
   const std::string extension = std::filesystem::path(path).extension().string();
   if (extension.empty() || !importer.IsExtensionSupported(extension))
     return Status{StatusCode::unknown_format,
-                  path + ": unknown format '" + extension + "' (readable: .obj .ply .stl .gltf .glb .fbx and others Assimp knows)"};
+                  path + ": unknown format '" + extension +
+                      "' (readable: .obj .ply .stl .gltf .glb .fbx and others Assimp knows)"};
 
   // Read without post-processing first: triangulation reads vertices by
   // index, so indices are checked before it runs.
@@ -151,9 +152,9 @@ Result<ImportedMesh> import_with_assimp(const std::string& path, const ImportLim
     out.mesh.material_names.emplace_back(scene->mMaterials[m]->GetName().C_Str());
   if (out.mesh.material_names.empty()) out.mesh.material_names.emplace_back("default");
 
-  if (out.mesh.triangles.empty())
-    return Status{StatusCode::empty_scene, path + ": the file holds no triangles"};
-  if (const Status valid = validate_mesh(out.mesh); !valid.ok()) return Status{valid.code(), path + ": " + valid.message()};
+  if (out.mesh.triangles.empty()) return Status{StatusCode::empty_scene, path + ": the file holds no triangles"};
+  if (const Status valid = validate_mesh(out.mesh); !valid.ok())
+    return Status{valid.code(), path + ": " + valid.message()};
 
   // Half a float32 unit in the last place, relative to the magnitude.
   constexpr double kFloat32RelativeRounding = std::numeric_limits<float>::epsilon() / 2.0;

@@ -46,8 +46,10 @@ std::vector<int> connected_pieces(const Mesh& mesh) {
         canonical[v] = first_at.emplace(std::array<double, 3>{p.x(), p.y(), p.z()}, v).first->second;
       }
       const int c = canonical[v];
-      if (vertex_face[c] < 0) vertex_face[c] = f;
-      else faces.join(vertex_face[c], f);
+      if (vertex_face[c] < 0)
+        vertex_face[c] = f;
+      else
+        faces.join(vertex_face[c], f);
     }
   std::vector<int> piece(n);
   for (int f = 0; f < n; ++f) piece[f] = faces.find(f);

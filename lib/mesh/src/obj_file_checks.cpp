@@ -31,7 +31,7 @@ bool next_assimp_line(std::istream& in, std::string& line) {
   while (in.get(c)) {
     any = true;
     if (c == '\n' || c == '\r' || c == '\f' || c == '\0') {
-      if (c == '\r' && in.peek() == '\n') in.get(c);  // CRLF: one line end, for the line numbers
+      if (c == '\r' && in.peek() == '\n') in.get(c); // CRLF: one line end, for the line numbers
       if (!line.empty() && line.back() == '\\') {
         line.pop_back();
         continue;

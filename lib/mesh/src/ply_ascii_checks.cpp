@@ -17,9 +17,9 @@ constexpr std::size_t kMaxTokenChars = 64;
 constexpr std::uint64_t kLengthCeiling = 1'000'000'000'000'000'000;
 
 struct Token {
-  std::string text;  // its first kMaxTokenChars characters
+  std::string text; // its first kMaxTokenChars characters
   std::uint64_t length = 0;
-  std::uint64_t left = 0;  // bytes after it
+  std::uint64_t left = 0; // bytes after it
 };
 
 // The token's text for a message: one line, printable.
@@ -36,9 +36,9 @@ void read_token(BodyReader& body, Token& t, Ends ends) {
   t.text.clear();
   t.length = body.take_while([&](unsigned char c) { return !ends(c); },
                              [&](const unsigned char* data, std::size_t size) {
-                               const std::size_t room = kMaxTokenChars - t.text.size();
-                               t.text.append(reinterpret_cast<const char*>(data), std::min(size, room));
-                             });
+    const std::size_t room = kMaxTokenChars - t.text.size();
+    t.text.append(reinterpret_cast<const char*>(data), std::min(size, room));
+  });
   t.left = body.left();
 }
 
@@ -121,7 +121,7 @@ bool skip_tokens(BodyReader& body, std::uint64_t tokens) {
 // lacks are left at defaults, and what follows its properties is ignored.
 // Assimp sizes each list by its length before reading the items.
 class AssimpLines {
- public:
+public:
   AssimpLines(BodyReader& body, std::uint64_t line_number) : body_(body), line_(line_number) {}
 
   bool next_line() {
@@ -145,7 +145,7 @@ class AssimpLines {
   }
   std::uint64_t number() const { return number_; }
 
- private:
+private:
   // Takes the rest of the line and the byte that ends it.
   void finish_line() {
     if (!in_line_) return;

@@ -41,7 +41,7 @@ std::optional<std::string> assimp_line(const std::string& text, std::size_t& at)
   if (at >= text.size()) return std::nullopt;
   const std::size_t start = at;
   while (at < text.size() && !is_line_end(text[at])) ++at;
-  ++at;  // past the byte that ends it (past the text when none does)
+  ++at; // past the byte that ends it (past the text when none does)
   return text.substr(start, at - 1 - start);
 }
 
@@ -63,7 +63,7 @@ struct Header {
   bool big_endian = false;
   std::vector<Element> elements;
   std::uint64_t after_line = 0;  // just past the byte ending the 'end_header' line: Assimp's next line read
-  std::uint64_t line_number = 1;  // of the line at after_line
+  std::uint64_t line_number = 1; // of the line at after_line
   std::uint64_t data_at = 0;     // binary data, as Assimp reads it
 };
 
@@ -145,8 +145,9 @@ Status read_header(std::ifstream& in, std::uint64_t file_bytes, Header& h) {
   // as the second half of a "\r\n" line end; after a plain '\n' it is data.
   const bool newline_next = at < text.size() && text[at] == '\n';
   if (!h.ascii && newline_next && text[at - 1] == '\n')
-    return damaged_file("binary PLY data starts with byte 0x0A, which Assimp would skip as part of the 'end_header' "
-                        "line's end, reading every value one byte off");
+    return damaged_file(
+        "binary PLY data starts with byte 0x0A, which Assimp would skip as part of the 'end_header' "
+        "line's end, reading every value one byte off");
   h.data_at = at + (newline_next ? 1 : 0);
   return Status::success();
 }
@@ -156,7 +157,7 @@ Status read_header(std::ifstream& in, std::uint64_t file_bytes, Header& h) {
 std::optional<std::int64_t> binary_length(const unsigned char* raw, ScalarType type, bool big_endian) {
   std::uint64_t bits = 0;
   for (int i = 0; i < type.bytes; ++i) bits = bits << 8 | raw[big_endian ? i : type.bytes - 1 - i];
-  if (type.number == Number::unsigned_integer) return static_cast<std::int64_t>(bits);  // at most 32 bits
+  if (type.number == Number::unsigned_integer) return static_cast<std::int64_t>(bits); // at most 32 bits
   if (type.number == Number::signed_integer) {
     const std::uint64_t sign = std::uint64_t{1} << (8 * type.bytes - 1);
     return static_cast<std::int64_t>(bits ^ sign) - static_cast<std::int64_t>(sign);

@@ -31,21 +31,21 @@ inline constexpr const char* kCountedElements[] = {"vertex", "face", "tristrips"
 enum class Number { signed_integer, unsigned_integer, real };
 
 struct ScalarType {
-  int bytes = 0;  // 0: a name PLY does not have
+  int bytes = 0; // 0: a name PLY does not have
   Number number = Number::unsigned_integer;
 };
 
 struct Property {
   std::string name;
   bool is_list = false;
-  ScalarType length;  // a list's length
-  ScalarType value;   // the scalar, or each list item
+  ScalarType length; // a list's length
+  ScalarType value;  // the scalar, or each list item
 };
 
 struct Element {
   std::string name;
   std::uint64_t count = 0;
-  std::uint64_t least_bytes = 0;  // per element
+  std::uint64_t least_bytes = 0; // per element
   std::vector<Property> properties;
 
   bool has_list() const {
@@ -80,7 +80,7 @@ inline constexpr auto is_line_end = [](int c) { return c == '\r' || c == '\n' ||
 
 // The bytes [offset, offset + bytes) of `in`, read a chunk at a time.
 class BodyReader {
- public:
+public:
   BodyReader(std::ifstream& in, std::uint64_t offset, std::uint64_t bytes)
       : in_(in), unread_(bytes), chunk_(kBodyChunkBytes) {
     in_.clear();
@@ -144,13 +144,13 @@ class BodyReader {
     return true;
   }
 
- private:
+private:
   bool fill() {
     const std::size_t want = static_cast<std::size_t>(std::min<std::uint64_t>(unread_, chunk_.size()));
     if (want == 0) return false;
     in_.read(reinterpret_cast<char*>(chunk_.data()), static_cast<std::streamsize>(want));
     const std::size_t got = static_cast<std::size_t>(in_.gcount());
-    unread_ = got < want ? 0 : unread_ - want;  // a file that shrank ends here
+    unread_ = got < want ? 0 : unread_ - want; // a file that shrank ends here
     next_ = 0;
     end_ = got;
     return got > 0;

@@ -66,8 +66,8 @@ Mesh demo_building() {
   const double wall = 0.2, height = 3.0;
 
   add_box(m, V(-5, -0.2, -4), V(5, 0, 4), true, demo_floor);
-  add_box(m, V(-5, height, -4), V(5, height + 0.2, 4), true, demo_wall);  // roof slab
-  add_box(m, V(-5, 0, -4), V(5, height, -4 + wall), true, demo_wall);      // back
+  add_box(m, V(-5, height, -4), V(5, height + 0.2, 4), true, demo_wall); // roof slab
+  add_box(m, V(-5, 0, -4), V(5, height, -4 + wall), true, demo_wall);    // back
   add_box(m, V(-5, 0, -4 + wall), V(-5 + wall, height, 4 - wall), true, demo_wall);
   add_box(m, V(5 - wall, 0, -4 + wall), V(5, height, 4 - wall), true, demo_wall);
   // Front wall with a 1.2 x 2.1 m doorway.
@@ -85,8 +85,8 @@ Mesh demo_building() {
   for (double x = -16; x < -8; x += 1.0) xs.push_back(x);
   for (double x = -8; x <= -5.99; x += 0.25) xs.push_back(x);
   for (double z = -6; z <= 6.01; z += 0.75) zs.push_back(z);
-  add_height_field(m, xs, zs, [](double x, double z) { return 0.3 * std::sin(0.8 * x) * std::cos(0.6 * z) - 0.3; },
-                   demo_terrain);
+  add_height_field(
+      m, xs, zs, [](double x, double z) { return 0.3 * std::sin(0.8 * x) * std::cos(0.6 * z) - 0.3; }, demo_terrain);
   return m;
 }
 

@@ -25,15 +25,13 @@ double coordinate_error_in(const Mesh& mesh, const Aabb& box) {
 // when they meet): boxes each grown by less than half of it do not meet.
 double box_gap(const Aabb& a, const Aabb& b) {
   double gap = 0.0;
-  for (int axis = 0; axis < 3; ++axis)
-    gap = std::max({gap, b.min[axis] - a.max[axis], a.min[axis] - b.max[axis]});
+  for (int axis = 0; axis < 3; ++axis) gap = std::max({gap, b.min[axis] - a.max[axis], a.min[axis] - b.max[axis]});
   return gap;
 }
 
 } // namespace
 
-PlaceTolerance::PlaceTolerance(const Tolerance& tolerance)
-    : tolerance_(&tolerance), zones_(tolerance.island_zones) {}
+PlaceTolerance::PlaceTolerance(const Tolerance& tolerance) : tolerance_(&tolerance), zones_(tolerance.island_zones) {}
 
 void PlaceTolerance::zones_meeting(const Aabb& box, std::vector<int>& out) const {
   std::vector<int> met;

@@ -76,8 +76,8 @@ WeldResult weld_vertices(const Mesh& mesh, const std::vector<int>& group_of_vert
           for (int candidate : found->second) {
             const double d2 = (out.positions[candidate] - p).squaredNorm();
             const bool within = d2 <= radius_squared;
-            const bool better = best < 0 || d2 < best_distance_squared ||
-                                (d2 == best_distance_squared && candidate < best);
+            const bool better =
+                best < 0 || d2 < best_distance_squared || (d2 == best_distance_squared && candidate < best);
             if (within && better) {
               best = candidate;
               best_distance_squared = d2;

@@ -77,7 +77,7 @@ RuntimeHull placed_box(const Eigen::Isometry3d& pose, const Eigen::Vector3d& hal
 /// First hit of the ray origin + t * direction (unit), 0 <= t <= max_t.
 /// A ray starting inside the hull hits at t = 0 with the normal of the
 /// nearest facet.
-std::optional<RayHit> ray_hit(const RuntimeHull& hull, const Eigen::Vector3d& origin,
-                              const Eigen::Vector3d& direction, double max_t);
+std::optional<RayHit> ray_hit(const RuntimeHull& hull, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                              double max_t);
 
 } // namespace hullcover::bvh

@@ -65,8 +65,8 @@ public:
   [[nodiscard]] Status touches_batch(const std::vector<OverlapRequest>& requests, std::vector<TouchResult>& results,
                                      QueryThreads* threads = nullptr) const;
   /// contacts() for each request, as touches_batch.
-  [[nodiscard]] Status contacts_batch(const std::vector<ContactRequest>& requests,
-                                      std::vector<ContactResult>& results, QueryThreads* threads = nullptr) const;
+  [[nodiscard]] Status contacts_batch(const std::vector<ContactRequest>& requests, std::vector<ContactResult>& results,
+                                      QueryThreads* threads = nullptr) const;
   /// ray_cast() for each request, as touches_batch.
   [[nodiscard]] Status ray_cast_batch(const std::vector<RayRequest>& requests, std::vector<RayResult>& results,
                                       QueryThreads* threads = nullptr) const;

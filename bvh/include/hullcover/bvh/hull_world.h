@@ -30,7 +30,6 @@ class PackedPlanes;
 struct TreeSource;
 } // namespace detail
 
-
 /// A covering's hulls, built once, then queried from any number of threads.
 /// What a game server writes (tests/support/runtime_only_example.cpp runs
 /// it):

@@ -23,7 +23,7 @@ enum class ShapeKind { sphere, capsule, box, convex };
 /// A query shape in its local frame. Only the fields of its `kind` are read;
 /// check_query_shape gives the limits every query enforces.
 struct QueryShape {
-  ShapeKind kind = ShapeKind::sphere;  ///< default sphere
+  ShapeKind kind = ShapeKind::sphere; ///< default sphere
   /// Sphere and capsule: radius in scene units, finite and > 0. Default 0.5.
   double radius = 0.5;
   /// Capsule: half the length of its axis segment (local z, between the
@@ -41,15 +41,27 @@ struct QueryShape {
   std::vector<Eigen::Vector3d> points;
 
   /// A sphere of radius `r`, centred on the pose's origin.
-  static QueryShape sphere(double r) { QueryShape s; s.kind = ShapeKind::sphere; s.radius = r; return s; }
+  static QueryShape sphere(double r) {
+    QueryShape s;
+    s.kind = ShapeKind::sphere;
+    s.radius = r;
+    return s;
+  }
   /// A capsule of radius `r` around the local z axis from -half_height to
   /// +half_height.
   static QueryShape capsule(double r, double half_height) {
-    QueryShape s; s.kind = ShapeKind::capsule; s.radius = r; s.half_height = half_height; return s;
+    QueryShape s;
+    s.kind = ShapeKind::capsule;
+    s.radius = r;
+    s.half_height = half_height;
+    return s;
   }
   /// A box of these half extents along the local axes.
   static QueryShape box(const Eigen::Vector3d& half_extents) {
-    QueryShape s; s.kind = ShapeKind::box; s.half_extents = half_extents; return s;
+    QueryShape s;
+    s.kind = ShapeKind::box;
+    s.half_extents = half_extents;
+    return s;
   }
 };
 

@@ -26,7 +26,7 @@ struct Contact {
 /// Closest points between a hull and a point, segment or shape (world
 /// frame, scene units).
 struct ClosestPoints {
-  double distance = 0.0;                               ///< >= 0; 0 when they meet
+  double distance = 0.0; ///< >= 0; 0 when they meet
   /// Closest point on the hull; when they meet, a point in or on the hull
   /// that only locates the meeting.
   Eigen::Vector3d on_hull = Eigen::Vector3d::Zero();
@@ -36,10 +36,10 @@ struct ClosestPoints {
 
 /// A ray hit on a hull (world frame, scene units).
 struct RayHit {
-  int hull = -1;                                      ///< hull index in its world (-1 from ray_hit)
-  double t = 0.0;                                     ///< distance from the origin along the unit direction, >= 0
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();    ///< origin + t * direction (the origin if inside)
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< unit, outward normal of the facet hit
+  int hull = -1;                                     ///< hull index in its world (-1 from ray_hit)
+  double t = 0.0;                                    ///< distance from the origin along the unit direction, >= 0
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();   ///< origin + t * direction (the origin if inside)
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); ///< unit, outward normal of the facet hit
 };
 
 /// Which hulls a shape at a pose touches.
@@ -99,7 +99,7 @@ struct RayRequest {
 };
 /// What ray_cast() found.
 struct RayResult {
-  bool hit = false;  ///< some hull is hit within max_distance
+  bool hit = false; ///< some hull is hit within max_distance
   /// The nearest hit (equal t: the lower hull index); valid when `hit`. A
   /// ray starting inside a hull hits it at t = 0.
   RayHit first;

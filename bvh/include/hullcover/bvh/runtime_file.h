@@ -62,8 +62,8 @@ Result<std::vector<RuntimeHull>> read_runtime_file(const std::string& path);
 
 /// One section of a runtime file: a cell a server streams in and out.
 struct RuntimeSection {
-  std::uint32_t id = 0;    ///< as written; distinct within a file
-  std::vector<int> hulls;  ///< its global hull indices, ascending, never empty
+  std::uint32_t id = 0;   ///< as written; distinct within a file
+  std::vector<int> hulls; ///< its global hull indices, ascending, never empty
 };
 
 /// A section's hulls, ready for StreamedWorld::add_section.

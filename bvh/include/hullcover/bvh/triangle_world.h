@@ -58,10 +58,10 @@ public:
 private:
   TriangleWorld() = default;
   struct Fcl;
-  std::vector<RuntimeHull> triangles_;  // each triangle as a flat hull, for the exact narrow phase
-  std::vector<int> face_of_;            // mesh face id of triangles_[i]
-  double margin_ = 0.0;                 // broad-phase inflation (a few tol)
-  double tol_ = 0.0;                    // a ray meets a triangle within tol of its edges
+  std::vector<RuntimeHull> triangles_; // each triangle as a flat hull, for the exact narrow phase
+  std::vector<int> face_of_;           // mesh face id of triangles_[i]
+  double margin_ = 0.0;                // broad-phase inflation (a few tol)
+  double tol_ = 0.0;                   // a ray meets a triangle within tol of its edges
   std::unique_ptr<Fcl> fcl_;
 
   /// Calls `on_hit` for every triangle hit within `reach` (which `on_hit`

@@ -161,7 +161,8 @@ Result<Covering> decompose_with_cache_unchecked(const PreparedMesh& prepared, co
   finished.statistics.seconds_merging += report.seconds_checking + report.seconds_merging;
   // Only after every cell held or was stored: the next bake trusts what
   // this one records.
-  if (Status s = write_file_atomically(snapshot_path(cache_dir), detail::scene_snapshot_bytes(stages, face_hashes, keys, cells));
+  if (Status s = write_file_atomically(snapshot_path(cache_dir),
+                                       detail::scene_snapshot_bytes(stages, face_hashes, keys, cells));
       !s.ok())
     return s;
   if (options.progress) options.progress(1.0);

@@ -39,7 +39,8 @@ double cell_near_merge_distance(const DecompositionStages& stages, int cell) {
   // A cell cut from a crowded cube reaches as far as its own side allows
   // (merge_cells.h, cell_halvings): halving is exact.
   return options.conditions == ValidityMode::exact
-             ? std::ldexp(kDefaultNearMergeRelative * covering.island_extents[island], -stages.cells.cell_halvings[cell])
+             ? std::ldexp(kDefaultNearMergeRelative * covering.island_extents[island],
+                          -stages.cells.cell_halvings[cell])
              : 0.0;
 }
 
@@ -76,8 +77,8 @@ CellResult merge_cell(const DecompositionStages& stages, int cell, const std::fu
       run->options.progress = [&progress, attempt, &options](double fraction) {
         progress((attempt + fraction) / options.order_tries);
       };
-    run->merger = std::make_unique<PatchMerger>(stages.index_of_cell(cell), run->options, near_merge_distance, stages.cells, cell,
-                                                run->statistics);
+    run->merger = std::make_unique<PatchMerger>(stages.index_of_cell(cell), run->options, near_merge_distance,
+                                                stages.cells, cell, run->statistics);
     run->merger->run();
     for (const Patch& patch : run->merger->patches()) run->hulls += patch.alive;
     if (!kept || run->hulls < kept->hulls) {
@@ -101,9 +102,8 @@ CellResult merge_cell(const DecompositionStages& stages, int cell, const std::fu
 std::vector<int> largest_cells_first(const CellLayout& cells) {
   std::vector<int> order(cells.faces_of_cell.size());
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-    return cells.faces_of_cell[a].size() > cells.faces_of_cell[b].size();
-  });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return cells.faces_of_cell[a].size() > cells.faces_of_cell[b].size(); });
   return order;
 }
 

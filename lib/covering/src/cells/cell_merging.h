@@ -25,8 +25,8 @@ namespace hullcover::detail {
 
 /// What one cell gave: the patches it kept, their hulls and its counts.
 struct CellResult {
-  std::vector<Patch> patches;  ///< alive ones only
-  std::vector<PatchHull> hulls;  ///< per patch (same index), made on the cell's view
+  std::vector<Patch> patches;   ///< alive ones only
+  std::vector<PatchHull> hulls; ///< per patch (same index), made on the cell's view
   CoveringStatistics statistics;
 };
 

@@ -39,10 +39,10 @@ CellVertices cell_vertices(const DecompositionStages& stages, int cell) {
 
 // The counts a cell's statistics carry (timings are the whole run's).
 void write_statistics(LittleEndianWriter& out, const CoveringStatistics& s) {
-  std::vector<std::int64_t> values = {s.zero_area_faces_skipped, s.merges,        s.near_merges,
-                                      s.dissolved_patches,       s.candidates_tested, s.qhull_calls,
-                                      s.incremental_hulls,       s.prisms_made_flat, s.solids_kept_as_grown,
-                                      s.kept_try};
+  std::vector<std::int64_t> values = {
+      s.zero_area_faces_skipped, s.merges,      s.near_merges,       s.dissolved_patches,
+      s.candidates_tested,       s.qhull_calls, s.incremental_hulls, s.prisms_made_flat,
+      s.solids_kept_as_grown,    s.kept_try};
   values.insert(values.end(), s.rejections.begin(), s.rejections.end());
   out.u32(static_cast<std::uint32_t>(values.size()));
   for (std::int64_t v : values) out.u64(static_cast<std::uint64_t>(v));
@@ -173,9 +173,7 @@ bool read_patch_hull(LittleEndianReader& in, const CellVertices& vertices, const
   return true;
 }
 
-Status unreadable(const std::string& what) {
-  return {StatusCode::unreadable_file, "cell result: " + what};
-}
+Status unreadable(const std::string& what) { return {StatusCode::unreadable_file, "cell result: " + what}; }
 
 // cell_key, with the cell's vertices already gathered.
 std::uint64_t key_of_cell(const DecompositionStages& stages, int cell, const CellVertices& vertices) {

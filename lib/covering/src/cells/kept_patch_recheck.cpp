@@ -38,8 +38,7 @@ Validity PatchMerger::recheck_patches(const std::vector<char>& which) {
       // by themselves; the rest must be covered by faces of this scene.
       if (index_.mode == ValidityMode::exact)
         validity = check_polygon_covered(index_, polygon, face_corners(mesh, patch.faces[0]),
-                                         face_corners(mesh, patch.faces[1]), scratch_,
-                                         kRecheckSlabInTolerances);
+                                         face_corners(mesh, patch.faces[1]), scratch_, kRecheckSlabInTolerances);
       if (validity == Validity::valid) validity = check_flat_polygon(index_, polygon, in_patch, scratch_);
     } else if (!patch.solid) {
       validity = Validity::hull_failed;
@@ -82,8 +81,8 @@ bool cell_result_holds(const DecompositionStages& stages, int cell, const CellRe
   ConvexHullBuilder builder;
   std::vector<int> scratch;
   for (size_t p = 0; p < which.size(); ++p)
-    if (which[p] && !same_hull(make_patch_hull(stages, index, merger, static_cast<int>(p), builder, scratch),
-                               result.hulls[p]))
+    if (which[p] &&
+        !same_hull(make_patch_hull(stages, index, merger, static_cast<int>(p), builder, scratch), result.hulls[p]))
       return refuse("a kept hull would be made otherwise in this scene");
   return true;
 }

@@ -33,8 +33,8 @@ std::map<CellKey, std::vector<int>> cells_of_grid(const Mesh& mesh, const std::v
 }
 
 // The same for one island's grid, centred on its box.
-std::map<CellKey, std::vector<int>> cells_of_island(const Mesh& mesh, const std::vector<int>& faces,
-                                                    const Aabb& box, double size) {
+std::map<CellKey, std::vector<int>> cells_of_island(const Mesh& mesh, const std::vector<int>& faces, const Aabb& box,
+                                                    double size) {
   return cells_of_grid(mesh, faces, 0.5 * (box.min + box.max), size);
 }
 
@@ -103,7 +103,8 @@ CellLayout lay_out_islands(const PreparedMesh& prepared, const MeshIslands& isla
   layout.slot_in_cell.assign(face_count, 0);
   std::vector<std::vector<int>> faces_of_island(islands.boxes.size());
   for (int f = 0; f < face_count; ++f) faces_of_island[islands.island_of_face[f]].push_back(f);
-  for (size_t i = 0; i < faces_of_island.size(); ++i) add_cell(std::move(faces_of_island[i]), static_cast<int>(i), 0, layout);
+  for (size_t i = 0; i < faces_of_island.size(); ++i)
+    add_cell(std::move(faces_of_island[i]), static_cast<int>(i), 0, layout);
   layout.island_cell_size.assign(islands.boxes.size(), 0.0);
   index_faces(layout);
   return layout;
@@ -136,7 +137,8 @@ CellLayout lay_out_cells(const PreparedMesh& prepared, const MeshIslands& island
     }
     // A user's side is kept as given; the automatic grid halves its crowded
     // cubes, down to the finest grid automatic_cell_size tries.
-    const double finest = cell_size ? 0.0 : (box.max - box.min).maxCoeff() / static_cast<double>(kMostCellsAlongAnIsland);
+    const double finest =
+        cell_size ? 0.0 : (box.max - box.min).maxCoeff() / static_cast<double>(kMostCellsAlongAnIsland);
     append_cells(mesh, faces, 0.5 * (box.min + box.max), size, finest, static_cast<int>(i), 0, layout);
   }
   index_faces(layout);

@@ -118,8 +118,8 @@ ViewTolerances view_tolerances(const DecompositionStages& stages) {
 template <typename SweepAtReach>
 void keep_if_crossing(const SweepAtReach& at_reach, double reach, const DecompositionStages& stages,
                       const SceneIndex& finest_view, double coarsest_tol, const std::vector<Aabb>& changed,
-                      const AabbTree& changed_tree, double slack, std::vector<int>& near,
-                      std::vector<int>& scratch, std::vector<FreeSpaceSweep>& kept) {
+                      const AabbTree& changed_tree, double slack, std::vector<int>& near, std::vector<int>& scratch,
+                      std::vector<FreeSpaceSweep>& kept) {
   FreeSpaceSweep sweep = at_reach(reach);
   if (crosses_changed(sweep, changed, changed_tree, slack, near)) {
     kept.push_back(std::move(sweep));
@@ -242,9 +242,7 @@ SceneChange scene_change_since(const DecompositionStages& stages, const std::vec
     if (c.zero_area[f] || index.front_reach[f] <= 0.0) continue;
     triangle_corners(mesh, f, triangle);
     const double tol = prepared.face_tolerance(f);
-    const auto at_reach = [&](double reach) {
-      return front_space_sweep(triangle, index.face_normals[f], reach, tol);
-    };
+    const auto at_reach = [&](double reach) { return front_space_sweep(triangle, index.face_normals[f], reach, tol); };
     keep_if_crossing(at_reach, index.front_reach[f], stages, finest_view, views.coarsest, changed, changed_tree,
                      change.slack, near, scratch, change.sweeps);
   }

@@ -50,11 +50,11 @@ struct DecompositionStages;
 
 /// The last bake's scene, as the cell cache keeps it.
 struct SceneSnapshot {
-  std::uint64_t settings = 0;  ///< hash of the options and scene-wide lengths
+  std::uint64_t settings = 0; ///< hash of the options and scene-wide lengths
   /// Per cell key: FNV-1a-64 of the bytes that bake used for it.
   std::unordered_map<std::uint64_t, std::uint64_t> cell_checksums;
-  std::vector<std::uint64_t> face_hashes;  ///< per face: corners' bits, material, its island's lengths
-  std::vector<Aabb> face_boxes;  ///< per face, scene units
+  std::vector<std::uint64_t> face_hashes; ///< per face: corners' bits, material, its island's lengths
+  std::vector<Aabb> face_boxes;           ///< per face, scene units
 };
 
 /// Per face of this scene, the hash a snapshot records (corners' bits,
@@ -73,13 +73,13 @@ Result<SceneSnapshot> read_scene_snapshot(const std::string& bytes);
 
 /// Where this scene differs from a snapshot's.
 struct SceneChange {
-  bool everything = true;  ///< no bound: every kept hull may be touched
-  std::vector<Aabb> near_boxes;  ///< changed faces' boxes grown by how far a check looks around a hull
-  AabbTree near_tree;            ///< over `near_boxes`
-  std::vector<FreeSpaceSweep> sweeps;  ///< this scene's sweeps that cross a changed face
-  AabbTree sweep_tree;                 ///< over their boxes
-  int changed_faces = 0;               ///< added plus removed
-  double slack = 0.0;                  ///< scene units, added to every test
+  bool everything = true;             ///< no bound: every kept hull may be touched
+  std::vector<Aabb> near_boxes;       ///< changed faces' boxes grown by how far a check looks around a hull
+  AabbTree near_tree;                 ///< over `near_boxes`
+  std::vector<FreeSpaceSweep> sweeps; ///< this scene's sweeps that cross a changed face
+  AabbTree sweep_tree;                ///< over their boxes
+  int changed_faces = 0;              ///< added plus removed
+  double slack = 0.0;                 ///< scene units, added to every test
 };
 
 /// The change from `before` to this scene, whose faces hash to

@@ -19,8 +19,7 @@ Result<std::unique_ptr<StagedDecomposition>> StagedDecomposition::prepare(Prepar
   try {
     std::unique_ptr<StagedDecomposition> staged(new StagedDecomposition());
     staged->prepared_ = std::make_unique<PreparedMesh>(std::move(prepared));
-    Result<std::unique_ptr<detail::DecompositionStages>> stages =
-        detail::prepare_stages(*staged->prepared_, options);
+    Result<std::unique_ptr<detail::DecompositionStages>> stages = detail::prepare_stages(*staged->prepared_, options);
     if (!stages.ok()) return stages.status();
     staged->stages_ = std::move(stages).value();
     // Progress belongs to a run, not to stages other threads share.

@@ -83,7 +83,7 @@ std::vector<std::vector<int>> edge_joined_groups(const Mesh& mesh, const std::ve
 std::optional<FlatPolygon> group_polygon(const SceneIndex& index, const Mesh& mesh, const std::vector<int>& group,
                                          double tol, std::vector<int>& scratch) {
   if (group.size() < 2) return std::nullopt;
-  std::vector<Eigen::Vector3d> area_vectors;  // each twice its face's area
+  std::vector<Eigen::Vector3d> area_vectors; // each twice its face's area
   Eigen::Vector3d area_vector = Eigen::Vector3d::Zero();
   double area = 0.0;
   for (int f : group) {
@@ -118,8 +118,8 @@ std::optional<FlatPolygon> group_polygon(const SceneIndex& index, const Mesh& me
   return polygon;
 }
 
-CoveringHull flat_hull(const SceneIndex& index, const Mesh& mesh, const FlatPolygon& polygon,
-                       std::vector<int> faces, std::vector<int>& scratch) {
+CoveringHull flat_hull(const SceneIndex& index, const Mesh& mesh, const FlatPolygon& polygon, std::vector<int> faces,
+                       std::vector<int>& scratch) {
   CoveringHull hull;
   hull.polytope = flat_polytope(polygon, true);
   hull.faces = std::move(faces);

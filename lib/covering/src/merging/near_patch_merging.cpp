@@ -46,8 +46,7 @@ bool PatchMerger::face_near_patch(int f, int q) const {
   }
   for (int g : faces.size() > kFacesReadDirectly ? candidates : faces) {
     corners_of_face(mesh, g, other);
-    if (boxes_overlap(reach, box_of_face(other)) && triangles_within(face, other, near_merge_distance_))
-      return true;
+    if (boxes_overlap(reach, box_of_face(other)) && triangles_within(face, other, near_merge_distance_)) return true;
   }
   return false;
 }
@@ -79,8 +78,8 @@ void PatchMerger::keep_patches_near_face(int f, std::vector<int>& patches) const
 }
 
 bool PatchMerger::patches_near(int a, int b) const {
-  const Aabb reach = grown(bounding_box_of(positions_of(index_.mesh(), patches_[b].hull_vertices)),
-                           near_merge_distance_);
+  const Aabb reach =
+      grown(bounding_box_of(positions_of(index_.mesh(), patches_[b].hull_vertices)), near_merge_distance_);
   Eigen::Vector3d face[3];
   for (int f : patches_[a].faces) {
     corners_of_face(index_.mesh(), f, face);

@@ -12,7 +12,7 @@ namespace hullcover::detail {
 
 std::vector<int> PatchMerger::receivers_of(int f, int h, const AabbTree& near_tree) const {
   const MeshConnectivity& c = index_.prepared->connectivity;
-  std::vector<std::pair<double, int>> by_shared;  // (-shared length, patch): most shared first
+  std::vector<std::pair<double, int>> by_shared; // (-shared length, patch): most shared first
   for (int k = 0; k < 3; ++k) {
     const int g = c.face_neighbours[f][k];
     if (g < 0) continue;
@@ -20,8 +20,10 @@ std::vector<int> PatchMerger::receivers_of(int f, int h, const AabbTree& near_tr
     if (q < 0 || q == h || !patches_[q].alive) continue;
     const double length = face_edge_length(index_.mesh(), f, k);
     auto same = std::find_if(by_shared.begin(), by_shared.end(), [q](const auto& e) { return e.second == q; });
-    if (same != by_shared.end()) same->first -= length;
-    else by_shared.push_back({-length, q});
+    if (same != by_shared.end())
+      same->first -= length;
+    else
+      by_shared.push_back({-length, q});
   }
   std::sort(by_shared.begin(), by_shared.end());
   std::vector<int> out;
@@ -92,16 +94,14 @@ bool PatchMerger::dissolve(int h, const AabbTree& near_tree, int lone) {
   // face with none fails the patch before any hull is built.
   const std::vector<int> faces = patch.faces;
   std::vector<std::vector<int>> receivers;
-  std::vector<std::size_t> places;  // receivers of each face before that filter
+  std::vector<std::size_t> places; // receivers of each face before that filter
   for (int f : faces) {
     const Patch& alone = patches_[lone] = single_face_patch(f);
     receivers.push_back(receivers_of(f, h, near_tree));
     std::vector<int>& r = receivers.back();
     places.push_back(r.size());
     r.erase(std::remove_if(r.begin(), r.end(),
-                           [&](int q) {
-                             return !patches_support_each_other(index_, patches_[q], alone);
-                           }),
+                           [&](int q) { return !patches_support_each_other(index_, patches_[q], alone); }),
             r.end());
     if (r.empty()) return false;
   }
@@ -109,7 +109,7 @@ bool PatchMerger::dissolve(int h, const AabbTree& near_tree, int lone) {
   std::vector<int> by_choice(faces.size());
   for (std::size_t i = 0; i < faces.size(); ++i) by_choice[i] = static_cast<int>(i);
   std::stable_sort(by_choice.begin(), by_choice.end(), [&](int x, int y) { return places[x] < places[y]; });
-  std::map<int, Patch> before;  // receivers as they were, to put back
+  std::map<int, Patch> before; // receivers as they were, to put back
   for (int i : by_choice) {
     const int f = faces[i];
     patches_[lone] = single_face_patch(f);
@@ -144,7 +144,7 @@ int PatchMerger::dissolve_patches() {
   const AabbTree near_tree(near_boxes());
   std::stable_sort(order.begin(), order.end(),
                    [&](int a, int b) { return patches_[a].faces.size() < patches_[b].faces.size(); });
-  const int lone = static_cast<int>(patches_.size());  // where a face is tried alone
+  const int lone = static_cast<int>(patches_.size()); // where a face is tried alone
   patches_.emplace_back();
   int dissolved = 0;
   for (int h : order)

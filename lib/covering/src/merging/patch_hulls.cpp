@@ -31,7 +31,8 @@ CoveringHull planar_hull(const SceneIndex& index, const PlaceTolerance& places, 
   for (const Eigen::Vector3d& c : polygon.corners) column.extend(c - cap * polygon.plane.normal);
   places.smaller_zones_meeting(column, index.tol(), zones);
   for (int z : zones)
-    cap = std::min(cap, std::max(0.0, depth_before_box(polygon, index.prepared->tolerance.island_zones[z]) - index.tol()));
+    cap = std::min(cap,
+                   std::max(0.0, depth_before_box(polygon, index.prepared->tolerance.island_zones[z]) - index.tol()));
   hull.thickness = allowed_prism_thickness(index, polygon, sides, in_patch, cap, scratch);
   hull.polytope = prism_polytope(polygon, sides, hull.thickness, index.tol(), hulls);
   if (hull.thickness > 0.0 && check_solid_hull(index, hull.polytope, scratch) != Validity::valid) {
@@ -56,8 +57,8 @@ double prism_cap_of(const DecompositionStages& stages, const Patch& patch) {
   return kDefaultPrismCapRelative * extent;
 }
 
-PatchHull make_patch_hull(const DecompositionStages& stages, const SceneIndex& index, const PatchMerger& merger,
-                          int id, ConvexHullBuilder& builder, std::vector<int>& scratch) {
+PatchHull make_patch_hull(const DecompositionStages& stages, const SceneIndex& index, const PatchMerger& merger, int id,
+                          ConvexHullBuilder& builder, std::vector<int>& scratch) {
   const Patch& patch = merger.patches()[id];
   PatchHull made;
   CoveringHull& hull = made.hull;

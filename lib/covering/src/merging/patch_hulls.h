@@ -18,7 +18,7 @@ struct DecompositionStages;
 
 /// A patch's hull, with what the statistics count of its making.
 struct PatchHull {
-  CoveringHull hull;  ///< `cell` is left 0: the finish sets it
+  CoveringHull hull; ///< `cell` is left 0: the finish sets it
   /// A solid patch whose Qhull rebuild failed its checks: the hull is the
   /// solid as grown during merging.
   bool kept_as_grown = false;
@@ -32,8 +32,8 @@ double prism_cap_of(const DecompositionStages& stages, const Patch& patch);
 /// patch was merged with). `builder` and `scratch` are reused storage.
 /// Deterministic: the same patch in the same scene gives the same hull,
 /// bit for bit, whichever merger holds it. Throws only std::bad_alloc.
-PatchHull make_patch_hull(const DecompositionStages& stages, const SceneIndex& index, const PatchMerger& merger,
-                          int id, ConvexHullBuilder& builder, std::vector<int>& scratch);
+PatchHull make_patch_hull(const DecompositionStages& stages, const SceneIndex& index, const PatchMerger& merger, int id,
+                          ConvexHullBuilder& builder, std::vector<int>& scratch);
 
 /// Adds to `stats` what making `made` counted: a Qhull call per solid, a
 /// prism made flat, a solid kept as grown.

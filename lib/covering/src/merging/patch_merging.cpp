@@ -134,7 +134,7 @@ void PatchMerger::recount_shared_edges() {
 }
 
 std::vector<Aabb> PatchMerger::near_boxes() const {
-  std::vector<Aabb> boxes(patches_.size());  // empty for dead patches: they overlap nothing
+  std::vector<Aabb> boxes(patches_.size()); // empty for dead patches: they overlap nothing
   for (size_t p = 0; p < patches_.size(); ++p)
     if (patches_[p].alive)
       boxes[p] =
@@ -152,7 +152,7 @@ void PatchMerger::push_pair(int a, int b) {
   if (a > b) std::swap(a, b);
   const Patch& pa = patches_[a];
   const Patch& pb = patches_[b];
-  const auto shared = pa.shared_length.find(b);  // none for a near pair
+  const auto shared = pa.shared_length.find(b); // none for a near pair
   const double cost = options_.order == MergeOrder::compact
                           ? merged_patch_cost(pa, pb, shared == pa.shared_length.end() ? 0.0 : shared->second)
                           : pseudo_random_cost(options_.seed, a, b, pa.version, pb.version);
@@ -211,7 +211,12 @@ PatchMerger::Candidate PatchMerger::evaluate(int a, int b) {
         if (out.validity != Validity::valid) return out;
       }
       out.validity = check_flat_polygon(
-          index_, polygon, [&](int f) { const int p = patch_of(f); return p == a || p == b; }, scratch_);
+          index_, polygon,
+          [&](int f) {
+        const int p = patch_of(f);
+        return p == a || p == b;
+          },
+          scratch_);
       return out;
     }
   }
@@ -277,8 +282,7 @@ Validity PatchMerger::check_thin_hull(int a, int b, const ConvexPolytope& hull, 
   // slab's top and bottom together) neither side is the back: both are held.
   const Eigen::Vector3d sum = patches_[a].area_vector + patches_[b].area_vector;
   const double agreement = across.dot(sum);
-  const bool one_sided =
-      std::abs(agreement) >= 0.5 * (patches_[a].area_vector.norm() + patches_[b].area_vector.norm());
+  const bool one_sided = std::abs(agreement) >= 0.5 * (patches_[a].area_vector.norm() + patches_[b].area_vector.norm());
   if (!one_sided || agreement >= 0.0) {
     const Validity front = check_faces_below_polygon(index_, polygon, half_width, in_patch, scratch_);
     if (front != Validity::valid || one_sided) return front;
@@ -300,9 +304,8 @@ std::optional<ConvexPolytope> PatchMerger::grow_known_hull(const Patch& base, co
     // A planar base is a flat polytope, its front and back facets on the
     // same corners. Growing it only works off its plane: a point on the
     // plane but outside the polygon is beyond no facet.
-    const FlatPolygon polygon =
-        make_flat_polygon(index_.mesh().positions, vertices_of_faces(index_.mesh(), base.faces),
-                          base.area_vector.normalized(), index_.tol());
+    const FlatPolygon polygon = make_flat_polygon(index_.mesh().positions, vertices_of_faces(index_.mesh(), base.faces),
+                                                  base.area_vector.normalized(), index_.tol());
     // No point off its plane (back-to-back sheets on the same corners): the
     // union is flat, no solid; Qhull refuses it.
     if (polygon.corners.size() < 3 || added.empty()) return std::nullopt;

@@ -17,19 +17,19 @@ namespace hullcover::detail {
 /// A set of faces that will become one hull.
 struct Patch {
   std::vector<int> faces;
-  std::vector<int> hull_vertices;  ///< mesh vertex ids of its hull's corners
-  std::vector<Plane> face_planes;  ///< distinct planes of its faces, outward
-  std::map<int, double> shared_length;  ///< neighbour patch -> length of the edges they share
+  std::vector<int> hull_vertices;      ///< mesh vertex ids of its hull's corners
+  std::vector<Plane> face_planes;      ///< distinct planes of its faces, outward
+  std::map<int, double> shared_length; ///< neighbour patch -> length of the edges they share
   double area = 0.0;
   double boundary_length = 0.0;
-  Eigen::Vector3d area_vector = Eigen::Vector3d::Zero();  ///< sum of face normals x areas
+  Eigen::Vector3d area_vector = Eigen::Vector3d::Zero(); ///< sum of face normals x areas
   bool planar = true;
-  std::optional<ConvexPolytope> solid;  ///< the hull, when not planar
+  std::optional<ConvexPolytope> solid; ///< the hull, when not planar
   int material = 0;
   int version = 0;
-  long changed_at = 0;  ///< PatchMerger::changes_ when it last changed
+  long changed_at = 0;           ///< PatchMerger::changes_ when it last changed
   long dissolve_failed_at = -1;  ///< PatchMerger::changes_ when dissolving it last failed
-  int dissolve_failed_face = -1;  ///< the face that then found no patch to go to
+  int dissolve_failed_face = -1; ///< the face that then found no patch to go to
   bool alive = true;
 };
 
@@ -103,9 +103,7 @@ public:
   const std::vector<Patch>& patches() const { return patches_; }
   bool in_patch(int face, int patch) const { return patch_of(face) == patch; }
   /// The patch holding face `f`, -1 for a face of another cell.
-  int patch_of(int f) const {
-    return cells_.cell_of_face[f] == cell_ ? face_patch_[cells_.slot_in_cell[f]] : -1;
-  }
+  int patch_of(int f) const { return cells_.cell_of_face[f] == cell_ ? face_patch_[cells_.slot_in_cell[f]] : -1; }
 
 private:
   struct Candidate {
@@ -194,10 +192,10 @@ private:
   int cell_;
   CoveringStatistics& statistics_;
   std::vector<Patch> patches_;
-  std::vector<int> face_patch_;  // per face of the cell (by CellLayout::slot_in_cell)
-  std::vector<QueueEntry> queue_;  // a min-heap by QueueEntry::operator>
+  std::vector<int> face_patch_;   // per face of the cell (by CellLayout::slot_in_cell)
+  std::vector<QueueEntry> queue_; // a min-heap by QueueEntry::operator>
   ConvexHullBuilder hull_builder_;
-  RecentRejections recent_rejections_;  // judged first in each candidate's exact checks
+  RecentRejections recent_rejections_; // judged first in each candidate's exact checks
   std::vector<int> scratch_;
   double near_merge_distance_;
   /// changes_ when push_near_pairs last listed pairs; -1 before the first.
@@ -206,8 +204,8 @@ private:
   /// cell it grew to tens of millions of entries, gigabytes, and never
   /// turned a pair away.
   long near_pairs_listed_at_ = -1;
-  long changes_ = 0;  // counts changes to patches, for Patch::changed_at
-  std::vector<int> cell_of_patch_;  // seam pass: the cell each starting patch came from
+  long changes_ = 0;               // counts changes to patches, for Patch::changed_at
+  std::vector<int> cell_of_patch_; // seam pass: the cell each starting patch came from
 };
 
 } // namespace hullcover::detail

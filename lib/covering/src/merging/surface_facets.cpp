@@ -61,8 +61,8 @@ std::vector<bool> surface_planes(const SceneIndex& index, const ConvexPolytope& 
   }
   // Whether the surface runs on, in `plane`, past the edge a-b of a polygon
   // lying on the side of it where `inside` is.
-  const auto runs_on_past = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Plane& plane,
-                                const Eigen::Vector3d& inside) {
+  const auto runs_on_past =
+      [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Plane& plane, const Eigen::Vector3d& inside) {
     Eigen::Vector3d out = (b - a).cross(plane.normal);
     if (out.dot(inside - a) > 0.0) out = -out;
     if (!(out.norm() > 0.0)) return false;

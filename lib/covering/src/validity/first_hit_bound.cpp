@@ -40,7 +40,8 @@ public:
 private:
   // The farthest first hit over `region`'s own rays; the pieces still to
   // bound go on `pending`.
-  double bound_of_piece(const std::vector<Eigen::Vector3d>& region, std::vector<std::vector<Eigen::Vector3d>>& pending) {
+  double bound_of_piece(const std::vector<Eigen::Vector3d>& region,
+                        std::vector<std::vector<Eigen::Vector3d>>& pending) {
     constexpr double kNone = std::numeric_limits<double>::infinity();
     const double tol = index_.tol();
     if (negligible(region, tol)) return 0.0;

@@ -64,7 +64,7 @@ struct Uncovered {
 void subtract_from_all(Uncovered& uncovered, const Polygon2d& cutter, double tol) {
   std::vector<UncoveredPiece>& out = uncovered.next;
   out.clear();
-  const Box2d cutter_box = cutter.empty() ? Box2d{} : box_of(cutter);  // once for every piece
+  const Box2d cutter_box = cutter.empty() ? Box2d{} : box_of(cutter); // once for every piece
   for (UncoveredPiece& piece : uncovered.pieces) {
     if (cutter.empty() || boxes_apart(piece.box, cutter_box) || convex_polygons_apart(piece.corners, cutter)) {
       if (piece.kept || (piece.corners.size() >= 3 && wider_than_sliver(piece.corners, tol))) {

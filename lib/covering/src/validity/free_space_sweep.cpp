@@ -10,9 +10,7 @@
 namespace hullcover {
 namespace {
 
-Plane plane_through(const Eigen::Vector3d& normal, const Eigen::Vector3d& point) {
-  return {normal, normal.dot(point)};
-}
+Plane plane_through(const Eigen::Vector3d& normal, const Eigen::Vector3d& point) { return {normal, normal.dot(point)}; }
 
 } // namespace
 
@@ -69,9 +67,12 @@ void opening_sweep(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const E
   sweep.start = plane_through(-out, p0);
   // A strip in the face's plane, kept within tol of it either side, from
   // the start to the reach.
-  sweep.planes = {plane_through(face_normal, p0), plane_through(-face_normal, p0),
-                  plane_through(along, p1),       plane_through(-along, p0),
-                  sweep.start,                    plane_through(out, p0 + reach * out)};
+  sweep.planes = {plane_through(face_normal, p0),
+                  plane_through(-face_normal, p0),
+                  plane_through(along, p1),
+                  plane_through(-along, p0),
+                  sweep.start,
+                  plane_through(out, p0 + reach * out)};
   sweep.insets = {-tol, -tol, 0.0, 0.0, -tol, 0.0};
   sweep.base = {p0, p1};
   sweep.corners = {p0, p1, p1 + reach * out, p0 + reach * out};

@@ -18,11 +18,11 @@ namespace hullcover {
 struct FreeSpaceSweep {
   std::vector<Plane> planes;
   std::vector<double> insets;
-  Plane start;  ///< the base's plane facing back: signed distance = -t
+  Plane start; ///< the base's plane facing back: signed distance = -t
   Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
-  std::vector<Eigen::Vector3d> base;     ///< the face or edge swept
-  std::vector<Eigen::Vector3d> corners;  ///< the base at t = 0 and at the reach
-  double reach = 0.0;             ///< scene units, from the base (the free-space reach plus the rays' stand-off)
+  std::vector<Eigen::Vector3d> base;    ///< the face or edge swept
+  std::vector<Eigen::Vector3d> corners; ///< the base at t = 0 and at the reach
+  double reach = 0.0;                   ///< scene units, from the base (the free-space reach plus the rays' stand-off)
   /// When the hull judged belongs to the same place (hullcover/mesh/
   /// tolerance.h) as the face swept, that place, else -1: only faces of
   /// that place then enclose the rays. A ray that runs out of its map into

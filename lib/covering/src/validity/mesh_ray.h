@@ -12,9 +12,9 @@ namespace hullcover {
 
 /// Where a ray first meets the mesh.
 struct MeshRayHit {
-  double t = 0.0;            ///< distance along the ray, scene units
-  int face = -1;             ///< a face met there
-  bool from_behind = false;  ///< every face met there (within tol) is met from its back: enclosed space
+  double t = 0.0;           ///< distance along the ray, scene units
+  int face = -1;            ///< a face met there
+  bool from_behind = false; ///< every face met there (within tol) is met from its back: enclosed space
 };
 
 /// The first face the ray `origin + t dir` (unit `dir`) meets for t in

@@ -43,7 +43,7 @@ std::vector<Plane> beveled_side_planes(const SceneIndex& index, const FlatPolygo
     edge_box.extend(b);
     scratch.clear();
     index.face_tree.overlapping(grown(edge_box, tol), scratch);
-    double slope = 0.0;  // inward run per unit depth the side must exceed
+    double slope = 0.0; // inward run per unit depth the side must exceed
     for (int f : scratch) {
       if (in_patch(f)) continue;
       bool touches = false;
@@ -120,7 +120,7 @@ double allowed_prism_thickness(const SceneIndex& index, const FlatPolygon& polyg
       shallowest = std::min(shallowest, depth_below(polygon, p));
       deepest = std::max(deepest, depth_below(polygon, p));
     }
-    if (deepest < -tol) continue;  // wholly in front of the polygon
+    if (deepest < -tol) continue; // wholly in front of the polygon
     if (deepest <= tol) {
       // Lies on the polygon: harmless unless it faces into the prism (the
       // back of a double-sided wall), whose front space a prism would fill.

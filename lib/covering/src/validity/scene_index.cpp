@@ -45,7 +45,6 @@ SceneIndex::SceneIndex(const SceneIndexData& data, double tolerance, double patc
       opening_reach(data.opening_reach), bar_of_piece(data.bar_of_piece), tolerance_(tolerance),
       patch_extent_(patch_extent) {}
 
-
 void SceneIndex::bars_overlapping(const Aabb& box, std::vector<int>& out) const {
   const size_t start = out.size();
   bar_tree.overlapping(box, out);

@@ -21,11 +21,11 @@ namespace hullcover {
 /// *sheet*: the quad a, a + along, b + along, b), so the opening is guarded
 /// at every point of the edge, not only at its midpoint.
 struct BoundaryBar {
-  Eigen::Vector3d a = Eigen::Vector3d::Zero();  ///< behind the face (at the edge's start for a sheet)
-  Eigen::Vector3d b = Eigen::Vector3d::Zero();  ///< in front of the face
-  Eigen::Vector3d along = Eigen::Vector3d::Zero();  ///< edge vector of a sheet; zero for a bar
-  int edge = -1;  ///< the mesh edge it guards
-  int face = -1;  ///< the face whose normal it follows
+  Eigen::Vector3d a = Eigen::Vector3d::Zero();     ///< behind the face (at the edge's start for a sheet)
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();     ///< in front of the face
+  Eigen::Vector3d along = Eigen::Vector3d::Zero(); ///< edge vector of a sheet; zero for a bar
+  int edge = -1;                                   ///< the mesh edge it guards
+  int face = -1;                                   ///< the face whose normal it follows
 
   bool is_sheet() const { return !along.isZero(); }
   /// Its outline: the segment a-b, or the sheet's four corners in order.
@@ -37,9 +37,9 @@ struct BoundaryBar {
 struct SceneIndexData {
   const PreparedMesh* prepared = nullptr;
   ValidityMode mode = ValidityMode::paper;
-  double free_space_reach = 0.0;  ///< exact mode, scene units
-  double agent_radius = 0.0;      ///< BarOptions::agent_radius
-  double max_deviation = 0.0;     ///< BarOptions::max_deviation
+  double free_space_reach = 0.0; ///< exact mode, scene units
+  double agent_radius = 0.0;     ///< BarOptions::agent_radius
+  double max_deviation = 0.0;    ///< BarOptions::max_deviation
   /// Per edge: the use (index into MeshConnectivity::edge_uses) of the face
   /// whose plane holds the opening beyond it (boundary and, in exact mode,
   /// fold edges), or -1 for an edge that is not open.
@@ -49,10 +49,10 @@ struct SceneIndexData {
   /// Area per face, scene units squared.
   std::vector<double> face_areas;
   std::vector<BoundaryBar> bars;
-  AabbTree vertex_tree;  ///< over mesh vertices
-  AabbTree edge_tree;    ///< over MeshConnectivity::edges
-  AabbTree face_tree;    ///< over faces
-  AabbTree bar_tree;     ///< over pieces of bars (long bars are split, so boxes stay small)
+  AabbTree vertex_tree; ///< over mesh vertices
+  AabbTree edge_tree;   ///< over MeshConnectivity::edges
+  AabbTree face_tree;   ///< over faces
+  AabbTree bar_tree;    ///< over pieces of bars (long bars are split, so boxes stay small)
   /// Exact mode: over the boxes of the faces' front sweeps (the triangle
   /// swept along its normal by the reach), one per hull zone the sweep
   /// crosses (BarOptions::hull_zones), clipped to it; item i is face
@@ -71,8 +71,7 @@ struct SceneIndexData {
   /// Exact mode, per open edge and fan (free_space_sweep.h): how far that
   /// fan runs, as front_reach.
   std::vector<std::array<double, kOpeningFans>> opening_reach;
-  std::vector<int> bar_of_piece;  ///< bar index of each piece in bar_tree
-
+  std::vector<int> bar_of_piece; ///< bar index of each piece in bar_tree
 };
 
 /// The mesh as the validity checks see it, at one tolerance: a view of a
@@ -84,7 +83,7 @@ struct SceneIndex {
   /// patches no wider than `patch_extent` (scene units: an island's
   /// diagonal, or the largest island's for the whole scene).
   SceneIndex(const SceneIndexData& data, double tolerance, double patch_extent);
-  SceneIndex(SceneIndexData&&, double, double) = delete;  // would refer to a temporary
+  SceneIndex(SceneIndexData&&, double, double) = delete; // would refer to a temporary
 
   const PreparedMesh* prepared;
   ValidityMode mode;

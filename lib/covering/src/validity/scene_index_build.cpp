@@ -49,7 +49,7 @@ Aabb sweep_part_in(const FreeSpaceSweep& sweep, const Aabb& zone, double tol) {
   for (const Eigen::Vector3d& p : sweep.base) base.extend(p);
   const Eigen::Vector3d along = sweep.reach * sweep.direction;
   base = grown(base, tol);
-  double enter = 0.0, leave = 1.0;  // fractions of the sweep
+  double enter = 0.0, leave = 1.0; // fractions of the sweep
   for (int axis = 0; axis < 3; ++axis) {
     const double d = along[axis];
     if (d == 0.0) {
@@ -128,9 +128,9 @@ void index_sweeps(SceneIndexData& index, double hull_margin, const std::vector<A
     const Eigen::Vector3i& t = mesh.triangles[use.face];
     std::vector<int> own_scratch;
     for (int fan = 0; fan < kOpeningFans; ++fan) {
-      const FreeSpaceSweep full = opening_fan(mesh.positions[t[use.corner]], mesh.positions[t[(use.corner + 1) % 3]],
-                                              mesh.positions[t[(use.corner + 2) % 3]], index.face_normals[use.face],
-                                              fan, reach, tol);
+      const FreeSpaceSweep full =
+          opening_fan(mesh.positions[t[use.corner]], mesh.positions[t[(use.corner + 1) % 3]],
+                      mesh.positions[t[(use.corner + 2) % 3]], index.face_normals[use.face], fan, reach, tol);
       index.opening_reach[e][fan] = std::min(reach, detail::first_hit_bound(at_edge, full, own_scratch));
     }
   });
@@ -201,9 +201,8 @@ SceneIndexData build_scene_index(const PreparedMesh& prepared, const BarOptions&
   const MeshConnectivity& c = prepared.connectivity;
   const int face_count = static_cast<int>(mesh.triangles.size());
   const auto half_length = [&](int face) {
-    return options.half_length_of_island.empty()
-               ? options.half_length
-               : options.half_length_of_island[prepared.islands.island_of_face[face]];
+    return options.half_length_of_island.empty() ? options.half_length
+                                                 : options.half_length_of_island[prepared.islands.island_of_face[face]];
   };
 
   index.face_normals.resize(face_count, Eigen::Vector3d::Zero());
@@ -267,8 +266,7 @@ SceneIndexData build_scene_index(const PreparedMesh& prepared, const BarOptions&
       index.bar_tree = AabbTree(boxes);
     }
   });
-  if (index.mode == ValidityMode::exact)
-    index_sweeps(index, options.hull_margin, options.hull_zones, threads);
+  if (index.mode == ValidityMode::exact) index_sweeps(index, options.hull_margin, options.hull_zones, threads);
   return index;
 }
 

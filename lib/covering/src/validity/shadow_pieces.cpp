@@ -189,9 +189,7 @@ std::optional<Plane> splitting_cut(const std::vector<Eigen::Vector3d>& piece, co
   return cut;
 }
 
-Affine distance_to_point(const FreeSpaceSweep& sweep) {
-  return {-sweep.start.normal, sweep.start.offset};
-}
+Affine distance_to_point(const FreeSpaceSweep& sweep) { return {-sweep.start.normal, sweep.start.offset}; }
 
 Affine distance_to_plane(const FreeSpaceSweep& sweep, const Plane& face) {
   // The base is p + (start.p - start.offset) dir; the face's plane lies

@@ -23,7 +23,6 @@ namespace hullcover::detail {
 /// space: a bound on the work, where giving up is conservative.
 inline constexpr int kMaxJudgedPieces = 1024;
 
-
 /// A piece of a region no wider than this many tolerances is a sliver of
 /// rounding: passed over, as it holds no ray apart from its neighbours'.
 inline constexpr double kNegligibleWidthInTolerances = 1e-6;
@@ -39,8 +38,7 @@ std::vector<Plane> column_planes(const std::vector<Eigen::Vector3d>& outline, co
 /// The same polygon as clip_polygon_to_planes with column_planes, made
 /// without building the plane list (on the exact checks' hot path).
 void clip_to_column(const std::vector<Eigen::Vector3d>& polygon, const std::vector<Eigen::Vector3d>& outline,
-                    const Eigen::Vector3d& dir, std::vector<Eigen::Vector3d>& out,
-                    std::vector<Eigen::Vector3d>& spare);
+                    const Eigen::Vector3d& dir, std::vector<Eigen::Vector3d>& out, std::vector<Eigen::Vector3d>& spare);
 
 /// True for a piece no wider than kNegligibleWidthInTolerances x `tol`
 /// (scene units; its least width over its edges' directions), or with

@@ -58,8 +58,7 @@ Validity judge_sweep(const SceneIndex& hull_view, const SweepRef& ref, const Hul
 
 // The items of `tree` whose boxes meet `box`, as their owners (a sweep has a
 // box per hull zone it crosses: each face or edge once), ascending.
-void sweep_owners(const AabbTree& tree, const std::vector<int>& owner_of_item, const Aabb& box,
-                  std::vector<int>& out) {
+void sweep_owners(const AabbTree& tree, const std::vector<int>& owner_of_item, const Aabb& box, std::vector<int>& out) {
   out.clear();
   tree.overlapping(box, out);
   for (int& item : out) item = owner_of_item[item];
@@ -74,7 +73,7 @@ Validity check_exact_solid_hull(const SceneIndex& index, const ConvexPolytope& h
   FreeSpaceSweep sweep;
   detail::SweepJudgeStorage storage;
   const HullInterior interior = hull_interior(hull, index.tol());
-  if (interior.empty()) return Validity::valid;  // thinner than 2 tol: nothing is strictly inside
+  if (interior.empty()) return Validity::valid; // thinner than 2 tol: nothing is strictly inside
   std::vector<int>& fronts = scratch;
   std::vector<int> openings;
   sweep_owners(index.front_sweep_tree, index.front_sweep_face, box, fronts);

@@ -25,7 +25,7 @@ std::optional<double> ray_entry(const std::vector<Plane>& planes, const Eigen::V
                                 const Eigen::Vector3d& dir) {
   double enter = 0.0, leave = std::numeric_limits<double>::infinity();
   for (const Plane& plane : planes) {
-    const double start = plane.signed_distance(origin);  // must become < 0
+    const double start = plane.signed_distance(origin); // must become < 0
     const double rate = plane.normal.dot(dir);
     if (rate == 0.0) {
       if (start >= 0.0) return std::nullopt;
@@ -59,7 +59,7 @@ std::optional<MeshRayHit> first_hit_past_stand_off(const SceneIndex& index, cons
 struct WitnessRay {
   bool loses = false;
   int deciding_face = -1;
-  bool enclosed = false;  ///< kept because its first face, beyond the entry, is met from behind
+  bool enclosed = false; ///< kept because its first face, beyond the entry, is met from behind
 };
 
 // Whether face f, met from behind as a ray's first hit, encloses the rays
@@ -107,7 +107,8 @@ struct Settling {
   /// is cut along that face's shadow (inside and beside) in the storage's
   /// near_split, to judge each part.
   bool obstacle = false;
-  std::optional<Plane> cut;  ///< unsettled: cut the piece here (the face decides the side behind it) and judge both sides
+  std::optional<Plane>
+      cut; ///< unsettled: cut the piece here (the face decides the side behind it) and judge both sides
 };
 
 Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, const std::vector<Eigen::Vector3d>& piece,
@@ -133,7 +134,7 @@ Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, co
     if (lowest >= 0.0) continue;
     if (highest <= 0.0) return {};
     const std::optional<Plane> cut = splitting_cut(piece, margin, tol);
-    if (!cut) continue;  // negative only by rounding
+    if (!cut) continue; // negative only by rounding
     return {false, false, cut};
   }
   if (!enclosed) return {true, false, std::nullopt};
@@ -146,11 +147,11 @@ Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, co
   }
   std::vector<int>& near = storage.near;
   near.clear();
-  index.face_tree.overlapping(grown(column, kFaceBoxMarginInTolerances * tol), near);  // where shadows reach
+  index.face_tree.overlapping(grown(column, kFaceBoxMarginInTolerances * tol), near); // where shadows reach
   std::vector<Eigen::Vector3d>& triangle = storage.triangle;
   const Affine one_tol{Eigen::Vector3d::Zero(), tol};
   for (int g : near) {
-    if (g == f || index.face_normals[g].dot(sweep.direction) >= 0.0) continue;  // met from behind, or zero area
+    if (g == f || index.face_normals[g].dot(sweep.direction) >= 0.0) continue; // met from behind, or zero area
     triangle_corners(mesh, g, triangle);
     // Most faces near the column shadow none of the piece: one side of
     // their column tells, before any cutting.
@@ -181,7 +182,7 @@ Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, co
       if (const std::optional<Plane> cut = splitting_cut(split.inside, beyond, tol)) return {false, false, cut};
     if (before_high > 0.0)
       if (const std::optional<Plane> cut = splitting_cut(split.inside, before, tol)) return {false, false, cut};
-    return {};  // between the entry and f everywhere: not enclosed by f
+    return {}; // between the entry and f everywhere: not enclosed by f
   }
   return {true, false, std::nullopt};
 }

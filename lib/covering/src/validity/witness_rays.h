@@ -26,8 +26,8 @@ struct SweepJudgeStorage {
   };
   /// The judge's stack of pieces still to judge.
   std::vector<Piece> pending;
-  std::vector<int> faces;  ///< tree look-ups
-  std::vector<int> near;   ///< faces near a piece's column
+  std::vector<int> faces; ///< tree look-ups
+  std::vector<int> near;  ///< faces near a piece's column
   /// A piece cut along its deciding face's shadow.
   ShadowSplit split;
   /// A piece cut along the shadow of a face met from the front between the

@@ -56,7 +56,7 @@ struct ProbeOptions {
   /// scene units (> 0); default kDefaultProbeSpacingRelative x each
   /// island's diagonal for the rays, x the scene's for the octree.
   std::optional<double> resolution;
-  std::string octree_path;  ///< write the lost cells' octree here (.bt) when not empty
+  std::string octree_path; ///< write the lost cells' octree here (.bt) when not empty
   /// What the covering was allowed to take (allowance_audit.h); none: exact mode.
   AllowanceOptions allowance;
   /// Called now and then with the fraction of the rays' faces and edges
@@ -67,35 +67,35 @@ struct ProbeOptions {
 
 /// One place where free space is lost: a ray's deepest point inside a hull.
 struct LostPlace {
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< the deepest point, scene coordinates
-  int face = -1;  ///< the face the ray left (an open edge's face)
-  int hull = -1;  ///< the hull it is inside; -1 for no place
-  double depth = 0.0;    ///< depth inside the hull, scene units (> tol)
-  bool opening = false;  ///< found by an opening ray
+  Eigen::Vector3d point = Eigen::Vector3d::Zero(); ///< the deepest point, scene coordinates
+  int face = -1;                                   ///< the face the ray left (an open edge's face)
+  int hull = -1;                                   ///< the hull it is inside; -1 for no place
+  double depth = 0.0;                              ///< depth inside the hull, scene units (> tol)
+  bool opening = false;                            ///< found by an opening ray
 };
 
 /// What one kind of ray (front or opening) found.
 struct RayTally {
-  long rays = 0;      ///< rays traced
-  long enclosed = 0;  ///< rays whose first hit is the back of a face: allowed
-  long lost = 0;      ///< open rays with a stretch deeper than tol inside some hull
-  double lost_length = 0.0;  ///< total length of those stretches (overlapping hulls counted once), scene units
-  LostPlace deepest;         ///< the deepest lost point of this kind (hull -1 when none)
+  long rays = 0;            ///< rays traced
+  long enclosed = 0;        ///< rays whose first hit is the back of a face: allowed
+  long lost = 0;            ///< open rays with a stretch deeper than tol inside some hull
+  double lost_length = 0.0; ///< total length of those stretches (overlapping hulls counted once), scene units
+  LostPlace deepest;        ///< the deepest lost point of this kind (hull -1 when none)
 };
 
 /// What the probe found.
 struct ProbeReport {
-  std::optional<double> probe_distance;  ///< the cap used, scene units; none by default
-  double resolution = 0.0;               ///< octree cell size used, scene units
-  double finest_spacing = 0.0;           ///< the finest ray spacing used (an island's), scene units
-  double coarsest_spacing = 0.0;         ///< the coarsest, scene units
-  RayTally front;    ///< rays in front of faces
-  RayTally opening;  ///< rays beyond open edges
-  long lost_cells = 0;       ///< octree cells holding a lost ray's deepest point
-  double max_lost_depth = 0.0;  ///< the deepest lost point's depth, either kind, scene units
-  Eigen::Vector3d octree_origin = Eigen::Vector3d::Zero();  ///< scene point at the octree's origin (the box centre)
-  std::vector<LostPlace> worst;  ///< the deepest lost point per hull, deepest first, at most kWorstPlaces
-  AllowanceReport allowance;     ///< the allowance's figures (allowance_audit.h), when a knob is set
+  std::optional<double> probe_distance;                    ///< the cap used, scene units; none by default
+  double resolution = 0.0;                                 ///< octree cell size used, scene units
+  double finest_spacing = 0.0;                             ///< the finest ray spacing used (an island's), scene units
+  double coarsest_spacing = 0.0;                           ///< the coarsest, scene units
+  RayTally front;                                          ///< rays in front of faces
+  RayTally opening;                                        ///< rays beyond open edges
+  long lost_cells = 0;                                     ///< octree cells holding a lost ray's deepest point
+  double max_lost_depth = 0.0;                             ///< the deepest lost point's depth, either kind, scene units
+  Eigen::Vector3d octree_origin = Eigen::Vector3d::Zero(); ///< scene point at the octree's origin (the box centre)
+  std::vector<LostPlace> worst; ///< the deepest lost point per hull, deepest first, at most kWorstPlaces
+  AllowanceReport allowance;    ///< the allowance's figures (allowance_audit.h), when a knob is set
 
   /// Lost rays, front and openings together.
   long lost_rays() const { return front.lost + opening.lost; }
@@ -116,7 +116,6 @@ inline constexpr size_t kWorstPlaces = 10;
 /// calls options.progress, its fraction never decreasing): the report, to
 /// the last bit, is the same for any thread count.
 Result<ProbeReport> probe_accessible_space(const PreparedMesh& prepared, const bvh::TriangleWorld& triangles,
-                                           const bvh::HullWorld& hulls, const ProbeOptions& options,
-                                           int threads = 1);
+                                           const bvh::HullWorld& hulls, const ProbeOptions& options, int threads = 1);
 
 } // namespace hullcover::validate

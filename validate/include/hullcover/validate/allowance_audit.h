@@ -48,8 +48,8 @@ inline constexpr int kMaxEvaluationsPerRay = 1 << 18;
 
 /// What a covering was allowed to take beyond exact mode.
 struct AllowanceOptions {
-  std::optional<double> agent_radius;   ///< r, scene units, finite and > 2 tol; none: no agent check
-  std::optional<double> max_deviation;  ///< E, scene units, finite and > 0; none: no deviation bound
+  std::optional<double> agent_radius;  ///< r, scene units, finite and > 2 tol; none: no agent check
+  std::optional<double> max_deviation; ///< E, scene units, finite and > 0; none: no deviation bound
   /// The bound on one ray's distance evaluations (>= 2); past it the ray is
   /// undecided, a finding. Raise it to decide longer rays at more cost.
   int max_evaluations_per_ray = kMaxEvaluationsPerRay;
@@ -59,44 +59,44 @@ struct AllowanceOptions {
 
 /// A ball of radius r, clear of every triangle by r, reaching into a hull.
 struct ReachPlace {
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< the ball's centre, scene coordinates
-  int face = -1;       ///< the face whose ray it lies on; -1 for no place
-  int hull = -1;       ///< the nearest hull
-  double depth = 0.0;  ///< r minus its distance to the hull: how deep the ball reaches in, scene units
-  double clearance = 0.0;  ///< its distance to the nearest triangle (>= r), scene units
-  bool opening = false;    ///< on an opening ray
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero(); ///< the ball's centre, scene coordinates
+  int face = -1;                                    ///< the face whose ray it lies on; -1 for no place
+  int hull = -1;                                    ///< the nearest hull
+  double depth = 0.0;     ///< r minus its distance to the hull: how deep the ball reaches in, scene units
+  double clearance = 0.0; ///< its distance to the nearest triangle (>= r), scene units
+  bool opening = false;   ///< on an opening ray
 };
 
 /// A point of a probe ray.
 struct RayPoint {
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< scene coordinates
-  int face = -1;         ///< the face whose ray it lies on; -1 for no point
-  bool opening = false;  ///< on an opening ray
+  Eigen::Vector3d point = Eigen::Vector3d::Zero(); ///< scene coordinates
+  int face = -1;                                   ///< the face whose ray it lies on; -1 for no point
+  bool opening = false;                            ///< on an opening ray
 };
 
 /// What the allowance audit found.
 struct AllowanceReport {
-  AllowanceOptions options;  ///< the knobs judged
+  AllowanceOptions options; ///< the knobs judged
   /// The farthest point any hull takes from an open ray, as its distance
   /// from the mesh (scene units, an upper bound within tol of the true
   /// farthest), whatever the knobs: the deviation a user of the covering
   /// sees. 0 when nothing is lost.
   double max_lost_deviation = 0.0;
-  Eigen::Vector3d farthest_point = Eigen::Vector3d::Zero();  ///< where (the lower end of that bound)
-  int farthest_face = -1;  ///< the face whose ray it lies on; -1 when nothing is lost
-  int farthest_hull = -1;  ///< the hull it lies in
-  long lost_stretches = 0;   ///< stretches of open rays inside hulls, all judged
-  long beyond_deviation = 0;  ///< with E and no r: rays losing a point farther than E + tol (violations)
-  long centre_rays = 0;       ///< with r: rays whose ball centres were decided
-  long reach_lost = 0;        ///< with r: rays holding a reachable ball deeper than tol in a hull (violations)
-  ReachPlace deepest_reach;   ///< the deepest such ball (hull -1 when none)
+  Eigen::Vector3d farthest_point = Eigen::Vector3d::Zero(); ///< where (the lower end of that bound)
+  int farthest_face = -1;                                   ///< the face whose ray it lies on; -1 when nothing is lost
+  int farthest_hull = -1;                                   ///< the hull it lies in
+  long lost_stretches = 0;                                  ///< stretches of open rays inside hulls, all judged
+  long beyond_deviation = 0; ///< with E and no r: rays losing a point farther than E + tol (violations)
+  long centre_rays = 0;      ///< with r: rays whose ball centres were decided
+  long reach_lost = 0;       ///< with r: rays holding a reachable ball deeper than tol in a hull (violations)
+  ReachPlace deepest_reach;  ///< the deepest such ball (hull -1 when none)
   /// With r: balls clear of the mesh that reach into a hull only where the
   /// strict definition's space is enclosed (the point they reach deepest
   /// lies on a front ray, parallel to the ball's own, that ends on the back
   /// of a face: under a one-sided table top). Exact mode may fill that
   /// space too; reported, allowed.
   long enclosed_balls = 0;
-  long undecided = 0;         ///< rays or stretches out of evaluations (counted as violations)
+  long undecided = 0; ///< rays or stretches out of evaluations (counted as violations)
   /// Where the first undecided ray (in ray order) was given up: a point of
   /// the interval it was halving; face -1 when no ray is undecided.
   RayPoint first_undecided;

@@ -48,14 +48,14 @@ struct AuditOptions {
 
 /// One reason the audit is not clean.
 enum class AuditFinding {
-  front_space_lost,    ///< open rays in front of faces pass deeper than tol inside hulls
-  openings_lost,       ///< open rays beyond open edges pass deeper than tol inside hulls
-  recheck_violations,  ///< the re-check's violations() (all but the paper's bars)
-  contacts_missed,     ///< proxies touch the triangles but no hull
-  false_contacts,      ///< proxies clear of the triangles lie deeper than tol inside a hull
-  deviation_exceeded,  ///< with a max deviation E alone: a hull takes a point farther than E + tol from the mesh
-  reachable_space_lost,  ///< with an agent radius r: a ball of radius r clear of every triangle reaches into a hull
-  allowance_undecided,   ///< the allowance audit ran out of evaluations on some ray
+  front_space_lost,     ///< open rays in front of faces pass deeper than tol inside hulls
+  openings_lost,        ///< open rays beyond open edges pass deeper than tol inside hulls
+  recheck_violations,   ///< the re-check's violations() (all but the paper's bars)
+  contacts_missed,      ///< proxies touch the triangles but no hull
+  false_contacts,       ///< proxies clear of the triangles lie deeper than tol inside a hull
+  deviation_exceeded,   ///< with a max deviation E alone: a hull takes a point farther than E + tol from the mesh
+  reachable_space_lost, ///< with an agent radius r: a ball of radius r clear of every triangle reaches into a hull
+  allowance_undecided,  ///< the allowance audit ran out of evaluations on some ray
 };
 
 /// Short stable name of a finding ("front_space_lost", ...), for logs and JSON.
@@ -63,12 +63,12 @@ const char* audit_finding_name(AuditFinding finding);
 
 /// The audit's figures and its verdict.
 struct AuditReport {
-  ProbeReport probe;          ///< free space lost, openings lost, lost volume
-  CheckReport recheck;        ///< the paper's conditions 1-4 and coverage, re-checked
-  BehaviourReport behaviour;  ///< missed and false contacts of the proxies
-  size_t hull_count = 0;      ///< hulls audited
+  ProbeReport probe;                  ///< free space lost, openings lost, lost volume
+  CheckReport recheck;                ///< the paper's conditions 1-4 and coverage, re-checked
+  BehaviourReport behaviour;          ///< missed and false contacts of the proxies
+  size_t hull_count = 0;              ///< hulls audited
   int groups_without_area = 0;        ///< OBJ groups skipped for spanning no area (from the HullSet)
-  std::vector<AuditFinding> findings;  ///< why it is not clean, in enum order; empty when clean
+  std::vector<AuditFinding> findings; ///< why it is not clean, in enum order; empty when clean
 
   /// No accessible space lost: no finding.
   bool clean() const { return findings.empty(); }

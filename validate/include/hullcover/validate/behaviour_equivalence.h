@@ -16,27 +16,27 @@ namespace hullcover::validate {
 
 /// How many proxies, where from, how big.
 struct BehaviourOptions {
-  int proxies = 3000;            ///< poses tried (a third of each shape)
-  std::uint64_t seed = 1;        ///< seed of the poses: the same seed, the same poses
-  std::optional<double> size;    ///< proxy radius / half extent, scene units (default 0.005 x diagonal)
+  int proxies = 3000;         ///< poses tried (a third of each shape)
+  std::uint64_t seed = 1;     ///< seed of the poses: the same seed, the same poses
+  std::optional<double> size; ///< proxy radius / half extent, scene units (default 0.005 x diagonal)
 };
 
 /// Where a proxy clear of the triangles stood deepest in a hull.
 struct FalseContactPlace {
-  int hull = -1;   ///< the hull touched; -1 for none
-  int face = -1;   ///< the face whose front the proxy's centre stood on
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< the proxy's centre, scene coordinates
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();   ///< the contact point on the hull's surface
-  double depth = 0.0;  ///< penetration into the hull, scene units
+  int hull = -1;                                    ///< the hull touched; -1 for none
+  int face = -1;                                    ///< the face whose front the proxy's centre stood on
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero(); ///< the proxy's centre, scene coordinates
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< the contact point on the hull's surface
+  double depth = 0.0;                               ///< penetration into the hull, scene units
 };
 
 /// How the proxies collided with both worlds.
 struct BehaviourReport {
-  double size = 0.0;             ///< proxy radius / half extent used, scene units
-  long poses = 0;                ///< poses used (accessible ones)
-  long both_touch = 0, neither_touches = 0;  ///< poses on which the two worlds agree
-  long missed = 0;               ///< triangles touched, hulls not
-  long false_contacts = 0;       ///< hulls touched, triangles not
+  double size = 0.0;                        ///< proxy radius / half extent used, scene units
+  long poses = 0;                           ///< poses used (accessible ones)
+  long both_touch = 0, neither_touches = 0; ///< poses on which the two worlds agree
+  long missed = 0;                          ///< triangles touched, hulls not
+  long false_contacts = 0;                  ///< hulls touched, triangles not
   /// False contacts deeper than tol into a hull by a proxy whose centre lies
   /// on its face's open front ray, reaching free space there (a point on a
   /// face's open front ray): lost space, a violation.
@@ -48,10 +48,11 @@ struct BehaviourReport {
   /// Of those, by box proxies: a box is no union of balls, so under an
   /// agent radius its false contacts are measured, not judged.
   long deep_false_boxes = 0;
-  double max_false_depth = 0.0;  ///< deepest false contact of either kind, scene units
-  FalseContactPlace deepest_false;  ///< the deepest of the lost (deep, free) false contacts (hull -1 when none)
-  double max_normal_angle = 0.0; ///< degrees, from the hulls' deepest normal to the nearest triangle normal, when both touch
-  double mean_normal_angle = 0.0;  ///< degrees, the same angle on average
+  double max_false_depth = 0.0;    ///< deepest false contact of either kind, scene units
+  FalseContactPlace deepest_false; ///< the deepest of the lost (deep, free) false contacts (hull -1 when none)
+  double max_normal_angle =
+      0.0; ///< degrees, from the hulls' deepest normal to the nearest triangle normal, when both touch
+  double mean_normal_angle = 0.0; ///< degrees, the same angle on average
 };
 
 /// Runs the proxies. Fails with `invalid_argument` for proxies < 1 or a

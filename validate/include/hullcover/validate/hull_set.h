@@ -28,7 +28,7 @@ namespace hullcover::validate {
 /// Hulls read from a file, and what could not be made a hull.
 struct HullSet {
   std::vector<bvh::RuntimeHull> hulls;
-  int groups_without_area = 0;  ///< OBJ groups whose points span no area (collinear or one point: skipped)
+  int groups_without_area = 0; ///< OBJ groups whose points span no area (collinear or one point: skipped)
 };
 
 /// Reads `path`: a `.hcw` runtime file, a `.glb`, or else an OBJ with groups; only a

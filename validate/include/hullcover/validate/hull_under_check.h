@@ -12,8 +12,8 @@ namespace hullcover::validate {
 /// One hull to re-check.
 struct HullUnderCheck {
   const ConvexPolytope* shape = nullptr;
-  bool flat = false;       ///< a polygon of thickness 0 (front and back facets)
-  std::vector<int> faces;  ///< mesh faces it claims to cover, ascending; empty when unknown
+  bool flat = false;      ///< a polygon of thickness 0 (front and back facets)
+  std::vector<int> faces; ///< mesh faces it claims to cover, ascending; empty when unknown
 };
 
 } // namespace hullcover::validate

@@ -25,17 +25,18 @@ std::vector<HullUnderCheck> hulls_under_check(const std::vector<bvh::RuntimeHull
 
 /// What the re-check found: counts per condition, and the first few findings.
 struct CheckReport {
-  long vertices_inside = 0;      ///< condition 1: mesh vertices strictly inside a solid hull
-  long edges_inside = 0;         ///< condition 1: mesh edges with a part strictly inside a solid hull
-  long faces_off_hull = 0;       ///< condition 2: claimed faces not on their hull with their normal out
-  long bars_inside = 0;          ///< condition 3: the paper's bars entering a hull
-  long faces_below_polygon = 0;  ///< condition 4: faces reaching a flat hull's interior from below
-  long faces_uncovered = 0;      ///< coverage: faces with area on no hull's boundary (nor, when inside_allowed, inside or on one)
-  long faces_inside = 0;         ///< when inside_allowed: faces covered by lying inside a solid hull, not on it
-  double uncovered_area = 0.0;   ///< their area, scene units squared
-  double total_area = 0.0;       ///< the area of every face with a surface
-  long hulls_not_convex = 0;     ///< hulls with a vertex in front of one of their own facets
-  std::vector<std::string> examples;  ///< the first few findings, for a failure message
+  long vertices_inside = 0;     ///< condition 1: mesh vertices strictly inside a solid hull
+  long edges_inside = 0;        ///< condition 1: mesh edges with a part strictly inside a solid hull
+  long faces_off_hull = 0;      ///< condition 2: claimed faces not on their hull with their normal out
+  long bars_inside = 0;         ///< condition 3: the paper's bars entering a hull
+  long faces_below_polygon = 0; ///< condition 4: faces reaching a flat hull's interior from below
+  long faces_uncovered =
+      0; ///< coverage: faces with area on no hull's boundary (nor, when inside_allowed, inside or on one)
+  long faces_inside = 0;             ///< when inside_allowed: faces covered by lying inside a solid hull, not on it
+  double uncovered_area = 0.0;       ///< their area, scene units squared
+  double total_area = 0.0;           ///< the area of every face with a surface
+  long hulls_not_convex = 0;         ///< hulls with a vertex in front of one of their own facets
+  std::vector<std::string> examples; ///< the first few findings, for a failure message
   /// Checked for a covering made with an allowance (allowance_audit.h):
   /// faces may lie inside their hull (covered, any shape touching them
   /// touches it), so mesh vertices and edges inside hulls are reported, not

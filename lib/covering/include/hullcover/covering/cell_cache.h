@@ -34,17 +34,17 @@ namespace hullcover {
 
 /// What a bake with a cache did.
 struct CellCacheReport {
-  int cells = 0;    ///< cells in the scene
-  int reused = 0;   ///< taken from the cache, re-checked against this scene
-  int stale = 0;    ///< found under their key but refused by the re-check (then merged)
-  int merged = 0;   ///< merged in this bake (stale ones included) and stored
+  int cells = 0;  ///< cells in the scene
+  int reused = 0; ///< taken from the cache, re-checked against this scene
+  int stale = 0;  ///< found under their key but refused by the re-check (then merged)
+  int merged = 0; ///< merged in this bake (stale ones included) and stored
   /// Faces added plus faces removed since the last bake; -1 when not known
   /// (no snapshot, other options, an allowance): then every patch is re-checked.
   int changed_faces = -1;
-  long patches_rechecked = 0;       ///< patches of cached cells re-checked (and their hulls made again)
-  long patches_kept_unchecked = 0;  ///< patches of cached cells no change since the last bake can reach
-  double seconds_checking = 0.0;  ///< wall time reading and re-checking cached cells (and finding the change)
-  double seconds_merging = 0.0;   ///< wall time merging the other cells
+  long patches_rechecked = 0;      ///< patches of cached cells re-checked (and their hulls made again)
+  long patches_kept_unchecked = 0; ///< patches of cached cells no change since the last bake can reach
+  double seconds_checking = 0.0;   ///< wall time reading and re-checking cached cells (and finding the change)
+  double seconds_merging = 0.0;    ///< wall time merging the other cells
 };
 
 /// decompose() with a cell cache in folder `cache_dir` (created if absent,

@@ -15,10 +15,10 @@ namespace hullcover {
 /// One convex hull of the covering.
 struct CoveringHull {
   ConvexPolytope polytope;
-  std::vector<int> faces;  ///< mesh faces it covers, ascending
-  bool planar = false;     ///< from a planar patch (a prism or flat polygon)
-  double thickness = 0.0;  ///< prism thickness (planar only; 0 = flat polygon)
-  int material = 0;        ///< material id of its faces (the smallest, if they differ)
+  std::vector<int> faces; ///< mesh faces it covers, ascending
+  bool planar = false;    ///< from a planar patch (a prism or flat polygon)
+  double thickness = 0.0; ///< prism thickness (planar only; 0 = flat polygon)
+  int material = 0;       ///< material id of its faces (the smallest, if they differ)
   /// The cell of its lowest face (merge_cells.h): the section the runtime
   /// file puts it in, for a server that streams a world cell by cell.
   int cell = 0;
@@ -33,23 +33,23 @@ struct CoveringHull {
 
 /// The result: hulls and everything needed to reproduce them.
 struct Covering {
-  std::vector<CoveringHull> hulls;  ///< ordered by their first face
+  std::vector<CoveringHull> hulls; ///< ordered by their first face
   Tolerance tolerance;
   double bar_half_length = 0.0;
   /// Exact mode: how far free space is kept, scene units. Without a cap
   /// (the default) a length beyond which no hull lies.
   double free_space_reach = 0.0;
-  bool free_space_capped = false;  ///< the user asked for a reach
-  double prism_thickness_cap = 0.0;  ///< the given one, or the largest island's (each island has its own)
-  double near_merge_distance = 0.0;  ///< scene units; 0 = no near merges; the given one, or the largest island's
-  bool dissolve = false;             ///< whether dissolving ran (resolved DecomposeOptions::dissolve)
+  bool free_space_capped = false;   ///< the user asked for a reach
+  double prism_thickness_cap = 0.0; ///< the given one, or the largest island's (each island has its own)
+  double near_merge_distance = 0.0; ///< scene units; 0 = no near merges; the given one, or the largest island's
+  bool dissolve = false;            ///< whether dissolving ran (resolved DecomposeOptions::dissolve)
   /// Diagonal of each island (hullcover/mesh/mesh_islands.h numbering), scene
   /// units: its default near-merge distance and prism cap scale with it.
   std::vector<double> island_extents;
   /// Cell side per island (hullcover/mesh/mesh_islands.h numbering), scene
   /// units; 0 where an island is one cell (merge_cells.h).
   std::vector<double> cell_sizes;
-  DecomposeOptions options;  ///< as given (progress callback included)
+  DecomposeOptions options; ///< as given (progress callback included)
   CoveringStatistics statistics;
 };
 

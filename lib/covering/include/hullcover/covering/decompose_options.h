@@ -45,8 +45,8 @@ inline int triangles_of_prism(int corners) { return 4 * corners - 4; }
 
 /// The order in which mergeable pairs are taken.
 enum class MergeOrder {
-  compact,  ///< cheapest 1 / compactness first (the paper's method)
-  random,   ///< pseudo-random, seeded (the paper's comparison)
+  compact, ///< cheapest 1 / compactness first (the paper's method)
+  random,  ///< pseudo-random, seeded (the paper's comparison)
 };
 
 /// How to decompose. Lengths are in scene units; unset ones take the
@@ -92,13 +92,13 @@ struct DecomposeOptions {
   /// exact on, paper off (the paper's algorithm alone).
   std::optional<bool> dissolve;
   MergeOrder order = MergeOrder::compact;
-  std::uint64_t seed = 1;                     ///< for MergeOrder::random
+  std::uint64_t seed = 1; ///< for MergeOrder::random
   /// Merge this many times (>= 1): in `order` first, then in random orders
   /// seeded seed, seed + 1, ...; the covering with the fewest hulls is kept
   /// (the first of equals). Costs that many times the merging time.
   int order_tries = 1;
-  bool keep_materials_apart = false;          ///< one material per hull, bars on material borders
-  int max_hull_vertices = kDefaultMaxHullVertices;  ///< >= 8 (a prism of a quad)
+  bool keep_materials_apart = false;               ///< one material per hull, bars on material borders
+  int max_hull_vertices = kDefaultMaxHullVertices; ///< >= 8 (a prism of a quad)
   /// Most triangles a hull may have once its facets are triangulated, >= 12
   /// (a box); a planar patch counts as the prism an engine export makes of
   /// it (4 n - 4 for an n-gon). Unity's convex MeshCollider takes 255.
@@ -129,33 +129,33 @@ inline bool has_allowance(const DecomposeOptions& options) {
 /// Counts and timings of a decomposition.
 struct CoveringStatistics {
   int faces = 0;
-  int zero_area_faces_skipped = 0;  ///< faces without a reliable normal (height <= tol): in no patch
+  int zero_area_faces_skipped = 0; ///< faces without a reliable normal (height <= tol): in no patch
   /// Faces no patch's hull covered within tol (thin ones, and faces a hull
   /// grown through a thin slab missed), each given a flat hull of its own:
   /// coverage, docs/definitions-and-proofs.md (face_coverage.h in the sources).
   int faces_given_flat_hulls = 0;
-  int thin_faces_given_flat_hulls = 0;  ///< of those, faces thinner than tol
+  int thin_faces_given_flat_hulls = 0; ///< of those, faces thinner than tol
   /// Faces no hull covers within tol and too thin for even a flat triangle
   /// (smallest angle's sine under kParallelSine); 0 on every scene measured.
   int faces_left_uncovered = 0;
   int merges = 0;
-  int order_tries = 1;             ///< merging runs made; the statistics are the kept run's, times the total
-  int kept_try = 0;                ///< which run was kept (0: the given order)
-  int near_merges = 0;             ///< merges of patches sharing no edge (the near-merge pass)
-  int dissolved_patches = 0;       ///< patches emptied into others (dissolving)
+  int order_tries = 1;       ///< merging runs made; the statistics are the kept run's, times the total
+  int kept_try = 0;          ///< which run was kept (0: the given order)
+  int near_merges = 0;       ///< merges of patches sharing no edge (the near-merge pass)
+  int dissolved_patches = 0; ///< patches emptied into others (dissolving)
   long candidates_tested = 0;
-  std::array<long, kValidityCount> rejections{};  ///< by Validity
+  std::array<long, kValidityCount> rejections{}; ///< by Validity
   long qhull_calls = 0;
-  long incremental_hulls = 0;      ///< merge hulls grown from a known hull instead of rebuilt
-  int prisms_made_flat = 0;        ///< planar hulls with thickness 0
-  int solids_kept_as_grown = 0;    ///< solid hulls output as validated during merging (Qhull's rebuild differed)
+  long incremental_hulls = 0;   ///< merge hulls grown from a known hull instead of rebuilt
+  int prisms_made_flat = 0;     ///< planar hulls with thickness 0
+  int solids_kept_as_grown = 0; ///< solid hulls output as validated during merging (Qhull's rebuild differed)
   double seconds_index = 0.0;
-  double seconds_merging = 0.0;  ///< wall time of the cells' merging (all threads) and the seam pass
-  double seconds_output = 0.0;   ///< wall time of making the hulls (all threads)
-  double seconds_seams = 0.0;    ///< wall time of the seam pass alone (part of seconds_merging)
-  int seam_merges = 0;           ///< merges of patches across cell borders (the seam pass), part of `merges`
-  int cells = 0;                 ///< cells merged apart (merge_cells.h)
-  int islands = 0;               ///< the scene's islands (hullcover/mesh/mesh_islands.h)
+  double seconds_merging = 0.0; ///< wall time of the cells' merging (all threads) and the seam pass
+  double seconds_output = 0.0;  ///< wall time of making the hulls (all threads)
+  double seconds_seams = 0.0;   ///< wall time of the seam pass alone (part of seconds_merging)
+  int seam_merges = 0;          ///< merges of patches across cell borders (the seam pass), part of `merges`
+  int cells = 0;                ///< cells merged apart (merge_cells.h)
+  int islands = 0;              ///< the scene's islands (hullcover/mesh/mesh_islands.h)
 };
 
 } // namespace hullcover

@@ -40,7 +40,7 @@ public:
   /// `invalid_argument` for options out of range (as decompose() does), or
   /// `internal_error` (out of memory).
   [[nodiscard]] static Result<std::unique_ptr<StagedDecomposition>> prepare(PreparedMesh prepared,
-                                                                          const DecomposeOptions& options);
+                                                                            const DecomposeOptions& options);
   ~StagedDecomposition();
   StagedDecomposition(const StagedDecomposition&) = delete;
   StagedDecomposition& operator=(const StagedDecomposition&) = delete;

@@ -36,7 +36,7 @@ public:
   long calls() const { return calls_; }
 
 private:
-  std::FILE* error_sink_ = nullptr;  // Qhull's messages go here, not to the user's terminal
+  std::FILE* error_sink_ = nullptr; // Qhull's messages go here, not to the user's terminal
   long calls_ = 0;
 };
 

@@ -91,8 +91,8 @@ private:
   /// Plain data (no initialisers), so that a walk's stack of them is not
   /// cleared on every call: each walk is short, and there are millions.
   struct ChildRef {
-    int index;  ///< inner: index in nodes_; leaf: first item in items_
-    int count;  ///< leaf: number of items (> 0); inner: 0
+    int index; ///< inner: index in nodes_; leaf: first item in items_
+    int count; ///< leaf: number of items (> 0); inner: 0
   };
   /// A child still to open on a segment walk, and where the segment enters
   /// its box.
@@ -155,16 +155,16 @@ private:
   ChildRef build(int begin, int end, int depth, const std::vector<Aabb>& boxes,
                  const std::vector<Eigen::Vector3d>& centres, Aabb& box);
 
-  std::vector<Node> nodes_;       ///< the inner nodes
-  ChildRef root_{0, 0};           ///< the root: an inner node, or the only leaf
-  FloatBox root_box_{};           ///< the root's box (a leaf's when the root is the only leaf)
+  std::vector<Node> nodes_; ///< the inner nodes
+  ChildRef root_{0, 0};     ///< the root: an inner node, or the only leaf
+  FloatBox root_box_{};     ///< the root's box (a leaf's when the root is the only leaf)
   std::vector<int> items_;
-  std::vector<Aabb> leaf_boxes_;  ///< the box of items_[i] at i: read in the order the walks read them
+  std::vector<Aabb> leaf_boxes_; ///< the box of items_[i] at i: read in the order the walks read them
 };
 
 template <class Box>
-inline double AabbTree::segment_box_entry(const Eigen::Vector3d& from, const Eigen::Vector3d& inverse,
-                                          const Box& box, double margin) {
+inline double AabbTree::segment_box_entry(const Eigen::Vector3d& from, const Eigen::Vector3d& inverse, const Box& box,
+                                          double margin) {
   constexpr double kMiss = std::numeric_limits<double>::infinity();
   double enter = 0.0, leave = 1.0;
   for (int axis = 0; axis < 3; ++axis) {
@@ -211,9 +211,8 @@ template <class Outside, class Stop>
 bool AabbTree::any_overlapping_pruned(const Aabb& query, Outside&& outside, Stop&& stop) const {
   if (items_.empty() || query.empty() || !overlaps(root_box_, query)) return false;
   const auto open = [&](const FloatBox& box) {
-    return overlaps(box, query) &&
-           !outside(Aabb{Eigen::Vector3d(box.min[0], box.min[1], box.min[2]),
-                         Eigen::Vector3d(box.max[0], box.max[1], box.max[2])});
+    return overlaps(box, query) && !outside(Aabb{Eigen::Vector3d(box.min[0], box.min[1], box.min[2]),
+                                                 Eigen::Vector3d(box.max[0], box.max[1], box.max[2])});
   };
   if (!open(root_box_)) return false;
   ChildRef stack[kMaxDepth];

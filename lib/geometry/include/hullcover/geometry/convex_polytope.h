@@ -96,7 +96,7 @@ public:
 private:
   struct TestPlane {
     Plane plane;
-    Eigen::Vector3d magnitude;  ///< |normal|, per axis
+    Eigen::Vector3d magnitude; ///< |normal|, per axis
   };
   TestPlane planes_[kPlanes];
   int count_ = 0;
@@ -146,8 +146,8 @@ void clip_polygon_to_planes_in_place(std::vector<Eigen::Vector3d>& polygon, cons
 /// A solid hull's interior: the hull shrunk by tol (what "strictly inside"
 /// means), as planes and facet polygons. Empty for a hull thinner than 2 tol.
 struct HullInterior {
-  std::vector<Plane> planes;                         ///< the hull's planes moved in by tol
-  std::vector<std::vector<Eigen::Vector3d>> facets;  ///< per plane, its facet (empty when gone)
+  std::vector<Plane> planes;                        ///< the hull's planes moved in by tol
+  std::vector<std::vector<Eigen::Vector3d>> facets; ///< per plane, its facet (empty when gone)
   /// Whether no facet is left: the hull is thinner than 2 tol.
   bool empty() const {
     for (const auto& f : facets)

@@ -17,18 +17,18 @@ namespace hullcover {
 /// Why a call failed. `ok` is success; every other code comes with a message.
 enum class StatusCode {
   ok,
-  file_not_found,        ///< the path does not exist or is not a regular file
-  unreadable_file,       ///< the file exists but could not be opened or parsed
-  unwritable_file,       ///< an output file could not be created or written
-  unknown_format,        ///< no importer understands the file's format
-  empty_scene,           ///< the input holds no triangle
-  non_finite_coordinate, ///< a position is NaN or infinite
-  index_out_of_range,    ///< a triangle names a vertex that does not exist
-  invalid_argument,      ///< an option is out of its documented range
-  degenerate_scene,      ///< the input has no extent (all points coincide)
-  internal_error,        ///< a bug or exhausted memory, caught before it left the library
+  file_not_found,           ///< the path does not exist or is not a regular file
+  unreadable_file,          ///< the file exists but could not be opened or parsed
+  unwritable_file,          ///< an output file could not be created or written
+  unknown_format,           ///< no importer understands the file's format
+  empty_scene,              ///< the input holds no triangle
+  non_finite_coordinate,    ///< a position is NaN or infinite
+  index_out_of_range,       ///< a triangle names a vertex that does not exist
+  invalid_argument,         ///< an option is out of its documented range
+  degenerate_scene,         ///< the input has no extent (all points coincide)
+  internal_error,           ///< a bug or exhausted memory, caught before it left the library
   reference_outside_folder, ///< a scene file refers to a file outside its own folder
-  limit_exceeded,        ///< an input is larger than a documented, overridable limit
+  limit_exceeded,           ///< an input is larger than a documented, overridable limit
 };
 
 /// Short stable name of a code ("file_not_found", ...), for logs and JSON.

@@ -71,8 +71,7 @@ inline constexpr double kRecheckSlabInTolerances = 3.0 * kPlanarSlabInTolerances
 /// face's reach or a sweep crossing it: wider than every growth a check
 /// gives the boxes it looks up (the recheck slab, the rays' stand-off, the
 /// sweeps' start behind their face), so nothing a check reads lies beyond.
-inline constexpr double kSceneChangeSlackInTolerances =
-    4.0 * (kRecheckSlabInTolerances + kRayStandOffInTolerances);
+inline constexpr double kSceneChangeSlackInTolerances = 4.0 * (kRecheckSlabInTolerances + kRayStandOffInTolerances);
 
 /// A solid hull whose interior shrunk by tol is empty (inradius <= tol) has
 /// no inside for rays to meet; it is then at most 4 inradii wide across one

@@ -50,8 +50,7 @@ inline void parallel_for(int count, int threads, const std::function<void(int)>&
   // calling thread always works), as the jobs do not care who runs them.
   try {
     for (int t = 1; t < std::min(threads, count); ++t) pool.emplace_back(work);
-  } catch (const std::system_error&) {
-  }
+  } catch (const std::system_error&) {}
   work();
   for (std::thread& thread : pool) thread.join();
   if (failure) std::rethrow_exception(failure);

@@ -64,8 +64,8 @@ struct FlatPolygon {
 
 /// How far the points `vertex_ids` (of `positions`) reach along unit
 /// `normal`: {lowest, highest} of normal.p. `vertex_ids` must not be empty.
-std::pair<double, double> extent_along(const std::vector<Eigen::Vector3d>& positions, const std::vector<int>& vertex_ids,
-                                       const Eigen::Vector3d& normal);
+std::pair<double, double> extent_along(const std::vector<Eigen::Vector3d>& positions,
+                                       const std::vector<int>& vertex_ids, const Eigen::Vector3d& normal);
 
 /// The convex polygon of mesh vertices `vertex_ids` (positions from
 /// `positions`) in the plane with unit normal `normal` through the middle

@@ -21,8 +21,8 @@ enum class EdgeKind : std::uint8_t { boundary, manifold, orientation_conflict, n
 
 /// One undirected edge; its faces are `edge_uses[first_use .. first_use + use_count)`.
 struct MeshEdge {
-  int v0 = -1;  ///< smaller vertex index
-  int v1 = -1;  ///< larger vertex index
+  int v0 = -1; ///< smaller vertex index
+  int v1 = -1; ///< larger vertex index
   int first_use = 0;
   int use_count = 0;
   EdgeKind kind = EdgeKind::boundary;

@@ -15,14 +15,14 @@ namespace hullcover {
 
 /// A welded mesh with its tolerance and connectivity.
 struct PreparedMesh {
-  Mesh mesh;  ///< welded; face ids equal the raw mesh's
+  Mesh mesh; ///< welded; face ids equal the raw mesh's
   Tolerance tolerance;
   /// The islands (found on the raw mesh; face ids are the same). Vertices
   /// weld only within an island, each at its island's tolerance.
   MeshIslands islands;
   MeshConnectivity connectivity;
-  int vertices_before_weld = 0;  ///< raw vertex records, referenced or not
-  int unreferenced_dropped = 0;  ///< raw vertices no triangle used
+  int vertices_before_weld = 0; ///< raw vertex records, referenced or not
+  int unreferenced_dropped = 0; ///< raw vertices no triangle used
 
   /// The tolerance of tests on face `f` alone: its island's
   /// (Tolerance::island_lengths), scene units.

@@ -18,8 +18,7 @@ void add_quad(Mesh& mesh, const Eigen::Vector3d& a, const Eigen::Vector3d& b, co
 /// Appends a closed axis-aligned box of 12 triangles with shared vertices.
 /// `outward` true: normals point out (a solid block); false: normals point in
 /// (a room seen from inside). Requires min < max on every axis.
-void add_box(Mesh& mesh, const Eigen::Vector3d& min, const Eigen::Vector3d& max, bool outward = true,
-             int material = 0);
+void add_box(Mesh& mesh, const Eigen::Vector3d& min, const Eigen::Vector3d& max, bool outward = true, int material = 0);
 
 /// Appends an open height field y = height(x, z) over [x0, x1] x [z0, z1],
 /// facing up, with grid lines at the given sorted x and z coordinates (so

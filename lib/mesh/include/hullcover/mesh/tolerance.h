@@ -93,7 +93,7 @@ class PlaceTolerance {
 public:
   /// Refers to `tolerance`, which must outlive this.
   explicit PlaceTolerance(const Tolerance& tolerance);
-  PlaceTolerance(Tolerance&&) = delete;  // would refer to a temporary
+  PlaceTolerance(Tolerance&&) = delete; // would refer to a temporary
   /// Scene units (> 0). O(log islands + zones met); thread-safe.
   double at(const Aabb& box) const;
   /// Appends the islands whose zones `box` meets and whose tolerance is
