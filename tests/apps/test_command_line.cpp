@@ -224,7 +224,7 @@ TEST(CommandLine, QueryAnswersFromTheRuntimeFile) {
   // Down onto the roof.
   r = run(dir, "query " + world + " --ray 0,5,0,0,-1,0");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("at t 1.7999999"), std::string::npos) << r.out; // the roof at 3.2, read as float32
+  EXPECT_NE(r.out.find("at t 1.8 "), std::string::npos) << r.out; // the roof at 3.2, read in double
   // Floating in a room: no contact, the floor 1.2 below.
   r = run(dir, "query " + world + " --sphere -2,1.5,-2,0.3");
   EXPECT_NE(r.out.find("distance 1.2"), std::string::npos) << r.out;

@@ -63,22 +63,34 @@ std::optional<bvh::RuntimeHull> group_hull(ConvexHullBuilder& builder, const std
   std::vector<int> ids = group.vertices;
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  // The hull is made about the centre of its box, then moved back: Qhull
+  // and the planes then round at the hull's size, not at its distance from
+  // the origin (a map at 1e6 reads as it does at 0).
   std::vector<Eigen::Vector3d> points;
   for (int v : ids) points.push_back(vertices[v]);
-  const double flatness = kDefaultRelativeTolerance * bounding_box_of(points).diagonal();
+  const Aabb box = bounding_box_of(points);
+  const Eigen::Vector3d centre = 0.5 * (box.min + box.max);
+  for (Eigen::Vector3d& p : points) p -= centre;
+  const double flatness = kDefaultRelativeTolerance * box.diagonal();
   const Plane plane = group_plane(points, group.winding);
   const bool in_plane = std::all_of(points.begin(), points.end(), [&](const Eigen::Vector3d& p) {
     return std::abs(plane.signed_distance(p)) <= flatness;
   });
+  std::optional<ConvexPolytope> made;
   if (!in_plane) {
     Result<ConvexPolytope> solid = builder.build(points);
     if (!solid.ok()) return std::nullopt;
-    return bvh::make_runtime_hull(std::move(solid).value(), 0);
+    made = std::move(solid).value();
+  } else {
+    if (plane.normal.squaredNorm() == 0.0) return std::nullopt;
+    std::vector<int> local_ids(points.size());
+    for (size_t i = 0; i < local_ids.size(); ++i) local_ids[i] = static_cast<int>(i);
+    const FlatPolygon polygon = make_flat_polygon(points, local_ids, plane.normal, flatness);
+    if (polygon.corners.size() < 3) return std::nullopt;
+    made = flat_polytope(polygon, true);
   }
-  if (plane.normal.squaredNorm() == 0.0) return std::nullopt;
-  const FlatPolygon polygon = make_flat_polygon(vertices, ids, plane.normal, flatness);
-  if (polygon.corners.size() < 3) return std::nullopt;
-  return bvh::make_runtime_hull(flat_polytope(polygon, true), 0);
+  move_polytope(*made, centre);
+  return bvh::make_runtime_hull(std::move(*made), 0);
 }
 
 Result<HullGroups> read_obj_groups(const std::string& path, const std::string& content) {
@@ -118,8 +130,11 @@ Result<HullGroups> read_obj_groups(const std::string& path, const std::string& c
         groups.back().vertices.push_back(static_cast<int>(resolved));
         face.push_back(vertices[resolved]);
       }
-      // Newell's normal: the face's winding, whatever its corner count.
-      for (size_t i = 0; i < face.size(); ++i) groups.back().winding += face[i].cross(face[(i + 1) % face.size()]);
+      // Newell's normal: the face's winding, whatever its corner count;
+      // about the first corner, so that it rounds at the face's size, not at
+      // its distance from the origin.
+      for (size_t i = 1; i + 1 < face.size(); ++i)
+        groups.back().winding += (face[i] - face[0]).cross(face[i + 1] - face[0]);
     }
   }
   return HullGroups{std::move(vertices), std::move(groups)};

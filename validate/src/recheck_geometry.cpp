@@ -1,5 +1,7 @@
 #include "recheck_geometry.h"
 
+#include "hullcover/geometry/tolerances.h"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -19,16 +21,23 @@ long long cell_key(long long i, long long j, long long k) {
   return (i * 73856093LL) ^ (j * 19349663LL) ^ (k * 83492791LL);
 }
 
-HalfSpace newell_plane(const std::vector<Eigen::Vector3d>& poly) {
+// The plane Newell's method fits to `poly`, about its first corner (so it
+// rounds at the polygon's size, not at its distance from the origin); `fallback`
+// when the polygon has no area to fit to: narrower than kParallelSine of its
+// length (a facet whose corners all lie on one line, which a hull's
+// description may hold), whose fitted normal would be rounding noise.
+HalfSpace newell_plane(const std::vector<Eigen::Vector3d>& poly, const HalfSpace& fallback) {
   Eigen::Vector3d n = Eigen::Vector3d::Zero(), centre = Eigen::Vector3d::Zero();
+  double diameter2 = 0.0;
   for (size_t i = 0; i < poly.size(); ++i) {
-    const Eigen::Vector3d& a = poly[i];
-    const Eigen::Vector3d& b = poly[(i + 1) % poly.size()];
-    n += Eigen::Vector3d((a.y() - b.y()) * (a.z() + b.z()), (a.z() - b.z()) * (a.x() + b.x()),
-                         (a.x() - b.x()) * (a.y() + b.y()));
+    const Eigen::Vector3d a = poly[i] - poly.front();
+    const Eigen::Vector3d b = poly[(i + 1) % poly.size()] - poly.front();
+    n += a.cross(b);
     centre += a;
+    diameter2 = std::max(diameter2, a.squaredNorm());
   }
-  centre /= static_cast<double>(poly.size());
+  if (!(n.norm() > kParallelSine * diameter2)) return fallback;
+  centre = centre / static_cast<double>(poly.size()) + poly.front();
   n.normalize();
   return {n, n.dot(centre)};
 }
@@ -58,7 +67,13 @@ CheckedHull make_checked(const HullUnderCheck& hull) {
   for (const auto& facet : hull.shape->facets) {
     poly.clear();
     for (int v : facet) poly.push_back(V[v]);
-    c.facets.push_back(newell_plane(poly));
+    // The hull's own plane stands in for a facet with no area to fit; a
+    // description without planes gives a plane nothing lies in front of.
+    const size_t f = c.facets.size();
+    const HalfSpace given = f < hull.shape->planes.size()
+                                ? HalfSpace{hull.shape->planes[f].normal, hull.shape->planes[f].offset}
+                                : HalfSpace{Eigen::Vector3d::Zero(), 0.0};
+    c.facets.push_back(newell_plane(poly, given));
   }
   c.flat = hull.flat;
   if (c.flat) {

@@ -5,6 +5,7 @@
 #include "hullcover/mesh/mesh_islands.h"
 
 #include "cells/cell_merging.h"
+#include "cells/local_frame.h"
 #include "merging/patch_merging.h"
 #include "merging/patch_hulls.h"
 #include "merging/face_coverage.h"
@@ -54,13 +55,17 @@ Status check_options(const DecomposeOptions& o) {
 
 namespace detail {
 
-Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& prepared,
+Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& scene,
                                                             const DecomposeOptions& options) {
   if (Status s = check_options(options); !s.ok()) return s;
-  auto stages = std::make_unique<DecompositionStages>(prepared);
+  const Eigen::Vector3d origin = local_frame_origin(scene);
+  auto stages = origin.isZero() ? std::make_unique<DecompositionStages>(scene)
+                                : std::make_unique<DecompositionStages>(
+                                      std::make_unique<const PreparedMesh>(in_local_frame(scene, origin)), origin);
+  const PreparedMesh& prepared = stages->prepared;
   Covering& covering = stages->covering;
   covering.options = options;
-  covering.tolerance = prepared.tolerance;
+  covering.tolerance = scene.tolerance; // the scene's zones, in its own frame
   // Default lengths scale with islands, not the whole world: each island's
   // near merges and prisms follow its own diagonal, so a map keeps its hulls
   // when laid beside others. The values kept in `covering` are the largest
@@ -215,6 +220,7 @@ Covering finish_stages(const DecompositionStages& stages, std::vector<CellResult
   std::sort(covering.hulls.begin(), covering.hulls.end(),
             [](const CoveringHull& x, const CoveringHull& y) { return x.faces.front() < y.faces.front(); });
   for (CoveringHull& hull : covering.hulls) hull.cell = cells.cell_of_face[hull.faces.front()];
+  if (!stages.frame_origin.isZero()) to_scene_frame(covering, stages.frame_origin);
   stats.seconds_output = seconds_since(start);
   if (options.progress) options.progress(1.0);
   return covering;

@@ -12,6 +12,11 @@
 
 namespace hullcover {
 
+void move_polytope(ConvexPolytope& polytope, const Eigen::Vector3d& offset) {
+  for (Eigen::Vector3d& v : polytope.vertices) v += offset;
+  for (Plane& plane : polytope.planes) plane.offset += plane.normal.dot(offset);
+}
+
 double deepest_signed_distance(const std::vector<Plane>& planes, const Eigen::Vector3d& p) {
   double deepest = -std::numeric_limits<double>::infinity();
   for (const Plane& plane : planes) deepest = std::max(deepest, plane.signed_distance(p));

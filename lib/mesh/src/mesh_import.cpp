@@ -2,6 +2,7 @@
 
 #include "confined_io.h"
 #include "scene_file_checks.h"
+#include "obj_reader.h"
 #include "scene_file_rules.h"
 
 #include <assimp/Importer.hpp>
@@ -13,6 +14,8 @@
 #include <pthread.h>
 
 #include <algorithm>
+#include <cctype>
+#include <fstream>
 #include <filesystem>
 #include <exception>
 #include <functional>
@@ -187,6 +190,46 @@ void run_on_large_stack(const std::function<void()>& work) {
     work();
 }
 
+// The project's OBJ reader (obj_reader.h), in double: a decimal coordinate
+// carries only its rounding to the nearest double.
+Result<ImportedMesh> import_obj(const std::string& path, const ImportLimits& limits, std::uint64_t file_bytes) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Status{StatusCode::unreadable_file, path + ": cannot open"};
+  const std::uint64_t triangle_limit =
+      limits.max_triangles ? *limits.max_triangles : default_triangle_limit(file_bytes);
+  detail::ObjSideFacts facts;
+  Result<Mesh> read = detail::read_obj(in, triangle_limit, facts);
+  if (!read.ok()) return Status{read.status().code(), path + ": " + read.status().message()};
+  // Material libraries are never read, but one that would lead out of the
+  // folder (a symlink out, a FIFO) is refused as every other format's
+  // references are: judged by the same confinement, opening nothing.
+  std::error_code error;
+  const std::filesystem::path absolute = std::filesystem::absolute(path, error).lexically_normal();
+  const detail::ConfinedIOSystem confined(absolute.string(), limits.max_file_bytes);
+  for (const std::string& library : facts.material_libraries) {
+    static_cast<void>(confined.Exists((absolute.parent_path() / library).string().c_str()));
+    if (!confined.refusal().empty())
+      return Status{confined.refused_for_size() ? StatusCode::limit_exceeded : StatusCode::reference_outside_folder,
+                    path + ": " + confined.refusal()};
+  }
+  ImportedMesh out;
+  out.mesh = std::move(read).value();
+  out.report.mesh_instances = 1;
+  out.report.skipped_non_triangle_primitives = facts.skipped_primitives;
+  if (const Status valid = validate_mesh(out.mesh); !valid.ok())
+    return Status{valid.code(), path + ": " + valid.message()};
+  constexpr double kDoubleRelativeRounding = std::numeric_limits<double>::epsilon() / 2.0;
+  out.mesh.coordinate_error = kDoubleRelativeRounding * largest_coordinate_magnitude(out.mesh);
+  out.mesh.coordinate_relative_error = kDoubleRelativeRounding;
+  return out;
+}
+
+bool is_obj(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".obj";
+}
+
 Result<ImportedMesh> import_checked(const std::string& path, const ImportLimits& limits) {
   std::error_code error;
   if (!std::filesystem::exists(path, error)) return Status{StatusCode::file_not_found, path + ": no such file"};
@@ -200,7 +243,7 @@ Result<ImportedMesh> import_checked(const std::string& path, const ImportLimits&
                                                   " (raise it with --max-file-size)"};
   if (Status checked = detail::check_scene_file(path, limits); !checked.ok())
     return Status{checked.code(), path + ": " + checked.message()};
-  return import_with_assimp(path, limits);
+  return is_obj(path) ? import_obj(path, limits, bytes) : import_with_assimp(path, limits);
 }
 
 } // namespace

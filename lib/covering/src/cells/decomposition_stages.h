@@ -11,17 +11,30 @@
 
 #include "validity/scene_index.h"
 
+#include <memory>
 #include <vector>
 
 namespace hullcover::detail {
 
-/// What the cells share. Holds a reference to `prepared`, which must
-/// outlive it.
+/// What the cells share. Holds a reference to the scene it was made for,
+/// which must outlive it; a scene far from the origin is worked in a local
+/// frame (local_frame.h), on a moved copy the stages own.
 struct DecompositionStages {
+  /// Works `mesh` where it is.
   explicit DecompositionStages(const PreparedMesh& mesh) : prepared(mesh), place_tolerance(mesh.tolerance) {}
+  /// Works `local` (the scene moved by -origin), and owns it.
+  DecompositionStages(std::unique_ptr<const PreparedMesh> local, const Eigen::Vector3d& origin)
+      : local_scene(std::move(local)), frame_origin(origin), prepared(*local_scene),
+        place_tolerance(local_scene->tolerance) {}
   // The views in `island_index` refer to `index_data`: never copied or moved.
   DecompositionStages(const DecompositionStages&) = delete;
   DecompositionStages& operator=(const DecompositionStages&) = delete;
+  /// The moved copy, when the scene is worked in a local frame.
+  const std::unique_ptr<const PreparedMesh> local_scene;
+  /// Where the local frame's origin lies in the scene's frame (zero: none);
+  /// finish_stages moves the hulls back by it.
+  const Eigen::Vector3d frame_origin = Eigen::Vector3d::Zero();
+  /// The scene every stage works on (the local copy, when there is one).
   const PreparedMesh& prepared;
   /// The tolerance of each place, and where each island's zone is.
   const PlaceTolerance place_tolerance;

@@ -43,6 +43,12 @@ struct ConvexPolytope {
   std::vector<int> vertex_ids;
 };
 
+/// Moves `polytope` by `offset`: its vertices, and its planes' offsets
+/// (n . (p + offset) - (d + n . offset) = n . p - d). What a computation
+/// made about a local origin, to round at the shape's size rather than at
+/// its distance from the scene's origin, uses to put its result back.
+void move_polytope(ConvexPolytope& polytope, const Eigen::Vector3d& offset);
+
 /// Largest signed distance of `p` over `planes`: <= -tol means strictly
 /// inside, > tol strictly outside.
 double deepest_signed_distance(const std::vector<Plane>& planes, const Eigen::Vector3d& p);

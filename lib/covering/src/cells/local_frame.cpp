@@ -1,0 +1,39 @@
+#include "cells/local_frame.h"
+
+#include <cmath>
+
+namespace hullcover::detail {
+namespace {
+
+Aabb moved(const Aabb& box, const Eigen::Vector3d& by) {
+  if (box.empty()) return box;
+  Aabb out = box;
+  out.min += by;
+  out.max += by;
+  return out;
+}
+
+} // namespace
+
+Eigen::Vector3d local_frame_origin(const PreparedMesh& prepared) {
+  const Aabb box = referenced_bounding_box(prepared.mesh);
+  if (box.empty()) return Eigen::Vector3d::Zero();
+  const Eigen::Vector3d centre = 0.5 * (box.min + box.max);
+  const double diagonal = box.diagonal();
+  if (!(centre.cwiseAbs().maxCoeff() > kFarFromOriginInDiagonals * diagonal)) return Eigen::Vector3d::Zero();
+  return centre.array().round();
+}
+
+PreparedMesh in_local_frame(const PreparedMesh& prepared, const Eigen::Vector3d& origin) {
+  PreparedMesh local = prepared;
+  for (Eigen::Vector3d& p : local.mesh.positions) p -= origin;
+  for (Aabb& box : local.islands.boxes) box = moved(box, -origin);
+  for (Aabb& zone : local.tolerance.island_zones) zone = moved(zone, -origin);
+  return local;
+}
+
+void to_scene_frame(Covering& covering, const Eigen::Vector3d& origin) {
+  for (CoveringHull& hull : covering.hulls) move_polytope(hull.polytope, origin);
+}
+
+} // namespace hullcover::detail
