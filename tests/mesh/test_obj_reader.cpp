@@ -11,6 +11,8 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 
@@ -63,8 +65,7 @@ TEST(ObjReader, CutsAConcavePolygonIntoTrianglesThatCoverItExactly) {
   TempDir dir;
   // An L-shaped hexagon, counter-clockwise seen from +z, concave at (1, 1):
   // a fan from its first corner would cover the notch.
-  const Result<ImportedMesh> r =
-      read(dir, "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nf 1 2 3 4 5 6\n");
+  const Result<ImportedMesh> r = read(dir, "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nf 1 2 3 4 5 6\n");
   ASSERT_TRUE(r.ok()) << r.status().message();
   const Mesh& m = r.value().mesh;
   ASSERT_EQ(m.triangles.size(), 4u);
@@ -77,21 +78,75 @@ TEST(ObjReader, CutsAConcavePolygonIntoTrianglesThatCoverItExactly) {
         (m.positions[m.triangles[t][0]] + m.positions[m.triangles[t][1]] + m.positions[m.triangles[t][2]]) / 3.0;
     EXPECT_FALSE(centre.x() > 1.0 && centre.y() > 1.0) << "triangle " << t << " lies in the notch";
   }
-  EXPECT_DOUBLE_EQ(area, 3.0);  // the L's area, nothing more
+  EXPECT_DOUBLE_EQ(area, 3.0); // the L's area, nothing more
+}
+
+TEST(ObjReader, CutsAPentagramIntoTrianglesInsideItsOutline) {
+  TempDir dir;
+  // A pentagram (corners of a pentagon taken every other one) turns one
+  // way at every corner but goes round twice: not convex, so no fan,
+  // which would cover the pentagon's whole inside between the points.
+  std::string text;
+  for (int i = 0; i < 5; ++i)
+    text += "v " + std::to_string(std::cos(2.0 * M_PI * i / 5.0)) + " " +
+            std::to_string(std::sin(2.0 * M_PI * i / 5.0)) + " 0\n";
+  const Result<ImportedMesh> r = read(dir, text + "f 1 3 5 2 4\n");
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  const Mesh& m = r.value().mesh;
+  ASSERT_EQ(m.triangles.size(), 3u);
+  // A fan from corner 1 would hold the triangle 1, 3, 5 whole; clipping
+  // takes ears at the points instead.
+  EXPECT_NE(m.triangles[0], Eigen::Vector3i(0, 2, 4));
+}
+
+TEST(ObjReader, TakesAStraightPolygonWrittenWithFewDigitsAsConvex) {
+  TempDir dir;
+  // 300 corners round a turned square, its sides stitched with points
+  // written with 6 decimals: their turns are rounding, either sign; the
+  // polygon is convex, whatever its corner count.
+  std::string text;
+  const double turn = 0.3;
+  const auto corner = [&](double x, double y) {
+    char line[96];
+    std::snprintf(line, sizeof line, "v %.6f %.6f 0\n", std::cos(turn) * x - std::sin(turn) * y,
+                  std::sin(turn) * x + std::cos(turn) * y);
+    text += line;
+  };
+  for (int i = 0; i < 75; ++i) corner(i / 75.0, 0.0);
+  for (int i = 0; i < 75; ++i) corner(1.0, i / 75.0);
+  for (int i = 0; i < 75; ++i) corner(1.0 - i / 75.0, 1.0);
+  for (int i = 0; i < 75; ++i) corner(0.0, 1.0 - i / 75.0);
+  text += "f";
+  for (int i = 1; i <= 300; ++i) text += " " + std::to_string(i);
+  const Result<ImportedMesh> r = read(dir, text + "\n");
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  EXPECT_EQ(r.value().mesh.triangles.size(), 298u);
+}
+
+TEST(ObjReader, ReadsACoordinateBelowDoublesRangeAsZero) {
+  TempDir dir;
+  const Result<ImportedMesh> r = read(dir, "v 1e-400 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  EXPECT_EQ(r.value().mesh.positions[0].x(), 0.0);
 }
 
 TEST(ObjReader, NumbersMaterialsInOrderOfFirstUse) {
   TempDir dir;
   const std::string corners = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
-  const Result<ImportedMesh> named =
-      read(dir, "mtllib missing.mtl\n" + corners + "usemtl stone\nf 1 2 3\nusemtl wood\nf 1 2 3\nusemtl stone\nf 1 2 3\n");
-  ASSERT_TRUE(named.ok()) << named.status().message();  // the library is never opened
+  const Result<ImportedMesh> named = read(
+      dir, "mtllib missing.mtl\n" + corners + "usemtl stone\nf 1 2 3\nusemtl wood\nf 1 2 3\nusemtl stone\nf 1 2 3\n");
+  ASSERT_TRUE(named.ok()) << named.status().message(); // the library is never opened
   EXPECT_EQ(named.value().mesh.material_names, (std::vector<std::string>{"stone", "wood"}));
   EXPECT_EQ(named.value().mesh.material_ids, (std::vector<int>{0, 1, 0}));
   const Result<ImportedMesh> mixed = read(dir, corners + "f 1 2 3\nusemtl wood\nf 1 2 3\n");
   ASSERT_TRUE(mixed.ok());
   EXPECT_EQ(mixed.value().mesh.material_names, (std::vector<std::string>{"default", "wood"}));
   EXPECT_EQ(mixed.value().mesh.material_ids, (std::vector<int>{0, 1}));
+  // A material named "default" is the one faces before any usemtl have.
+  const Result<ImportedMesh> named_default = read(dir, corners + "f 1 2 3\nusemtl default\nf 1 2 3\n");
+  ASSERT_TRUE(named_default.ok());
+  EXPECT_EQ(named_default.value().mesh.material_names, (std::vector<std::string>{"default"}));
+  EXPECT_EQ(named_default.value().mesh.material_ids, (std::vector<int>{0, 0}));
 }
 
 TEST(ObjReader, SkipsLinesAndPointsAndCountsThem) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace hullcover::validate::recheck {
 namespace {
@@ -67,12 +68,13 @@ CheckedHull make_checked(const HullUnderCheck& hull) {
   for (const auto& facet : hull.shape->facets) {
     poly.clear();
     for (int v : facet) poly.push_back(V[v]);
-    // The hull's own plane stands in for a facet with no area to fit; a
-    // description without planes gives a plane nothing lies in front of.
+    // The hull's own plane stands in for a facet with no area to fit; in a
+    // description without planes such a facet bounds nothing (an infinite
+    // offset), which can only make the hull larger: the cautious side.
     const size_t f = c.facets.size();
     const HalfSpace given = f < hull.shape->planes.size()
                                 ? HalfSpace{hull.shape->planes[f].normal, hull.shape->planes[f].offset}
-                                : HalfSpace{Eigen::Vector3d::Zero(), 0.0};
+                                : HalfSpace{Eigen::Vector3d::Zero(), std::numeric_limits<double>::infinity()};
     c.facets.push_back(newell_plane(poly, given));
   }
   c.flat = hull.flat;

@@ -4,6 +4,8 @@
 #include "polygon_triangulation.h"
 
 #include <charconv>
+#include <cstdlib>
+#include <limits>
 #include <cmath>
 #include <string>
 #include <string_view>
@@ -27,13 +29,16 @@ std::string_view next_word(std::string_view text, size_t& at) {
 
 // A whole word as a double, correctly rounded (std::from_chars); false when
 // it is not a number from end to end. "nan" and "inf" parse (then caught as
-// non-finite); a number beyond double's range reads as infinite.
+// non-finite); a number beyond double's range reads as infinite, one below
+// its smallest as zero.
 bool read_number(std::string_view word, double& value) {
-  if (!word.empty() && word.front() == '+') word.remove_prefix(1);  // from_chars takes no '+'
+  if (!word.empty() && word.front() == '+') word.remove_prefix(1); // from_chars takes no '+'
   const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
-  if (error == std::errc::result_out_of_range) {
-    value = (!word.empty() && word.front() == '-') ? -HUGE_VAL : HUGE_VAL;
-    return end == word.data() + word.size();
+  if (error == std::errc::result_out_of_range && end == word.data() + word.size()) {
+    // Beyond double's range either way: strtod gives the infinity (caught
+    // as non-finite) or the zero (1e-400 is a coordinate of 0).
+    value = std::strtod(std::string(word).c_str(), nullptr);
+    return true;
   }
   return error == std::errc() && end == word.data() + word.size() && !word.empty();
 }
@@ -45,18 +50,25 @@ bool read_corner(std::string_view word, size_t count, long long& index) {
   if (!word.empty() && word.front() == '+') word.remove_prefix(1);
   const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), index);
   if (error != std::errc() || end != word.data() + word.size() || word.empty()) return false;
-  if (index < 0) index += static_cast<long long>(count);  // -1: the last position so far
-  else --index;                                            // OBJ counts from 1
+  if (index < 0)
+    index += static_cast<long long>(count); // -1: the last position so far
+  else
+    --index; // OBJ counts from 1
   return index >= 0 && index < static_cast<long long>(count);
 }
 
 class ObjBuilder {
 public:
   explicit ObjBuilder(std::uint64_t triangle_limit) : triangle_limit_(triangle_limit) {
-    mesh_.material_names.push_back("default");  // faces before any usemtl
+    mesh_.material_names.push_back("default"); // faces before any usemtl (and `usemtl default`)
+    material_ids_.emplace("default", 0);
   }
 
   Status position(std::string_view text, long line) {
+    // Corners are ints: a file of more positions than an int counts could
+    // not be indexed (and would be over 16 GiB of text).
+    if (mesh_.positions.size() >= static_cast<size_t>(std::numeric_limits<int>::max()))
+      return at_line(StatusCode::limit_exceeded, line, "more positions than an index can name");
     size_t at = 0;
     Eigen::Vector3d p;
     for (int k = 0; k < 3; ++k) {
@@ -81,11 +93,15 @@ public:
     for (std::string_view word = next_word(text, at); !word.empty(); word = next_word(text, at)) {
       long long index = 0;
       if (!read_corner(word, mesh_.positions.size(), index))
-        return at_line(word.find_first_not_of("+-0123456789/") == std::string_view::npos ? StatusCode::index_out_of_range
-                                                                                        : StatusCode::unreadable_file,
+        return at_line(word.find_first_not_of("+-0123456789/") == std::string_view::npos
+                           ? StatusCode::index_out_of_range
+                           : StatusCode::unreadable_file,
                        line, "face corner '" + std::string(word) + "' names no position");
       indices_.push_back(static_cast<int>(index));
       corners_.push_back(mesh_.positions[index]);
+      // A polygon of n corners makes n - 2 triangles: stop at the limit
+      // before one line's corners can outgrow it.
+      if (mesh_.triangles.size() + indices_.size() > triangle_limit_ + 2) return over_limit(line);
     }
     if (indices_.size() < 3) {
       ++skipped_;
@@ -96,10 +112,7 @@ public:
       return at_line(StatusCode::limit_exceeded, line,
                      "a concave polygon of " + std::to_string(indices_.size()) + " corners, more than the " +
                          std::to_string(kMostConcaveCorners) + " the reader triangulates (triangulate it on export)");
-    if (mesh_.triangles.size() + triangles_.size() > triangle_limit_)
-      return at_line(StatusCode::limit_exceeded, line,
-                     "more than the limit of " + std::to_string(triangle_limit_) +
-                         " triangles (raise it with --max-triangles)");
+    if (mesh_.triangles.size() + triangles_.size() > triangle_limit_) return over_limit(line);
     for (const Eigen::Vector3i& t : triangles_) {
       mesh_.triangles.emplace_back(indices_[t[0]], indices_[t[1]], indices_[t[2]]);
       mesh_.material_ids.push_back(material_);
@@ -127,6 +140,12 @@ public:
   }
 
 private:
+  Status over_limit(long line) const {
+    return at_line(
+        StatusCode::limit_exceeded, line,
+        "more than the limit of " + std::to_string(triangle_limit_) + " triangles (raise it with --max-triangles)");
+  }
+
   bool uses_default() const {
     for (int m : mesh_.material_ids)
       if (m == 0) return true;

@@ -34,8 +34,8 @@ namespace hullcover::detail {
 /// triangle); messages name the line and do not start with the path.
 /// What read_obj saw besides the mesh.
 struct ObjSideFacts {
-  int skipped_primitives = 0;               ///< lines, points, faces of fewer than three corners
-  std::vector<std::string> material_libraries;  ///< `mtllib` names, as written: never opened here
+  int skipped_primitives = 0;                  ///< lines, points, faces of fewer than three corners
+  std::vector<std::string> material_libraries; ///< `mtllib` names, as written: never opened here
 };
 
 Result<Mesh> read_obj(std::istream& in, std::uint64_t triangle_limit, ObjSideFacts& facts);

@@ -2,10 +2,13 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 
 namespace hullcover::detail {
 namespace {
+
+constexpr double kPi = 3.14159265358979323846;
 
 // Twice the signed area of the 2D triangle a, b, c: > 0 counter-clockwise.
 double turn(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
@@ -35,7 +38,10 @@ Triangulation triangulate_polygon(const std::vector<Eigen::Vector3d>& corners, s
   for (int i = 1; i + 1 < n; ++i) normal += (corners[i] - corners[0]).cross(corners[i + 1] - corners[0]);
   int drop = 0;
   normal.cwiseAbs().maxCoeff(&drop);
-  if (!(std::abs(normal[drop]) > 0.0)) {
+  double extent2 = 0.0;
+  for (const Eigen::Vector3d& c : corners) extent2 = std::max(extent2, (c - corners[0]).squaredNorm());
+  const double straight = kStraightDeviationRelative * std::sqrt(extent2);
+  if (!(std::abs(normal[drop]) > straight * std::sqrt(extent2))) {
     fan(0, ring, out);
     return Triangulation::fan;
   }
@@ -44,24 +50,37 @@ Triangulation triangulate_polygon(const std::vector<Eigen::Vector3d>& corners, s
   int u = (drop + 1) % 3, v = (drop + 2) % 3;
   if (normal[drop] < 0.0) std::swap(u, v);
   std::vector<Eigen::Vector2d> flat(n);
-  for (int i = 0; i < n; ++i) flat[i] = Eigen::Vector2d(corners[i][u], corners[i][v]);
+  for (int i = 0; i < n; ++i)
+    flat[i] = Eigen::Vector2d(corners[i][u], corners[i][v]) - Eigen::Vector2d(corners[0][u], corners[0][v]);
 
+  // Convex: no corner turns the other way beyond rounding, and the
+  // directions of its edges go round once (a pentagram turns one way but
+  // goes round twice).
   bool convex = true;
-  for (int i = 0; i < n && convex; ++i) convex = turn(flat[(i + n - 1) % n], flat[i], flat[(i + 1) % n]) >= 0.0;
-  if (convex) {
+  double winding = 0.0;
+  for (int i = 0; i < n && convex; ++i) {
+    const Eigen::Vector2d a = flat[(i + n - 1) % n], b = flat[i], c = flat[(i + 1) % n];
+    convex = turn(a, b, c) >= -straight * (c - a).norm();
+    const Eigen::Vector2d d0 = b - a, d1 = c - b;
+    winding += std::atan2(d0.x() * d1.y() - d0.y() * d1.x(), d0.dot(d1));
+  }
+  if (convex && winding < 3.0 * kPi) {
     fan(0, ring, out);
     return Triangulation::fan;
   }
   if (n > kMostConcaveCorners) return Triangulation::too_large;
 
   // Ear clipping: cut off a convex corner whose triangle holds no other
-  // corner, until three are left.
+  // corner, until three are left. The search for the next ear starts
+  // beside the last one cut, where new ears appear.
+  int from = 0;
   while (ring.size() > 3) {
     const int m = static_cast<int>(ring.size());
     int ear = -1;
-    for (int i = 0; i < m && ear < 0; ++i) {
+    for (int k = 0; k < m && ear < 0; ++k) {
+      const int i = (from + k) % m;
       const int a = ring[(i + m - 1) % m], b = ring[i], c = ring[(i + 1) % m];
-      if (!(turn(flat[a], flat[b], flat[c]) > 0.0)) continue;
+      if (!(turn(flat[a], flat[b], flat[c]) > straight * (flat[c] - flat[a]).norm())) continue;
       bool empty = true;
       for (int j = 0; j < m && empty; ++j) {
         const int p = ring[j];
@@ -74,6 +93,7 @@ Triangulation triangulate_polygon(const std::vector<Eigen::Vector3d>& corners, s
     if (ear < 0) break;
     out.emplace_back(ring[(ear + m - 1) % m], ring[ear], ring[(ear + 1) % m]);
     ring.erase(ring.begin() + ear);
+    from = std::max(0, ear - 1);
   }
   fan(0, ring, out);
   return Triangulation::ears;

@@ -1,5 +1,6 @@
 #include "cells/local_frame.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace hullcover::detail {
@@ -21,7 +22,15 @@ Eigen::Vector3d local_frame_origin(const PreparedMesh& prepared) {
   const Eigen::Vector3d centre = 0.5 * (box.min + box.max);
   const double diagonal = box.diagonal();
   if (!(centre.cwiseAbs().maxCoeff() > kFarFromOriginInDiagonals * diagonal)) return Eigen::Vector3d::Zero();
-  return centre.array().round();
+  // Each far coordinate snapped to a grid of a power of two at least the
+  // diagonal (and at least 1): an edit that moves the box a little keeps
+  // the frame (and so the cell cache's keys), and moving a coordinate by a
+  // multiple of a power of two near it is exact. Near coordinates stay.
+  const double step = std::exp2(std::ceil(std::log2(std::max(diagonal, 1.0))));
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 3; ++k)
+    if (std::abs(centre[k]) > kFarFromOriginInDiagonals * diagonal) origin[k] = std::round(centre[k] / step) * step;
+  return origin;
 }
 
 PreparedMesh in_local_frame(const PreparedMesh& prepared, const Eigen::Vector3d& origin) {

@@ -16,8 +16,9 @@ namespace hullcover::detail {
 
 /// The origin of the frame `prepared` is worked in: zero when the centre
 /// of its box lies within kFarFromOriginInDiagonals diagonals of the
-/// origin (in every coordinate), else that centre with each coordinate
-/// rounded to a whole number (so that moving a point near it is exact).
+/// origin (in every coordinate), else, in each coordinate that far out, the
+/// centre's snapped to a grid whose step is the least power of two at or
+/// above the diagonal (a small edit keeps the frame), and zero in the others.
 Eigen::Vector3d local_frame_origin(const PreparedMesh& prepared);
 
 /// A scene is far from the origin when its box's centre lies farther than

@@ -1,6 +1,7 @@
 #pragma once
 /// \file mesh_import.h
-/// Reading a scene file into one `Mesh`, through Assimp.
+/// Reading a scene file into one `Mesh`: OBJ by the project's own reader,
+/// every other format through Assimp.
 
 #include "hullcover/geometry/mesh.h"
 #include "hullcover/geometry/status.h"
@@ -52,7 +53,7 @@ struct ImportedMesh {
 ///
 /// OBJ files are read by the project's own reader, in double and in time
 /// linear in the file (every coordinate the double nearest its text; faces
-/// in file order; a concave polygon cut by ear clipping, at most 256
+/// in file order; a concave polygon cut by ear clipping, at most 128
 /// corners; no material library opened: materials are the `usemtl` names).
 /// Every other format goes through Assimp, which Debian builds with float32
 /// coordinates. The returned mesh's `coordinate_error` is the rounding bound
