@@ -14,7 +14,6 @@
 #include <pthread.h>
 
 #include <algorithm>
-#include <cctype>
 #include <fstream>
 #include <filesystem>
 #include <exception>
@@ -110,6 +109,25 @@ Status check_face_indices(const aiScene& scene) {
   return Status::success();
 }
 
+// The refusal `confined` recorded (a reference out of the folder, or a file
+// over the size limit) as the status the import fails with; none when
+// every reference it judged was allowed.
+std::optional<Status> refusal_of(const detail::ConfinedIOSystem& confined, const std::string& path) {
+  if (confined.refusal().empty()) return std::nullopt;
+  return Status{confined.refused_for_size() ? StatusCode::limit_exceeded : StatusCode::reference_outside_folder,
+                path + ": " + confined.refusal()};
+}
+
+// Checks the mesh a reader made and records its reader's rounding: each
+// coordinate carries at most `relative_rounding` of its magnitude.
+Status finish_import(const std::string& path, double relative_rounding, ImportedMesh& out) {
+  if (const Status valid = validate_mesh(out.mesh); !valid.ok())
+    return Status{valid.code(), path + ": " + valid.message()};
+  out.mesh.coordinate_error = relative_rounding * largest_coordinate_magnitude(out.mesh);
+  out.mesh.coordinate_relative_error = relative_rounding;
+  return Status::success();
+}
+
 Result<ImportedMesh> import_with_assimp(const std::string& path, const ImportLimits& limits) {
   Assimp::Importer importer;
   // The importer owns the IO system; `confined` stays valid while it lives.
@@ -120,11 +138,7 @@ Result<ImportedMesh> import_with_assimp(const std::string& path, const ImportLim
   const std::string absolute = std::filesystem::absolute(path, error).lexically_normal().string();
   auto* confined = new detail::ConfinedIOSystem(absolute, limits.max_file_bytes);
   importer.SetIOHandler(confined);
-  const auto refused = [&]() -> std::optional<Status> {
-    if (confined->refusal().empty()) return std::nullopt;
-    return Status{confined->refused_for_size() ? StatusCode::limit_exceeded : StatusCode::reference_outside_folder,
-                  path + ": " + confined->refusal()};
-  };
+  const auto refused = [&] { return refusal_of(*confined, path); };
   const std::string extension = std::filesystem::path(path).extension().string();
   if (extension.empty() || !importer.IsExtensionSupported(extension))
     return Status{StatusCode::unknown_format,
@@ -156,13 +170,9 @@ Result<ImportedMesh> import_with_assimp(const std::string& path, const ImportLim
   if (out.mesh.material_names.empty()) out.mesh.material_names.emplace_back("default");
 
   if (out.mesh.triangles.empty()) return Status{StatusCode::empty_scene, path + ": the file holds no triangles"};
-  if (const Status valid = validate_mesh(out.mesh); !valid.ok())
-    return Status{valid.code(), path + ": " + valid.message()};
-
   // Half a float32 unit in the last place, relative to the magnitude.
   constexpr double kFloat32RelativeRounding = std::numeric_limits<float>::epsilon() / 2.0;
-  out.mesh.coordinate_error = kFloat32RelativeRounding * largest_coordinate_magnitude(out.mesh);
-  out.mesh.coordinate_relative_error = kFloat32RelativeRounding;
+  if (Status finished = finish_import(path, kFloat32RelativeRounding, out); !finished.ok()) return finished;
   return out;
 }
 
@@ -208,26 +218,15 @@ Result<ImportedMesh> import_obj(const std::string& path, const ImportLimits& lim
   const detail::ConfinedIOSystem confined(absolute.string(), limits.max_file_bytes);
   for (const std::string& library : facts.material_libraries) {
     static_cast<void>(confined.Exists((absolute.parent_path() / library).string().c_str()));
-    if (!confined.refusal().empty())
-      return Status{confined.refused_for_size() ? StatusCode::limit_exceeded : StatusCode::reference_outside_folder,
-                    path + ": " + confined.refusal()};
+    if (std::optional<Status> refusal = refusal_of(confined, path)) return *refusal;
   }
   ImportedMesh out;
   out.mesh = std::move(read).value();
   out.report.mesh_instances = 1;
   out.report.skipped_non_triangle_primitives = facts.skipped_primitives;
-  if (const Status valid = validate_mesh(out.mesh); !valid.ok())
-    return Status{valid.code(), path + ": " + valid.message()};
   constexpr double kDoubleRelativeRounding = std::numeric_limits<double>::epsilon() / 2.0;
-  out.mesh.coordinate_error = kDoubleRelativeRounding * largest_coordinate_magnitude(out.mesh);
-  out.mesh.coordinate_relative_error = kDoubleRelativeRounding;
+  if (Status finished = finish_import(path, kDoubleRelativeRounding, out); !finished.ok()) return finished;
   return out;
-}
-
-bool is_obj(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return extension == ".obj";
 }
 
 Result<ImportedMesh> import_checked(const std::string& path, const ImportLimits& limits) {
@@ -243,7 +242,7 @@ Result<ImportedMesh> import_checked(const std::string& path, const ImportLimits&
                                                   " (raise it with --max-file-size)"};
   if (Status checked = detail::check_scene_file(path, limits); !checked.ok())
     return Status{checked.code(), path + ": " + checked.message()};
-  return is_obj(path) ? import_obj(path, limits, bytes) : import_with_assimp(path, limits);
+  return detail::lower_extension(path) == ".obj" ? import_obj(path, limits, bytes) : import_with_assimp(path, limits);
 }
 
 } // namespace

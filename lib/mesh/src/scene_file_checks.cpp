@@ -13,13 +13,6 @@
 namespace hullcover::detail {
 namespace {
 
-std::string lower_extension(const std::string& path) {
-  const std::size_t dot = path.find_last_of('.');
-  std::string ext = dot == std::string::npos ? std::string() : path.substr(dot);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
-
 // A binary STL is an 80-byte header, a count and 50 bytes per triangle; an
 // ASCII one starts with "solid" (a binary header may too, so the size
 // decides first).

@@ -7,12 +7,21 @@
 #include "hullcover/geometry/status.h"
 #include "hullcover/mesh/import_limits.h"
 
+#include <cctype>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <string>
 
 namespace hullcover::detail {
+
+/// The extension of `path`'s file name, dot included, in lower case ("" for
+/// none): what picks a format's checks and reader.
+inline std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
 
 /// A file that is not what it says: `unreadable_file` with `why`.
 inline Status damaged_file(const std::string& why) { return {StatusCode::unreadable_file, why}; }
