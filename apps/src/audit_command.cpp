@@ -39,25 +39,6 @@ struct AuditCommandOptions {
   bool quiet = false;
 };
 
-// `--threads N`: a whole number, 0 (every core) or more, refused otherwise
-// with a message that says so (bad usage: exit 2).
-CLI::Validator thread_count_check() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        size_t used = 0;
-        long count = -1;
-        try {
-          count = std::stol(text, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        if (used == 0 || used != text.size() || count < 0 || count > std::numeric_limits<int>::max())
-          return "the thread count must be 0 (every core) or a positive whole number, not '" + text + "'";
-        return {};
-      },
-      "N>=0");
-}
-
 int bad_input(const Status& status) {
   std::fprintf(stderr, "hullcover: error: %s\n", status.message().c_str());
   return kExitBadInput;
@@ -129,7 +110,8 @@ void register_audit_command(CLI::App& app, int& exit_status) {
       ->required();
   cmd->add_option("--tol", o->tolerance,
                   "Tolerance in scene units, for every island (default " + number_text(kDefaultRelativeTolerance) +
-                      " x each place's diagonal)");
+                      " x each place's diagonal)")
+      ->check(positive_number());
   add_import_limit_options(*cmd, o->limits);
   cmd->add_option("--probe", o->audit.probe.probe_distance,
                   "Optional cap on every ray's length in scene units (default none: the strict definition;\n"
@@ -145,12 +127,12 @@ void register_audit_command(CLI::App& app, int& exit_status) {
       ->check(positive_number());
   cmd->add_option("--proxies", o->audit.behaviour.proxies,
                   "Character proxies (sphere, capsule, box) compared on both worlds")
-      ->check(positive_number())
+      ->check(count_from(1, kMostProxies))
       ->capture_default_str();
   cmd->add_option("--proxy-size", o->audit.behaviour.size, "Proxy radius / half extent (default 0.005 x diagonal)")
       ->check(positive_number());
   cmd->add_option("--seed", o->audit.behaviour.seed, "Seed of the proxy poses (0 or more)")
-      ->check(non_negative_number())
+      ->check(seed_number())
       ->capture_default_str();
   cmd->add_option(
       "--octree", o->audit.probe.octree_path,
@@ -170,12 +152,12 @@ void register_audit_command(CLI::App& app, int& exit_status) {
                   "With --agent-radius or --max-deviation: distance evaluations one ray may use before it counts\n"
                   "as undecided (a violation; the report says where the first was given up). A ray needs about 2\n"
                   "per tolerance of its length beside hulls in enclosed space")
-      ->check(CLI::Range(2, std::numeric_limits<int>::max()))
+      ->check(count_from(2, std::numeric_limits<int>::max()))
       ->capture_default_str();
   cmd->add_option("--threads", o->audit.threads,
                   "Threads re-checking hulls and tracing rays at once (default 0: every core); the verdict,\n"
                   "the figures and the located places are the same for any count")
-      ->check(thread_count_check());
+      ->check(thread_count());
   cmd->add_option("--json", o->json_path, "Write the figures as JSON");
   cmd->add_option("--html", o->html_path,
                   "Write a self-contained HTML report (pictures embedded): the verdict in a green or red banner,\n"

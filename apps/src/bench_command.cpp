@@ -4,6 +4,7 @@
 // its audit; written as a CSV, a Markdown table and a plot.
 
 #include "commands.h"
+#include "number_checks.h"
 #include "terminal_progress.h"
 #include "scene_loading.h"
 
@@ -143,10 +144,10 @@ void register_bench_command(CLI::App& app, int& exit_status) {
                   "Radius of the timed capsule (half height 1.25 radii), raised to the sweep's largest agent radius")
       ->capture_default_str();
   cmd->add_option("--query-poses", o->run.query_poses, "Capsule poses and rays timed per scene")
-      ->check(CLI::Range(1, 1 << 20))
+      ->check(count_from(1, 1 << 20))
       ->capture_default_str();
   cmd->add_option("--query-seconds", o->run.query_seconds, "Least time per query kind on each world, seconds")
-      ->check(CLI::Range(1e-3, 60.0))
+      ->check(number_in(1e-3, 60.0))
       ->capture_default_str();
   cmd->add_option("--out", o->out_dir, "Folder for the files written (made if missing)")->capture_default_str();
   cmd->add_flag("-q,--quiet", o->quiet, "No progress bar (drawn on stderr only when it is a terminal)");

@@ -21,4 +21,8 @@ void register_render_command(CLI::App& app, int& exit_status);
 void register_export_command(CLI::App& app, int& exit_status);
 void register_world_command(CLI::App& app, int& exit_status);
 
+/// Sets up `app` as the `hullcover` tool: its description, footer and every
+/// command above. The tests walk the options it makes.
+void register_all_commands(CLI::App& app, int& exit_status);
+
 } // namespace hullcover::app

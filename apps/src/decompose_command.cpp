@@ -150,11 +150,12 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
   cmd->add_option("--world", o->world_path, "Also write the runtime file (.hcw) that 'query' and game servers load");
   cmd->add_option("--tol", o->tolerance,
                   "Tolerance in scene units, for every island (default " + number_text(kDefaultRelativeTolerance) +
-                      " x each place's diagonal)");
+                      " x each place's diagonal)")
+      ->check(positive_number());
   add_import_limit_options(*cmd, o->limits);
   cmd->add_option("--threads", o->decompose.threads,
                   "Threads merging cells at once (default 0: every core); the output is the same for any count")
-      ->check(non_negative_number());
+      ->check(thread_count());
   cmd->add_option("--cell-size", o->decompose.cell_size,
                   "Patches merge only within cells of this side, scene units, laid out per island (pieces of the "
                   "scene set apart from the rest); every hull is still checked against the whole scene. Default: "
@@ -177,7 +178,8 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
       ->capture_default_str();
   cmd->add_option("--reach", o->decompose.free_space_reach,
                   "Exact mode: cap on how far free space is kept in front of faces and beyond open edges, scene "
-                  "units (default: no cap, every ray of free space up to its first mesh hit)");
+                  "units (default: no cap, every ray of free space up to its first mesh hit)")
+      ->check(positive_number());
   cmd->add_option("--agent-radius", o->decompose.agent_radius,
                   "Exact mode for agents: hulls may also fill free space no ball of this radius (touching no "
                   "triangle) reaches, scene units; spheres and capsules at least this wide collide as with the "
@@ -198,15 +200,13 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
                   "within the near-merge distance) under the same conditions, then merge again: on or off (default: "
                   "exact on, paper off)")
       ->check(CLI::IsMember({"on", "off"}));
-  // A negative seed would wrap to a huge one: refused, like every other
-  // number out of range.
   cmd->add_option("--seed", o->decompose.seed, "Seed of the random order (0 or more)")
-      ->check(non_negative_number())
+      ->check(seed_number())
       ->capture_default_str();
   cmd->add_option("--tries", o->decompose.order_tries,
                   "Merge N times: in --order, then in random orders seeded --seed, --seed + 1, ...; keep the "
                   "covering with the fewest hulls (N times the merging time)")
-      ->check(CLI::Range(1, 1 << 16))
+      ->check(count_from(1, 1 << 16))
       ->capture_default_str();
   cmd->add_option("--bar-length", o->decompose.bar_half_length,
                   "Half-length of the boundary constraint bars, scene units (default: paper " +
@@ -220,12 +220,12 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
       ->check(non_negative_number());
   cmd->add_option("--max-hull-vertices", o->decompose.max_hull_vertices,
                   "Largest vertex count of a hull; a merge that exceeds it is not made")
-      ->check(CLI::Range(8, 1 << 20))
+      ->check(count_from(8, 1 << 20))
       ->capture_default_str();
   cmd->add_option("--max-hull-triangles", o->decompose.max_hull_triangles,
                   "Largest triangle count of a hull, its facets fanned into triangles, a flat hull counted as the "
                   "prism an engine export makes of it (Unity's convex MeshCollider: 255); default no limit")
-      ->check(CLI::Range(kFewestTrianglesOfAHullLimit, 1 << 22));
+      ->check(count_from(kFewestTrianglesOfAHullLimit, 1 << 22));
   cmd->add_flag("--materials", o->decompose.keep_materials_apart,
                 "Keep materials apart: one material per hull, bars on material borders");
   add_collider_export_options(cmd, o->exported);

@@ -3,6 +3,7 @@
 #include "help_numbers.h"
 #include "hullcover/geometry/tolerances.h"
 #include "commands.h"
+#include "number_checks.h"
 #include "mesh_report.h"
 
 #include "scene_loading.h"
@@ -55,7 +56,8 @@ void register_info_command(CLI::App& app, int& exit_status) {
   info->add_option("--tol", options->tolerance,
                    "Tolerance in scene units for welding and zero-area tests\n(default " +
                        number_text(kDefaultRelativeTolerance) +
-                       " x each place's diagonal; never below the data's rounding floor)");
+                       " x each place's diagonal; never below the data's rounding floor)")
+      ->check(positive_number());
   add_import_limit_options(*info, options->limits);
   info->add_flag("--json", options->json, "Print the figures as JSON on standard output");
   info->callback([options, &exit_status] { exit_status = run_info(*options); });

@@ -108,17 +108,32 @@ void register_query_command(CLI::App& app, int& exit_status) {
       "or box (with the nearest hull when there are none), or the first hit of a ray. Normals point\n"
       "out of the world hull, towards the shape; depth is how far to move along it to separate.");
   cmd->add_option("WORLD", o->world, "Runtime file (.hcw)")->required();
-  cmd->add_option("--sphere", o->sphere, "x,y,z,radius")->delimiter(',')->expected(4);
+  cmd->add_option("--sphere", o->sphere, "x,y,z,radius")
+      ->delimiter(',')
+      ->expected(4)
+      ->check(coordinate())
+      ->check(positive_number().application_index(3));
   cmd->add_option("--capsule", o->capsule,
                   "x,y,z,radius,half_height[,ax,ay,az]: centre, end-sphere radius, half the axis length,\n"
                   "axis direction (default 0,1,0: upright in a y-up scene)")
       ->delimiter(',')
-      ->expected(5, 8);
+      ->expected(5, 8)
+      ->check(coordinate())
+      ->check(positive_number().application_index(3))
+      ->check(non_negative_number().application_index(4));
   cmd->add_option("--box", o->box, "x,y,z,hx,hy,hz: centre and half extents (axis-aligned)")
       ->delimiter(',')
-      ->expected(6);
-  cmd->add_option("--ray", o->ray, "ox,oy,oz,dx,dy,dz[,max_distance]")->delimiter(',')->expected(6, 7);
-  cmd->add_option("--max-contacts", o->max_contacts, "Most contacts to report")->check(positive_number());
+      ->expected(6)
+      ->check(coordinate())
+      ->check(positive_number().application_index(3))
+      ->check(positive_number().application_index(4))
+      ->check(positive_number().application_index(5));
+  cmd->add_option("--ray", o->ray, "ox,oy,oz,dx,dy,dz[,max_distance]")
+      ->delimiter(',')
+      ->expected(6, 7)
+      ->check(coordinate())
+      ->check(positive_number().application_index(6));
+  cmd->add_option("--max-contacts", o->max_contacts, "Most contacts to report")->check(count_from(1, kMostContacts));
   cmd->callback([o, &exit_status] { exit_status = run_query(*o); });
 }
 

@@ -129,7 +129,7 @@ void register_world_command(CLI::App& app, int& exit_status) {
       ->required();
   cmd->add_option("-o,--output", o->output, "The world OBJ")->required();
   cmd->add_option("--triangles", o->triangles, "Stop once the world holds at least this many (default: one copy each)")
-      ->check(non_negative_number());
+      ->check(count_from(0, kMostWorldTriangles));
   cmd->add_option("--gap", o->gap, "Space between copies, as a fraction of the largest diagonal")
       ->check(non_negative_number())
       ->capture_default_str();

@@ -1,6 +1,7 @@
 #include "hullcover/validate/behaviour_equivalence.h"
 
 #include "enclosed_space.h"
+#include "probe_rays.h"
 
 #include "hullcover/geometry/tolerances.h"
 
@@ -20,30 +21,74 @@ constexpr double kDefaultProxyRelative = 0.005;
 // Contacts compared per pose, deepest first.
 constexpr int kContactsCompared = 16;
 
-// Is `p` in accessible space: does the ray from it along `dir` first meet a
-// face from the front (or nothing)? `free_to` is how far along the ray
-// (infinite when it meets nothing).
+// Is `p` in accessible space: is the ray from it along `dir` open? The
+// probe's rule, the strict definition's (probe::ends_on_backs): enclosed
+// only when every face within `tol` of its first hit is met from behind.
+// `free_to` is how far along the ray (infinite when it meets nothing).
 bool accessible(const bvh::TriangleWorld& triangles, const Mesh& mesh, const Eigen::Vector3d& p,
-                const Eigen::Vector3d& dir, double reach, double& free_to) {
+                const Eigen::Vector3d& dir, double reach, double tol, double& free_to) {
   bvh::RayResult hit;
   free_to = std::numeric_limits<double>::infinity();
   if (!triangles.ray_cast({p, dir, reach}, hit).ok() || !hit.hit) return true;
   free_to = hit.first.t;
-  return triangle_area_vector(mesh, hit.first.hull).dot(dir) < 0.0;
+  return !probe::ends_on_backs(triangles, mesh, p, dir, hit.first.t, tol);
 }
 
-// Does the proxy's reach into the hull lie in enclosed space? Judged where
-// it reaches deepest (the contact point pushed in by the depth) and half
-// way there; either point free makes the contact lost space. A proxy can
+// Samples of a proxy per axis of its bounding box when its reach into a
+// solid hull is judged: 9 x 9 x 9 points, of which those inside the proxy
+// and deeper than tol in the hull are judged.
+constexpr int kReachSamplesPerAxis = 9;
+
+// Points of `shape` at `pose`: a grid over its bounding box, kept where
+// inside the shape.
+std::vector<Eigen::Vector3d> proxy_samples(const bvh::QueryShape& shape, const Eigen::Isometry3d& pose) {
+  Eigen::Vector3d half = shape.half_extents;
+  if (shape.kind != bvh::ShapeKind::box) half = Eigen::Vector3d(shape.radius, shape.radius, shape.radius);
+  if (shape.kind == bvh::ShapeKind::capsule) half.z() += shape.half_height;
+  std::vector<Eigen::Vector3d> samples;
+  const int n = kReachSamplesPerAxis;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) {
+        const Eigen::Vector3d unit(2.0 * i / (n - 1) - 1.0, 2.0 * j / (n - 1) - 1.0, 2.0 * k / (n - 1) - 1.0);
+        const Eigen::Vector3d local = unit.cwiseProduct(half);
+        if (shape.kind == bvh::ShapeKind::sphere && local.norm() > shape.radius) continue;
+        if (shape.kind == bvh::ShapeKind::capsule) {
+          const double along = std::clamp(local.z(), -shape.half_height, shape.half_height);
+          if ((local - Eigen::Vector3d(0.0, 0.0, along)).norm() > shape.radius) continue;
+        }
+        samples.push_back(pose * local);
+      }
+  return samples;
+}
+
+// Does the proxy's reach into the hull lie in enclosed space? A proxy can
 // pass an opening in a closed object without touching a triangle (a rail
 // whose side against a wall is left out, the wall's floor and ceiling
 // running on behind it: Red Eclipse's deathtrap), and a hull may fill what
 // lies behind such an opening, the strict definition's enclosed space.
-bool reach_is_enclosed(const probe::EnclosedSpace& enclosed, const bvh::Contact& deepest, double tol) {
+//
+// Judged where it reaches deepest (the contact point pushed in by the
+// depth) and half way there, and, for a hull with an inside deeper than
+// tol, at the proxy's sample points: each judged point of a solid hull
+// must lie deeper than tol inside it (a contact's normal is the surface's,
+// not the smallest push: its depth can run past what the proxy holds
+// inside the hull). Any judged point free makes the contact lost.
+bool reach_is_enclosed(const probe::EnclosedSpace& enclosed, const bvh::RuntimeHull& hull,
+                       const bvh::QueryShape& shape, const Eigen::Isometry3d& pose, const bvh::Contact& deepest,
+                       double tol) {
+  const bool solid = !hull_interior(hull.shape, tol).empty();
+  const auto judged = [&](const Eigen::Vector3d& p) {
+    return !solid || deepest_signed_distance(hull.shape.planes, p) < -tol;
+  };
   const Eigen::Vector3d inward = -deepest.normal;
-  for (const double share : {1.0, 0.5})
-    if (share * deepest.depth > tol && !enclosed.holds(deepest.point + share * deepest.depth * inward, tol))
-      return false;
+  for (const double share : {1.0, 0.5}) {
+    const Eigen::Vector3d p = deepest.point + share * deepest.depth * inward;
+    if (share * deepest.depth > tol && judged(p) && !enclosed.holds(p, tol)) return false;
+  }
+  if (solid)
+    for (const Eigen::Vector3d& p : proxy_samples(shape, pose))
+      if (judged(p) && !enclosed.holds(p, tol)) return false;
   return true;
 }
 
@@ -86,7 +131,7 @@ Result<BehaviourReport> compare_behaviour(const PreparedMesh& prepared, const bv
       const double tol = prepared.face_tolerance(f); // the place's: the pose sits at face f
       const double stand_off = kRayStandOffInTolerances * tol;
       double free_to = 0.0;
-      if (!accessible(triangles, mesh, on_face + n * stand_off, n, prepared.tolerance.diagonal, free_to)) continue;
+      if (!accessible(triangles, mesh, on_face + n * stand_off, n, prepared.tolerance.diagonal, tol, free_to)) continue;
       // Its centre on the face's open front ray: a point of accessible space.
       // One behind the face (a box proxy can sit wholly inside a closed
       // object past the face's edge) touches no triangle yet stands in no
@@ -125,7 +170,7 @@ Result<BehaviourReport> compare_behaviour(const PreparedMesh& prepared, const bv
           if (!enclosed) enclosed.emplace(prepared, triangles);
           const bvh::Contact* lost = nullptr;
           for (const bvh::Contact& c : on_hulls.contacts)
-            if (c.depth > tol && !reach_is_enclosed(*enclosed, c, tol)) {
+            if (c.depth > tol && !reach_is_enclosed(*enclosed, hulls.hulls()[c.hull], shape, pose, c, tol)) {
               lost = &c;
               break;
             }

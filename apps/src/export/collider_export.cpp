@@ -2,6 +2,7 @@
 #include "number_checks.h"
 
 #include "export/collider_obj_writer.h"
+#include "export/cooking_margin.h"
 #include "export/flat_hull_thickening.h"
 
 #include <algorithm>
@@ -14,6 +15,14 @@ namespace {
 
 // Breaches listed in an error before "and N more".
 constexpr size_t kBreachesListed = 5;
+
+Status breaches_status(const std::vector<std::string>& breaches, const std::string& what) {
+  std::string message = std::to_string(breaches.size()) + " " + what + ":";
+  for (size_t i = 0; i < std::min(breaches.size(), kBreachesListed); ++i) message += "\n  " + breaches[i];
+  if (breaches.size() > kBreachesListed)
+    message += "\n  and " + std::to_string(breaches.size() - kBreachesListed) + " more";
+  return Status{StatusCode::invalid_argument, message};
+}
 
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() &&
@@ -98,19 +107,16 @@ Result<ColliderExportReport> export_colliders(const std::vector<bvh::RuntimeHull
   if (!(std::isfinite(thickness) && thickness > 0.0))
     return Status{StatusCode::invalid_argument, "flat thickness must be a length > 0"};
   const ThickenedHulls thick = thicken_flat_hulls(hulls, thickness, tol);
-  const std::vector<std::string> breaches = engine_limit_breaches(thick.hulls, limits);
-  if (!breaches.empty()) {
-    std::string message = std::to_string(breaches.size()) + " hull limit(s) broken:";
-    for (size_t i = 0; i < std::min(breaches.size(), kBreachesListed); ++i) message += "\n  " + breaches[i];
-    if (breaches.size() > kBreachesListed)
-      message += "\n  and " + std::to_string(breaches.size() - kBreachesListed) + " more";
-    return Status{StatusCode::invalid_argument, message};
-  }
-  const std::vector<std::string> names = collider_names(thick.hulls.size(), options);
+  const CookingRepair cooked =
+      repair_cooking_margins(thick.hulls, limits.hull_tolerance_metres * options.units_per_metre);
+  if (!cooked.failures.empty()) return breaches_status(cooked.failures, "hull(s) the engine cannot cook as they are");
+  const std::vector<std::string> breaches = engine_limit_breaches(cooked.hulls, limits);
+  if (!breaches.empty()) return breaches_status(breaches, "hull limit(s) broken");
+  const std::vector<std::string> names = collider_names(cooked.hulls.size(), options);
   RenderMesh render;
   if (options.with_scene) render = {scene, options.ucx_name.empty() ? "scene" : options.ucx_name};
-  const Status written = *format == ColliderFormat::glb ? write_collider_glb(thick.hulls, names, render, path)
-                                                        : write_collider_obj(thick.hulls, names, render, path);
+  const Status written = *format == ColliderFormat::glb ? write_collider_glb(cooked.hulls, names, render, path)
+                                                        : write_collider_obj(cooked.hulls, names, render, path);
   if (!written.ok()) return written;
   ColliderExportReport report;
   report.format = *format;
@@ -118,6 +124,8 @@ Result<ColliderExportReport> export_colliders(const std::vector<bvh::RuntimeHull
   report.flat_thickened = thick.flat;
   report.split = thick.split;
   report.thickness = thickness;
+  report.cooking_repaired = cooked.repaired;
+  report.cooking_margin = cooked.margin;
   report.engine = limits.name;
   return report;
 }
@@ -129,7 +137,15 @@ std::string describe_export(const ColliderExportReport& report, const std::strin
                 "double-sided sheet): free space lost to them lies within %.6g of the mesh",
                 report.hulls, path.c_str(), report.format == ColliderFormat::glb ? "glTF binary" : "OBJ",
                 report.engine.c_str(), report.flat_thickened, report.thickness, report.split, report.thickness);
-  return line;
+  std::string text = line;
+  if (report.cooking_repaired > 0) {
+    std::snprintf(line, sizeof line,
+                  "; %d hulls given corners at least %.6g clear of the others so the engine's hull builder keeps "
+                  "them, growing by at most %.6g",
+                  report.cooking_repaired, report.cooking_margin, report.cooking_margin);
+    text += line;
+  }
+  return text;
 }
 
 } // namespace hullcover::app

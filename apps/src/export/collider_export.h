@@ -2,6 +2,7 @@
 /// \file collider_export.h
 /// An engine export of a covering's hulls (`hullcover export`, `hullcover
 /// decompose --format`): flat hulls thickened (flat_hull_thickening.h),
+/// corners kept clear for the engine's hull builder (cooking_margin.h),
 /// every hull checked against the target engine's limits
 /// (engine_limits.h), then written as glTF binary or OBJ with the engine's
 /// collider names.
@@ -48,7 +49,12 @@ struct ColliderExportReport {
   int flat_thickened = 0; ///< flat hulls given a thickness
   int split = 0;          ///< of those, split across both sides of a double-sided sheet
   double thickness = 0.0; ///< scene units
-  std::string engine;     ///< the limits checked
+  /// Hulls whose corners were pushed clear of the others so the engine's
+  /// hull builder keeps every one (cooking_margin.h), and that clearance
+  /// (scene units): no point moved farther out than it.
+  int cooking_repaired = 0;
+  double cooking_margin = 0.0;
+  std::string engine; ///< the limits checked
 };
 
 /// Adds the export options (--format, --ucx, --godot, --engine,

@@ -11,6 +11,8 @@ namespace {
 // Twice Jolt's default hull tolerance (1 mm), the largest flatness
 // threshold of the engines below, so a thickened flat hull cooks in all.
 constexpr double kEngineMinThicknessMetres = 0.002;
+// Jolt's default hull tolerance, the largest of the engines' (cooking_margin.h).
+constexpr double kEngineHullToleranceMetres = 0.001;
 
 constexpr int kJoltMaxVertices = 256;
 constexpr int kPhysxMaxVertices = 256;
@@ -33,17 +35,28 @@ constexpr std::array<std::pair<const char*, TargetEngine>, 7> kEngines = {{
 EngineLimits engine_limits(TargetEngine engine) {
   switch (engine) {
     case TargetEngine::any:
-      return {"any engine", kPhysxMaxVertices, kPhysxMaxPolygons, kUnityMaxTriangles, kEngineMinThicknessMetres};
+      return {"any engine",       kPhysxMaxVertices,         kPhysxMaxPolygons,
+              kUnityMaxTriangles, kEngineMinThicknessMetres, kEngineHullToleranceMetres};
     // Godot 4.4 and later simulate with Jolt by default.
-    case TargetEngine::jolt: return {"Jolt", kJoltMaxVertices, 0, 0, kEngineMinThicknessMetres};
-    case TargetEngine::godot: return {"Godot (Jolt)", kJoltMaxVertices, 0, 0, kEngineMinThicknessMetres};
-    case TargetEngine::physx: return {"PhysX", kPhysxMaxVertices, kPhysxMaxPolygons, 0, kEngineMinThicknessMetres};
+    case TargetEngine::jolt:
+      return {"Jolt", kJoltMaxVertices, 0, 0, kEngineMinThicknessMetres, kEngineHullToleranceMetres};
+    case TargetEngine::godot:
+      return {"Godot (Jolt)", kJoltMaxVertices, 0, 0, kEngineMinThicknessMetres, kEngineHullToleranceMetres};
+    case TargetEngine::physx:
+      return {"PhysX", kPhysxMaxVertices, kPhysxMaxPolygons, 0, kEngineMinThicknessMetres, kEngineHullToleranceMetres};
     // Unreal's importer cooks UCX meshes as PhysX did before Chaos kept them.
-    case TargetEngine::unreal: return {"Unreal", kPhysxMaxVertices, kPhysxMaxPolygons, 0, kEngineMinThicknessMetres};
+    case TargetEngine::unreal:
+      return {"Unreal", kPhysxMaxVertices, kPhysxMaxPolygons, 0, kEngineMinThicknessMetres, kEngineHullToleranceMetres};
     case TargetEngine::physx_gpu:
-      return {"PhysX GPU", kPhysxGpuMaxVertices, kPhysxMaxPolygons, 0, kEngineMinThicknessMetres};
+      return {"PhysX GPU", kPhysxGpuMaxVertices,      kPhysxMaxPolygons,
+              0,           kEngineMinThicknessMetres, kEngineHullToleranceMetres};
     case TargetEngine::unity:
-      return {"Unity", kPhysxMaxVertices, kPhysxMaxPolygons, kUnityMaxTriangles, kEngineMinThicknessMetres};
+      return {"Unity",
+              kPhysxMaxVertices,
+              kPhysxMaxPolygons,
+              kUnityMaxTriangles,
+              kEngineMinThicknessMetres,
+              kEngineHullToleranceMetres};
   }
   return engine_limits(TargetEngine::any);
 }

@@ -25,6 +25,12 @@ struct EngineLimits {
   /// sets fail to cook or are dropped (Jolt's hull tolerance is 1 mm,
   /// PhysX's plane tolerance 0.7 mm; twice the largest of them).
   double min_thickness_metres = 0.0;
+  /// Distance within which the engine's hull builder drops a point as
+  /// already inside, metres: Jolt's default hull tolerance is 1 mm, PhysX's
+  /// plane tolerance 0.7 mm (grown with the hull's size), so 1 mm for all.
+  /// The export keeps no hull corner its builder could drop and then find
+  /// outside (cooking_margin.h).
+  double hull_tolerance_metres = 0.0;
 };
 
 /// The limits of `engine`. `any` is the strictest of the CPU engines:
