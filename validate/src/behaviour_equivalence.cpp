@@ -74,9 +74,8 @@ std::vector<Eigen::Vector3d> proxy_samples(const bvh::QueryShape& shape, const E
 // must lie deeper than tol inside it (a contact's normal is the surface's,
 // not the smallest push: its depth can run past what the proxy holds
 // inside the hull). Any judged point free makes the contact lost.
-bool reach_is_enclosed(const probe::EnclosedSpace& enclosed, const bvh::RuntimeHull& hull,
-                       const bvh::QueryShape& shape, const Eigen::Isometry3d& pose, const bvh::Contact& deepest,
-                       double tol) {
+bool reach_is_enclosed(const probe::EnclosedSpace& enclosed, const bvh::RuntimeHull& hull, const bvh::QueryShape& shape,
+                       const Eigen::Isometry3d& pose, const bvh::Contact& deepest, double tol) {
   const bool solid = !hull_interior(hull.shape, tol).empty();
   const auto judged = [&](const Eigen::Vector3d& p) {
     return !solid || deepest_signed_distance(hull.shape.planes, p) < -tol;
