@@ -45,6 +45,30 @@ TEST(ConvexHullBuilder, FlatInputFailsWithAStatusNotAnExit) {
   EXPECT_EQ(hull.status().code(), StatusCode::degenerate_scene);
 }
 
+// collision-world turned by 0.7 rad and moved to 1e5: a double-sided wall's
+// eight corners lie within 2e-12 of one plane. Qhull builds a sliver of
+// them; the builder refuses it as flat, as it refuses exactly coplanar
+// points, while a hull a millionth of its size thick is kept.
+TEST(ConvexHullBuilder, PointsFlatButForRoundingAreFlat) {
+  const std::vector<Eigen::Vector3d> wall = {{100012.08214695222, 100005.7471582244, -99934.850726621211},
+                                             {99965.131032148158, 100005.7471582244, -99974.397105070457},
+                                             {99965.131032148158, 100013.41627016439, -99974.397105070457},
+                                             {100012.08214695222, 100013.41627016439, -99934.850726621211},
+                                             {99962.824609436037, 100005.7471582244, -99976.339778121313},
+                                             {99962.824609436037, 100013.41627016439, -99976.339778121313},
+                                             {100005.73494219754, 100007.50687353345, -99940.196903434495},
+                                             {100005.73494219754, 100008.70089570616, -99940.196903434495}};
+  ConvexHullBuilder builder;
+  const auto sliver = builder.build(wall);
+  EXPECT_FALSE(sliver.ok());
+  EXPECT_EQ(sliver.status().code(), hullcover::StatusCode::degenerate_scene);
+  // The same wall a micrometre thick (its extent is about 60): a solid.
+  std::vector<Eigen::Vector3d> slab = wall;
+  const Eigen::Vector3d across = (wall[1] - wall[0]).cross(wall[3] - wall[0]).normalized();
+  for (const Eigen::Vector3d& p : wall) slab.push_back(p + 1e-6 * across);
+  EXPECT_TRUE(builder.build(slab).ok());
+}
+
 TEST(SegmentEntersInterior, CountsOnlyDepthBeyondTheTolerance) {
   ConvexHullBuilder builder;
   const Result<ConvexPolytope> hull = builder.build(cube_points(Eigen::Vector3d::Zero()));

@@ -1,5 +1,7 @@
 #include "hullcover/covering/convex_hull_3d.h"
 
+#include "hullcover/geometry/tolerances.h"
+
 extern "C" {
 #include <libqhull_r/qhull_ra.h>
 }
@@ -8,6 +10,7 @@ extern "C" {
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace hullcover {
 
@@ -38,6 +41,25 @@ void order_around(std::vector<int>& facet, const std::vector<Eigen::Vector3d>& v
   }
   std::sort(by_angle.begin(), by_angle.end());
   for (size_t i = 0; i < facet.size(); ++i) facet[i] = by_angle[i].second;
+}
+
+// How thin the hull is: across its thinnest facet, the depth of the
+// vertex farthest behind that facet's plane.
+double thinnest_width(const ConvexPolytope& hull) {
+  double thinnest = std::numeric_limits<double>::infinity();
+  for (const Plane& plane : hull.planes) {
+    double width = 0.0;
+    for (const Eigen::Vector3d& v : hull.vertices) width = std::max(width, -plane.signed_distance(v));
+    thinnest = std::min(thinnest, width);
+  }
+  return thinnest;
+}
+
+// The diagonal of the points' bounding box.
+double extent_of(const std::vector<Eigen::Vector3d>& points) {
+  Eigen::Vector3d low = points.front(), high = points.front();
+  for (const Eigen::Vector3d& p : points) low = low.cwiseMin(p), high = high.cwiseMax(p);
+  return (high - low).norm();
 }
 
 } // namespace
@@ -89,7 +111,10 @@ Result<ConvexPolytope> ConvexHullBuilder::build(const std::vector<Eigen::Vector3
       hull.facets.push_back(std::move(corners));
       hull.planes.push_back(plane);
     }
-    result = std::move(hull);
+    if (thinnest_width(hull) <= kFlatHullRelativeWidth * extent_of(points))
+      result = Status{StatusCode::degenerate_scene, "the points lie within rounding of a plane"};
+    else
+      result = std::move(hull);
   }
   qh_freeqhull(qh, !qh_ALL);
   int still_long = 0, total_long = 0;

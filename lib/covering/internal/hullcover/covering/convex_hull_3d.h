@@ -27,7 +27,9 @@ public:
   /// merges are one polygon. Work happens in a frame centred on the points,
   /// so scenes far from the origin lose no precision.
   /// Fails with `degenerate_scene` when Qhull rejects the input (flat or
-  /// too few points), with Qhull's error number in the message.
+  /// too few points), with Qhull's error number in the message, and when the
+  /// hull it builds is thinner than kFlatHullRelativeWidth of the points'
+  /// extent (flat but for rounding).
   /// `ids`, when not empty, gives an id per point that is copied into the
   /// result's `vertex_ids`.
   Result<ConvexPolytope> build(const std::vector<Eigen::Vector3d>& points, const std::vector<int>& ids = {});

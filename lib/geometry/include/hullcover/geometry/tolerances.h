@@ -150,6 +150,15 @@ inline constexpr double kTriangleMarginInTolerances = 4.0;
 /// on it (a query shape carries no scene tolerance).
 inline constexpr double kPointHullRelativeTolerance = 1e-9;
 
+/// A hull Qhull builds thinner than this fraction of its points' extent is
+/// flat, and the decomposer's hull builder refuses it as Qhull refuses
+/// exactly coplanar points (convex_hull_3d.h). Points one plane holds in
+/// exact arithmetic come off it by rounding once a scene is turned and
+/// moved (a double-sided wall at 1e5 lies within 1e-12 of its plane); built
+/// as a solid, that sliver's facets have normals made of noise and it
+/// would span what the flat union may not. The point hull's fraction.
+inline constexpr double kFlatHullRelativeWidth = kPointHullRelativeTolerance;
+
 /// The narrow phase (hull_contact.cpp) takes a distance below this fraction
 /// of a hull's size (1 + its box diagonal) as zero: the direction between
 /// closest points that near is rounding noise, so the separating-axis path
