@@ -17,6 +17,10 @@
 
 namespace hullcover::bvh {
 
+// Nodes a ray's traversal stack holds before it grows: a balanced tree of a
+// million triangles is 20 deep, and the stack holds at most one sibling a level.
+constexpr size_t kRayStackReserve = 64;
+
 struct TriangleWorld::Fcl {
   std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> model;
   std::unique_ptr<fcl::CollisionObjectd> object;
@@ -175,21 +179,19 @@ Status TriangleWorld::contacts(const ContactRequest& request, ContactResult& res
 void TriangleWorld::traverse_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double& reach,
                                  const std::function<void(const RayHit&)>& on_hit) const {
   const fcl::BVHModel<fcl::OBBRSSd>& model = *fcl_->model;
-  std::vector<int> stack = {0};
-  while (!stack.empty()) {
-    const fcl::BVNode<fcl::OBBRSSd>& node = model.getBV(stack.back());
-    stack.pop_back();
-    // Slab test in the node's oriented box frame, up to the current reach.
-    const fcl::OBBd& box = node.bv.obb;
+  // Where the ray enters node `id`'s box, within the current reach, or
+  // nothing. A slab test in the box's oriented frame; boxes are grown by the
+  // margin: a tight box (flat for a triangle) would lose rays through its
+  // edges to rounding.
+  const auto entry_into = [&](int id) -> std::optional<double> {
+    const fcl::OBBd& box = model.getBV(id).bv.obb;
     const Eigen::Vector3d o = box.axis.transpose() * (origin - box.To);
     const Eigen::Vector3d d = box.axis.transpose() * dir;
-    // Boxes grown by the margin: a tight box (flat for a triangle) would
-    // lose rays through its edges to rounding.
     double t0 = 0.0, t1 = reach;
     for (int k = 0; k < 3 && t0 <= t1; ++k) {
       const double extent = box.extent[k] + margin_;
       if (d[k] == 0.0) {
-        if (std::abs(o[k]) > extent) t0 = t1 + 1.0;
+        if (std::abs(o[k]) > extent) return std::nullopt;
         continue;
       }
       double a = (-extent - o[k]) / d[k], b = (extent - o[k]) / d[k];
@@ -197,10 +199,34 @@ void TriangleWorld::traverse_ray(const Eigen::Vector3d& origin, const Eigen::Vec
       t0 = std::max(t0, a);
       t1 = std::min(t1, b);
     }
-    if (t0 > t1) continue;
+    if (t0 > t1) return std::nullopt;
+    return t0;
+  };
+  // Nearer child first, and a node entered beyond the reach (which a hit
+  // shortens) is skipped: a ray down a row of N separate triangles meets
+  // the first and visits O(log N) nodes, not all N.
+  struct Pending {
+    int node;
+    double entry;
+  };
+  std::vector<Pending> stack;
+  stack.reserve(kRayStackReserve);
+  if (const std::optional<double> root = entry_into(0)) stack.push_back({0, *root});
+  while (!stack.empty()) {
+    const Pending top = stack.back();
+    stack.pop_back();
+    if (top.entry > reach) continue;
+    const fcl::BVNode<fcl::OBBRSSd>& node = model.getBV(top.node);
     if (!node.isLeaf()) {
-      stack.push_back(node.leftChild());
-      stack.push_back(node.rightChild());
+      const std::optional<double> left = entry_into(node.leftChild()), right = entry_into(node.rightChild());
+      const bool left_first = left && (!right || *left <= *right);
+      if (left_first) {
+        if (right) stack.push_back({node.rightChild(), *right});
+        stack.push_back({node.leftChild(), *left});
+      } else {
+        if (left) stack.push_back({node.leftChild(), *left});
+        if (right) stack.push_back({node.rightChild(), *right});
+      }
       continue;
     }
     // The model holds only triangles with a surface, in triangles_ order.

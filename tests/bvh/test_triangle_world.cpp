@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 namespace hullcover::bvh {
@@ -86,6 +87,44 @@ TEST(TriangleWorld, AgreesWithTheHullWorldOutsideAClosedBlock) {
     EXPECT_NEAR(rt.first.t, rh.first.t, 1e-9);
   }
   EXPECT_GT(compared, 50);
+}
+
+// A ray down a row of separate triangles (scattered debris, one island
+// each) first meets the nearest; it is found by visiting the tree nearest
+// first. Where two triangles coincide the lower face wins, and every hit up
+// to a reach is listed, however the tree is walked.
+TEST(TriangleWorld, ARayDownARowOfTrianglesMeetsTheNearestAndListsEveryHit) {
+  constexpr int kRow = 2000;
+  Mesh mesh;
+  for (int i = 0; i < kRow; ++i) {
+    const int base = static_cast<int>(mesh.positions.size());
+    mesh.positions.push_back(V(i, -1, -1));
+    mesh.positions.push_back(V(i, 2, -1));
+    mesh.positions.push_back(V(i, -1, 2));
+    mesh.triangles.emplace_back(base, base + 1, base + 2);
+  }
+  // A second triangle on the first's plane, added last.
+  mesh.positions.push_back(V(0, -1, -1));
+  mesh.positions.push_back(V(0, 2, -1));
+  mesh.positions.push_back(V(0, -1, 2));
+  mesh.triangles.emplace_back(3 * kRow, 3 * kRow + 1, 3 * kRow + 2);
+  mesh.material_ids.assign(mesh.triangles.size(), 0);
+  const auto built = TriangleWorld::build(mesh, 1e-6);
+  ASSERT_TRUE(built.ok()) << built.status().message();
+  const auto& world = built.value();
+  for (const double start : {-0.5, 10.5, 1234.5}) {
+    RayResult hit;
+    ASSERT_TRUE(world->ray_cast({V(start, 0.1, 0.2), V(1, 0, 0), 1e9}, hit).ok());
+    ASSERT_TRUE(hit.hit);
+    EXPECT_DOUBLE_EQ(hit.first.t, std::ceil(start) - start);
+    EXPECT_EQ(hit.first.hull, static_cast<int>(std::ceil(start)));
+  }
+  std::vector<RayHit> hits;
+  ASSERT_TRUE(world->ray_hits({V(-0.5, 0.1, 0.2), V(1, 0, 0), 100.0}, hits).ok());
+  ASSERT_EQ(hits.size(), 101u); // faces 0 to 99, and the copy of face 0
+  EXPECT_EQ(hits[0].hull, 0);
+  EXPECT_EQ(hits[1].hull, kRow);
+  for (size_t k = 2; k < hits.size(); ++k) EXPECT_EQ(hits[k].hull, static_cast<int>(k - 1));
 }
 
 } // namespace
