@@ -3,6 +3,7 @@
 #include "confined_io.h"
 #include "scene_file_checks.h"
 #include "obj_reader.h"
+#include "stl_ascii_reader.h"
 #include "scene_file_rules.h"
 
 #include <assimp/Importer.hpp>
@@ -200,8 +201,19 @@ void run_on_large_stack(const std::function<void()>& work) {
     work();
 }
 
-// The project's OBJ reader (obj_reader.h), in double: a decimal coordinate
-// carries only its rounding to the nearest double.
+// A mesh one of the project's text readers read in double: a decimal
+// coordinate carries only its rounding to the nearest double.
+Result<ImportedMesh> imported_in_double(const std::string& path, Mesh mesh, int skipped_primitives) {
+  ImportedMesh out;
+  out.mesh = std::move(mesh);
+  out.report.mesh_instances = 1;
+  out.report.skipped_non_triangle_primitives = skipped_primitives;
+  constexpr double kDoubleRelativeRounding = std::numeric_limits<double>::epsilon() / 2.0;
+  if (Status finished = finish_import(path, kDoubleRelativeRounding, out); !finished.ok()) return finished;
+  return out;
+}
+
+// The project's OBJ reader (obj_reader.h).
 Result<ImportedMesh> import_obj(const std::string& path, const ImportLimits& limits, std::uint64_t file_bytes) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return Status{StatusCode::unreadable_file, path + ": cannot open"};
@@ -220,13 +232,18 @@ Result<ImportedMesh> import_obj(const std::string& path, const ImportLimits& lim
     static_cast<void>(confined.Exists((absolute.parent_path() / library).string().c_str()));
     if (std::optional<Status> refusal = refusal_of(confined, path)) return *refusal;
   }
-  ImportedMesh out;
-  out.mesh = std::move(read).value();
-  out.report.mesh_instances = 1;
-  out.report.skipped_non_triangle_primitives = facts.skipped_primitives;
-  constexpr double kDoubleRelativeRounding = std::numeric_limits<double>::epsilon() / 2.0;
-  if (Status finished = finish_import(path, kDoubleRelativeRounding, out); !finished.ok()) return finished;
-  return out;
+  return imported_in_double(path, std::move(read).value(), facts.skipped_primitives);
+}
+
+// The project's ASCII STL reader (stl_ascii_reader.h), in double.
+Result<ImportedMesh> import_ascii_stl(const std::string& path, const ImportLimits& limits, std::uint64_t file_bytes) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Status{StatusCode::unreadable_file, path + ": cannot open"};
+  const std::uint64_t triangle_limit =
+      limits.max_triangles ? *limits.max_triangles : default_triangle_limit(file_bytes);
+  Result<Mesh> read = detail::read_ascii_stl(in, triangle_limit);
+  if (!read.ok()) return Status{read.status().code(), path + ": " + read.status().message()};
+  return imported_in_double(path, std::move(read).value(), 0);
 }
 
 Result<ImportedMesh> import_checked(const std::string& path, const ImportLimits& limits) {
@@ -242,7 +259,10 @@ Result<ImportedMesh> import_checked(const std::string& path, const ImportLimits&
                                                   " (raise it with --max-file-size)"};
   if (Status checked = detail::check_scene_file(path, limits); !checked.ok())
     return Status{checked.code(), path + ": " + checked.message()};
-  return detail::lower_extension(path) == ".obj" ? import_obj(path, limits, bytes) : import_with_assimp(path, limits);
+  const std::string extension = detail::lower_extension(path);
+  if (extension == ".obj") return import_obj(path, limits, bytes);
+  if (extension == ".stl" && detail::is_ascii_stl(path, bytes)) return import_ascii_stl(path, limits, bytes);
+  return import_with_assimp(path, limits);
 }
 
 } // namespace

@@ -1,5 +1,6 @@
 #include "obj_reader.h"
 
+#include "decimal_numbers.h"
 #include "obj_lines.h"
 #include "polygon_triangulation.h"
 
@@ -25,22 +26,6 @@ std::string_view next_word(std::string_view text, size_t& at) {
   const size_t start = at;
   while (at < text.size() && text[at] != ' ' && text[at] != '\t') ++at;
   return text.substr(start, at - start);
-}
-
-// A whole word as a double, correctly rounded (std::from_chars); false when
-// it is not a number from end to end. "nan" and "inf" parse (then caught as
-// non-finite); a number beyond double's range reads as infinite, one below
-// its smallest as zero.
-bool read_number(std::string_view word, double& value) {
-  if (!word.empty() && word.front() == '+') word.remove_prefix(1); // from_chars takes no '+'
-  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
-  if (error == std::errc::result_out_of_range && end == word.data() + word.size()) {
-    // Beyond double's range either way: strtod gives the infinity (caught
-    // as non-finite) or the zero (1e-400 is a coordinate of 0).
-    value = std::strtod(std::string(word).c_str(), nullptr);
-    return true;
-  }
-  return error == std::errc() && end == word.data() + word.size() && !word.empty();
 }
 
 // A face corner's position index (the part before any '/'), resolved to a
@@ -75,7 +60,7 @@ public:
       const std::string_view word = next_word(text, at);
       double value = 0.0;
       if (word.empty()) return at_line(StatusCode::unreadable_file, line, "a position needs three coordinates");
-      if (!read_number(word, value))
+      if (!read_decimal(word, value))
         return at_line(StatusCode::unreadable_file, line, "'" + std::string(word) + "' is not a number");
       if (!std::isfinite(value))
         return at_line(StatusCode::non_finite_coordinate, line,
