@@ -39,7 +39,7 @@ TEST(StlAsciiReader, CoordinatesKeepTheirDigitsAndSharedCornersAreJoined) {
   ASSERT_TRUE(read.ok()) << read.status().message();
   const Mesh& mesh = read.value().mesh;
   ASSERT_EQ(mesh.triangles.size(), 2u);
-  EXPECT_EQ(mesh.positions.size(), 4u); // six corners, four places
+  EXPECT_EQ(mesh.positions.size(), 4u);                 // six corners, four places
   EXPECT_EQ(mesh.positions[0].x(), 100000.12345678901); // float32 would give 100000.125
   // The rounding the data carries is double's, not float32's 0.0078 at 1e5.
   EXPECT_LT(mesh.coordinate_error, 1e-10);
@@ -49,9 +49,10 @@ TEST(StlAsciiReader, CoordinatesKeepTheirDigitsAndSharedCornersAreJoined) {
 // after that keywords may be in any case.
 TEST(StlAsciiReader, KeywordsInAnyCaseAndSeveralSolidsRead) {
   TempDir dir;
-  const std::string text = "solid a\n  FACET NORMAL 0 0 1\n    OUTER LOOP\n      VERTEX 0 0 0\n      VERTEX 1 0 0\n"
-                           "      VERTEX 0 1 0\n    ENDLOOP\n  ENDFACET\nENDSOLID a\nSolid b\n" +
-                           facet("0 0 1", "1 0 1", "0 1 1") + "endsolid b\n";
+  const std::string text =
+      "solid a\n  FACET NORMAL 0 0 1\n    OUTER LOOP\n      VERTEX 0 0 0\n      VERTEX 1 0 0\n"
+      "      VERTEX 0 1 0\n    ENDLOOP\n  ENDFACET\nENDSOLID a\nSolid b\n" +
+      facet("0 0 1", "1 0 1", "0 1 1") + "endsolid b\n";
   const Result<ImportedMesh> read = import_mesh(dir.write("two.stl", text));
   ASSERT_TRUE(read.ok()) << read.status().message();
   EXPECT_EQ(read.value().mesh.triangles.size(), 2u);
@@ -104,7 +105,7 @@ TEST(StlAsciiReader, ABinaryFileWhoseHeaderSaysSolidIsStillBinary) {
   TempDir dir;
   std::string bytes(84 + 50, '\0');
   std::memcpy(&bytes[0], "solid but binary", 16);
-  bytes[80] = 1; // one triangle
+  bytes[80] = 1;                                                  // one triangle
   const float corners[12] = {0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0}; // normal, then three corners
   std::memcpy(&bytes[84], corners, sizeof corners);
   const Result<ImportedMesh> read = import_mesh(dir.write("binary.stl", bytes));

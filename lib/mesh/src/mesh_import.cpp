@@ -4,6 +4,7 @@
 #include "scene_file_checks.h"
 #include "obj_reader.h"
 #include "stl_ascii_reader.h"
+#include "ply_ascii_reader.h"
 #include "scene_file_rules.h"
 
 #include <assimp/Importer.hpp>
@@ -246,6 +247,18 @@ Result<ImportedMesh> import_ascii_stl(const std::string& path, const ImportLimit
   return imported_in_double(path, std::move(read).value(), 0);
 }
 
+// The project's ASCII PLY reader (ply_ascii_reader.h), in double.
+Result<ImportedMesh> import_ascii_ply(const std::string& path, const ImportLimits& limits, std::uint64_t file_bytes) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Status{StatusCode::unreadable_file, path + ": cannot open"};
+  const std::uint64_t triangle_limit =
+      limits.max_triangles ? *limits.max_triangles : default_triangle_limit(file_bytes);
+  int skipped = 0;
+  Result<Mesh> read = detail::read_ascii_ply(in, file_bytes, triangle_limit, skipped);
+  if (!read.ok()) return Status{read.status().code(), path + ": " + read.status().message()};
+  return imported_in_double(path, std::move(read).value(), skipped);
+}
+
 Result<ImportedMesh> import_checked(const std::string& path, const ImportLimits& limits) {
   std::error_code error;
   if (!std::filesystem::exists(path, error)) return Status{StatusCode::file_not_found, path + ": no such file"};
@@ -262,6 +275,7 @@ Result<ImportedMesh> import_checked(const std::string& path, const ImportLimits&
   const std::string extension = detail::lower_extension(path);
   if (extension == ".obj") return import_obj(path, limits, bytes);
   if (extension == ".stl" && detail::is_ascii_stl(path, bytes)) return import_ascii_stl(path, limits, bytes);
+  if (extension == ".ply" && detail::is_ascii_ply(path, bytes)) return import_ascii_ply(path, limits, bytes);
   return import_with_assimp(path, limits);
 }
 

@@ -1,6 +1,6 @@
 #include "obj_reader.h"
 
-#include "decimal_numbers.h"
+#include "scene_text.h"
 #include "obj_lines.h"
 #include "polygon_triangulation.h"
 
@@ -15,10 +15,6 @@
 
 namespace hullcover::detail {
 namespace {
-
-Status at_line(StatusCode code, long line, const std::string& what) {
-  return {code, "line " + std::to_string(line) + ": " + what};
-}
 
 // The next blank-separated word of `text` from `at`, or empty at the end.
 std::string_view next_word(std::string_view text, size_t& at) {

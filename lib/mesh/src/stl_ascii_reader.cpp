@@ -1,6 +1,6 @@
 #include "stl_ascii_reader.h"
 
-#include "decimal_numbers.h"
+#include "scene_text.h"
 #include "obj_lines.h"
 #include "scene_file_rules.h"
 
@@ -20,11 +20,7 @@ namespace {
 constexpr std::uint64_t kBinaryHeaderBytes = 84;
 constexpr std::uint64_t kBinaryTriangleBytes = 50;
 
-Status at_line(StatusCode code, long line, const std::string& what) {
-  return {code, "line " + std::to_string(line) + ": " + what};
-}
-
-std::vector<std::string_view> words_of(std::string_view line) {
+std::vector<std::string_view> blank_separated_words(std::string_view line) {
   std::vector<std::string_view> words;
   size_t at = 0;
   while (at < line.size()) {
@@ -92,7 +88,7 @@ Result<Mesh> read_ascii_stl(std::istream& in, std::uint64_t triangle_limit) {
   Eigen::Vector3i facet = Eigen::Vector3i::Zero();
   while (next_obj_line(in, line)) {
     ++line_number;
-    const std::vector<std::string_view> words = words_of(line);
+    const std::vector<std::string_view> words = blank_separated_words(line);
     if (words.empty()) continue;
     const std::string_view keyword = words.front();
     if (is_keyword(keyword, "solid") || is_keyword(keyword, "endsolid")) {
@@ -108,8 +104,10 @@ Result<Mesh> read_ascii_stl(std::istream& in, std::uint64_t triangle_limit) {
       if (!in_facet) return at_line(StatusCode::unreadable_file, line_number, "a loop outside a facet");
     } else if (is_keyword(keyword, "vertex")) {
       if (!in_facet) return at_line(StatusCode::unreadable_file, line_number, "a vertex outside a facet");
-      if (corners == 3) return at_line(StatusCode::unreadable_file, line_number, "a facet with more than three vertices");
-      if (words.size() != 4) return at_line(StatusCode::unreadable_file, line_number, "a vertex needs three coordinates");
+      if (corners == 3)
+        return at_line(StatusCode::unreadable_file, line_number, "a facet with more than three vertices");
+      if (words.size() != 4)
+        return at_line(StatusCode::unreadable_file, line_number, "a vertex needs three coordinates");
       Eigen::Vector3d p;
       for (int k = 0; k < 3; ++k) {
         if (!read_decimal(words[k + 1], p[k]))

@@ -1,6 +1,9 @@
 #pragma once
-// Decimal numbers of scene text (OBJ, ASCII STL) read in double, shared by
-// the project's text readers (obj_reader.h, stl_ascii_reader.h).
+// What the project's text scene readers (obj_reader.h, stl_ascii_reader.h,
+// ply_ascii_reader.h) share: decimal numbers read in double, and failures
+// that name the line.
+
+#include "hullcover/geometry/status.h"
 
 #include <charconv>
 #include <cstdlib>
@@ -24,6 +27,11 @@ inline bool read_decimal(std::string_view word, double& value) {
     return true;
   }
   return error == std::errc() && end == word.data() + word.size() && !word.empty();
+}
+
+/// A failure at line `line` of the text.
+inline Status at_line(StatusCode code, long line, const std::string& what) {
+  return {code, "line " + std::to_string(line) + ": " + what};
 }
 
 } // namespace hullcover::detail

@@ -1,0 +1,36 @@
+#pragma once
+// The project's reader of ASCII PLY (internal to the mesh module):
+// coordinates in double, as the file writes them. Assimp's PLY reader keeps
+// float32 coordinates; binary PLY stays Assimp's (its float properties are
+// float32 by the format, its double ones are rare).
+
+#include "hullcover/geometry/mesh.h"
+#include "hullcover/geometry/status.h"
+
+#include <cstdint>
+#include <istream>
+#include <string>
+
+namespace hullcover::detail {
+
+/// Whether the PLY file at `path`, of `file_bytes`, declares `format ascii`.
+bool is_ascii_ply(const std::string& path, std::uint64_t file_bytes);
+
+/// Reads an ASCII PLY file from `in` (`file_bytes` long; checked first by
+/// check_ply): the header as read_ply_header reads it, then the body as the
+/// format has it, whitespace-separated values, element after element.
+/// Positions are the `x`, `y`, `z` of each `vertex`; faces the
+/// `vertex_indices` (or `vertex_index`) list of each `face`, triangulated as
+/// triangulate_polygon does, in file order, all material 0. Other elements
+/// and properties are read past. Faces of fewer than three corners are
+/// skipped and counted in `skipped`.
+///
+/// Fails with `unreadable_file` (a value that does not parse, a list length
+/// that is not a whole number, a body that ends too soon, a vertex element
+/// without x, y and z), `non_finite_coordinate`, `index_out_of_range` (a
+/// corner naming no vertex), `limit_exceeded` (more than `triangle_limit`
+/// triangles, or a concave face beyond kMostConcaveCorners) and
+/// `empty_scene`; messages name the element and its number.
+Result<Mesh> read_ascii_ply(std::istream& in, std::uint64_t file_bytes, std::uint64_t triangle_limit, int& skipped);
+
+} // namespace hullcover::detail
