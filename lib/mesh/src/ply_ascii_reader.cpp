@@ -109,8 +109,7 @@ Result<Mesh> read_ascii_ply(std::istream& in, std::uint64_t file_bytes, std::uin
                              std::to_string(kMostConcaveCorners) + " the reader triangulates");
     if (mesh.triangles.size() + triangles.size() > triangle_limit)
       return at_instance(StatusCode::limit_exceeded, face_element, f,
-                         "more than " + std::to_string(triangle_limit) +
-                             " triangles (raise it with --max-triangles)");
+                         "more than " + std::to_string(triangle_limit) + " triangles (raise it with --max-triangles)");
     for (const Eigen::Vector3i& t : triangles)
       mesh.triangles.emplace_back(faces[f][t[0]], faces[f][t[1]], faces[f][t[2]]);
   }

@@ -51,7 +51,6 @@ std::vector<std::string> words_of(const std::string& line) {
   return words;
 }
 
-
 Status add_property(const std::vector<std::string>& words, Element& e) {
   const auto word = [&](std::size_t i) { return i < words.size() ? words[i] : std::string(); };
   Property p;
@@ -73,7 +72,7 @@ Status add_property(const std::vector<std::string>& words, Element& e) {
 // Reads the header the way Assimp does (its line ends, its word separators,
 // a property only in the unbroken run of lines after its element's), so that
 // the elements checked are the ones Assimp will read.
-}  // namespace
+} // namespace
 
 Status read_ply_header(std::istream& in, std::uint64_t file_bytes, PlyHeader& h) {
   std::string text;
