@@ -126,15 +126,16 @@ inline constexpr std::uint64_t kLargestFileLimit = std::uint64_t{1} << 40;
 /// `--max-node-depth`: deeper hierarchies would risk the importer's stack,
 /// which the limit protects (8 MiB at about 1 KiB a level).
 inline constexpr std::uint64_t kDeepestNodeLimit = 2048;
-/// `--max-triangles`: 2^32, what 32-bit triangle indices address.
-inline constexpr std::uint64_t kMostTrianglesLimit = std::uint64_t{1} << 32;
+/// `--max-triangles`: 2^29, so three corners a triangle stay within a
+/// signed 32-bit index (and 2^29 triangles take about 240 GB).
+inline constexpr std::uint64_t kMostTrianglesLimit = std::uint64_t{1} << 29;
 /// `--max-materials`: Assimp's OBJ reader takes about 35 KB per name.
 inline constexpr std::uint64_t kMostMaterialsLimit = 65536;
 /// `audit --proxies`: 16.7 million poses, hours of work.
 inline constexpr std::uint64_t kMostProxies = std::uint64_t{1} << 24;
 /// `query --max-contacts`.
 inline constexpr std::uint64_t kMostContacts = std::uint64_t{1} << 20;
-/// `world --triangles`: 2^32, what 32-bit triangle indices address.
-inline constexpr std::uint64_t kMostWorldTriangles = std::uint64_t{1} << 32;
+/// `world --triangles`: the import's own bound.
+inline constexpr std::uint64_t kMostWorldTriangles = kMostTrianglesLimit;
 
 } // namespace hullcover::app

@@ -96,4 +96,20 @@ TEST(CookingMargin, HullsWithNoCornerAtRiskAreKeptAsTheyAre) {
   EXPECT_EQ(repair.hulls[1].vertices, bent.vertices);
 }
 
+// A tetrahedron whose apex stands 1 mm over a flat base of the other three
+// but 10 mm beyond its rim: its height is its margin, its distance from the
+// base its reach, so it is at risk and repaired.
+TEST(CookingMargin, AnApexLowOverAFlatBaseButFarBeyondItsRimIsAtRisk) {
+  const ConvexPolytope tetra = hull_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1.01, 1.01, 0.001}});
+  const auto apex = std::find(tetra.vertices.begin(), tetra.vertices.end(), Eigen::Vector3d(1.01, 1.01, 0.001));
+  ASSERT_NE(apex, tetra.vertices.end());
+  double reach = 0.0;
+  const double margin = corner_margin(tetra, static_cast<int>(apex - tetra.vertices.begin()), reach);
+  EXPECT_NEAR(margin, 0.001, 1e-9);
+  EXPECT_GT(reach, 4 * kHullTolerance);
+  const auto repair = repair_cooking_margins({tetra}, kHullTolerance);
+  EXPECT_EQ(repair.repaired, 1);
+  EXPECT_TRUE(repair.failures.empty());
+}
+
 } // namespace

@@ -74,5 +74,35 @@ TEST(PlyAsciiReader, MalformedValuesFailNamingTheElement) {
   EXPECT_NE(read.status().message().find("vertex #2"), std::string::npos) << read.status().message();
 }
 
+// The format lets the face element come first; corners are judged once
+// every vertex is read, and a strip's triangles turn their winding each
+// step (-1 starts a new strip).
+TEST(PlyAsciiReader, FacesBeforeVerticesAndTriangleStripsRead) {
+  TempDir dir;
+  const std::string text =
+      "ply\nformat ascii 1.0\nelement face 1\nproperty list uchar int vertex_indices\n"
+      "element tristrips 1\nproperty list int int vertex_indices\nelement vertex 5\nproperty double x\n"
+      "property double y\nproperty double z\nend_header\n3 0 1 2\n7 0 1 2 3 -1 1 4\n"
+      "0 0 0\n1 0 0\n0 1 0\n1 1 0\n2 0 0\n";
+  const Result<ImportedMesh> read = import_mesh(dir.write("order.ply", text));
+  ASSERT_TRUE(read.ok()) << read.status().message();
+  const Mesh& mesh = read.value().mesh;
+  ASSERT_EQ(mesh.triangles.size(), 3u); // the face, then the strip's two (the restart leaves "1 4" short)
+  EXPECT_EQ(mesh.triangles[1], Eigen::Vector3i(0, 1, 2));
+  EXPECT_EQ(mesh.triangles[2], Eigen::Vector3i(2, 1, 3)); // the second of a strip turns back
+}
+
+TEST(PlyAsciiReader, NegativeCornersAndVerticesWithoutCoordinatesAreRefused) {
+  TempDir dir;
+  const Result<ImportedMesh> negative = import_mesh(dir.write("negative.ply", far_ply_square("4 0 1 2 -3\n")));
+  ASSERT_FALSE(negative.ok());
+  EXPECT_EQ(negative.status().code(), StatusCode::index_out_of_range) << negative.status().message();
+  std::string no_z = far_ply_square();
+  no_z.replace(no_z.find("property float z\n"), 17, "property float w\n");
+  const Result<ImportedMesh> flat = import_mesh(dir.write("no_z.ply", no_z));
+  ASSERT_FALSE(flat.ok());
+  EXPECT_NE(flat.status().message().find("no x, y and z"), std::string::npos) << flat.status().message();
+}
+
 } // namespace
 } // namespace hullcover

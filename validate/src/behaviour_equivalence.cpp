@@ -73,21 +73,32 @@ std::vector<Eigen::Vector3d> proxy_samples(const bvh::QueryShape& shape, const E
 // tol, at the proxy's sample points: each judged point of a solid hull
 // must lie deeper than tol inside it (a contact's normal is the surface's,
 // not the smallest push: its depth can run past what the proxy holds
-// inside the hull). Any judged point free makes the contact lost.
+// inside the hull). When no point qualifies, the two along the contact are
+// judged as they are. Any judged point free makes the contact lost.
 bool reach_is_enclosed(const probe::EnclosedSpace& enclosed, const bvh::RuntimeHull& hull, const bvh::QueryShape& shape,
                        const Eigen::Isometry3d& pose, const bvh::Contact& deepest, double tol) {
   const bool solid = !hull_interior(hull.shape, tol).empty();
-  const auto judged = [&](const Eigen::Vector3d& p) {
-    return !solid || deepest_signed_distance(hull.shape.planes, p) < -tol;
-  };
+  const auto inside = [&](const Eigen::Vector3d& p) { return deepest_signed_distance(hull.shape.planes, p) < -tol; };
   const Eigen::Vector3d inward = -deepest.normal;
-  for (const double share : {1.0, 0.5}) {
-    const Eigen::Vector3d p = deepest.point + share * deepest.depth * inward;
-    if (share * deepest.depth > tol && judged(p) && !enclosed.holds(p, tol)) return false;
-  }
+  std::vector<Eigen::Vector3d> along; // the deepest point and half way there
+  for (const double share : {1.0, 0.5})
+    if (share * deepest.depth > tol) along.push_back(deepest.point + share * deepest.depth * inward);
+  int judged = 0;
+  const auto free_at = [&](const Eigen::Vector3d& p) {
+    ++judged;
+    return !enclosed.holds(p, tol);
+  };
+  for (const Eigen::Vector3d& p : along)
+    if ((!solid || inside(p)) && free_at(p)) return false;
   if (solid)
     for (const Eigen::Vector3d& p : proxy_samples(shape, pose))
-      if (judged(p) && !enclosed.holds(p, tol)) return false;
+      if (inside(p) && free_at(p)) return false;
+  // No point of the proxy found inside the hull (an overlap thinner than
+  // the samples' spacing): the points along the contact are judged as they
+  // are, so nothing passes unjudged.
+  if (judged == 0)
+    for (const Eigen::Vector3d& p : along)
+      if (free_at(p)) return false;
   return true;
 }
 

@@ -1,8 +1,11 @@
 #include "export/cooking_margin.h"
 
 #include "hullcover/covering/convex_hull_3d.h"
+#include "hullcover/geometry/triangle_distance.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace hullcover::app {
@@ -18,16 +21,17 @@ constexpr double kMarginInHullTolerances = 2.0;
 // The error Jolt's builder accepts, in hull tolerances: a corner whose
 // reach is within it may be dropped harmlessly.
 constexpr double kAcceptedErrorInHullTolerances = 4.0;
-// Share by which a corner's margin must fall short, and its reach exceed,
-// before it is at risk: an octahedron's corner reaches exactly the margin
-// out, and rounding or a corner nearby must not start another round.
+// Share by which a corner's margin may fall short of the margin and still
+// pass: an octahedron's corner stands exactly the margin clear, and
+// rounding or a corner nearby must not start another round over it. (Its
+// reach is at most the margin, half the accepted error: the reach test
+// needs no such share.)
 constexpr double kRoundingShare = 0.01;
 
 bool on_facet(const std::vector<int>& facet, int v) { return std::find(facet.begin(), facet.end(), v) != facet.end(); }
 
 // The corner's margin, and its distance from the hull of the others
-// (`reach`, 0 when that hull is flat: dropping an apex over a flat base is a
-// thinness the flat-hull thickness already answers).
+// (`reach`; 0 when the corner is not outside them).
 double margin_with(ConvexHullBuilder& builder, const ConvexPolytope& hull, int v, double& reach) {
   std::vector<Eigen::Vector3d> others;
   others.reserve(hull.vertices.size());
@@ -42,10 +46,21 @@ double margin_with(ConvexHullBuilder& builder, const ConvexPolytope& hull, int v
     if (margin > 0.0) reach = distance_to_facet_fans(rest.value(), corner);
     return margin;
   }
-  // The other corners are flat: `v` is the apex over the facet they make,
-  // and its height above that facet is its margin.
-  for (size_t f = 0; f < hull.facets.size() && f < hull.planes.size(); ++f)
-    if (!on_facet(hull.facets[f], v)) margin = std::max(margin, -hull.planes[f].signed_distance(corner));
+  // The other corners are flat: `v` is the apex over the facet they make
+  // (the one facet without it). Its height above that facet is its margin,
+  // its distance from the facet's polygon its reach.
+  for (size_t f = 0; f < hull.facets.size() && f < hull.planes.size(); ++f) {
+    const std::vector<int>& base = hull.facets[f];
+    if (on_facet(base, v)) continue;
+    margin = std::max(margin, -hull.planes[f].signed_distance(corner));
+    double nearest = std::numeric_limits<double>::infinity();
+    for (size_t k = 1; k + 1 < base.size(); ++k)
+      nearest = std::min(nearest, (closest_point_on_triangle(corner, hull.vertices[base[0]], hull.vertices[base[k]],
+                                                             hull.vertices[base[k + 1]]) -
+                                   corner)
+                                      .norm());
+    if (std::isfinite(nearest)) reach = std::max(reach, nearest);
+  }
   return margin;
 }
 
@@ -63,7 +78,7 @@ CookingRepair repair_cooking_margins(const std::vector<ConvexPolytope>& hulls, d
   out.hulls.reserve(hulls.size());
   ConvexHullBuilder builder;
   const double passing = margin * (1.0 - kRoundingShare);
-  const double harmless = kAcceptedErrorInHullTolerances * hull_tolerance * (1.0 + kRoundingShare);
+  const double harmless = kAcceptedErrorInHullTolerances * hull_tolerance;
   std::vector<int> at_risk;
   for (size_t h = 0; h < hulls.size(); ++h) {
     ConvexPolytope hull = hulls[h];
@@ -96,10 +111,14 @@ CookingRepair repair_cooking_margins(const std::vector<ConvexPolytope>& hulls, d
       repaired = true;
       out.corners_replaced += static_cast<int>(at_risk.size());
     }
-    if (!at_risk.empty())
-      out.failures.push_back("hull " + std::to_string(h) + " keeps a corner " + std::to_string(worst_reach) +
-                             " out of the hull of its other corners but only " + std::to_string(worst_margin) +
-                             " in front of its planes, under the engine's margin " + std::to_string(margin));
+    if (!at_risk.empty()) {
+      char line[256];
+      std::snprintf(line, sizeof line,
+                    "hull %zu keeps a corner %.6g out of the hull of its other corners but only %.6g in front of its "
+                    "planes, under the engine's margin %.6g",
+                    h, worst_reach, worst_margin, margin);
+      out.failures.emplace_back(line);
+    }
     out.repaired += repaired;
     out.hulls.push_back(std::move(hull));
   }

@@ -18,7 +18,9 @@
 /// **reach** is its distance from that hull, what the surface loses if the
 /// builder drops it. A corner is at risk when its margin is under 2t (a
 /// builder drops within t) while its reach is over 4t (the error Jolt's
-/// builder refuses). A corner that reaches less (a slight bend in a wide
+/// builder refuses); for an apex over a flat base of the other corners,
+/// its height is its margin and its distance from the base its reach. A
+/// corner that reaches less (a slight bend in a wide
 /// face) is left alone: dropping it moves the surface by less than the
 /// engine's own check allows. An at-risk corner is replaced by the six
 /// corners of an axis-aligned octahedron of half-diagonal 2t about it: the
@@ -46,9 +48,9 @@ struct CookingRepair {
 
 /// The margin of corner `v` of `hull`: the largest signed distance from it
 /// to a facet plane of the hull of the other corners (when those are flat,
-/// its distance from their plane). Scene units. `reach` is set to its
-/// distance from the hull of the others (0 when those are flat or the
-/// corner is not outside them).
+/// its height above their plane). Scene units. `reach` is set to its
+/// distance from the hull of the others (their polygon when they are flat;
+/// 0 when the corner is not outside them).
 double corner_margin(const ConvexPolytope& hull, int v, double& reach);
 
 /// Leaves no hull of `hulls` a corner at risk for an engine of hull

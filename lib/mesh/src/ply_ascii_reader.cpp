@@ -12,6 +12,12 @@
 namespace hullcover::detail {
 namespace {
 
+// Corners a triangle takes: the vertices a file may hold per allowed
+// triangle.
+constexpr std::uint64_t kCornersPerTriangle = 3;
+// The index that ends a triangle strip and starts the next.
+constexpr long long kStripRestart = -1;
+
 Status at_instance(StatusCode code, const Element& e, std::uint64_t i, const std::string& what) {
   return {code, "PLY " + instance(e, i) + ": " + what};
 }
@@ -44,19 +50,36 @@ Result<Mesh> read_ascii_ply(std::istream& in, std::uint64_t file_bytes, std::uin
   if (!h.ascii) return Status{StatusCode::unreadable_file, "PLY body is binary, not ASCII"};
   in.clear();
   in.seekg(static_cast<std::streamoff>(h.after_line));
+  // Every vertex a triangle could use, three a triangle: more would be
+  // memory the triangle limit does not bound.
+  const std::uint64_t vertex_limit = kCornersPerTriangle * triangle_limit;
   Mesh mesh;
-  std::vector<std::vector<long long>> faces; // corners, judged once every vertex is read
+  // Corners of every face and strip, one flat array: judged once every
+  // vertex is read (a face element may come first). Faces count their
+  // triangles as they are read, so the limit bounds what is kept.
+  std::vector<long long> corners;
+  struct Run {
+    size_t begin = 0, end = 0;
+    bool strip = false;
+    std::uint64_t number = 0;
+  };
+  std::vector<Run> runs;
+  std::uint64_t triangles = 0;
   std::string token;
   for (const Element& e : h.elements) {
-    const bool vertices = e.name == "vertex", polygons = e.name == "face";
+    const bool vertices = e.name == "vertex", polygons = e.name == "face", strips = e.name == "tristrips";
     const int x = property_named(e, {"x"}, false), y = property_named(e, {"y"}, false),
               z = property_named(e, {"z"}, false);
-    const int corners = property_named(e, {"vertex_indices", "vertex_index"}, true);
+    const int corner_list = property_named(e, {"vertex_indices", "vertex_index"}, true);
     if (vertices && (x < 0 || y < 0 || z < 0) && e.count > 0)
       return Status{StatusCode::unreadable_file, "PLY vertex element has no x, y and z"};
+    if (vertices && mesh.positions.size() + e.count > vertex_limit)
+      return Status{StatusCode::limit_exceeded,
+                    "PLY declares " + std::to_string(e.count) + " vertices, more than three for each of the " +
+                        std::to_string(triangle_limit) + " triangles allowed (raise it with --max-triangles)"};
     for (std::uint64_t i = 0; i < e.count; ++i) {
       Eigen::Vector3d p = Eigen::Vector3d::Zero();
-      std::vector<long long> face;
+      Run run{corners.size(), corners.size(), strips, i};
       for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {
         const Property& property = e.properties[k];
         if (!(in >> token)) return at_instance(StatusCode::unreadable_file, e, i, "the data ends inside it");
@@ -74,44 +97,74 @@ Result<Mesh> read_ascii_ply(std::istream& in, std::uint64_t file_bytes, std::uin
         if (!read_whole(token, length) || length < 0)
           return at_instance(StatusCode::unreadable_file, e, i,
                              "list length '" + token.substr(0, 40) + "' is not a whole number");
+        const bool kept = (polygons || strips) && k == corner_list;
         for (long long item = 0; item < length; ++item) {
           if (!(in >> token)) return at_instance(StatusCode::unreadable_file, e, i, "the data ends inside a list");
-          if (!(polygons && k == corners)) continue;
+          if (!kept) continue;
           long long index = 0;
           if (!read_whole(token, index))
             return at_instance(StatusCode::unreadable_file, e, i, "corner '" + token.substr(0, 40) + "' is no index");
-          face.push_back(index);
+          corners.push_back(index);
         }
+        // A polygon of n corners makes n - 2 triangles, a strip at most that.
+        if (kept && length >= 3) triangles += static_cast<std::uint64_t>(length) - 2;
+        if (triangles > triangle_limit)
+          return at_instance(
+              StatusCode::limit_exceeded, e, i,
+              "more than " + std::to_string(triangle_limit) + " triangles (raise it with --max-triangles)");
       }
       if (vertices) mesh.positions.push_back(p);
-      if (polygons) faces.push_back(std::move(face));
+      if (polygons || strips) {
+        run.end = corners.size();
+        runs.push_back(run);
+      }
     }
   }
-  const Element face_element{"face"};
+  Element face_element, strip_element;
+  face_element.name = "face";
+  strip_element.name = "tristrips";
   std::vector<Eigen::Vector3d> polygon;
-  std::vector<Eigen::Vector3i> triangles;
-  for (size_t f = 0; f < faces.size(); ++f) {
-    if (faces[f].size() < 3) {
+  std::vector<Eigen::Vector3i> cut;
+  for (const Run& run : runs) {
+    const Element& element = run.strip ? strip_element : face_element;
+    for (size_t c = run.begin; c < run.end; ++c)
+      if (corners[c] >= static_cast<long long>(mesh.positions.size()) || (corners[c] < 0 && !run.strip) ||
+          (corners[c] < 0 && corners[c] != kStripRestart))
+        return at_instance(StatusCode::index_out_of_range, element, run.number,
+                           "corner " + std::to_string(corners[c]) + " names no vertex");
+    if (run.strip) {
+      // A strip's triangles turn their winding each step; -1 starts anew.
+      int step = 0;
+      for (size_t c = run.begin; c < run.end; ++c) {
+        if (corners[c] == kStripRestart) {
+          step = 0;
+          continue;
+        }
+        if (++step < 3) continue;
+        const int a = static_cast<int>(corners[c - 2]), b = static_cast<int>(corners[c - 1]),
+                  d = static_cast<int>(corners[c]);
+        if (step % 2 == 1)
+          mesh.triangles.emplace_back(a, b, d);
+        else
+          mesh.triangles.emplace_back(b, a, d);
+      }
+      continue;
+    }
+    if (run.end - run.begin < 3) {
       ++skipped;
       continue;
     }
     polygon.clear();
-    for (const long long index : faces[f]) {
-      if (index < 0 || index >= static_cast<long long>(mesh.positions.size()))
-        return at_instance(StatusCode::index_out_of_range, face_element, f,
-                           "corner " + std::to_string(index) + " names no vertex");
-      polygon.push_back(mesh.positions[index]);
-    }
-    triangles.clear();
-    if (triangulate_polygon(polygon, triangles) == Triangulation::too_large)
-      return at_instance(StatusCode::limit_exceeded, face_element, f,
+    for (size_t c = run.begin; c < run.end; ++c) polygon.push_back(mesh.positions[corners[c]]);
+    cut.clear();
+    if (triangulate_polygon(polygon, cut) == Triangulation::too_large)
+      return at_instance(StatusCode::limit_exceeded, element, run.number,
                          "a concave polygon of " + std::to_string(polygon.size()) + " corners, more than the " +
                              std::to_string(kMostConcaveCorners) + " the reader triangulates");
-    if (mesh.triangles.size() + triangles.size() > triangle_limit)
-      return at_instance(StatusCode::limit_exceeded, face_element, f,
-                         "more than " + std::to_string(triangle_limit) + " triangles (raise it with --max-triangles)");
-    for (const Eigen::Vector3i& t : triangles)
-      mesh.triangles.emplace_back(faces[f][t[0]], faces[f][t[1]], faces[f][t[2]]);
+    for (const Eigen::Vector3i& t : cut)
+      mesh.triangles.emplace_back(static_cast<int>(corners[run.begin + t[0]]),
+                                  static_cast<int>(corners[run.begin + t[1]]),
+                                  static_cast<int>(corners[run.begin + t[2]]));
   }
   if (mesh.triangles.empty()) return Status{StatusCode::empty_scene, "no face"};
   mesh.material_ids.assign(mesh.triangles.size(), 0);

@@ -21,15 +21,19 @@ bool is_ascii_ply(const std::string& path, std::uint64_t file_bytes);
 /// format has it, whitespace-separated values, element after element.
 /// Positions are the `x`, `y`, `z` of each `vertex`; faces the
 /// `vertex_indices` (or `vertex_index`) list of each `face`, triangulated as
-/// triangulate_polygon does, in file order, all material 0. Other elements
-/// and properties are read past. Faces of fewer than three corners are
-/// skipped and counted in `skipped`.
+/// triangulate_polygon does, and of each `tristrips` (-1 restarts a strip),
+/// in file order, all material 0. Other elements and properties are read
+/// past. Faces of fewer than three corners are skipped and counted in
+/// `skipped`. A file may hold at most three vertices per allowed triangle,
+/// and triangles are counted as faces are read, so the limit bounds the
+/// memory kept.
 ///
 /// Fails with `unreadable_file` (a value that does not parse, a list length
 /// that is not a whole number, a body that ends too soon, a vertex element
 /// without x, y and z), `non_finite_coordinate`, `index_out_of_range` (a
 /// corner naming no vertex), `limit_exceeded` (more than `triangle_limit`
-/// triangles, or a concave face beyond kMostConcaveCorners) and
+/// triangles or three times as many vertices, or a concave face beyond
+/// kMostConcaveCorners) and
 /// `empty_scene`; messages name the element and its number.
 Result<Mesh> read_ascii_ply(std::istream& in, std::uint64_t file_bytes, std::uint64_t triangle_limit, int& skipped);
 

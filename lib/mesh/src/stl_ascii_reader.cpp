@@ -20,10 +20,14 @@ namespace {
 constexpr std::uint64_t kBinaryHeaderBytes = 84;
 constexpr std::uint64_t kBinaryTriangleBytes = 50;
 
+// Words a statement may have: "facet normal x y z" has five, and a line is
+// split no further (a 1 GiB line of words is not held as views).
+constexpr size_t kMostWordsRead = 6;
+
 std::vector<std::string_view> blank_separated_words(std::string_view line) {
   std::vector<std::string_view> words;
   size_t at = 0;
-  while (at < line.size()) {
+  while (at < line.size() && words.size() < kMostWordsRead) {
     while (at < line.size() && std::isspace(static_cast<unsigned char>(line[at]))) ++at;
     const size_t start = at;
     while (at < line.size() && !std::isspace(static_cast<unsigned char>(line[at]))) ++at;
@@ -31,6 +35,9 @@ std::vector<std::string_view> blank_separated_words(std::string_view line) {
   }
   return words;
 }
+
+// A word for a message: its first 40 characters.
+std::string shown(std::string_view word) { return std::string(word.substr(0, 40)); }
 
 bool is_keyword(std::string_view word, const char* keyword) {
   const size_t n = std::strlen(keyword);
@@ -112,10 +119,10 @@ Result<Mesh> read_ascii_stl(std::istream& in, std::uint64_t triangle_limit) {
       for (int k = 0; k < 3; ++k) {
         if (!read_decimal(words[k + 1], p[k]))
           return at_line(StatusCode::unreadable_file, line_number,
-                         "coordinate '" + std::string(words[k + 1]) + "' is not a number");
+                         "coordinate '" + shown(words[k + 1]) + "' is not a number");
         if (!std::isfinite(p[k]))
           return at_line(StatusCode::non_finite_coordinate, line_number,
-                         "coordinate '" + std::string(words[k + 1]) + "' is not a finite number");
+                         "coordinate '" + shown(words[k + 1]) + "' is not a finite number");
       }
       const auto [found, added] = position_of.try_emplace(key_of(p), static_cast<int>(mesh.positions.size()));
       if (added) mesh.positions.push_back(p);
@@ -126,8 +133,7 @@ Result<Mesh> read_ascii_stl(std::istream& in, std::uint64_t triangle_limit) {
       mesh.triangles.push_back(facet);
       in_facet = false;
     } else {
-      return at_line(StatusCode::unreadable_file, line_number,
-                     "'" + std::string(keyword.substr(0, 40)) + "' is no ASCII STL statement");
+      return at_line(StatusCode::unreadable_file, line_number, "'" + shown(keyword) + "' is no ASCII STL statement");
     }
   }
   if (in_facet) return at_line(StatusCode::unreadable_file, line_number, "the text ends inside a facet");
