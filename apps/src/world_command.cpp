@@ -60,8 +60,9 @@ int run_world(const WorldOptions& o) {
     if (const size_t at = spec.rfind('@'); at != std::string::npos) {
       char* end = nullptr;
       units_per_metre = std::strtod(spec.c_str() + at + 1, &end);
-      if (end == spec.c_str() + at + 1 || *end != '\0' || !(units_per_metre > 0.0) || !std::isfinite(units_per_metre)) {
-        std::fprintf(stderr, "hullcover: error: %s: units per metre after '@' must be a positive number\n",
+      if (end == spec.c_str() + at + 1 || *end != '\0' || !(units_per_metre > 0.0) ||
+          !(units_per_metre <= kLargestOptionValue)) {
+        std::fprintf(stderr, "hullcover: error: %s: units per metre after '@' must be a number above 0, at most 1e15\n",
                      spec.c_str());
         return kExitBadInput;
       }

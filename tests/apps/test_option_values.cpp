@@ -117,4 +117,21 @@ TEST(OptionValues, EveryNumberOptionOfEveryCommandRefusesNonsenseNamingTheOption
   EXPECT_TRUE(failures.empty()) << failures.size() << " accepted or refused without naming the option:\n" << listed;
 }
 
+// Numbers written as text with a unit or after '@' (bench's sweeps and
+// scenes, world's scenes) are parsed by the commands themselves: the same
+// bound holds there.
+TEST(OptionValues, NumbersInsideTextOptionsKeepTheSameBound) {
+  TempDir dir;
+  const std::string scene = dir.write("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+  const std::string out = " --out " + dir.path("bench");
+  for (const std::string& arguments :
+       {"bench " + scene + " --agent-radius 1e300" + out, "bench " + scene + " --max-deviation 2e15m" + out,
+        "bench " + scene + " --query-radius nan" + out, "bench " + scene + "@1e300" + out,
+        "world " + scene + "@1e300 -o " + dir.path("w.obj"), "world " + scene + "@-1 -o " + dir.path("w.obj")}) {
+    const CommandRun r = run_hullcover(dir, arguments);
+    EXPECT_EQ(r.status, 2) << arguments << "\n" << r.out << r.err;
+    EXPECT_NE(r.err.find("hullcover: error:"), std::string::npos) << arguments << "\n" << r.err;
+  }
+}
+
 } // namespace

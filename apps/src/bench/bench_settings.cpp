@@ -1,5 +1,7 @@
 #include "bench_settings.h"
 
+#include "number_checks.h"
+
 #include <cmath>
 #include <cstdlib>
 
@@ -10,12 +12,13 @@ Status bad(const std::string& what, const std::string& text) {
   return {StatusCode::invalid_argument, what + " '" + text + "'"};
 }
 
-// The whole of `text` as a finite number, or nothing.
+// The whole of `text` as a finite number of magnitude at most
+// kLargestOptionValue (the bound of every number option), or nothing.
 std::optional<double> whole_number(const std::string& text) {
   if (text.empty()) return std::nullopt;
   char* end = nullptr;
   const double x = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() + text.size() || !std::isfinite(x)) return std::nullopt;
+  if (end != text.c_str() + text.size() || !std::isfinite(x) || std::abs(x) > kLargestOptionValue) return std::nullopt;
   return x;
 }
 
@@ -50,7 +53,8 @@ Result<LengthSpec> parse_length(const std::string& text) {
   }
   const std::optional<double> x = whole_number(number);
   if (!x || *x < 0.0)
-    return bad("a length is a number >= 0 in scene units, or with 'm' (metres) or '%' (of the diagonal), not", text);
+    return bad("a length is a number from 0 to 1e15 in scene units, or with 'm' (metres) or '%' (of the diagonal), not",
+               text);
   spec.value = *x;
   return spec;
 }
