@@ -5,6 +5,7 @@
 #include "obj_reader.h"
 #include "stl_ascii_reader.h"
 #include "ply_ascii_reader.h"
+#include "ply_header.h"
 #include "scene_file_rules.h"
 
 #include <assimp/Importer.hpp>
@@ -202,6 +203,17 @@ void run_on_large_stack(const std::function<void()>& work) {
     work();
 }
 
+// The triangles an import may make: the user's limit, or the default rule
+// of the file's size.
+std::uint64_t triangle_limit_for(const ImportLimits& limits, std::uint64_t file_bytes) {
+  return limits.max_triangles ? *limits.max_triangles : default_triangle_limit(file_bytes);
+}
+
+// A reader's failure, named by the file.
+Status of_file(const std::string& path, const Status& status) {
+  return Status{status.code(), path + ": " + status.message()};
+}
+
 // A mesh one of the project's text readers read in double: a decimal
 // coordinate carries only its rounding to the nearest double.
 Result<ImportedMesh> imported_in_double(const std::string& path, Mesh mesh, int skipped_primitives) {
@@ -218,11 +230,9 @@ Result<ImportedMesh> imported_in_double(const std::string& path, Mesh mesh, int 
 Result<ImportedMesh> import_obj(const std::string& path, const ImportLimits& limits, std::uint64_t file_bytes) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return Status{StatusCode::unreadable_file, path + ": cannot open"};
-  const std::uint64_t triangle_limit =
-      limits.max_triangles ? *limits.max_triangles : default_triangle_limit(file_bytes);
   detail::ObjSideFacts facts;
-  Result<Mesh> read = detail::read_obj(in, triangle_limit, facts);
-  if (!read.ok()) return Status{read.status().code(), path + ": " + read.status().message()};
+  Result<Mesh> read = detail::read_obj(in, triangle_limit_for(limits, file_bytes), facts);
+  if (!read.ok()) return of_file(path, read.status());
   // Material libraries are never read, but one that would lead out of the
   // folder (a symlink out, a FIFO) is refused as every other format's
   // references are: judged by the same confinement, opening nothing.
@@ -240,22 +250,22 @@ Result<ImportedMesh> import_obj(const std::string& path, const ImportLimits& lim
 Result<ImportedMesh> import_ascii_stl(const std::string& path, const ImportLimits& limits, std::uint64_t file_bytes) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return Status{StatusCode::unreadable_file, path + ": cannot open"};
-  const std::uint64_t triangle_limit =
-      limits.max_triangles ? *limits.max_triangles : default_triangle_limit(file_bytes);
-  Result<Mesh> read = detail::read_ascii_stl(in, triangle_limit);
-  if (!read.ok()) return Status{read.status().code(), path + ": " + read.status().message()};
+  Result<Mesh> read = detail::read_ascii_stl(in, triangle_limit_for(limits, file_bytes));
+  if (!read.ok()) return of_file(path, read.status());
   return imported_in_double(path, std::move(read).value(), 0);
 }
 
-// The project's ASCII PLY reader (ply_ascii_reader.h), in double.
-Result<ImportedMesh> import_ascii_ply(const std::string& path, const ImportLimits& limits, std::uint64_t file_bytes) {
+// An ASCII PLY file by the project's reader (ply_ascii_reader.h), in
+// double; a binary one by Assimp. The header is read once here to tell.
+Result<ImportedMesh> import_ply(const std::string& path, const ImportLimits& limits, std::uint64_t file_bytes) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return Status{StatusCode::unreadable_file, path + ": cannot open"};
-  const std::uint64_t triangle_limit =
-      limits.max_triangles ? *limits.max_triangles : default_triangle_limit(file_bytes);
+  detail::PlyHeader header;
+  if (Status read = detail::read_ply_header(in, file_bytes, header); !read.ok()) return of_file(path, read);
+  if (!header.ascii) return import_with_assimp(path, limits);
   int skipped = 0;
-  Result<Mesh> read = detail::read_ascii_ply(in, file_bytes, triangle_limit, skipped);
-  if (!read.ok()) return Status{read.status().code(), path + ": " + read.status().message()};
+  Result<Mesh> read = detail::read_ascii_ply(in, header, triangle_limit_for(limits, file_bytes), skipped);
+  if (!read.ok()) return of_file(path, read.status());
   return imported_in_double(path, std::move(read).value(), skipped);
 }
 
@@ -270,12 +280,11 @@ Result<ImportedMesh> import_checked(const std::string& path, const ImportLimits&
     return Status{StatusCode::limit_exceeded, path + ": " + std::to_string(bytes) + " bytes, more than the limit of " +
                                                   std::to_string(limits.max_file_bytes) +
                                                   " (raise it with --max-file-size)"};
-  if (Status checked = detail::check_scene_file(path, limits); !checked.ok())
-    return Status{checked.code(), path + ": " + checked.message()};
+  if (Status checked = detail::check_scene_file(path, limits); !checked.ok()) return of_file(path, checked);
   const std::string extension = detail::lower_extension(path);
   if (extension == ".obj") return import_obj(path, limits, bytes);
   if (extension == ".stl" && detail::is_ascii_stl(path, bytes)) return import_ascii_stl(path, limits, bytes);
-  if (extension == ".ply" && detail::is_ascii_ply(path, bytes)) return import_ascii_ply(path, limits, bytes);
+  if (extension == ".ply") return import_ply(path, limits, bytes);
   return import_with_assimp(path, limits);
 }
 

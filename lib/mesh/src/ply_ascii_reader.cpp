@@ -1,12 +1,10 @@
 #include "ply_ascii_reader.h"
 
-#include "ply_header.h"
 #include "polygon_triangulation.h"
 #include "scene_text.h"
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <vector>
 
 namespace hullcover::detail {
@@ -38,15 +36,7 @@ int property_named(const Element& e, std::initializer_list<const char*> names, b
 
 } // namespace
 
-bool is_ascii_ply(const std::string& path, std::uint64_t file_bytes) {
-  std::ifstream in(path, std::ios::binary);
-  PlyHeader h;
-  return in && read_ply_header(in, file_bytes, h).ok() && h.ascii;
-}
-
-Result<Mesh> read_ascii_ply(std::istream& in, std::uint64_t file_bytes, std::uint64_t triangle_limit, int& skipped) {
-  PlyHeader h;
-  if (Status header = read_ply_header(in, file_bytes, h); !header.ok()) return header;
+Result<Mesh> read_ascii_ply(std::istream& in, const PlyHeader& h, std::uint64_t triangle_limit, int& skipped) {
   if (!h.ascii) return Status{StatusCode::unreadable_file, "PLY body is binary, not ASCII"};
   in.clear();
   in.seekg(static_cast<std::streamoff>(h.after_line));
@@ -128,8 +118,8 @@ Result<Mesh> read_ascii_ply(std::istream& in, std::uint64_t file_bytes, std::uin
   for (const Run& run : runs) {
     const Element& element = run.strip ? strip_element : face_element;
     for (size_t c = run.begin; c < run.end; ++c)
-      if (corners[c] >= static_cast<long long>(mesh.positions.size()) || (corners[c] < 0 && !run.strip) ||
-          (corners[c] < 0 && corners[c] != kStripRestart))
+      if (!(run.strip && corners[c] == kStripRestart) &&
+          (corners[c] < 0 || corners[c] >= static_cast<long long>(mesh.positions.size())))
         return at_instance(StatusCode::index_out_of_range, element, run.number,
                            "corner " + std::to_string(corners[c]) + " names no vertex");
     if (run.strip) {

@@ -4,21 +4,19 @@
 // float32 coordinates; binary PLY stays Assimp's (its float properties are
 // float32 by the format, its double ones are rare).
 
+#include "ply_header.h"
+
 #include "hullcover/geometry/mesh.h"
 #include "hullcover/geometry/status.h"
 
 #include <cstdint>
 #include <istream>
-#include <string>
 
 namespace hullcover::detail {
 
-/// Whether the PLY file at `path`, of `file_bytes`, declares `format ascii`.
-bool is_ascii_ply(const std::string& path, std::uint64_t file_bytes);
-
-/// Reads an ASCII PLY file from `in` (`file_bytes` long; checked first by
-/// check_ply): the header as read_ply_header reads it, then the body as the
-/// format has it, whitespace-separated values, element after element.
+/// Reads the body of an ASCII PLY file from `in` (checked first by
+/// check_ply), whose header `h` read_ply_header has read (h.ascii): the body
+/// as the format has it, whitespace-separated values, element after element.
 /// Positions are the `x`, `y`, `z` of each `vertex`; faces the
 /// `vertex_indices` (or `vertex_index`) list of each `face`, triangulated as
 /// triangulate_polygon does, and of each `tristrips` (-1 restarts a strip),
@@ -35,6 +33,6 @@ bool is_ascii_ply(const std::string& path, std::uint64_t file_bytes);
 /// triangles or three times as many vertices, or a concave face beyond
 /// kMostConcaveCorners) and
 /// `empty_scene`; messages name the element and its number.
-Result<Mesh> read_ascii_ply(std::istream& in, std::uint64_t file_bytes, std::uint64_t triangle_limit, int& skipped);
+Result<Mesh> read_ascii_ply(std::istream& in, const PlyHeader& h, std::uint64_t triangle_limit, int& skipped);
 
 } // namespace hullcover::detail

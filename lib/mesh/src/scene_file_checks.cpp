@@ -13,24 +13,14 @@
 namespace hullcover::detail {
 namespace {
 
-// A binary STL is an 80-byte header, a count and 50 bytes per triangle; an
-// ASCII one starts with "solid" (a binary header may too, so the size
-// decides first).
+// A binary STL must be the size its count declares; an ASCII one starts
+// with "solid" (stl_layout).
 Status check_stl(std::ifstream& in, std::uint64_t file_bytes) {
-  char head[84] = {};
-  in.read(head, sizeof head);
-  const std::uint64_t got = static_cast<std::uint64_t>(in.gcount());
-  std::string start(head, static_cast<std::size_t>(std::min<std::uint64_t>(got, 80)));
-  start.erase(0, start.find_first_not_of(" \t\r\n"));
-  if (got == 84) {
-    const std::uint64_t count = little_endian_u32(reinterpret_cast<const unsigned char*>(head + 80));
-    if (84 + 50 * count == file_bytes) return Status::success();
-    if (start.compare(0, 5, "solid") == 0) return Status::success();
-    return damaged_file("binary STL declares " + std::to_string(count) + " triangles, which take " +
-                        std::to_string(84 + 50 * count) + " bytes; the file has " + std::to_string(file_bytes));
-  }
-  if (start.compare(0, 5, "solid") == 0) return Status::success();
-  return damaged_file("STL shorter than a binary header (84 bytes) and not ASCII ('solid')");
+  std::uint64_t declared = 0;
+  if (stl_layout(in, file_bytes, declared) != StlLayout::neither) return Status::success();
+  if (file_bytes < 84) return damaged_file("STL shorter than a binary header (84 bytes) and not ASCII ('solid')");
+  return damaged_file("binary STL declares " + std::to_string(declared) + " triangles, which take " +
+                      std::to_string(84 + 50 * declared) + " bytes; the file has " + std::to_string(file_bytes));
 }
 
 } // namespace

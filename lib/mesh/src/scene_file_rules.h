@@ -10,6 +10,9 @@
 #include <cctype>
 #include <cstddef>
 #include <cstdint>
+#include <algorithm>
+#include <string_view>
+#include <istream>
 #include <filesystem>
 #include <string>
 
@@ -51,6 +54,26 @@ inline bool reference_text_leaves_folder(const std::string& path) {
   bool climbs = false;
   for (const auto& part : std::filesystem::path(path)) climbs |= part == "..";
   return scheme || absolute || climbs || path.find('\\') != std::string::npos;
+}
+
+/// How an STL file is laid out, read from its first 84 bytes: binary when
+/// its size is the one a binary header's count declares, ASCII when its
+/// text starts with "solid" (a binary header may too, so the size decides
+/// first), neither otherwise. `declared` is the binary count, when read.
+enum class StlLayout { binary, ascii, neither };
+inline StlLayout stl_layout(std::istream& in, std::uint64_t file_bytes, std::uint64_t& declared) {
+  constexpr std::uint64_t kHeaderBytes = 84, kTriangleBytes = 50, kCountAt = 80;
+  char head[kHeaderBytes] = {};
+  in.read(head, sizeof head);
+  const std::uint64_t got = static_cast<std::uint64_t>(in.gcount());
+  declared = 0;
+  if (got == kHeaderBytes) {
+    declared = little_endian_u32(reinterpret_cast<const unsigned char*>(head + kCountAt));
+    if (kHeaderBytes + kTriangleBytes * declared == file_bytes) return StlLayout::binary;
+  }
+  const std::string_view start(head, static_cast<std::size_t>(std::min(got, kCountAt)));
+  const std::size_t first = start.find_first_not_of(" \t\r\n");
+  return first != std::string_view::npos && start.substr(first, 5) == "solid" ? StlLayout::ascii : StlLayout::neither;
 }
 
 /// How far into a PLY file its header may run before the file is taken as

@@ -16,10 +16,6 @@
 namespace hullcover::detail {
 namespace {
 
-// Bytes of a binary STL's header and triangle count, and of each triangle.
-constexpr std::uint64_t kBinaryHeaderBytes = 84;
-constexpr std::uint64_t kBinaryTriangleBytes = 50;
-
 // Words a statement may have: "facet normal x y z" has five, and a line is
 // split no further (a 1 GiB line of words is not held as views).
 constexpr size_t kMostWordsRead = 6;
@@ -73,16 +69,8 @@ PositionKey key_of(const Eigen::Vector3d& p) {
 
 bool is_ascii_stl(const std::string& path, std::uint64_t file_bytes) {
   std::ifstream in(path, std::ios::binary);
-  char head[kBinaryHeaderBytes] = {};
-  in.read(head, sizeof head);
-  const std::uint64_t got = static_cast<std::uint64_t>(in.gcount());
-  if (got == kBinaryHeaderBytes) {
-    const std::uint64_t count = little_endian_u32(reinterpret_cast<const unsigned char*>(head + 80));
-    if (kBinaryHeaderBytes + kBinaryTriangleBytes * count == file_bytes) return false;
-  }
-  std::string_view start(head, static_cast<size_t>(std::min<std::uint64_t>(got, 80)));
-  const size_t first = start.find_first_not_of(" \t\r\n");
-  return first != std::string_view::npos && start.substr(first, 5) == "solid";
+  std::uint64_t declared = 0;
+  return stl_layout(in, file_bytes, declared) == StlLayout::ascii;
 }
 
 Result<Mesh> read_ascii_stl(std::istream& in, std::uint64_t triangle_limit) {
