@@ -10,7 +10,6 @@ extern "C" {
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace hullcover {
 
@@ -41,18 +40,6 @@ void order_around(std::vector<int>& facet, const std::vector<Eigen::Vector3d>& v
   }
   std::sort(by_angle.begin(), by_angle.end());
   for (size_t i = 0; i < facet.size(); ++i) facet[i] = by_angle[i].second;
-}
-
-// How thin the hull is: across its thinnest facet, the depth of the
-// vertex farthest behind that facet's plane.
-double thinnest_width(const ConvexPolytope& hull) {
-  double thinnest = std::numeric_limits<double>::infinity();
-  for (const Plane& plane : hull.planes) {
-    double width = 0.0;
-    for (const Eigen::Vector3d& v : hull.vertices) width = std::max(width, -plane.signed_distance(v));
-    thinnest = std::min(thinnest, width);
-  }
-  return thinnest;
 }
 
 // The diagonal of the points' bounding box.

@@ -197,6 +197,20 @@ void clip_polygon_to_planes_in_place(std::vector<Eigen::Vector3d>& polygon, cons
   }
 }
 
+double thinnest_width(const ConvexPolytope& hull, Eigen::Vector3d* across) {
+  double thinnest = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < hull.facets.size() && i < hull.planes.size(); ++i) {
+    if (!hull.planes[i].normal.allFinite()) continue;
+    double width = 0.0;
+    for (const Eigen::Vector3d& v : hull.vertices) width = std::max(width, -hull.planes[i].signed_distance(v));
+    if (width < thinnest) {
+      thinnest = width;
+      if (across) *across = hull.planes[i].normal;
+    }
+  }
+  return thinnest;
+}
+
 double polytope_volume(const ConvexPolytope& polytope) {
   if (polytope.vertices.empty()) return 0.0;
   const Eigen::Vector3d& apex = polytope.vertices.front();

@@ -260,14 +260,8 @@ Validity PatchMerger::check_thin_hull(int a, int b, const ConvexPolytope& hull, 
   // to a flat polygon's condition 4.
   if (index_.mode != ValidityMode::exact) return Validity::valid;
   const double tol = index_.tol();
-  double thinnest = std::numeric_limits<double>::infinity();
   Eigen::Vector3d across = Eigen::Vector3d::Zero();
-  for (size_t i = 0; i < hull.facets.size(); ++i) {
-    if (!hull.planes[i].normal.allFinite()) continue;
-    double width = 0.0;
-    for (const Eigen::Vector3d& v : hull.vertices) width = std::max(width, -hull.planes[i].signed_distance(v));
-    if (width < thinnest) thinnest = width, across = hull.planes[i].normal;
-  }
+  const double thinnest = thinnest_width(hull, &across);
   if (!(thinnest <= kThinHullSlabInTolerances * tol)) return Validity::valid;
   // Collinear corners: a needle under tol across, spanning nothing.
   const FlatPolygon polygon = make_flat_polygon(index_.mesh().positions, ids, across, tol);

@@ -167,6 +167,12 @@ struct HullInterior {
 /// mean the same by "deeper than tol".
 HullInterior hull_interior(const ConvexPolytope& hull, double tol);
 
+/// How thin `hull` is: across its thinnest facet, the depth of the vertex
+/// farthest behind that facet's plane; `across`, when given, gets that
+/// facet's outward normal. Facets whose normal is not finite are passed
+/// over; infinity when none is left.
+double thinnest_width(const ConvexPolytope& hull, Eigen::Vector3d* across = nullptr);
+
 /// Volume of a closed polytope (0 for a flat one), from its facets.
 double polytope_volume(const ConvexPolytope& polytope);
 
