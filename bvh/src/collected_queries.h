@@ -89,11 +89,11 @@ void cast_checked_ray(const Source& source, const Eigen::Vector3d& origin, const
   source.along_ray(origin, dir.cwiseInverse(), reach,
                    [&](int h, const RuntimeHull& hull, PlanesOf planes, double& best) {
     if (!all && !filter.admits(h, hull.material)) return;
-    // The float clip skips hulls the ray misses, or enters only past the
-    // reach (equal t is kept: it may go to the lower index).
-    double enter;
-    if (!planes.ray_may_hit(origin, dir, best, enter) || enter > best) return;
-    if (std::optional<RayHit> hit = ray_hit(hull, origin, dir, best)) {
+    // The exact clip on the hull's packed planes, which leaves a hull after
+    // the first plane that shows a miss (a float pre-test first measured no
+    // faster). A hull entered exactly at the reach is kept: equal t may go
+    // to the lower index.
+    if (std::optional<RayHit> hit = planes.ray_hit(hull, origin, dir, best)) {
       hit->hull = h;
       collector.add(*hit);
       // A stopped walk prunes every box (their entries are >= 0).

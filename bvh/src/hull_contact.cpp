@@ -1,5 +1,6 @@
 #include "hullcover/bvh/hull_contact.h"
 
+#include "planes_ray_hit.h"
 #include "separating_axes.h"
 #include "sphere_face_contact.h"
 #include "surface_normals.h"
@@ -51,10 +52,7 @@ Eigen::Vector3d closest_on_facet(const RuntimeHull& hull, int f, const Eigen::Ve
 
 // The facet plane p is least deep behind (p inside the hull).
 int nearest_facet(const RuntimeHull& hull, const Eigen::Vector3d& p) {
-  int best = 0;
-  for (int f = 1; f < static_cast<int>(hull.shape.facets.size()); ++f)
-    if (hull.shape.planes[f].signed_distance(p) > hull.shape.planes[best].signed_distance(p)) best = f;
-  return best;
+  return detail::least_deep_plane(hull.shape.planes.data(), static_cast<int>(hull.shape.facets.size()), p);
 }
 
 } // namespace
@@ -348,31 +346,8 @@ RuntimeHull placed_box(const Eigen::Isometry3d& pose, const Eigen::Vector3d& hal
 
 std::optional<RayHit> ray_hit(const RuntimeHull& hull, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                               double max_t) {
-  double enter = 0.0, leave = max_t;
-  int entering_plane = -1;
-  for (int i = 0; i < static_cast<int>(hull.shape.planes.size()); ++i) {
-    const Plane& plane = hull.shape.planes[i];
-    const double dist = plane.signed_distance(origin), denom = plane.normal.dot(direction);
-    if (denom == 0.0) {
-      if (dist > 0.0) return std::nullopt;
-      continue;
-    }
-    const double t = -dist / denom;
-    if (denom < 0.0) {
-      if (t > enter) {
-        enter = std::max(enter, t);
-        entering_plane = i;
-      }
-    } else {
-      leave = std::min(leave, t);
-    }
-    if (enter > leave) return std::nullopt;
-  }
-  if (entering_plane < 0) { // the origin is inside (or on) the hull
-    const int f = nearest_facet(hull, origin);
-    return RayHit{-1, 0.0, origin, hull.shape.planes[f].normal};
-  }
-  return RayHit{-1, enter, origin + enter * direction, hull.shape.planes[entering_plane].normal};
+  return detail::first_hit_on_planes(hull.shape.planes.data(), static_cast<int>(hull.shape.planes.size()),
+                                     static_cast<int>(hull.shape.facets.size()), origin, direction, max_t);
 }
 
 } // namespace hullcover::bvh

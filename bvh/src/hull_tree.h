@@ -109,17 +109,23 @@ private:
     size_t size_ = 0;
   };
 
-  // The lanes set in `lanes` (bit i: lane i), least `key` first, into
-  // `order`; returns how many. At most four: an insertion sort.
-  static int lanes_by_key(int lanes, Float4 key, int order[4]) {
+  // The lanes set in `lanes` (bit i: lane i) least `key` first: their
+  // children into `child` and keys into `key_out`; returns how many. At
+  // most four: an insertion sort (one lane met, the usual case, is no sort).
+  static int lanes_by_key(int lanes, Float4 key, const std::int32_t children[4], std::int32_t child[4],
+                          float key_out[4]) {
     float k[4];
     key.store(k);
     int met = 0;
     for (; lanes; lanes &= lanes - 1) {
       const int i = __builtin_ctz(static_cast<unsigned>(lanes));
       int j = met++;
-      for (; j > 0 && k[order[j - 1]] > k[i]; --j) order[j] = order[j - 1];
-      order[j] = i;
+      for (; j > 0 && key_out[j - 1] > k[i]; --j) {
+        key_out[j] = key_out[j - 1];
+        child[j] = child[j - 1];
+      }
+      key_out[j] = k[i];
+      child[j] = children[i];
     }
     return met;
   }
@@ -162,16 +168,17 @@ bool HullTree::find_where(const Aabb& box, const Eigen::Vector3d& centre, LaneTe
       const Float4 g = max(max(Float4::load(node.face[k]) - mid[k], mid[k] - Float4::load(node.face[3 + k])), zero);
       gap2 = gap2 + g * g;
     }
-    int lanes = lanes_meeting(node, lo, hi) & lane_test(gap2);
+    const int lanes = lanes_meeting(node, lo, hi) & lane_test(gap2);
     if (!lanes) continue;
-    int order[4];
-    const int met = lanes_by_key(lanes, gap2, order);
+    std::int32_t child[4];
+    float key[4];
+    const int met = lanes_by_key(lanes, gap2, node.child, child, key);
     // Leaves now, nearest first; inner nodes pushed farthest first, so the
     // nearest is walked next.
     for (int j = met - 1; j >= 0; --j)
-      if (node.child[order[j]] >= 0) stack.push(node.child[order[j]]);
+      if (child[j] >= 0) stack.push(child[j]);
     for (int j = 0; j < met; ++j)
-      if (node.child[order[j]] < 0 && visit(~node.child[order[j]])) return true;
+      if (child[j] < 0 && visit(~child[j])) return true;
   }
   return false;
 }
@@ -200,21 +207,16 @@ void HullTree::walk_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& in
   Float4 near_origin[3], far_origin[3], inv[3];
   int near_face[3], far_face[3];
   // An axis whose inverse direction is beyond float's range (a direction
-  // component under 3e-39, not zero) sets no limit here: the walk keeps
-  // every box that axis would have cut, never fewer.
-  int axes[3], axis_count = 0;
-  for (int k = 0; k < 3; ++k)
-    if (!(std::abs(inverse[k]) > std::numeric_limits<float>::max()) || std::isinf(inverse[k])) axes[axis_count++] = k;
+  // component under 3e-39, not zero) sets no limit: its float inverse is
+  // NaN, which max and min pass over (float4.h), so the walk keeps every
+  // box that axis would have cut, never fewer.
   for (int k = 0; k < 3; ++k) {
     const bool negative = inverse[k] < 0.0;
     const float below = float_at_or_below(origin[k]), above = float_at_or_above(origin[k]);
     near_origin[k] = Float4::all(negative ? below : above);
     far_origin[k] = Float4::all(negative ? above : below);
-    const double inverse_in_range = std::isinf(inverse[k])
-                                        ? inverse[k]
-                                        : std::clamp(inverse[k], -double(std::numeric_limits<float>::max()),
-                                                     double(std::numeric_limits<float>::max()));
-    inv[k] = Float4::all(static_cast<float>(inverse_in_range));
+    const bool in_range = std::abs(inverse[k]) <= std::numeric_limits<float>::max() || std::isinf(inverse[k]);
+    inv[k] = Float4::all(in_range ? static_cast<float>(inverse[k]) : std::numeric_limits<float>::quiet_NaN());
     near_face[k] = negative ? 3 + k : k;
     far_face[k] = negative ? k : 3 + k;
   }
@@ -229,10 +231,10 @@ void HullTree::walk_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& in
   float reach_up = float_at_or_above(reach);
   float prune = float_at_or_above(reach * static_cast<double>(kRaySlabWidening));
   WalkStack<Pending> stack(height_);
-  stack.push({0, 0.0f});
-  while (!stack.empty()) {
-    const Pending top = stack.pop();
-    if (top.entry > prune) continue;
+  // The nearest lane a node meets is walked next without the stack (the
+  // same order as pushing it last and popping it at once).
+  Pending top{0, 0.0f};
+  for (;;) {
     if (top.child < 0) {
       visit(~top.child, reach);
       if (reach != known_reach) {
@@ -240,25 +242,36 @@ void HullTree::walk_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& in
         reach_up = float_at_or_above(reach);
         prune = float_at_or_above(reach * static_cast<double>(kRaySlabWidening));
       }
-      continue;
+    } else {
+      const WideNode& n = nodes_[top.child];
+      // A lane where the origin lies on a face of a slab the ray runs along
+      // gives 0 x infinity = NaN; max and min keep their second operand
+      // then, so such an axis sets no limit, as it should.
+      Float4 entry = zero, exit = Float4::all(reach_up);
+      for (int k = 0; k < 3; ++k) {
+        entry = max((Float4::load(n.face[near_face[k]]) - near_origin[k]) * inv[k], entry);
+        exit = min((Float4::load(n.face[far_face[k]]) - far_origin[k]) * inv[k], exit);
+      }
+      const int lanes = (entry <= exit * widen).bits() & ((1 << n.count) - 1);
+      if (lanes && !(lanes & (lanes - 1))) { // one lane: no order to keep
+        top = {n.child[__builtin_ctz(static_cast<unsigned>(lanes))], 0.0f};
+        continue;
+      }
+      if (lanes) {
+        // The rest pushed farthest first, so the nearer are walked sooner.
+        std::int32_t child[4];
+        float key[4];
+        for (int j = lanes_by_key(lanes, entry, n.child, child, key) - 1; j > 0; --j) stack.push({child[j], key[j]});
+        if (!(key[0] > prune)) {
+          top = {child[0], key[0]};
+          continue;
+        }
+      }
     }
-    const WideNode& n = nodes_[top.child];
-    // A lane where the origin lies on a face of a slab the ray runs along
-    // gives 0 x infinity = NaN; max and min keep their second operand
-    // then, so such an axis sets no limit, as it should.
-    Float4 entry = zero, exit = Float4::all(reach_up);
-    for (int j = 0; j < axis_count; ++j) {
-      const int k = axes[j];
-      entry = max((Float4::load(n.face[near_face[k]]) - near_origin[k]) * inv[k], entry);
-      exit = min((Float4::load(n.face[far_face[k]]) - far_origin[k]) * inv[k], exit);
-    }
-    int lanes = (entry <= exit * widen).bits() & ((1 << n.count) - 1);
-    if (!lanes) continue;
-    float t[4];
-    entry.store(t);
-    // Push the lanes met, farthest first, so the nearest is walked next.
-    int order[4];
-    for (int j = lanes_by_key(lanes, entry, order) - 1; j >= 0; --j) stack.push({n.child[order[j]], t[order[j]]});
+    do {
+      if (stack.empty()) return;
+      top = stack.pop();
+    } while (top.entry > prune);
   }
 }
 

@@ -1,6 +1,7 @@
 #include "packed_planes.h"
 
 #include "float4.h"
+#include "planes_ray_hit.h"
 
 #include "hullcover/geometry/tolerances.h"
 
@@ -58,6 +59,11 @@ PackedPlanes::PackedPlanes(const std::vector<RuntimeHull>& hulls) {
   if (total_blocks > std::numeric_limits<std::uint32_t>::max())
     throw std::length_error("more planes than the packed store indexes");
   blocks_.reserve(total_blocks);
+  size_t total_planes = 0;
+  for (const RuntimeHull& hull : hulls) total_planes += hull.shape.planes.size();
+  if (total_planes > std::numeric_limits<std::uint32_t>::max())
+    throw std::length_error("more planes than the packed store indexes");
+  exact_.reserve(total_planes);
   for (const RuntimeHull& hull : hulls) {
     HullRecord record{};
     const Eigen::Vector3d centre = 0.5 * (hull.box.min + hull.box.max);
@@ -80,6 +86,9 @@ PackedPlanes::PackedPlanes(const std::vector<RuntimeHull>& hulls) {
     record.reach = float_at_or_above(reach);
     record.first_block = static_cast<std::uint32_t>(blocks_.size());
     record.planes = static_cast<std::uint32_t>(nx.size());
+    record.first_plane = static_cast<std::uint32_t>(exact_.size());
+    record.facets = static_cast<std::uint32_t>(hull.shape.facets.size());
+    exact_.insert(exact_.end(), hull.shape.planes.begin(), hull.shape.planes.end());
     record.blocks = unit && std::isfinite(record.reach) ? static_cast<std::uint32_t>((nx.size() + 3) / 4) : 0;
     for (std::uint32_t b = 0; b < record.blocks; ++b) {
       PlaneBlock block{};
@@ -213,22 +222,11 @@ FloatVerdict PackedPlanes::segment(int h, const Eigen::Vector3d& a, const Eigen:
   return FloatVerdict::unsure;
 }
 
-bool PackedPlanes::ray_may_hit(int h, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double reach,
-                               double& enter) const {
-  enter = 0.0;
+std::optional<RayHit> PackedPlanes::ray_hit(int h, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                                            double max_t) const {
   const HullRecord& hull = hulls_[h];
-  if (hull.blocks == 0) return true;
-  float q0[3], v[3];
-  if (!about_centre(origin, hull.centre, q0)) return true;
-  for (int k = 0; k < 3; ++k) v[k] = static_cast<float>(direction[k]);
-  // Every point of the hull is within its reach of the centre: a hit lies
-  // at t <= |q0| + reach, however far the ray goes.
-  const double span = std::min(reach, l1(q0) + static_cast<double>(hull.reach));
-  const double slack = kFloatPlaneSlack * (l1(q0) + hull.reach + span * l1(v)) + exact_slack(origin, hull.reach, span);
-  const Clip c = clip(hull, q0, v, float_at_or_above(span), float_at_or_above(2.0 * slack));
-  if (c.cut || c.enter > c.leave) return false;
-  enter = c.enter;
-  return true;
+  return first_hit_on_planes(exact_.data() + hull.first_plane, static_cast<int>(hull.planes),
+                             static_cast<int>(hull.facets), origin, direction, max_t);
 }
 
 } // namespace hullcover::bvh::detail

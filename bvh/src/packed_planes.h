@@ -14,9 +14,11 @@
 
 #include "float4.h"
 
+#include "hullcover/bvh/hull_contact.h"
 #include "hullcover/bvh/runtime_hull.h"
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace hullcover::bvh::detail {
@@ -57,12 +59,10 @@ public:
   /// the hull, else `unsure`.
   FloatVerdict segment(int h, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius) const;
 
-  /// The ray origin + t * direction (unit), 0 <= t <= reach, against hull h:
-  /// false when it certainly misses the hull; else true with `enter` at or
-  /// before where the ray would enter it (0 for an origin inside), so a
-  /// hull entered past the best hit so far can be skipped.
-  bool ray_may_hit(int h, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double reach,
-                   double& enter) const;
+  /// ray_hit(hull h, ...) (hull_contact.h), bit for bit, from the store's
+  /// own copy of the hull's planes in double: no read of the RuntimeHull.
+  std::optional<RayHit> ray_hit(int h, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                                double max_t) const;
 
 private:
   // Four planes as four lanes: n.x, n.y, n.z and the offset about the
@@ -76,15 +76,20 @@ private:
     float reach;      // >= the distance from the centre to any of the hull's vertices
     std::uint32_t first_block;
     std::uint32_t blocks;
-    std::uint32_t planes; // before padding
+    std::uint32_t planes;      // before padding
+    std::uint32_t first_plane; // in exact_
+    std::uint32_t facets;      // the first `facets` planes are the facets'
   };
   std::vector<PlaneBlock> blocks_;
+  // Every hull's planes in double, hull after hull: the exact decisions
+  // the float tests leave, without the scattered RuntimeHull.
+  std::vector<Plane> exact_;
   std::vector<HullRecord> hulls_;
 
   // The clip of segment q0 + t v, 0 <= t <= span, by hull h's planes moved
   // out by `grow` (float, about the centre), as [enter, leave], with the
-  // largest signed distance of each end: what segment() and ray_may_hit()
-  // build their verdicts on.
+  // largest signed distance of each end: what segment() builds its
+  // verdict on.
   struct Clip {
     float enter, leave;
     bool cut; // a plane parallel to the segment is in front of it all the way
@@ -106,9 +111,10 @@ struct PlanesOf {
   FloatVerdict segment(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius) const {
     return store ? store->segment(local, a, b, radius) : FloatVerdict::unsure;
   }
-  bool ray_may_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double reach, double& enter) const {
-    enter = 0.0;
-    return store ? store->ray_may_hit(local, origin, direction, reach, enter) : true;
+  /// ray_hit on the hull, from the store when there is one.
+  std::optional<RayHit> ray_hit(const RuntimeHull& hull, const Eigen::Vector3d& origin,
+                                const Eigen::Vector3d& direction, double max_t) const {
+    return store ? store->ray_hit(local, origin, direction, max_t) : bvh::ray_hit(hull, origin, direction, max_t);
   }
 };
 
