@@ -31,23 +31,20 @@ bool inside_facet(const RuntimeHull& hull, int f, const Eigen::Vector3d& q) {
   return true;
 }
 
-// Closest point of facet f's polygon to p.
-Eigen::Vector3d closest_on_facet(const RuntimeHull& hull, int f, const Eigen::Vector3d& p) {
-  const Plane& plane = hull.shape.planes[f];
-  const std::vector<int>& poly = hull.shape.facets[f];
-  const Eigen::Vector3d q = p - plane.signed_distance(p) * plane.normal;
-  if (inside_facet(hull, f, q)) return q;
-  Eigen::Vector3d best = q;
-  double best_d2 = kInfinity;
-  for (size_t i = 0; i < poly.size(); ++i) {
-    const Eigen::Vector3d c =
-        closest_point_on_segment(p, hull.shape.vertices[poly[i]], hull.shape.vertices[poly[(i + 1) % poly.size()]]);
-    if ((c - p).squaredNorm() < best_d2) {
-      best_d2 = (c - p).squaredNorm();
-      best = c;
-    }
+// Calls visit(a, b) with the ends of each edge of the hull once, until it
+// returns true: its edge list, or for a hull made by hand without one its
+// facets' sides (each then twice, which finds nothing else).
+template <typename Visit>
+void for_each_edge(const RuntimeHull& hull, Visit&& visit) {
+  const std::vector<Eigen::Vector3d>& v = hull.shape.vertices;
+  if (!hull.edges.empty()) {
+    for (const auto& [a, b] : hull.edges)
+      if (visit(v[a], v[b])) return;
+    return;
   }
-  return best;
+  for (const std::vector<int>& poly : hull.shape.facets)
+    for (size_t i = 0; i < poly.size(); ++i)
+      if (visit(v[poly[i]], v[poly[(i + 1) % poly.size()]])) return;
 }
 
 // The facet plane p is least deep behind (p inside the hull).
@@ -76,17 +73,29 @@ ClosestPoints closest_to_point_outside(const RuntimeHull& hull, const Eigen::Vec
                                        double good_enough) {
   // Every plane supports the hull, so the distance is at least the largest
   // facet distance; when p projects inside that facet, it is attained there.
-  const Eigen::Vector3d on_front = closest_on_facet(hull, front.facet, p);
-  const double front_gap = (on_front - p).norm();
-  if (front.distance > 0.0 && front_gap <= front.distance * (1.0 + kTouchingFraction)) return {front_gap, on_front, p};
+  const Plane& plane = hull.shape.planes[front.facet];
+  const Eigen::Vector3d foot = p - plane.signed_distance(p) * plane.normal;
+  if (front.distance > 0.0 && inside_facet(hull, front.facet, foot)) return {(foot - p).norm(), foot, p};
+  // Else the closest point is p's foot inside another facet p is in front
+  // of (one that ties with the front facet, as two triangles of one face
+  // can), or it is on an edge. Each edge is tested once, including those
+  // whose facets both face away from p: they are never nearer, and knowing
+  // which they are would cost more than testing them.
   ClosestPoints best{kInfinity, p, p};
   for (int f = 0; f < static_cast<int>(hull.shape.facets.size()); ++f) {
-    if (hull.shape.planes[f].signed_distance(p) < 0.0) continue;
-    const Eigen::Vector3d c = f == front.facet ? on_front : closest_on_facet(hull, f, p);
-    const double d = f == front.facet ? front_gap : (c - p).norm();
-    if (d < best.distance) best = {d, c, p};
-    if (best.distance <= good_enough) break;
+    const Plane& other = hull.shape.planes[f];
+    const double d = other.signed_distance(p);
+    if (f == front.facet || !(d >= 0.0) || d >= best.distance) continue;
+    const Eigen::Vector3d q = p - d * other.normal;
+    if (inside_facet(hull, f, q)) best = {(q - p).norm(), q, p};
+    if (best.distance <= good_enough) return best;
   }
+  for_each_edge(hull, [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    const Eigen::Vector3d c = closest_point_on_segment(p, a, b);
+    const double d = (c - p).norm();
+    if (d < best.distance) best = {d, c, p};
+    return best.distance <= good_enough;
+  });
   return best;
 }
 
@@ -100,32 +109,30 @@ bool segment_meets_hull(const RuntimeHull& hull, const Eigen::Vector3d& a, const
 
 ClosestPoints closest_to_segment_apart(const RuntimeHull& hull, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                        double good_enough) {
-  // Apart: the closest hull point lies on a facet some point of the segment
-  // is in front of (sd is linear along the segment, so an end point is), or
-  // on the plane of: a segment in a flat hull's plane, beside its rim, is in
-  // front of neither face, and only a side, which has no facet, separates it.
-  // There it is either the projection of an end point or on an edge.
+  // Apart: the closest hull point is an end point's projection inside a
+  // facet that end is in front of, or on an edge (segment to edge covers
+  // end point to edge). Signed distances are linear along the segment, so
+  // a facet the segment's closest point is in front of has an end in front:
+  // the facets no end is in front of add nothing. A segment in a flat
+  // hull's plane, beside its rim, is in front of neither face and is
+  // separated by a side alone, which has no facet: its closest points are
+  // on an edge.
+  // Each edge once, first: the segment-to-segment closest points are the
+  // cost, and a yes/no query often stops at the first edge near enough.
   ClosestPoints best{kInfinity, a, a};
+  for_each_edge(hull, [&](const Eigen::Vector3d& u, const Eigen::Vector3d& w) {
+    const auto [on_segment, on_edge] = closest_points_of_segments(a, b, u, w);
+    const double d = (on_segment - on_edge).norm();
+    if (d < best.distance) best = {d, on_edge, on_segment};
+    return best.distance <= good_enough;
+  });
   for (int f = 0; f < static_cast<int>(hull.shape.facets.size()) && best.distance > good_enough; ++f) {
     const Plane& plane = hull.shape.planes[f];
-    const bool a_in_front = plane.signed_distance(a) >= 0.0, b_in_front = plane.signed_distance(b) >= 0.0;
-    if (!a_in_front && !b_in_front) continue;
-    // An end point's own closest point on this facet is its projection when
-    // that falls inside; otherwise it is on an edge, which the edge pass
-    // below finds (segment-to-edge covers end-point-to-edge).
-    for (const auto& [end, in_front] : {std::make_pair(a, a_in_front), std::make_pair(b, b_in_front)}) {
-      if (!in_front) continue;
-      const double d = plane.signed_distance(end);
-      if (d >= best.distance) continue;
-      const Eigen::Vector3d q = end - d * plane.normal;
-      if (inside_facet(hull, f, q)) best = {d, q, end};
-    }
-    const std::vector<int>& poly = hull.shape.facets[f];
-    for (size_t i = 0; i < poly.size() && best.distance > good_enough; ++i) {
-      const auto [on_segment, on_edge] = closest_points_of_segments(a, b, hull.shape.vertices[poly[i]],
-                                                                    hull.shape.vertices[poly[(i + 1) % poly.size()]]);
-      const double d = (on_segment - on_edge).norm();
-      if (d < best.distance) best = {d, on_edge, on_segment};
+    for (const Eigen::Vector3d* end : {&a, &b}) {
+      const double d = plane.signed_distance(*end);
+      if (!(d >= 0.0) || d >= best.distance) continue;
+      const Eigen::Vector3d q = *end - d * plane.normal;
+      if (inside_facet(hull, f, q)) best = {d, q, *end};
     }
   }
   return best;
