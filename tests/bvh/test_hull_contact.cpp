@@ -282,5 +282,29 @@ TEST(BoxAndConvexContact, MatchTheMinkowskiReferenceAtRandomPoses) {
   EXPECT_GT(convexes, 100);
 }
 
+// A unit cube whose top is two triangles in one plane, the one listed
+// first not under the point: both are equally far below it, and the point
+// is over the second's inside, so the closest hull point is its foot there,
+// not on the diagonal between them (0.61 away instead of 0.5).
+TEST(ClosestToPoint, AFootOverTheTwinOfTheFrontFacetIsFound) {
+  ConvexPolytope cube;
+  for (int i = 0; i < 8; ++i) cube.vertices.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+  cube.facets = {{4, 5, 7}, {4, 7, 6}, {0, 2, 3, 1}, {0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}};
+  const Eigen::Vector3d normals[] = {{0, 0, 1}, {0, 0, 1}, {0, 0, -1}, {-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}};
+  const double offsets[] = {1, 1, 0, 0, 1, 0, 1};
+  for (int f = 0; f < 7; ++f) cube.planes.push_back({normals[f], offsets[f]});
+  const RuntimeHull hull = make_runtime_hull(cube, 0);
+  const Eigen::Vector3d p(0.25, 0.75, 1.5), foot(0.25, 0.75, 1.0);
+  const ClosestPoints c = closest_to_point(hull, p);
+  EXPECT_DOUBLE_EQ(c.distance, 0.5);
+  EXPECT_NEAR((c.on_hull - foot).norm(), 0.0, 1e-15);
+  const std::optional<Contact> contact = sphere_contact(hull, p, 0.6);
+  ASSERT_TRUE(contact);
+  EXPECT_NEAR(contact->depth, 0.1, 1e-15);
+  EXPECT_NEAR((contact->normal - Eigen::Vector3d::UnitZ()).norm(), 0.0, 1e-15);
+  EXPECT_FALSE(sphere_touches(hull, p, 0.45));
+  EXPECT_TRUE(sphere_touches(hull, p, 0.55));
+}
+
 } // namespace
 } // namespace hullcover::bvh
