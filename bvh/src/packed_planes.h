@@ -1,11 +1,13 @@
 #pragma once
-// Every hull's planes in one contiguous float store (private to bvh/), for
-// the first test a query makes of a hull: most hulls a tree walk reaches
-// are apart from the shape or missed by the ray, and four float planes at
-// a time settle that. A float answer near a decision point is not trusted:
-// the test then says "unsure" and the exact narrow phase (hull_contact.h,
-// in double on the RuntimeHull) decides, so answers are those of the double
-// code. See docs/definitions-and-proofs.md, "The runtime's float pre-tests".
+// Every hull's planes in one contiguous store (private to bvh/), twice. In
+// float, four planes a block, for the first test a sphere or capsule query
+// makes of a hull: most hulls a tree walk reaches are apart from the shape,
+// and four float planes at a time settle that. A float answer near a
+// decision point is not trusted: the test then says "unsure" and the exact
+// narrow phase (hull_contact.h, in double on the RuntimeHull) decides, so
+// answers are those of the double code. See docs/definitions-and-proofs.md,
+// "The runtime's float pre-tests". In double, hull after hull, for the
+// exact ray clip, which reads nothing else.
 //
 // Each hull's planes are stored about its own centre (its box's centre,
 // in double): a plane's offset is then at most the hull's reach, and
