@@ -83,8 +83,8 @@ private:
     std::uint32_t facets;      // the first `facets` planes are the facets'
   };
   std::vector<PlaneBlock> blocks_;
-  // Every hull's planes in double, hull after hull: the exact decisions
-  // the float tests leave, without the scattered RuntimeHull.
+  // Every hull's planes in double, hull after hull: what the exact ray
+  // clip reads instead of the scattered RuntimeHull.
   std::vector<Plane> exact_;
   std::vector<HullRecord> hulls_;
 
