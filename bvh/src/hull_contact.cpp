@@ -73,9 +73,10 @@ ClosestPoints closest_to_point_outside(const RuntimeHull& hull, const Eigen::Vec
                                        double good_enough) {
   // Every plane supports the hull, so the distance is at least the largest
   // facet distance; when p projects inside that facet, it is attained there.
-  const Plane& plane = hull.shape.planes[front.facet];
-  const Eigen::Vector3d foot = p - plane.signed_distance(p) * plane.normal;
-  if (front.distance > 0.0 && inside_facet(hull, front.facet, foot)) return {(foot - p).norm(), foot, p};
+  if (front.distance > 0.0) {
+    const Eigen::Vector3d foot = p - front.distance * hull.shape.planes[front.facet].normal;
+    if (inside_facet(hull, front.facet, foot)) return {(foot - p).norm(), foot, p};
+  }
   // Else the closest point is p's foot inside another facet p is in front
   // of (one that ties with the front facet, as two triangles of one face
   // can), or it is on an edge. Each edge is tested once, including those

@@ -54,15 +54,16 @@ double exact_slack(const Eigen::Vector3d& p, double reach, double radius) {
 
 PackedPlanes::PackedPlanes(const std::vector<RuntimeHull>& hulls) {
   hulls_.reserve(hulls.size());
-  size_t total_blocks = 0;
-  for (const RuntimeHull& hull : hulls) total_blocks += (hull.shape.planes.size() + 3) / 4;
-  if (total_blocks > std::numeric_limits<std::uint32_t>::max())
-    throw std::length_error("more planes than the packed store indexes");
-  blocks_.reserve(total_blocks);
-  size_t total_planes = 0;
-  for (const RuntimeHull& hull : hulls) total_planes += hull.shape.planes.size();
+  // Blocks are never more than planes, so one bound on the planes serves
+  // both stores' 32-bit indices.
+  size_t total_blocks = 0, total_planes = 0;
+  for (const RuntimeHull& hull : hulls) {
+    total_blocks += (hull.shape.planes.size() + 3) / 4;
+    total_planes += hull.shape.planes.size();
+  }
   if (total_planes > std::numeric_limits<std::uint32_t>::max())
     throw std::length_error("more planes than the packed store indexes");
+  blocks_.reserve(total_blocks);
   exact_.reserve(total_planes);
   for (const RuntimeHull& hull : hulls) {
     HullRecord record{};
