@@ -4,6 +4,7 @@
 #include "hullcover/geometry/tolerances.h"
 #include "number_checks.h"
 #include "commands.h"
+#include "movement_cli.h"
 #include "export/collider_export.h"
 #include "scene_loading.h"
 #include "terminal_progress.h"
@@ -37,8 +38,36 @@ struct DecomposeCommandOptions {
   std::string dissolve; // "", "on" or "off"
   DecomposeOptions decompose;
   ColliderExportOptions exported; // with --format, -o is an engine export
+  MovementCliOptions movement;    // with --agent-reach, a movement covering
   bool quiet = false;
 };
+
+// The movement covering (--agent-reach) of `scene`, or nothing after a
+// message on stderr.
+std::optional<MovementCovering> decompose_movement(const DecomposeCommandOptions& o, const LoadedScene& scene,
+                                                   TerminalProgress& bar) {
+  const double radius = o.decompose.agent_radius.value_or(0.0);
+  if (!(radius > 0.0)) {
+    std::fprintf(stderr, "hullcover: error: --agent-reach needs --agent-radius above 0\n");
+    return std::nullopt;
+  }
+  if (o.decompose.max_deviation || !o.cell_cache.empty()) {
+    std::fprintf(stderr, "hullcover: error: --agent-reach takes neither --max-deviation nor --cell-cache\n");
+    return std::nullopt;
+  }
+  std::optional<MovementOptions> options = movement_options_from(o.movement, radius);
+  if (!options) return std::nullopt;
+  options->threads = o.decompose.threads;
+  options->max_hull_vertices = o.decompose.max_hull_vertices;
+  if (bar.enabled()) options->progress = [&bar](double fraction) { bar.update(fraction); };
+  Result<MovementCovering> made = decompose_for_movement(scene.prepared, *options);
+  bar.finish();
+  if (!made.ok()) {
+    std::fprintf(stderr, "hullcover: error: %s\n", made.status().message().c_str());
+    return std::nullopt;
+  }
+  return std::move(made).value();
+}
 
 int run_decompose(DecomposeCommandOptions& o) {
   const auto start = std::chrono::steady_clock::now();
@@ -48,17 +77,26 @@ int run_decompose(DecomposeCommandOptions& o) {
   o.decompose.conditions = o.conditions == "paper" ? ValidityMode::paper : ValidityMode::exact;
   if (!o.dissolve.empty()) o.decompose.dissolve = o.dissolve == "on";
   TerminalProgress bar("decomposing (merges at most)", o.quiet);
-  if (bar.enabled()) o.decompose.progress = [&bar](double fraction) { bar.update(fraction); };
+  std::optional<MovementCovering> movement;
+  std::optional<Covering> made;
   CellCacheReport cache;
-  const Result<Covering> covering = o.cell_cache.empty()
-                                        ? decompose(scene->prepared, o.decompose)
-                                        : decompose_with_cell_cache(scene->prepared, o.decompose, o.cell_cache, cache);
-  bar.finish();
-  if (!covering.ok()) {
-    std::fprintf(stderr, "hullcover: error: %s\n", covering.status().message().c_str());
-    return kExitBadInput;
+  if (!o.movement.reach.empty()) {
+    movement = decompose_movement(o, *scene, bar);
+    if (!movement) return kExitBadInput;
+    made = std::move(movement->covering);
+  } else {
+    if (bar.enabled()) o.decompose.progress = [&bar](double fraction) { bar.update(fraction); };
+    Result<Covering> covering = o.cell_cache.empty()
+                                    ? decompose(scene->prepared, o.decompose)
+                                    : decompose_with_cell_cache(scene->prepared, o.decompose, o.cell_cache, cache);
+    bar.finish();
+    if (!covering.ok()) {
+      std::fprintf(stderr, "hullcover: error: %s\n", covering.status().message().c_str());
+      return kExitBadInput;
+    }
+    made = std::move(covering).value();
   }
-  const Covering& c = covering.value();
+  const Covering& c = *made;
   std::string exported;
   if (o.exported.format.empty()) {
     if (Status s = write_covering_obj(c, o.obj_path); !s.ok()) {
@@ -106,7 +144,15 @@ int run_decompose(DecomposeCommandOptions& o) {
                                  : "random seed " + std::to_string(o.decompose.seed + c.statistics.kept_try - 1);
     std::printf("  %d merge orders tried, kept %s\n", c.statistics.order_tries, kept.c_str());
   }
-  if (has_allowance(o.decompose))
+  if (movement) {
+    const MovementStatistics& m = movement->movement;
+    std::printf("  movement covering (%s): agent radius %.6g, slop %.6g, height %.6g, climb %.6g; rays are not kept\n",
+                m.reach == AgentReach::walk ? "walk" : "fly", m.radius, m.slop, m.height, m.climb);
+    std::printf("  reach grid: %lld cells of %.6g, %lld reachable, %d seed%s; %d of %d faces touchable; %.3f s\n",
+                m.grid_cells, m.cell, m.reachable_cells, m.seeds, m.seeds == 1 ? "" : "s", m.touchable_faces, faces,
+                m.seconds_reach);
+    std::printf("  merges tried %ld, refused undecided %ld\n", m.candidates, m.undecided);
+  } else if (has_allowance(o.decompose))
     std::printf("  allowance: agent radius %.6g, max deviation %.6g\n", o.decompose.agent_radius.value_or(0.0),
                 o.decompose.max_deviation.value_or(0.0));
   if (c.near_merge_distance > 0.0)
@@ -228,6 +274,7 @@ void register_decompose_command(CLI::App& app, int& exit_status) {
       ->check(count_from(kFewestTrianglesOfAHullLimit, 1 << 22));
   cmd->add_flag("--materials", o->decompose.keep_materials_apart,
                 "Keep materials apart: one material per hull, bars on material borders");
+  add_movement_options(*cmd, o->movement);
   add_collider_export_options(cmd, o->exported);
   cmd->add_flag("-q,--quiet", o->quiet, "No progress bar (drawn on stderr only when it is a terminal)");
   cmd->callback([o, &exit_status] { exit_status = run_decompose(*o); });

@@ -1,0 +1,269 @@
+#include "movement/movement_merging.h"
+
+#include "hullcover/geometry/aabb_tree.h"
+#include "hullcover/geometry/planar_hull.h"
+#include "hullcover/geometry/triangle_distance.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+namespace hullcover::detail {
+namespace {
+
+double box_surface(const Aabb& box) {
+  const Eigen::Vector3d d = box.max - box.min;
+  return 2.0 * (d.x() * d.y() + d.y() * d.z() + d.z() * d.x());
+}
+
+Aabb merged_box(const Aabb& a, const Aabb& b) {
+  Aabb box = a;
+  box.extend(b.min);
+  box.extend(b.max);
+  return box;
+}
+
+std::vector<int> sorted_union(const std::vector<int>& a, const std::vector<int>& b) {
+  std::vector<int> u;
+  u.reserve(a.size() + b.size());
+  std::set_union(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(u));
+  return u;
+}
+
+void triangle_of(const Mesh& mesh, int face, Eigen::Vector3d (&t)[3]) {
+  for (int k = 0; k < 3; ++k) t[k] = mesh.positions[mesh.triangles[face][k]];
+}
+
+} // namespace
+
+bool MovementMerger::start_group(int f, Group& group) const {
+  const Mesh& mesh = context_.mesh;
+  const Eigen::Vector3i& t = mesh.triangles[f];
+  const Eigen::Vector3d &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+  const Eigen::Vector3d n = (b - a).cross(c - a);
+  if (!(n.norm() > 0.0)) return false;
+  FlatPolygon polygon = flat_triangle(a, b, c);
+  polygon.corner_vertices = {t[0], t[1], t[2]};
+  group.faces = {f};
+  group.corners = {t[0], t[1], t[2]};
+  std::sort(group.corners.begin(), group.corners.end());
+  group.hull = flat_polytope(polygon, true);
+  group.flat = true;
+  group.box = bounding_box_of(polygon.corners);
+  group.area = 0.5 * n.norm();
+  group.area_vector = 0.5 * n;
+  return true;
+}
+
+MovementMerger::MovementMerger(const MovementContext& context, const MeshConnectivity& connectivity,
+                               const std::vector<int>& faces, double near_distance, int max_hull_vertices,
+                               MovementStatistics& statistics, std::function<void(double)> progress)
+    : context_(context), max_hull_vertices_(max_hull_vertices), statistics_(statistics),
+      progress_(std::move(progress)) {
+  const Mesh& mesh = context.mesh;
+  std::vector<int> group_of_face(mesh.triangles.size(), -1);
+  for (int f : faces) {
+    Group g;
+    if (!start_group(f, g)) continue;
+    group_of_face[f] = static_cast<int>(groups_.size());
+    groups_.push_back(std::move(g));
+  }
+  // Neighbours: faces sharing an edge (any edge, open or not), and faces
+  // within the near distance of each other.
+  std::vector<std::vector<int>> neighbours(groups_.size());
+  for (const MeshEdge& edge : connectivity.edges)
+    for (int i = 0; i < edge.use_count; ++i)
+      for (int j = i + 1; j < edge.use_count; ++j) {
+        const int ga = group_of_face[connectivity.edge_uses[edge.first_use + i].face];
+        const int gb = group_of_face[connectivity.edge_uses[edge.first_use + j].face];
+        if (ga < 0 || gb < 0 || ga == gb) continue;
+        neighbours[ga].push_back(gb);
+        neighbours[gb].push_back(ga);
+      }
+  if (near_distance > 0.0) {
+    std::vector<Aabb> boxes;
+    for (const Group& g : groups_) boxes.push_back(grown(g.box, 0.5 * near_distance));
+    const AabbTree tree(boxes);
+    std::vector<int> found;
+    Eigen::Vector3d s[3], t[3];
+    for (int ga = 0; ga < static_cast<int>(groups_.size()); ++ga) {
+      found.clear();
+      tree.overlapping(boxes[ga], found);
+      triangle_of(mesh, groups_[ga].faces[0], s);
+      for (int gb : found) {
+        if (gb <= ga) continue;
+        triangle_of(mesh, groups_[gb].faces[0], t);
+        if (!triangles_within(s, t, near_distance)) continue;
+        neighbours[ga].push_back(gb);
+        neighbours[gb].push_back(ga);
+      }
+    }
+  }
+  for (size_t g = 0; g < groups_.size(); ++g) {
+    std::vector<int>& n = neighbours[g];
+    std::sort(n.begin(), n.end());
+    n.erase(std::unique(n.begin(), n.end()), n.end());
+    groups_[g].neighbours = std::move(n);
+  }
+}
+
+double MovementMerger::pair_cost(int a, int b) const {
+  const Group& ga = groups_[a];
+  const Group& gb = groups_[b];
+  return box_surface(merged_box(ga.box, gb.box)) / (ga.area + gb.area);
+}
+
+void MovementMerger::push_pair(int a, int b) {
+  if (a > b) std::swap(a, b);
+  queue_.push_back({pair_cost(a, b), a, b, groups_[a].version, groups_[b].version});
+  std::push_heap(queue_.begin(), queue_.end(), std::greater<Pair>());
+}
+
+bool MovementMerger::try_merge(int a, int b, Group& merged) {
+  const Mesh& mesh = context_.mesh;
+  const Group& ga = groups_[a];
+  const Group& gb = groups_[b];
+  merged.corners = sorted_union(ga.corners, gb.corners);
+  merged.faces = sorted_union(ga.faces, gb.faces);
+  merged.area = ga.area + gb.area;
+  merged.area_vector = ga.area_vector + gb.area_vector;
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(merged.corners.size());
+  for (int v : merged.corners) points.push_back(mesh.positions[v]);
+  const double tol = context_.tol;
+  Result<ConvexPolytope> solid = builder_.build(points, merged.corners);
+  if (solid.ok()) {
+    merged.hull = std::move(solid).value();
+    merged.flat = false;
+  } else {
+    // Flat (or too thin for Qhull): one polygon, every point within tol of
+    // its plane, or no hull.
+    Eigen::Vector3d normal = merged.area_vector;
+    if (!(normal.norm() > 0.0)) normal = ga.hull.planes[0].normal;
+    normal.normalize();
+    const auto [low, high] = extent_along(mesh.positions, merged.corners, normal);
+    if (!(high - low <= 2.0 * tol)) return false;
+    FlatPolygon polygon = make_flat_polygon(mesh.positions, merged.corners, normal, tol);
+    if (polygon.corners.size() < 3) return false;
+    merged.hull = flat_polytope(polygon, true);
+    merged.flat = true;
+  }
+  if (static_cast<int>(merged.hull.vertices.size()) > max_hull_vertices_) return false;
+  merged.corners.clear();
+  for (int id : merged.hull.vertex_ids)
+    if (id >= 0) merged.corners.push_back(id);
+  std::sort(merged.corners.begin(), merged.corners.end());
+  merged.corners.erase(std::unique(merged.corners.begin(), merged.corners.end()), merged.corners.end());
+  merged.box = merged_box(ga.box, gb.box);
+  ++statistics_.candidates;
+  const MovementVerdict verdict =
+      check_movement_hull(context_, merged.hull, merged.flat, {&ga.hull, &gb.hull}, boundary_);
+  if (verdict == MovementVerdict::undecided) ++statistics_.undecided;
+  return verdict == MovementVerdict::valid;
+}
+
+void MovementMerger::run() {
+  for (int a = 0; a < static_cast<int>(groups_.size()); ++a)
+    for (int b : groups_[a].neighbours)
+      if (a < b) push_pair(a, b);
+  const double total = std::max<size_t>(1, groups_.size());
+  int merges = 0;
+  Group merged;
+  while (!queue_.empty()) {
+    std::pop_heap(queue_.begin(), queue_.end(), std::greater<Pair>());
+    const Pair pair = queue_.back();
+    queue_.pop_back();
+    Group& ga = groups_[pair.a];
+    Group& gb = groups_[pair.b];
+    if (!ga.alive || !gb.alive || ga.version != pair.version_a || gb.version != pair.version_b) continue;
+    if (!try_merge(pair.a, pair.b, merged)) continue;
+    // a takes the union; b's neighbours become a's.
+    std::vector<int> neighbours = sorted_union(ga.neighbours, gb.neighbours);
+    neighbours.erase(std::remove_if(neighbours.begin(), neighbours.end(),
+                                    [&](int g) { return g == pair.a || g == pair.b || !groups_[g].alive; }),
+                     neighbours.end());
+    merged.neighbours = neighbours;
+    merged.version = ga.version + 1;
+    merged.alive = true;
+    std::swap(ga, merged);
+    gb.alive = false;
+    gb.neighbours.clear();
+    for (int g : neighbours) {
+      std::vector<int>& n = groups_[g].neighbours;
+      n.erase(std::remove(n.begin(), n.end(), pair.b), n.end());
+      if (!std::binary_search(n.begin(), n.end(), pair.a)) n.insert(std::lower_bound(n.begin(), n.end(), pair.a), pair.a);
+      push_pair(pair.a, g);
+    }
+    if (progress_ && (++merges & 255) == 0) progress_(std::min(0.95, merges / total));
+  }
+  drop_held_groups();
+}
+
+void MovementMerger::drop_held_groups() {
+  const Mesh& mesh = context_.mesh;
+  const double tol = context_.tol;
+  std::vector<Aabb> boxes;
+  for (const Group& g : groups_) boxes.push_back(g.alive ? grown(g.box, tol) : Aabb{});
+  const AabbTree tree(boxes);
+  std::vector<int> found;
+  for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
+    if (!groups_[g].alive) continue;
+    bool held = true;
+    for (int f : groups_[g].faces) {
+      Aabb face_box;
+      for (int k = 0; k < 3; ++k) face_box.extend(mesh.positions[mesh.triangles[f][k]]);
+      found.clear();
+      tree.overlapping(face_box, found);
+      std::sort(found.begin(), found.end());
+      bool inside_one = false;
+      for (int h : found) {
+        if (h == g || !groups_[h].alive) continue;
+        bool all = true;
+        for (int k = 0; k < 3 && all; ++k)
+          all = deepest_signed_distance(groups_[h].hull.planes, mesh.positions[mesh.triangles[f][k]]) <= tol;
+        if ((inside_one = all)) break;
+      }
+      if (!(held = inside_one)) break;
+    }
+    if (held) groups_[g].alive = false;
+  }
+}
+
+std::vector<CoveringHull> MovementMerger::hulls() const {
+  const Mesh& mesh = context_.mesh;
+  const double tol = context_.tol;
+  std::vector<CoveringHull> out;
+  for (const Group& g : groups_) {
+    if (!g.alive) continue;
+    CoveringHull h;
+    h.polytope = g.hull;
+    h.faces = g.faces;
+    h.planar = g.flat;
+    h.thickness = 0.0;
+    h.material = mesh.material_ids.empty() ? 0 : mesh.material_ids[g.faces.front()];
+    for (int f : g.faces)
+      if (!mesh.material_ids.empty()) h.material = std::min(h.material, mesh.material_ids[f]);
+    h.volume = g.flat ? 0.0 : polytope_volume(g.hull);
+    // A plane is the surface's own where a face of the group lies in it; a
+    // flat hull's rim is where its surface ends.
+    h.surface_planes.assign(g.hull.planes.size(), g.flat);
+    for (size_t p = 0; p < g.hull.facets.size() && !g.flat; ++p)
+      for (int f : g.faces) {
+        bool in_plane = true;
+        for (int k = 0; k < 3 && in_plane; ++k)
+          in_plane = std::abs(g.hull.planes[p].signed_distance(mesh.positions[mesh.triangles[f][k]])) <= tol;
+        if (in_plane) {
+          h.surface_planes[p] = true;
+          break;
+        }
+      }
+    out.push_back(std::move(h));
+  }
+  std::sort(out.begin(), out.end(),
+            [](const CoveringHull& x, const CoveringHull& y) { return x.faces.front() < y.faces.front(); });
+  return out;
+}
+
+} // namespace hullcover::detail

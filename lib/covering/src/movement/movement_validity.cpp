@@ -1,0 +1,254 @@
+#include "movement/movement_validity.h"
+
+#include "hullcover/geometry/triangle_distance.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace hullcover::detail {
+namespace {
+
+enum class RegionVerdict { clear, reached, undecided };
+
+RegionVerdict worse(RegionVerdict a, RegionVerdict b) {
+  if (a == RegionVerdict::reached || b == RegionVerdict::reached) return RegionVerdict::reached;
+  return a == RegionVerdict::undecided || b == RegionVerdict::undecided ? RegionVerdict::undecided
+                                                                         : RegionVerdict::clear;
+}
+
+// Whether no reachable centre lies in a region: `lower(c)` bounds from
+// below the distance from point c to the region, and `inside(c)` tells
+// whether c lies in it. Boxes from `start` are halved along their longest
+// side until each is cleared: it misses the region, the reach grid holds
+// no reachable cell in it, or every point of it is nearer than r - tol to
+// a triangle (by the clearance at its centre plus its half-diagonal, or by
+// its farthest corner from the nearest triangle). A point of the region at
+// clearance r - tol or more in a reachable cell is a witness: a point
+// within tol of clearance r counts as one an agent's centre may be at.
+template <class Lower, class Inside>
+RegionVerdict no_centre_in(const MovementContext& context, const Aabb& start, int& boxes_left, Lower&& lower,
+                           Inside&& inside) {
+  const double r = context.agent.radius;
+  const double tol = context.tol;
+  const double smallest = kSmallestProofBoxInSlops * context.agent.slop;
+  std::vector<Aabb> stack{start};
+  while (!stack.empty()) {
+    const Aabb box = stack.back();
+    stack.pop_back();
+    const Eigen::Vector3d c = 0.5 * (box.min + box.max);
+    const double half = 0.5 * (box.max - box.min).norm();
+    if (lower(c) > half) continue;
+    if (!context.grid.any_reachable(box)) continue;
+    const NearestFace near = context.clearance.nearest(c, r + half + tol);
+    if (near.distance + half < r - tol) continue;
+    if (near.face >= 0 && context.clearance.farthest_in_box(box, near.face) < r - tol) continue;
+    if (near.distance >= r - tol && inside(c) && context.grid.reachable_at(c)) return RegionVerdict::reached;
+    if (half < smallest || --boxes_left < 0) return RegionVerdict::undecided;
+    int axis = 0;
+    (box.max - box.min).maxCoeff(&axis);
+    const double middle = 0.5 * (box.min[axis] + box.max[axis]);
+    Aabb low = box, high = box;
+    low.max[axis] = middle;
+    high.min[axis] = middle;
+    stack.push_back(high);
+    stack.push_back(low);
+  }
+  return RegionVerdict::clear;
+}
+
+// Whether every one of `points` lies within E - tol of one triangle near
+// them: the distance to a triangle is convex, so its largest value on
+// their convex hull is at one of them.
+bool within_slop_of_one_face(const MovementContext& context, const std::vector<Eigen::Vector3d>& points,
+                             std::vector<int>& near) {
+  const double reach = context.agent.slop - context.tol;
+  near.clear();
+  context.clearance.faces_meeting(grown(bounding_box_of(points), reach), near);
+  for (int face : near) {
+    bool within = true;
+    for (const Eigen::Vector3d& p : points)
+      if (!(within = context.clearance.to_face(p, face) <= reach)) break;
+    if (within) return true;
+  }
+  return false;
+}
+
+// A point a little less than r - E in front of or behind `piece`, over its
+// centroid, its corners (drawn a tenth of the way in) or the middles of
+// its sides, that may be a reachable centre: the cheap way most candidates
+// that take reachable space are refused, before any halving.
+bool witness_beside(const MovementContext& context, const BoundaryPiece& piece) {
+  const double r = context.agent.radius;
+  const double tol = context.tol;
+  const double offset = r - context.agent.slop - 2.0 * tol;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : piece.corners) centroid += p;
+  centroid /= static_cast<double>(piece.corners.size());
+  const auto reachable = [&](const Eigen::Vector3d& base) {
+    for (double side : {1.0, -1.0}) {
+      const Eigen::Vector3d c = base + side * offset * piece.normal;
+      if (context.grid.reachable_at(c) && context.clearance.nearest(c, r).distance >= r - tol) return true;
+    }
+    return false;
+  };
+  if (reachable(centroid)) return true;
+  const size_t n = piece.corners.size();
+  for (size_t i = 0; i < n; ++i)
+    if (reachable(piece.corners[i] + 0.1 * (centroid - piece.corners[i])) ||
+        reachable(0.5 * (piece.corners[i] + piece.corners[(i + 1) % n])))
+      return true;
+  return false;
+}
+
+// The column over `piece`: the points within r - E of its plane whose
+// projection lies in it. A point nearest to the hull on the piece (from
+// outside or, for a centre inside the hull, from within) lies in it.
+struct Column {
+  const BoundaryPiece& piece;
+  double reach; // r - E
+
+  // Distance from c to the column, from below.
+  double distance(const Eigen::Vector3d& c) const {
+    const double height = piece.normal.dot(c - piece.corners[0]);
+    const Eigen::Vector3d foot = c - height * piece.normal;
+    const double across = distance_to_polygon(foot, piece.corners, piece.normal);
+    const double over = std::max(0.0, std::abs(height) - reach);
+    return std::sqrt(across * across + over * over);
+  }
+};
+
+// Proves no reachable centre in the column over `piece`: the piece lies
+// within E of one triangle, or its halves do (halved across its widest
+// extent while wider than twice the slop, `depth` times at most), or the
+// column holds no reachable centre.
+RegionVerdict prove_piece(const MovementContext& context, const BoundaryPiece& piece, int depth, int& boxes_left,
+                          std::vector<int>& near) {
+  if (within_slop_of_one_face(context, piece.corners, near)) return RegionVerdict::clear;
+  if (witness_beside(context, piece)) return RegionVerdict::reached;
+  const double slop = context.agent.slop;
+  const double reach = context.agent.radius - slop;
+  const double tol = context.tol;
+  size_t a = 0, b = 0;
+  double widest = 0.0;
+  for (size_t i = 0; i < piece.corners.size(); ++i)
+    for (size_t j = i + 1; j < piece.corners.size(); ++j) {
+      const double d = (piece.corners[i] - piece.corners[j]).squaredNorm();
+      if (d > widest) {
+        widest = d;
+        a = i;
+        b = j;
+      }
+    }
+  if (depth > 0 && std::sqrt(widest) > 2.0 * slop) {
+    const Eigen::Vector3d across = (piece.corners[b] - piece.corners[a]).normalized();
+    const Plane cut{across, across.dot(0.5 * (piece.corners[a] + piece.corners[b]))};
+    const BoundaryPiece halves[2] = {{clip_polygon(piece.corners, cut, 0.0), piece.normal},
+                                     {clip_polygon(piece.corners, cut.flipped(), 0.0), piece.normal}};
+    RegionVerdict verdict = RegionVerdict::clear;
+    for (const BoundaryPiece& half : halves) {
+      if (half.corners.size() < 3) continue;
+      verdict = worse(verdict, prove_piece(context, half, depth - 1, boxes_left, near));
+      if (verdict == RegionVerdict::reached) break;
+    }
+    return verdict;
+  }
+  const Column column{piece, reach};
+  Aabb start = bounding_box_of(piece.corners);
+  for (int side : {-1, 1})
+    for (const Eigen::Vector3d& p : piece.corners) start.extend(p + side * reach * piece.normal);
+  return no_centre_in(
+      context, start, boxes_left, [&](const Eigen::Vector3d& c) { return column.distance(c); },
+      [&](const Eigen::Vector3d& c) { return column.distance(c) == 0.0 && std::abs(piece.normal.dot(c - piece.corners[0])) < reach - tol; });
+}
+
+// Proves no reachable centre within r - E of segment a-b.
+RegionVerdict prove_segment(const MovementContext& context, const BoundarySegment& segment, int& boxes_left,
+                            std::vector<int>& near) {
+  if (within_slop_of_one_face(context, {segment.a, segment.b}, near)) return RegionVerdict::clear;
+  const double reach = context.agent.radius - context.agent.slop;
+  const double tol = context.tol;
+  Aabb start;
+  start.extend(segment.a);
+  start.extend(segment.b);
+  const auto distance = [&](const Eigen::Vector3d& c) {
+    return (closest_point_on_segment(c, segment.a, segment.b) - c).norm();
+  };
+  return no_centre_in(
+      context, grown(start, reach), boxes_left, [&](const Eigen::Vector3d& c) { return distance(c) - reach; },
+      [&](const Eigen::Vector3d& c) { return distance(c) < reach - tol; });
+}
+
+double area_of(const std::vector<Eigen::Vector3d>& polygon) {
+  double area = 0.0;
+  for (size_t i = 1; i + 1 < polygon.size(); ++i)
+    area += 0.5 * (polygon[i] - polygon[0]).cross(polygon[i + 1] - polygon[0]).norm();
+  return area;
+}
+
+} // namespace
+
+double distance_to_polygon(const Eigen::Vector3d& p, const std::vector<Eigen::Vector3d>& corners,
+                           const Eigen::Vector3d& normal) {
+  const size_t n = corners.size();
+  // Inside when on one side of every edge, either winding.
+  bool left = true, right = true;
+  for (size_t i = 0; i < n; ++i) {
+    const double side = (corners[(i + 1) % n] - corners[i]).cross(p - corners[i]).dot(normal);
+    left &= side >= 0.0;
+    right &= side <= 0.0;
+  }
+  if (left || right) return std::abs(normal.dot(p - corners[0]));
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < n; ++i)
+    best = std::min(best, (closest_point_on_segment(p, corners[i], corners[(i + 1) % n]) - p).norm());
+  return best;
+}
+
+MovementVerdict check_movement_hull(const MovementContext& context, const ConvexPolytope& hull, bool flat,
+                                    const std::vector<const ConvexPolytope*>& known, UncoveredBoundary& boundary) {
+  const AgentShape& agent = context.agent;
+  const double r = agent.radius;
+  const double reach = r - agent.slop; // r - E
+  const double tol = context.tol;
+  boundary.clear();
+  uncovered_boundary(context.clearance, hull, flat, known, tol, boundary);
+  std::vector<int> near;
+  // The budget grows with the area to prove: one triangle clears a box only
+  // once the box is about r wide.
+  double area = 0.0;
+  for (const BoundaryPiece& piece : boundary.pieces) area += area_of(piece.corners);
+  int boxes_left = static_cast<int>(std::min<double>(kMostProofBoxesOfAHull,
+                                                     kMostProofBoxes + kProofBoxesPerSquareRadius * area / (r * r)));
+  bool undecided = false;
+  for (const BoundaryPiece& piece : boundary.pieces) {
+    const RegionVerdict verdict = prove_piece(context, piece, kMostPieceHalvings, boxes_left, near);
+    if (verdict == RegionVerdict::reached) return MovementVerdict::centre_near_boundary;
+    undecided |= verdict == RegionVerdict::undecided;
+  }
+  for (const BoundarySegment& segment : boundary.segments) {
+    const RegionVerdict verdict = prove_segment(context, segment, boxes_left, near);
+    if (verdict == RegionVerdict::reached) return MovementVerdict::centre_near_boundary;
+    undecided |= verdict == RegionVerdict::undecided;
+  }
+  // A centre deeper than r - E inside the hull; none can be when the hull
+  // is thinner than 2 (r - E) (its inradius is less than r - E).
+  if (!flat && thinnest_width(hull) >= 2.0 * (reach - tol)) {
+    Aabb start = bounding_box_of(hull.vertices);
+    start.min.array() += reach - tol;
+    start.max.array() -= reach - tol;
+    if (!start.empty()) {
+      const RegionVerdict verdict = no_centre_in(
+          context, start, boxes_left,
+          [&](const Eigen::Vector3d& c) { return deepest_signed_distance(hull.planes, c) + reach - tol; },
+          [&](const Eigen::Vector3d& c) { return deepest_signed_distance(hull.planes, c) < -tol; });
+      if (verdict == RegionVerdict::reached) return MovementVerdict::centre_inside;
+      undecided |= verdict == RegionVerdict::undecided;
+    }
+  }
+  return undecided ? MovementVerdict::undecided : MovementVerdict::valid;
+}
+
+} // namespace hullcover::detail

@@ -1,0 +1,73 @@
+#pragma once
+/// \file movement_validity.h
+/// Whether a candidate hull keeps the movement covering's promise: no
+/// reachable agent centre comes within r - E of it
+/// (docs/definitions-and-proofs.md, "Movement coverings").
+///
+/// The proof, for a hull H that holds its faces:
+///  1. every point of H's boundary that lies on no face of its own (the
+///     uncovered boundary, uncovered_boundary.h) is proven at least r - E
+///     from every reachable centre: within E of one triangle (then a centre
+///     nearer than r - E would be nearer than r to that triangle), or by
+///     halving boxes of the space around it until each holds no reachable
+///     centre (the reach grid clears it, or a triangle lies within r of all
+///     of it, by its corners) or lies too far;
+///  2. points of the boundary on faces are at least r from every centre;
+///  3. H shrunk by r - E holds no reachable centre (the same halving).
+/// A centre outside H is then at least r - E from it (its nearest point of
+/// H is on the boundary); a centre inside H would be nearer than r - E to
+/// the boundary or inside the shrunk hull. Neither can be.
+
+#include "movement/reach_grid.h"
+#include "movement/scene_clearance.h"
+#include "movement/uncovered_boundary.h"
+
+#include <vector>
+
+namespace hullcover::detail {
+
+/// The halving proofs of one hull give up after this many boxes (plus the
+/// next), the
+/// candidate is then refused (counted as undecided), never accepted on a
+/// guess.
+inline constexpr int kMostProofBoxes = 4096;
+/// ... and this many more per r^2 of uncovered boundary,
+inline constexpr double kProofBoxesPerSquareRadius = 64.0;
+/// ... and never more than this.
+inline constexpr int kMostProofBoxesOfAHull = 1 << 18;
+/// A piece of uncovered boundary not within E of one triangle is halved at
+/// most this many times, each half tried again, before the space around it
+/// is searched.
+inline constexpr int kMostPieceHalvings = 10;
+/// ... or on a box whose half-diagonal is below the slop over this.
+inline constexpr double kSmallestProofBoxInSlops = 1.0 / 16.0;
+
+/// What the proofs read; shared read-only by every merger.
+struct MovementContext {
+  const Mesh& mesh;
+  const SceneClearance& clearance;
+  const ReachGrid& grid;
+  const AgentShape& agent;
+  double tol = 0.0; ///< the scene's tolerance (the largest place's): coincidence of faces and facets
+};
+
+/// Why a candidate hull fails.
+enum class MovementVerdict {
+  valid,
+  centre_near_boundary, ///< a reachable centre within r - E of the uncovered boundary
+  centre_inside,        ///< a reachable centre inside the hull
+  undecided,            ///< a proof ran out of boxes
+};
+
+/// The proof above for `hull` (flat: a polygon), whose
+/// boundary on the hulls `known` (inside it, proven before) needs no proof
+/// again. `boundary` is reused storage.
+MovementVerdict check_movement_hull(const MovementContext& context, const ConvexPolytope& hull, bool flat,
+                                    const std::vector<const ConvexPolytope*>& known, UncoveredBoundary& boundary);
+
+/// Distance from `p` to convex polygon `corners` (in one plane with unit
+/// normal `normal`).
+double distance_to_polygon(const Eigen::Vector3d& p, const std::vector<Eigen::Vector3d>& corners,
+                           const Eigen::Vector3d& normal);
+
+} // namespace hullcover::detail

@@ -1,0 +1,315 @@
+#include "movement/reach_grid.h"
+
+#include "hullcover/geometry/parallel_for.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace hullcover::detail {
+namespace {
+
+// Per-cell marks while the grid is built.
+constexpr std::uint8_t kClear = 1;    // may hold a point at clearance >= r
+constexpr std::uint8_t kStanding = 2; // within a walkable face's standing envelope
+constexpr std::uint8_t kDropping = 4; // below a standing cell, falling straight down
+constexpr std::uint8_t kSeeded = 8;   // reached from a seed
+constexpr std::uint8_t kWalkable = 16; // clear, and standing or dropping: a walking agent's centre may be here
+
+// Blocks of this many cells a side are classified on their own (in parallel).
+constexpr int kBlock = 32;
+
+std::string point_text(const Eigen::Vector3d& p) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%.6g, %.6g, %.6g)", p.x(), p.y(), p.z());
+  return text;
+}
+
+struct GridBuild {
+  const ReachGrid& grid;
+  const SceneClearance& clearance;
+  double threshold; // a cell may hold a clear centre when its centre's clearance is at least this
+  double radius;
+  std::vector<std::uint8_t>& marks;
+
+  // Marks kClear in the cells of the cube of `size` cells (a power of 2) at
+  // `lo`, clipped to the grid. The clearance at the middle of the cube's
+  // cell centres bounds every one of them within `spread` (1-Lipschitz).
+  void classify(const Eigen::Vector3i& lo, int size) const {
+    const Eigen::Vector3i& dims = grid.dims;
+    if (lo.x() >= dims.x() || lo.y() >= dims.y() || lo.z() >= dims.z()) return;
+    const Eigen::Vector3d middle = grid.origin + (lo.cast<double>().array() + 0.5 * size).matrix() * grid.cell;
+    const double spread = 0.5 * (size - 1) * grid.cell * std::sqrt(3.0);
+    const NearestFace near = clearance.nearest(middle, threshold + spread + grid.cell);
+    const double d = near.distance;
+    if (d + spread < threshold) return;
+    const Eigen::Vector3i hi = (lo.array() + size).min(dims.array());
+    // No point of the cells at clearance r or more: one triangle is nearer
+    // than r to all of them (the cells beside a surface, whose centres
+    // alone would let them hold centres on both of its sides).
+    Aabb cells;
+    cells.min = grid.origin + lo.cast<double>() * grid.cell;
+    cells.max = grid.origin + hi.cast<double>() * grid.cell;
+    if (near.face >= 0 && clearance.farthest_in_box(cells, near.face) < radius) return;
+    if (d - spread >= threshold || size == 1) {
+      if (size == 1 && d < threshold) return;
+      for (int k = lo.z(); k < hi.z(); ++k)
+        for (int j = lo.y(); j < hi.y(); ++j)
+          for (int i = lo.x(); i < hi.x(); ++i) marks[grid.index(i, j, k)] |= kClear;
+      return;
+    }
+    const int half = size / 2;
+    for (int child = 0; child < 8; ++child)
+      classify(lo + Eigen::Vector3i((child & 1) * half, ((child >> 1) & 1) * half, ((child >> 2) & 1) * half), half);
+  }
+};
+
+// Cell range [lo, hi] (inclusive) of the cells meeting `box`, clamped to the grid.
+void cell_range(const ReachGrid& grid, const Aabb& box, Eigen::Vector3i& lo, Eigen::Vector3i& hi) {
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = std::max(0, static_cast<int>(std::floor((box.min[a] - grid.origin[a]) / grid.cell)));
+    hi[a] = std::min(grid.dims[a] - 1, static_cast<int>(std::floor((box.max[a] - grid.origin[a]) / grid.cell)));
+  }
+}
+
+// Marks kStanding in the clear cells where an agent standing on walkable
+// face `face` may have a point of its axis: within r across of the face,
+// from the face's lowest point up to its highest plus climb + H - r.
+void mark_standing(const ReachGrid& grid, const Mesh& mesh, const AgentShape& agent, int face,
+                   std::vector<std::uint8_t>& marks) {
+  Aabb box;
+  for (int k = 0; k < 3; ++k) box.extend(mesh.positions[mesh.triangles[face][k]]);
+  for (int a = 0; a < 3; ++a)
+    if (a != agent.up_axis) {
+      box.min[a] -= agent.radius;
+      box.max[a] += agent.radius;
+    }
+  const double rise = agent.climb + agent.height - agent.radius;
+  if (agent.up_sign > 0) box.max[agent.up_axis] += rise;
+  else box.min[agent.up_axis] -= rise;
+  Eigen::Vector3i lo, hi;
+  cell_range(grid, box, lo, hi);
+  for (int k = lo.z(); k <= hi.z(); ++k)
+    for (int j = lo.y(); j <= hi.y(); ++j)
+      for (int i = lo.x(); i <= hi.x(); ++i) {
+        std::uint8_t& m = marks[grid.index(i, j, k)];
+        if (m & kClear) m |= kStanding;
+      }
+}
+
+// Marks kDropping below every standing cell, down through clear cells: an
+// agent stepping off a ledge falls straight down.
+void mark_drops(const ReachGrid& grid, const AgentShape& agent, std::vector<std::uint8_t>& marks) {
+  const int axis = agent.up_axis;
+  const int down = agent.up_sign > 0 ? -1 : 1;
+  const Eigen::Vector3i& dims = grid.dims;
+  const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+  for (int u = 0; u < dims[a1]; ++u)
+    for (int v = 0; v < dims[a2]; ++v) {
+      bool falling = false;
+      const int first = down < 0 ? dims[axis] - 1 : 0;
+      for (int w = first; w >= 0 && w < dims[axis]; w += down) {
+        Eigen::Vector3i c;
+        c[axis] = w;
+        c[a1] = u;
+        c[a2] = v;
+        std::uint8_t& m = marks[grid.index(c.x(), c.y(), c.z())];
+        if (!(m & kClear)) falling = false;
+        else if (m & kStanding) falling = true;
+        else if (falling) m |= kDropping;
+      }
+    }
+}
+
+// Floods kSeeded from the cells in `starts` through cells holding every bit
+// of `through`, across shared faces.
+void flood(const ReachGrid& grid, std::vector<long long> starts, std::uint8_t through,
+           std::vector<std::uint8_t>& marks) {
+  std::vector<long long>& stack = starts;
+  for (long long c : stack) marks[c] |= kSeeded;
+  const Eigen::Vector3i& dims = grid.dims;
+  const long long step[3] = {1, dims.x(), static_cast<long long>(dims.x()) * dims.y()};
+  while (!stack.empty()) {
+    const long long c = stack.back();
+    stack.pop_back();
+    const long long k = c / step[2], j = (c / step[1]) % dims.y(), i = c % dims.x();
+    const long long at[3] = {i, j, k};
+    for (int a = 0; a < 3; ++a)
+      for (int s = -1; s <= 1; s += 2) {
+        const long long n = at[a] + s;
+        if (n < 0 || n >= dims[a]) continue;
+        const long long next = c + s * step[a];
+        std::uint8_t& m = marks[next];
+        if ((m & kSeeded) || (m & through) != through) continue;
+        m |= kSeeded;
+        stack.push_back(next);
+      }
+  }
+}
+
+} // namespace
+
+double ReachGrid::half_diagonal() const { return 0.5 * cell * std::sqrt(3.0); }
+
+bool ReachGrid::reachable_at(const Eigen::Vector3d& p) const {
+  Eigen::Vector3i c;
+  for (int a = 0; a < 3; ++a) {
+    const double f = std::floor((p[a] - origin[a]) / cell);
+    if (!(f >= 0.0 && f < dims[a])) return true;
+    c[a] = static_cast<int>(f);
+  }
+  return reachable(index(c.x(), c.y(), c.z()));
+}
+
+void ReachGrid::set_reachable(std::vector<std::uint8_t> reachable) {
+  reachable_ = std::move(reachable);
+  bricks_ = (dims.array() + kBrick - 1) / kBrick;
+  brick_counts_.assign(static_cast<size_t>(bricks_.x()) * bricks_.y() * bricks_.z(), 0);
+  for (int k = 0; k < dims.z(); ++k)
+    for (int j = 0; j < dims.y(); ++j)
+      for (int i = 0; i < dims.x(); ++i)
+        if (reachable_[index(i, j, k)])
+          ++brick_counts_[(static_cast<size_t>(k / kBrick) * bricks_.y() + j / kBrick) * bricks_.x() + i / kBrick];
+}
+
+long long ReachGrid::reachable_count() const {
+  long long n = 0;
+  for (std::uint16_t c : brick_counts_) n += c;
+  return n;
+}
+
+bool ReachGrid::any_reachable(const Aabb& box) const {
+  Eigen::Vector3i lo, hi;
+  for (int a = 0; a < 3; ++a) {
+    const double l = std::floor((box.min[a] - origin[a]) / cell), h = std::floor((box.max[a] - origin[a]) / cell);
+    if (!(l >= 0.0 && h < dims[a])) return true; // leaves the grid (or NaN): may reach
+    lo[a] = static_cast<int>(l);
+    hi[a] = static_cast<int>(h);
+  }
+  const Eigen::Vector3i blo = lo / kBrick, bhi = hi / kBrick;
+  for (int bk = blo.z(); bk <= bhi.z(); ++bk)
+    for (int bj = blo.y(); bj <= bhi.y(); ++bj)
+      for (int bi = blo.x(); bi <= bhi.x(); ++bi) {
+        if (brick_counts_[(static_cast<size_t>(bk) * bricks_.y() + bj) * bricks_.x() + bi] == 0) continue;
+        const Eigen::Vector3i clo = lo.cwiseMax(Eigen::Vector3i(bi, bj, bk) * kBrick);
+        const Eigen::Vector3i chi = hi.cwiseMin((Eigen::Vector3i(bi, bj, bk).array() + 1).matrix() * kBrick -
+                                                Eigen::Vector3i::Ones());
+        for (int k = clo.z(); k <= chi.z(); ++k)
+          for (int j = clo.y(); j <= chi.y(); ++j)
+            for (int i = clo.x(); i <= chi.x(); ++i)
+              if (reachable_[index(i, j, k)]) return true;
+      }
+  return false;
+}
+
+bool is_walkable(const Mesh& mesh, const AgentShape& agent, int face) {
+  const Eigen::Vector3i& t = mesh.triangles[face];
+  const Eigen::Vector3d n =
+      (mesh.positions[t[1]] - mesh.positions[t[0]]).cross(mesh.positions[t[2]] - mesh.positions[t[0]]);
+  const double length = n.norm();
+  if (!(length > 0.0)) return false;
+  return agent.up_sign * n[agent.up_axis] / length >= agent.min_up_cosine;
+}
+
+Result<ReachGrid> build_reach_grid(const Mesh& mesh, const SceneClearance& clearance, const AgentShape& agent,
+                                   const std::vector<Eigen::Vector3d>& seeds, int threads) {
+  ReachGrid grid;
+  grid.cell = kReachCellInRadii * agent.radius;
+  Aabb box;
+  for (const Eigen::Vector3i& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) box.extend(mesh.positions[t[k]]);
+  box = grown(box, agent.radius + grid.cell);
+  const Eigen::Vector3d cells = ((box.max - box.min) / grid.cell).array().ceil();
+  if (!(cells.prod() <= static_cast<double>(kMostReachCells)))
+    return Status{StatusCode::limit_exceeded,
+                  "the reach grid of this scene at agent radius " + std::to_string(agent.radius) + " would need " +
+                      std::to_string(static_cast<long long>(cells.prod())) + " cells (at most " +
+                      std::to_string(kMostReachCells) + "): use a larger radius or a part of the scene"};
+  grid.origin = box.min;
+  grid.dims = cells.cast<int>().cwiseMax(1);
+
+  std::vector<std::uint8_t> marks(static_cast<size_t>(grid.cell_count()), 0);
+  const GridBuild build{grid, clearance, agent.radius - grid.half_diagonal(), agent.radius, marks};
+  const Eigen::Vector3i blocks = (grid.dims.array() + kBlock - 1) / kBlock;
+  // Blocks in z-slabs: each writes only its own cells.
+  parallel_for(blocks.prod(), threads, [&](int b) {
+    const Eigen::Vector3i at(b % blocks.x(), (b / blocks.x()) % blocks.y(), b / (blocks.x() * blocks.y()));
+    build.classify(at * kBlock, kBlock);
+  });
+
+  for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f)
+    if (is_walkable(mesh, agent, f)) mark_standing(grid, mesh, agent, f, marks);
+  const bool walking = agent.reach == AgentReach::walk;
+  if (walking) mark_drops(grid, agent, marks);
+  const auto walkable_cell = [](std::uint8_t m) { return (m & kClear) && (m & (kStanding | kDropping)); };
+  const auto occupiable = [&](std::uint8_t m) { return walking ? walkable_cell(m) : (m & kClear) != 0; };
+
+  std::vector<long long> starts;
+  for (const Eigen::Vector3d& seed : seeds) {
+    const Eigen::Vector3d at = ((seed - grid.origin) / grid.cell).array().floor();
+    if (!((at.array() >= 0.0).all() && (at.array() < grid.dims.cast<double>().array()).all()))
+      continue; // beyond the scene's box grown by r: open space, touching nothing
+    const long long c = grid.index(static_cast<int>(at.x()), static_cast<int>(at.y()), static_cast<int>(at.z()));
+    if (!occupiable(marks[c]))
+      return Status{StatusCode::invalid_argument,
+                    "seed " + point_text(seed) +
+                        (walking ? " is not where a walking agent can be (no walkable face within its height below "
+                                   "it, or too near the triangles)"
+                                 : " is too near the triangles for the agent")};
+    starts.push_back(c);
+  }
+  if (walking)
+    for (std::uint8_t& m : marks)
+      if (walkable_cell(m)) m |= kWalkable;
+  const std::uint8_t through = walking ? kWalkable : kClear;
+  if (!seeds.empty()) {
+    flood(grid, std::move(starts), through, marks);
+  } else {
+    // No seed (flying over a scene with nothing to stand on): all clear
+    // space, no connectivity asked.
+    for (std::uint8_t& m : marks)
+      if (m & through) m |= kSeeded;
+  }
+  for (std::uint8_t& m : marks) m = (m & kSeeded) ? 1 : 0;
+  grid.set_reachable(std::move(marks));
+  return grid;
+}
+
+std::vector<Eigen::Vector3d> default_seeds(const SceneClearance& clearance, const AgentShape& agent, double tol) {
+  const Mesh& mesh = clearance.mesh();
+  std::vector<Eigen::Vector3d> seeds;
+  for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) {
+    if (!is_walkable(mesh, agent, f)) continue;
+    const Eigen::Vector3i& t = mesh.triangles[f];
+    const Eigen::Vector3d &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+    const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
+    const Eigen::Vector3d centroid = (a + b + c) / 3.0;
+    const Eigen::Vector3d lift = (agent.radius + 2.0 * tol) * normal;
+    for (const Eigen::Vector3d& base : {centroid, Eigen::Vector3d(0.5 * (centroid + a)),
+                                        Eigen::Vector3d(0.5 * (centroid + b)), Eigen::Vector3d(0.5 * (centroid + c))}) {
+      const Eigen::Vector3d seed = base + lift;
+      if (clearance.nearest(seed, agent.radius).distance >= agent.radius) seeds.push_back(seed);
+    }
+  }
+  return seeds;
+}
+
+bool face_may_be_touched(const ReachGrid& grid, const SceneClearance& clearance, const AgentShape& agent, int face) {
+  const Mesh& mesh = clearance.mesh();
+  Aabb box;
+  for (int k = 0; k < 3; ++k) box.extend(mesh.positions[mesh.triangles[face][k]]);
+  const double reach = agent.radius + grid.half_diagonal();
+  box = grown(box, reach);
+  Eigen::Vector3i lo, hi;
+  cell_range(grid, box, lo, hi);
+  for (int k = lo.z(); k <= hi.z(); ++k)
+    for (int j = lo.y(); j <= hi.y(); ++j)
+      for (int i = lo.x(); i <= hi.x(); ++i)
+        if (grid.reachable(grid.index(i, j, k)) && clearance.to_face(grid.centre(i, j, k), face) <= reach)
+          return true;
+  return false;
+}
+
+} // namespace hullcover::detail

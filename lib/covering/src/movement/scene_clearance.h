@@ -1,0 +1,48 @@
+#pragma once
+/// \file scene_clearance.h
+/// Clearance: the distance from a point to the nearest triangle of the
+/// scene. What decides where an agent's centre can be (clearance >= r) in
+/// a movement covering, and the bounds that let a whole box be decided at
+/// once.
+
+#include "hullcover/geometry/aabb.h"
+#include "hullcover/geometry/aabb_tree.h"
+#include "hullcover/geometry/mesh.h"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace hullcover::detail {
+
+/// The nearest triangle to a point, and how far it is.
+struct NearestFace {
+  double distance = 0.0; ///< scene units; the limit asked when no face is nearer
+  int face = -1;         ///< -1 when no face is nearer than the limit
+};
+
+/// Distances from points and boxes to the triangles of one mesh (which
+/// must outlive it). Read-only once built: threads may share it.
+class SceneClearance {
+public:
+  explicit SceneClearance(const Mesh& mesh);
+
+  /// The nearest triangle to `p`, looking no farther than `limit` (> 0).
+  NearestFace nearest(const Eigen::Vector3d& p, double limit) const;
+  /// Distance from `p` to triangle `face`.
+  double to_face(const Eigen::Vector3d& p, int face) const;
+  /// The largest distance from a point of `box` to triangle `face`: the
+  /// distance to a convex set is a convex function, so its largest value on
+  /// a box is at a corner. Every point of the box has clearance at most this.
+  double farthest_in_box(const Aabb& box, int face) const;
+  /// Appends the faces whose boxes meet `box`.
+  void faces_meeting(const Aabb& box, std::vector<int>& out) const { tree_.overlapping(box, out); }
+
+  const Mesh& mesh() const { return mesh_; }
+
+private:
+  const Mesh& mesh_;
+  AabbTree tree_;
+};
+
+} // namespace hullcover::detail
