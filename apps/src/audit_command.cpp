@@ -8,6 +8,7 @@
 #include "audit_printout.h"
 #include "audit_report_json.h"
 #include "commands.h"
+#include "movement_cli.h"
 #include "scene_loading.h"
 #include "terminal_progress.h"
 
@@ -15,6 +16,7 @@
 
 #include "hullcover/geometry/atomic_file.h"
 #include "hullcover/validate/audit.h"
+#include "hullcover/validate/movement_audit.h"
 
 #include <nlohmann/json.hpp>
 
@@ -36,6 +38,8 @@ struct AuditCommandOptions {
   std::optional<double> tolerance;
   ImportLimits limits;
   validate::AuditOptions audit;
+  MovementCliOptions movement; // with --agent-reach, the movement audit
+  double lattice_spacing = 0.0;
   bool quiet = false;
 };
 
@@ -50,11 +54,65 @@ nlohmann::json audit_json(const AuditCommandOptions& o, const PreparedMesh& prep
   return out;
 }
 
+// The movement audit (--agent-reach): prints its figures and verdict.
+int run_movement_audit(const AuditCommandOptions& o, const LoadedScene& scene, const validate::HullSet& set) {
+  const double radius = o.audit.probe.allowance.agent_radius.value_or(0.0);
+  if (!(radius > 0.0)) return bad_input({StatusCode::invalid_argument, "--agent-reach needs --agent-radius above 0"});
+  std::optional<MovementOptions> agent = movement_options_from(o.movement, radius);
+  if (!agent) return kExitBadInput;
+  validate::MovementAuditOptions options;
+  options.agent = *agent;
+  options.spacing = o.lattice_spacing;
+  const Result<validate::MovementAuditReport> audited =
+      validate::audit_movement(scene.prepared, set.hulls, options, o.audit.threads);
+  if (!audited.ok()) return bad_input(audited.status());
+  const validate::MovementAuditReport& m = audited.value();
+  std::printf("%s: %zu hulls against %s, movement audit (%s): agent radius %.6g, slop %.6g, height %.6g\n",
+              o.hulls.c_str(), set.hulls.size(), o.mesh.c_str(), o.movement.reach.c_str(), radius, m.slop, m.height);
+  std::printf("  lattice spacing %.6g: %lld points, %lld clear, %lld reachable centres\n", m.spacing,
+              m.lattice_points, m.clear_points, m.reachable_points);
+  std::printf("  reachable centres sinking deeper than the slop into a hull: %lld", m.sinking);
+  if (m.sinking > 0)
+    std::printf(" (deepest %.6g into hull %d at %.6g %.6g %.6g)", m.deepest, m.deepest_hull, m.deepest_at.x(),
+                m.deepest_at.y(), m.deepest_at.z());
+  std::printf("\n  touching poses %lld, contacts lost (no hull within the slop): %lld", m.touching_poses,
+              m.contacts_lost);
+  if (m.contacts_lost > 0)
+    std::printf(" (first at %.6g %.6g %.6g)", m.first_lost_at.x(), m.first_lost_at.y(), m.first_lost_at.z());
+  std::printf("\n  verdict: %s\n", m.clean() ? "CLEAN" : "VIOLATIONS");
+  if (!o.json_path.empty()) {
+    const nlohmann::json out = {{"mesh", o.mesh},
+                                {"hulls", o.hulls},
+                                {"movement",
+                                 {{"reach", o.movement.reach},
+                                  {"radius", radius},
+                                  {"slop", m.slop},
+                                  {"height", m.height},
+                                  {"spacing", m.spacing},
+                                  {"lattice_points", m.lattice_points},
+                                  {"reachable_centres", m.reachable_points},
+                                  {"sinking", m.sinking},
+                                  {"deepest", m.deepest},
+                                  {"touching_poses", m.touching_poses},
+                                  {"contacts_lost", m.contacts_lost},
+                                  {"clean", m.clean()}}}};
+    if (Status written = write_file_atomically(o.json_path, out.dump(1) + "\n"); !written.ok()) return bad_input(written);
+  }
+  return m.clean() ? kExitSuccess : kExitFinding;
+}
+
 // Loads the files, audits, prints; the verdict (validate::run_audit's, as a
 // library user gets it) picks the exit status.
 int run_audit_command(const AuditCommandOptions& o) {
   const std::optional<LoadedScene> scene = load_scene(o.mesh, o.tolerance, o.limits);
   if (!scene) return kExitBadInput;
+  if (const std::string stray = option_without_reach(o.movement); !stray.empty())
+    return bad_input({StatusCode::invalid_argument, stray + " needs --agent-reach walk or fly"});
+  if (!o.movement.reach.empty()) {
+    const Result<validate::HullSet> hulls = validate::load_hull_set(o.hulls);
+    if (!hulls.ok()) return bad_input(hulls.status());
+    return run_movement_audit(o, *scene, hulls.value());
+  }
   const Result<render::UpAxis> html_up = render::parse_up_axis(o.html_up);
   if (!html_up.ok()) return bad_input(html_up.status());
   const Result<validate::HullSet> set = validate::load_hull_set(o.hulls);
@@ -165,6 +223,13 @@ void register_audit_command(CLI::App& app, int& exit_status) {
                   "pale, cut-away hulls (see 'hullcover render --help' for the cut)");
   cmd->add_option("--html-up", o->html_up, "The scene's up axis for the HTML report's pictures: x, y or z")
       ->capture_default_str();
+  add_movement_options(*cmd, o->movement);
+  cmd->add_option("--lattice-spacing", o->lattice_spacing,
+                  "With --agent-reach: the spacing of the audit's lattice of agent centres, scene units (default " +
+                      number_text(validate::kDefaultAuditSpacingInRadii) +
+                      " x radius, widened to keep the lattice within " +
+                      std::to_string(validate::kMostAuditLatticePoints) + " points)")
+      ->check(positive_number());
   cmd->add_flag("-q,--quiet", o->quiet, "No progress bar (drawn on stderr only when it is a terminal)");
   cmd->callback([o, &exit_status] { exit_status = run_audit_command(*o); });
 }

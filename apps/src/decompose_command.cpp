@@ -47,10 +47,6 @@ struct DecomposeCommandOptions {
 std::optional<MovementCovering> decompose_movement(const DecomposeCommandOptions& o, const LoadedScene& scene,
                                                    TerminalProgress& bar) {
   const double radius = o.decompose.agent_radius.value_or(0.0);
-  if (!(radius > 0.0)) {
-    std::fprintf(stderr, "hullcover: error: --agent-reach needs --agent-radius above 0\n");
-    return std::nullopt;
-  }
   if (o.decompose.max_deviation || !o.cell_cache.empty()) {
     std::fprintf(stderr, "hullcover: error: --agent-reach takes neither --max-deviation nor --cell-cache\n");
     return std::nullopt;
@@ -80,7 +76,16 @@ int run_decompose(DecomposeCommandOptions& o) {
   std::optional<MovementCovering> movement;
   std::optional<Covering> made;
   CellCacheReport cache;
-  if (!o.movement.reach.empty()) {
+  if (const std::string stray = option_without_reach(o.movement); !stray.empty()) {
+    std::fprintf(stderr, "hullcover: error: %s needs --agent-reach walk or fly\n", stray.c_str());
+    return kExitBadInput;
+  }
+  if (!o.movement.reach.empty() && !o.decompose.agent_radius) {
+    std::fprintf(stderr, "hullcover: error: --agent-reach needs --agent-radius (0 gives the exact covering)\n");
+    return kExitBadInput;
+  }
+  // A movement covering for agents of radius 0 is the exact covering.
+  if (!o.movement.reach.empty() && *o.decompose.agent_radius > 0.0) {
     movement = decompose_movement(o, *scene, bar);
     if (!movement) return kExitBadInput;
     made = std::move(movement->covering);

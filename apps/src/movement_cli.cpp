@@ -83,6 +83,17 @@ void add_movement_options(CLI::App& cmd, MovementCliOptions& o) {
                  "comments); default every walkable region");
 }
 
+std::string option_without_reach(const MovementCliOptions& o) {
+  if (!o.reach.empty()) return {};
+  if (o.slop) return "--agent-slop";
+  if (o.height) return "--agent-height";
+  if (o.climb) return "--agent-climb";
+  if (o.max_slope != kDefaultMaxSlopeDegrees) return "--max-slope";
+  if (o.up != "+y") return "--up";
+  if (!o.seeds_path.empty()) return "--reachable-from";
+  return {};
+}
+
 std::optional<MovementOptions> movement_options_from(const MovementCliOptions& o, double radius) {
   MovementOptions m;
   m.radius = radius;

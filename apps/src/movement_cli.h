@@ -27,6 +27,10 @@ inline constexpr int kMostSeeds = 1 << 20;
 /// --max-slope, --up and --reachable-from to `cmd`.
 void add_movement_options(CLI::App& cmd, MovementCliOptions& o);
 
+/// The first movement option given without --agent-reach (which it would
+/// not change), or empty.
+std::string option_without_reach(const MovementCliOptions& o);
+
 /// MovementOptions for agents of `radius`, with the seeds read from the
 /// file; nothing (after a message on stderr) when the file is unreadable or
 /// malformed.

@@ -13,11 +13,6 @@
 namespace hullcover::detail {
 namespace {
 
-double box_surface(const Aabb& box) {
-  const Eigen::Vector3d d = box.max - box.min;
-  return 2.0 * (d.x() * d.y() + d.y() * d.z() + d.z() * d.x());
-}
-
 Aabb merged_box(const Aabb& a, const Aabb& b) {
   Aabb box = a;
   box.extend(b.min);
@@ -30,6 +25,17 @@ std::vector<int> sorted_union(const std::vector<int>& a, const std::vector<int>&
   u.reserve(a.size() + b.size());
   std::set_union(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(u));
   return u;
+}
+
+// Sorted by group, each group once with its lengths added up.
+std::vector<std::pair<int, double>> combined(std::vector<std::pair<int, double>> list) {
+  std::sort(list.begin(), list.end());
+  std::vector<std::pair<int, double>> out;
+  for (const auto& [g, length] : list) {
+    if (!out.empty() && out.back().first == g) out.back().second += length;
+    else out.emplace_back(g, length);
+  }
+  return out;
 }
 
 void triangle_of(const Mesh& mesh, int face, Eigen::Vector3d (&t)[3]) {
@@ -53,6 +59,7 @@ bool MovementMerger::start_group(int f, Group& group) const {
   group.flat = true;
   group.box = bounding_box_of(polygon.corners);
   group.area = 0.5 * n.norm();
+  group.boundary = (b - a).norm() + (c - b).norm() + (a - c).norm();
   group.area_vector = 0.5 * n;
   return true;
 }
@@ -70,18 +77,20 @@ MovementMerger::MovementMerger(const MovementContext& context, const MeshConnect
     group_of_face[f] = static_cast<int>(groups_.size());
     groups_.push_back(std::move(g));
   }
-  // Neighbours: faces sharing an edge (any edge, open or not), and faces
-  // within the near distance of each other.
-  std::vector<std::vector<int>> neighbours(groups_.size());
-  for (const MeshEdge& edge : connectivity.edges)
+  // Neighbours: faces sharing an edge (any edge, open or not), with its
+  // length, and faces within the near distance of each other.
+  std::vector<std::vector<std::pair<int, double>>> neighbours(groups_.size());
+  for (const MeshEdge& edge : connectivity.edges) {
+    const double length = (mesh.positions[edge.v1] - mesh.positions[edge.v0]).norm();
     for (int i = 0; i < edge.use_count; ++i)
       for (int j = i + 1; j < edge.use_count; ++j) {
         const int ga = group_of_face[connectivity.edge_uses[edge.first_use + i].face];
         const int gb = group_of_face[connectivity.edge_uses[edge.first_use + j].face];
         if (ga < 0 || gb < 0 || ga == gb) continue;
-        neighbours[ga].push_back(gb);
-        neighbours[gb].push_back(ga);
+        neighbours[ga].emplace_back(gb, length);
+        neighbours[gb].emplace_back(ga, length);
       }
+  }
   if (near_distance > 0.0) {
     std::vector<Aabb> boxes;
     for (const Group& g : groups_) boxes.push_back(grown(g.box, 0.5 * near_distance));
@@ -96,28 +105,20 @@ MovementMerger::MovementMerger(const MovementContext& context, const MeshConnect
         if (gb <= ga) continue;
         triangle_of(mesh, groups_[gb].faces[0], t);
         if (!triangles_within(s, t, near_distance)) continue;
-        neighbours[ga].push_back(gb);
-        neighbours[gb].push_back(ga);
+        neighbours[ga].emplace_back(gb, 0.0);
+        neighbours[gb].emplace_back(ga, 0.0);
       }
     }
   }
-  for (size_t g = 0; g < groups_.size(); ++g) {
-    std::vector<int>& n = neighbours[g];
-    std::sort(n.begin(), n.end());
-    n.erase(std::unique(n.begin(), n.end()), n.end());
-    groups_[g].neighbours = std::move(n);
-  }
+  for (size_t g = 0; g < groups_.size(); ++g) groups_[g].neighbours = combined(std::move(neighbours[g]));
 }
 
-double MovementMerger::pair_cost(int a, int b) const {
+void MovementMerger::push_pair(int a, int b, double shared) {
+  if (a > b) std::swap(a, b);
   const Group& ga = groups_[a];
   const Group& gb = groups_[b];
-  return box_surface(merged_box(ga.box, gb.box)) / (ga.area + gb.area);
-}
-
-void MovementMerger::push_pair(int a, int b) {
-  if (a > b) std::swap(a, b);
-  queue_.push_back({pair_cost(a, b), a, b, groups_[a].version, groups_[b].version});
+  const double cost = std::max(0.0, ga.boundary + gb.boundary - 2.0 * shared) / std::sqrt(ga.area + gb.area);
+  queue_.push_back({cost, a, b, ga.version, gb.version});
   std::push_heap(queue_.begin(), queue_.end(), std::greater<Pair>());
 }
 
@@ -166,8 +167,8 @@ bool MovementMerger::try_merge(int a, int b, Group& merged) {
 
 void MovementMerger::run() {
   for (int a = 0; a < static_cast<int>(groups_.size()); ++a)
-    for (int b : groups_[a].neighbours)
-      if (a < b) push_pair(a, b);
+    for (const auto& [b, shared] : groups_[a].neighbours)
+      if (a < b) push_pair(a, b, shared);
   const double total = std::max<size_t>(1, groups_.size());
   int merges = 0;
   Group merged;
@@ -179,22 +180,31 @@ void MovementMerger::run() {
     Group& gb = groups_[pair.b];
     if (!ga.alive || !gb.alive || ga.version != pair.version_a || gb.version != pair.version_b) continue;
     if (!try_merge(pair.a, pair.b, merged)) continue;
-    // a takes the union; b's neighbours become a's.
-    std::vector<int> neighbours = sorted_union(ga.neighbours, gb.neighbours);
-    neighbours.erase(std::remove_if(neighbours.begin(), neighbours.end(),
-                                    [&](int g) { return g == pair.a || g == pair.b || !groups_[g].alive; }),
-                     neighbours.end());
-    merged.neighbours = neighbours;
+    // a takes the union; b's neighbours become a's, with their shared lengths.
+    double shared = 0.0;
+    std::vector<std::pair<int, double>> around = ga.neighbours;
+    around.insert(around.end(), gb.neighbours.begin(), gb.neighbours.end());
+    for (const auto& [g, length] : ga.neighbours)
+      if (g == pair.b) shared = length;
+    around.erase(std::remove_if(around.begin(), around.end(),
+                                [&](const std::pair<int, double>& n) {
+                                  return n.first == pair.a || n.first == pair.b || !groups_[n.first].alive;
+                                }),
+                 around.end());
+    merged.neighbours = combined(std::move(around));
+    merged.boundary = std::max(0.0, ga.boundary + gb.boundary - 2.0 * shared);
     merged.version = ga.version + 1;
     merged.alive = true;
     std::swap(ga, merged);
     gb.alive = false;
     gb.neighbours.clear();
-    for (int g : neighbours) {
-      std::vector<int>& n = groups_[g].neighbours;
-      n.erase(std::remove(n.begin(), n.end(), pair.b), n.end());
-      if (!std::binary_search(n.begin(), n.end(), pair.a)) n.insert(std::lower_bound(n.begin(), n.end(), pair.a), pair.a);
-      push_pair(pair.a, g);
+    for (const auto& [g, length] : ga.neighbours) {
+      // g's entries for a and b become one for a.
+      std::vector<std::pair<int, double>>& n = groups_[g].neighbours;
+      for (auto& entry : n)
+        if (entry.first == pair.b) entry.first = pair.a;
+      n = combined(std::move(n));
+      push_pair(pair.a, g, length);
     }
     if (progress_ && (++merges & 255) == 0) progress_(std::min(0.95, merges / total));
   }

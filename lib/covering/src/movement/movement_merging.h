@@ -3,8 +3,9 @@
 /// Greedy merging of the faces an agent may touch into hulls that keep the
 /// movement covering's promise (movement_validity.h): every face starts as
 /// its own flat hull; pairs of groups that share an edge, or whose faces
-/// come within the near distance, are tried cheapest first (the least
-/// bounding-box surface per unit of face area); a merge is made when the
+/// come within the near distance, are tried cheapest first (the paper's
+/// cost: the union's outline length over the square root of its area, so
+/// compact unions first); a merge is made when the
 /// hull of the union passes the proof. Then every group whose faces all
 /// lie inside other hulls is dropped: its faces are covered.
 
@@ -42,7 +43,10 @@ private:
     Aabb box;
     double area = 0.0;
     Eigen::Vector3d area_vector = Eigen::Vector3d::Zero(); ///< sum of face normals x areas
-    std::vector<int> neighbours;                           ///< groups it may merge with, ascending
+    double boundary = 0.0;                                 ///< length of its faces' outline (edges not shared within it)
+    /// Groups it may merge with, ascending, each with the length of the
+    /// edges they share (0 for groups only near it).
+    std::vector<std::pair<int, double>> neighbours;
     int version = 0;
     bool alive = true;
   };
@@ -58,8 +62,7 @@ private:
 
   /// The group of face `f` alone, or nothing for a face with no area.
   bool start_group(int f, Group& group) const;
-  double pair_cost(int a, int b) const;
-  void push_pair(int a, int b);
+  void push_pair(int a, int b, double shared);
   /// The union of groups a and b as a hull that keeps the promise, if it does.
   bool try_merge(int a, int b, Group& merged);
   /// Drops every group whose faces each lie inside another group's hull.

@@ -34,17 +34,20 @@ RegionVerdict no_centre_in(const MovementContext& context, const Aabb& start, in
   const double r = context.agent.radius;
   const double tol = context.tol;
   const double smallest = kSmallestProofBoxInSlops * context.agent.slop;
-  std::vector<Aabb> stack{start};
+  // Each box with the triangle nearest its parent's centre: most boxes are
+  // cleared by their parent's triangle before any search.
+  std::vector<std::pair<Aabb, int>> stack{{start, -1}};
   while (!stack.empty()) {
-    const Aabb box = stack.back();
+    const auto [box, hint] = stack.back();
     stack.pop_back();
     const Eigen::Vector3d c = 0.5 * (box.min + box.max);
     const double half = 0.5 * (box.max - box.min).norm();
     if (lower(c) > half) continue;
+    if (hint >= 0 && context.clearance.farthest_in_box(box, hint) < r - tol) continue;
     if (!context.grid.any_reachable(box)) continue;
     const NearestFace near = context.clearance.nearest(c, r + half + tol);
     if (near.distance + half < r - tol) continue;
-    if (near.face >= 0 && context.clearance.farthest_in_box(box, near.face) < r - tol) continue;
+    if (near.face >= 0 && near.face != hint && context.clearance.farthest_in_box(box, near.face) < r - tol) continue;
     if (near.distance >= r - tol && inside(c) && context.grid.reachable_at(c)) return RegionVerdict::reached;
     if (half < smallest || --boxes_left < 0) return RegionVerdict::undecided;
     int axis = 0;
@@ -53,8 +56,8 @@ RegionVerdict no_centre_in(const MovementContext& context, const Aabb& start, in
     Aabb low = box, high = box;
     low.max[axis] = middle;
     high.min[axis] = middle;
-    stack.push_back(high);
-    stack.push_back(low);
+    stack.emplace_back(high, near.face);
+    stack.emplace_back(low, near.face);
   }
   return RegionVerdict::clear;
 }
@@ -101,6 +104,21 @@ bool witness_beside(const MovementContext& context, const BoundaryPiece& piece) 
         reachable(0.5 * (piece.corners[i] + piece.corners[(i + 1) % n])))
       return true;
   return false;
+}
+
+// A point a little less than r - E from `p`, straight away from the mesh
+// point nearest to it, that may be a reachable centre: where a hull's edge
+// hovers over a surface, the centre resting on that surface under it.
+bool witness_away_from_mesh(const MovementContext& context, const Eigen::Vector3d& p) {
+  const double r = context.agent.radius;
+  const double tol = context.tol;
+  const NearestFace near = context.clearance.nearest(p, r);
+  if (near.face < 0 || !(near.distance > 0.0)) return false;
+  const Eigen::Vector3i& t = context.mesh.triangles[near.face];
+  const Eigen::Vector3d foot =
+      closest_point_on_triangle(p, context.mesh.positions[t[0]], context.mesh.positions[t[1]], context.mesh.positions[t[2]]);
+  const Eigen::Vector3d c = p + (r - context.agent.slop - 2.0 * tol) * (p - foot).normalized();
+  return context.grid.reachable_at(c) && context.clearance.nearest(c, r).distance >= r - tol;
 }
 
 // The column over `piece`: the points within r - E of its plane whose
@@ -164,12 +182,22 @@ RegionVerdict prove_piece(const MovementContext& context, const BoundaryPiece& p
       [&](const Eigen::Vector3d& c) { return column.distance(c) == 0.0 && std::abs(piece.normal.dot(c - piece.corners[0])) < reach - tol; });
 }
 
-// Proves no reachable centre within r - E of segment a-b.
-RegionVerdict prove_segment(const MovementContext& context, const BoundarySegment& segment, int& boxes_left,
-                            std::vector<int>& near) {
+// Proves no reachable centre within r - E of segment a-b: it lies within E
+// of one triangle, or its halves do (halved while longer than twice the
+// slop, `depth` times at most), or the space around it holds no reachable
+// centre.
+RegionVerdict prove_segment(const MovementContext& context, const BoundarySegment& segment, int depth,
+                            int& boxes_left, std::vector<int>& near) {
   if (within_slop_of_one_face(context, {segment.a, segment.b}, near)) return RegionVerdict::clear;
   const double reach = context.agent.radius - context.agent.slop;
   const double tol = context.tol;
+  const Eigen::Vector3d middle = 0.5 * (segment.a + segment.b);
+  if (witness_away_from_mesh(context, middle)) return RegionVerdict::reached;
+  if (depth > 0 && (segment.b - segment.a).norm() > 2.0 * context.agent.slop) {
+    const RegionVerdict first = prove_segment(context, {segment.a, middle}, depth - 1, boxes_left, near);
+    if (first == RegionVerdict::reached) return first;
+    return worse(first, prove_segment(context, {middle, segment.b}, depth - 1, boxes_left, near));
+  }
   Aabb start;
   start.extend(segment.a);
   start.extend(segment.b);
@@ -229,7 +257,7 @@ MovementVerdict check_movement_hull(const MovementContext& context, const Convex
     undecided |= verdict == RegionVerdict::undecided;
   }
   for (const BoundarySegment& segment : boundary.segments) {
-    const RegionVerdict verdict = prove_segment(context, segment, boxes_left, near);
+    const RegionVerdict verdict = prove_segment(context, segment, kMostPieceHalvings, boxes_left, near);
     if (verdict == RegionVerdict::reached) return MovementVerdict::centre_near_boundary;
     undecided |= verdict == RegionVerdict::undecided;
   }

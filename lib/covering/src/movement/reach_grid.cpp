@@ -99,6 +99,48 @@ void mark_standing(const ReachGrid& grid, const Mesh& mesh, const AgentShape& ag
       }
 }
 
+// Calls visit(index list) for each run of consecutive cells along the up
+// axis that all hold `bits`, in every column.
+template <class Visit>
+void for_each_vertical_run(const ReachGrid& grid, const AgentShape& agent, const std::vector<std::uint8_t>& marks,
+                           std::uint8_t bits, Visit&& visit) {
+  const int axis = agent.up_axis, a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+  const Eigen::Vector3i& dims = grid.dims;
+  std::vector<long long> run;
+  for (int u = 0; u < dims[a1]; ++u)
+    for (int v = 0; v < dims[a2]; ++v) {
+      run.clear();
+      for (int w = 0; w <= dims[axis]; ++w) {
+        long long at = -1;
+        if (w < dims[axis]) {
+          Eigen::Vector3i c;
+          c[axis] = w;
+          c[a1] = u;
+          c[a2] = v;
+          at = grid.index(c.x(), c.y(), c.z());
+        }
+        if (at >= 0 && (marks[at] & bits) == bits) {
+          run.push_back(at);
+          continue;
+        }
+        if (!run.empty()) visit(run);
+        run.clear();
+      }
+    }
+}
+
+// Takes kStanding from cells in a column of clear cells too short for the
+// agent's axis (H - 2r long, so it crosses at least that length over a
+// cell side of cells, each holding one of its clear points): no upright
+// capsule fits there.
+void drop_standing_without_headroom(const ReachGrid& grid, const AgentShape& agent, std::vector<std::uint8_t>& marks) {
+  const size_t fewest = static_cast<size_t>(std::floor((agent.height - 2.0 * agent.radius) / grid.cell));
+  for_each_vertical_run(grid, agent, marks, kClear, [&](const std::vector<long long>& run) {
+    if (run.size() >= fewest) return;
+    for (long long at : run) marks[at] &= static_cast<std::uint8_t>(~kStanding);
+  });
+}
+
 // Marks kDropping below every standing cell, down through clear cells: an
 // agent stepping off a ledge falls straight down.
 void mark_drops(const ReachGrid& grid, const AgentShape& agent, std::vector<std::uint8_t>& marks) {
@@ -143,6 +185,40 @@ void flood(const ReachGrid& grid, std::vector<long long> starts, std::uint8_t th
         const long long next = c + s * step[a];
         std::uint8_t& m = marks[next];
         if ((m & kSeeded) || (m & through) != through) continue;
+        m |= kSeeded;
+        stack.push_back(next);
+      }
+  }
+}
+
+// Floods kSeeded from `starts` as a walking agent moves: between standing
+// cells freely (stepping and climbing lie within their envelopes), from a
+// standing cell into a dropping cell beside or below it, and from a
+// dropping cell only straight down. Never up a drop: a ledge out of reach
+// stays out of reach.
+void flood_walking(const ReachGrid& grid, const AgentShape& agent, std::vector<long long> starts,
+                   std::vector<std::uint8_t>& marks) {
+  std::vector<long long>& stack = starts;
+  for (long long c : stack) marks[c] |= kSeeded;
+  const Eigen::Vector3i& dims = grid.dims;
+  const long long step[3] = {1, dims.x(), static_cast<long long>(dims.x()) * dims.y()};
+  const int down = agent.up_sign > 0 ? -1 : 1; // the index step along the up axis that goes down
+  while (!stack.empty()) {
+    const long long c = stack.back();
+    stack.pop_back();
+    const bool standing = (marks[c] & kStanding) != 0;
+    const long long at[3] = {c % dims.x(), (c / step[1]) % dims.y(), c / step[2]};
+    for (int a = 0; a < 3; ++a)
+      for (int s = -1; s <= 1; s += 2) {
+        const bool going_down = a == agent.up_axis && s == down;
+        const bool going_up = a == agent.up_axis && s != down;
+        if (!standing && !going_down) continue; // falling: straight down only
+        const long long n = at[a] + s;
+        if (n < 0 || n >= dims[a]) continue;
+        const long long next = c + s * step[a];
+        std::uint8_t& m = marks[next];
+        if ((m & kSeeded) || !(m & kWalkable)) continue;
+        if (going_up && !(m & kStanding)) continue; // no climbing up a drop
         m |= kSeeded;
         stack.push_back(next);
       }
@@ -242,7 +318,10 @@ Result<ReachGrid> build_reach_grid(const Mesh& mesh, const SceneClearance& clear
   for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f)
     if (is_walkable(mesh, agent, f)) mark_standing(grid, mesh, agent, f, marks);
   const bool walking = agent.reach == AgentReach::walk;
-  if (walking) mark_drops(grid, agent, marks);
+  if (walking) {
+    drop_standing_without_headroom(grid, agent, marks);
+    mark_drops(grid, agent, marks);
+  }
   const auto walkable_cell = [](std::uint8_t m) { return (m & kClear) && (m & (kStanding | kDropping)); };
   const auto occupiable = [&](std::uint8_t m) { return walking ? walkable_cell(m) : (m & kClear) != 0; };
 
@@ -265,7 +344,8 @@ Result<ReachGrid> build_reach_grid(const Mesh& mesh, const SceneClearance& clear
       if (walkable_cell(m)) m |= kWalkable;
   const std::uint8_t through = walking ? kWalkable : kClear;
   if (!seeds.empty()) {
-    flood(grid, std::move(starts), through, marks);
+    if (walking) flood_walking(grid, agent, std::move(starts), marks);
+    else flood(grid, std::move(starts), through, marks);
   } else {
     // No seed (flying over a scene with nothing to stand on): all clear
     // space, no connectivity asked.

@@ -1,0 +1,63 @@
+#pragma once
+/// \file movement_audit.h
+/// The audit of a movement covering (docs/definitions-and-proofs.md,
+/// "Movement coverings"), by another route than the decomposer's: it finds
+/// reachable agent centres on a lattice of its own (its own clearance
+/// samples, its own standing test and flood), and asks the hulls through
+/// the runtime (HullWorld) whether
+///  - any reachable centre's ball of radius r sinks more than E + tol into
+///    a hull (it sinks into no triangle: its clearance is at least r), and
+///  - any agent touching a face at a reachable pose is more than E + tol
+///    from every hull (its contact vanished).
+/// Sampled, not proven: a lattice of spacing s can miss a violation no
+/// deeper than s * sqrt(3) / 2 beyond the slop between its points.
+
+#include "hullcover/bvh/runtime_hull.h"
+#include "hullcover/covering/movement_covering.h"
+#include "hullcover/geometry/status.h"
+#include "hullcover/mesh/prepared_mesh.h"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace hullcover::validate {
+
+/// The lattice holds at most this many points (a byte each); the default
+/// spacing is widened to fit, up to 0.7 x r (the widest that keeps its
+/// flood out of walls), and a scene that needs more is refused.
+inline constexpr long long kMostAuditLatticePoints = 1LL << 27;
+/// The default spacing, in radii.
+inline constexpr double kDefaultAuditSpacingInRadii = 0.5;
+
+/// The agent, as the covering was made for it (MovementOptions' meaning
+/// and defaults), and the lattice.
+struct MovementAuditOptions {
+  MovementOptions agent;
+  double spacing = 0.0; ///< lattice spacing, scene units; 0: kDefaultAuditSpacingInRadii x r
+};
+
+/// What the audit found.
+struct MovementAuditReport {
+  double spacing = 0.0;            ///< the lattice spacing used
+  double slop = 0.0, height = 0.0; ///< as resolved from the options
+  long long lattice_points = 0;
+  long long clear_points = 0;     ///< at clearance >= r
+  long long reachable_points = 0; ///< of those, reachable
+  long long sinking = 0;          ///< reachable centres sinking more than E + tol into a hull
+  double deepest = 0.0;           ///< the deepest sinking of a reachable centre's ball into a hull
+  Eigen::Vector3d deepest_at = Eigen::Vector3d::Zero();
+  int deepest_hull = -1;
+  long long touching_poses = 0; ///< reachable poses touching a face
+  long long contacts_lost = 0;  ///< of those, more than E + tol from every hull
+  Eigen::Vector3d first_lost_at = Eigen::Vector3d::Zero();
+  bool clean() const { return sinking == 0 && contacts_lost == 0; }
+};
+
+/// Audits `hulls` against `scene` for the agent of `options`. Fails with
+/// `invalid_argument` for options out of range or a seed too near the
+/// triangles, and as HullWorld::build does.
+Result<MovementAuditReport> audit_movement(const PreparedMesh& scene, const std::vector<bvh::RuntimeHull>& hulls,
+                                           const MovementAuditOptions& options, int threads);
+
+} // namespace hullcover::validate

@@ -1,0 +1,223 @@
+#include "agent_lattice.h"
+
+#include "hullcover/geometry/convex_polytope.h"
+#include "hullcover/geometry/parallel_for.h"
+#include "hullcover/geometry/triangle_distance.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+
+namespace hullcover::validate::detail {
+namespace {
+
+std::vector<Aabb> triangle_boxes(const Mesh& mesh, const std::vector<int>& faces) {
+  std::vector<Aabb> boxes;
+  for (int f : faces) {
+    Aabb box;
+    for (int k = 0; k < 3; ++k) box.extend(mesh.positions[mesh.triangles[f][k]]);
+    boxes.push_back(box);
+  }
+  return boxes;
+}
+
+std::vector<int> all_faces(const Mesh& mesh) {
+  std::vector<int> faces(mesh.triangles.size());
+  for (size_t f = 0; f < faces.size(); ++f) faces[f] = static_cast<int>(f);
+  return faces;
+}
+
+// The 2D distance, across up, from p to the part of triangle `f` whose
+// height lies in [low, high]; infinity when no part does.
+double across_distance_in_slab(const Mesh& mesh, const AuditAgent& agent, int f, const Eigen::Vector3d& p, double low,
+                               double high) {
+  std::vector<Eigen::Vector3d> polygon;
+  for (int k = 0; k < 3; ++k) polygon.push_back(mesh.positions[mesh.triangles[f][k]]);
+  Eigen::Vector3d up = Eigen::Vector3d::Zero();
+  up[agent.up_axis] = agent.up_sign;
+  polygon = clip_polygon(polygon, Plane{up, high}, 0.0);
+  polygon = clip_polygon(polygon, Plane{-up, -low}, 0.0);
+  if (polygon.empty()) return std::numeric_limits<double>::infinity();
+  // Flattened along up: the nearest point of a convex polygon.
+  const auto flat = [&](Eigen::Vector3d q) {
+    q[agent.up_axis] = 0.0;
+    return q;
+  };
+  const Eigen::Vector3d target = flat(p);
+  const size_t n = polygon.size();
+  bool left = true, right = true;
+  for (size_t i = 0; i < n; ++i) {
+    const double side = (flat(polygon[(i + 1) % n]) - flat(polygon[i])).cross(target - flat(polygon[i])).dot(up);
+    left &= side >= 0.0;
+    right &= side <= 0.0;
+  }
+  if (left || right) return 0.0;
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < n; ++i)
+    best = std::min(best, (closest_point_on_segment(target, flat(polygon[i]), flat(polygon[(i + 1) % n])) - target).norm());
+  return best;
+}
+
+} // namespace
+
+TriangleDistances::TriangleDistances(const Mesh& m) : mesh(m), tree(triangle_boxes(m, all_faces(m))) {}
+
+double TriangleDistances::clearance(const Eigen::Vector3d& p, double limit) const {
+  return std::sqrt(tree.nearest_to_point(p, limit, [&](int f) {
+    const Eigen::Vector3i& t = mesh.triangles[f];
+    return (closest_point_on_triangle(p, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]) - p)
+        .squaredNorm();
+  }));
+}
+
+bool audit_walkable(const Mesh& mesh, const AuditAgent& agent, int f) {
+  const Eigen::Vector3i& t = mesh.triangles[f];
+  const Eigen::Vector3d n =
+      (mesh.positions[t[1]] - mesh.positions[t[0]]).cross(mesh.positions[t[2]] - mesh.positions[t[0]]);
+  return n.norm() > 0.0 && agent.up_sign * n[agent.up_axis] / n.norm() >= agent.min_up_cosine;
+}
+
+bool AgentLattice::reachable_near(const Eigen::Vector3d& p) const {
+  const Eigen::Vector3d at = ((p - origin) / spacing).array().round();
+  if ((at.array() < 0.0).any() || (at.array() >= dims.cast<double>().array()).any()) return false;
+  return reachable(index(static_cast<int>(at.x()), static_cast<int>(at.y()), static_cast<int>(at.z())));
+}
+
+AgentLattice reach_lattice(const TriangleDistances& distances, const AuditAgent& agent, const Aabb& box,
+                           double spacing, const std::vector<Eigen::Vector3d>& seeds, int threads) {
+  const Mesh& mesh = distances.mesh;
+  AgentLattice lattice;
+  lattice.origin = box.min;
+  lattice.spacing = spacing;
+  lattice.dims = (((box.max - box.min) / spacing).array().floor() + 1.0).cast<int>();
+  const long long count = lattice.size();
+  lattice.flags.assign(count, 0);
+  std::vector<std::uint8_t>& flags = lattice.flags;
+  constexpr std::uint8_t kPassable = 4; // a centre within the cell may be clear
+  constexpr std::uint8_t kStanding = 8; // ... and standing on a walkable face
+  // A point passes when a centre within its cell may be clear: its own
+  // clearance is then at least r less half the cell's diagonal.
+  const double cell_reach = 0.5 * spacing * std::sqrt(3.0);
+  std::vector<int> walkable;
+  for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f)
+    if (audit_walkable(mesh, agent, f)) walkable.push_back(f);
+  const AabbTree walkable_tree(triangle_boxes(mesh, walkable));
+  const double rise = agent.rise();
+  parallel_for(lattice.dims.z(), threads, [&](int k) {
+    std::vector<int> found;
+    for (int j = 0; j < lattice.dims.y(); ++j)
+      for (int i = 0; i < lattice.dims.x(); ++i) {
+        const long long at = lattice.index(i, j, k);
+        const Eigen::Vector3d p = lattice.point(i, j, k);
+        const double d = distances.clearance(p, agent.radius);
+        if (d >= agent.radius) flags[at] |= AgentLattice::kClearPoint;
+        if (d >= agent.radius - cell_reach) flags[at] |= kPassable;
+        if (!agent.walking || !(flags[at] & kPassable)) continue;
+        // Standing: a walkable point within r across of the cell, at most
+        // `rise` below it (the cell's extent added to both).
+        const double height = agent.height_of(p);
+        Aabb query;
+        query.extend(p);
+        query = grown(query, agent.radius + cell_reach);
+        if (agent.up_sign > 0) query.min[agent.up_axis] -= rise;
+        else query.max[agent.up_axis] += rise;
+        found.clear();
+        walkable_tree.overlapping(query, found);
+        for (int w : found) {
+          // Heights in the slab, as up measures them, turned back into coordinates.
+          const double low = height - rise - cell_reach, high = height + cell_reach;
+          const double lo = agent.up_sign > 0 ? low : -high, hi = agent.up_sign > 0 ? high : -low;
+          if (across_distance_in_slab(mesh, agent, walkable[w], p, lo, hi) <= agent.radius + cell_reach) {
+            flags[at] |= kStanding;
+            break;
+          }
+        }
+      }
+  });
+  // Headroom: an upright capsule's axis (H - 2r) crosses that length over a
+  // spacing of cells, each holding one of its clear points, all in one
+  // column: standing points in a shorter run of passable ones are not.
+  if (agent.walking) {
+    const int axis = agent.up_axis, a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+    const int fewest = static_cast<int>(std::floor((agent.height - 2.0 * agent.radius) / spacing));
+    for (int u = 0; u < lattice.dims[a1]; ++u)
+      for (int v = 0; v < lattice.dims[a2]; ++v) {
+        int run_start = 0;
+        for (int w = 0; w <= lattice.dims[axis]; ++w) {
+          Eigen::Vector3i c;
+          c[a1] = u;
+          c[a2] = v;
+          c[axis] = w;
+          const bool open = w < lattice.dims[axis] && (flags[lattice.index(c.x(), c.y(), c.z())] & kPassable);
+          if (open) continue;
+          if (w - run_start < fewest)
+            for (int x = run_start; x < w; ++x) {
+              c[axis] = x;
+              flags[lattice.index(c.x(), c.y(), c.z())] &= static_cast<std::uint8_t>(~kStanding);
+            }
+          run_start = w + 1;
+        }
+      }
+  }
+  // Walking: standing points, and the passable points below one in its
+  // column (an agent stepping off a ledge falls straight down).
+  if (agent.walking) {
+    const int axis = agent.up_axis, a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+    const int down = agent.up_sign > 0 ? -1 : 1;
+    for (int u = 0; u < lattice.dims[a1]; ++u)
+      for (int v = 0; v < lattice.dims[a2]; ++v) {
+        bool falling = false;
+        for (int w = down < 0 ? lattice.dims[axis] - 1 : 0; w >= 0 && w < lattice.dims[axis]; w += down) {
+          Eigen::Vector3i c;
+          c[axis] = w;
+          c[a1] = u;
+          c[a2] = v;
+          const long long at = lattice.index(c.x(), c.y(), c.z());
+          if (!(flags[at] & kPassable)) falling = false;
+          else if (flags[at] & kStanding) falling = true;
+          else if (!falling) flags[at] &= ~kPassable;
+        }
+      }
+  }
+  // Flood from the lattice points around each seed.
+  std::vector<long long> stack;
+  for (const Eigen::Vector3d& seed : seeds) {
+    const Eigen::Vector3d at = (seed - lattice.origin) / spacing;
+    for (int corner = 0; corner < 8; ++corner) {
+      Eigen::Vector3i c;
+      for (int a = 0; a < 3; ++a) c[a] = static_cast<int>(std::floor(at[a])) + ((corner >> a) & 1);
+      if ((c.array() < 0).any() || (c.array() >= lattice.dims.array()).any()) continue;
+      const long long i = lattice.index(c.x(), c.y(), c.z());
+      if ((flags[i] & kPassable) && !lattice.reachable(i)) {
+        flags[i] |= AgentLattice::kReachablePoint;
+        stack.push_back(i);
+      }
+    }
+  }
+  // Walking moves between standing points freely, off a ledge sideways or
+  // down into a falling point, and from a falling point straight down only.
+  const long long step[3] = {1, lattice.dims.x(), static_cast<long long>(lattice.dims.x()) * lattice.dims.y()};
+  const int down = agent.up_sign > 0 ? -1 : 1;
+  while (!stack.empty()) {
+    const long long c = stack.back();
+    stack.pop_back();
+    const bool free_moving = !agent.walking || (flags[c] & kStanding);
+    const long long at[3] = {c % lattice.dims.x(), (c / step[1]) % lattice.dims.y(), c / step[2]};
+    for (int a = 0; a < 3; ++a)
+      for (int s = -1; s <= 1; s += 2) {
+        const bool downward = a == agent.up_axis && s == down;
+        const bool upward = a == agent.up_axis && s != down;
+        if (!free_moving && !downward) continue;
+        if (at[a] + s < 0 || at[a] + s >= lattice.dims[a]) continue;
+        const long long next = c + s * step[a];
+        if (!(flags[next] & kPassable) || lattice.reachable(next)) continue;
+        if (agent.walking && upward && !(flags[next] & kStanding)) continue;
+        flags[next] |= AgentLattice::kReachablePoint;
+        stack.push_back(next);
+      }
+  }
+  return lattice;
+}
+
+} // namespace hullcover::validate::detail

@@ -1,0 +1,70 @@
+#pragma once
+/// \file agent_lattice.h
+/// The movement audit's own reach: a lattice of points, each kept when an
+/// agent's centre may be within its cell (half a spacing each way), found
+/// with the audit's own clearance samples, standing test and flood. A
+/// superset of the reachable centres the definition names, as the
+/// decomposer's reach grid is, by another route.
+
+#include "hullcover/covering/movement_covering.h"
+#include "hullcover/geometry/aabb_tree.h"
+#include "hullcover/geometry/mesh.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace hullcover::validate::detail {
+
+/// The agent with every default resolved.
+struct AuditAgent {
+  double radius = 0.0, slop = 0.0, height = 0.0, climb = 0.0;
+  double min_up_cosine = 0.0;
+  int up_axis = 1;
+  double up_sign = 1.0;
+  bool walking = true;
+  double rise() const { return climb + height - radius; } ///< how high above a walkable point its axis may be
+  double height_of(const Eigen::Vector3d& p) const { return up_sign * p[up_axis]; }
+};
+
+/// Distances to the scene's triangles.
+struct TriangleDistances {
+  const Mesh& mesh;
+  AabbTree tree;
+  explicit TriangleDistances(const Mesh& m);
+  /// Distance from p to the nearest triangle, or `limit` when none is nearer.
+  double clearance(const Eigen::Vector3d& p, double limit) const;
+};
+
+struct AgentLattice {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  double spacing = 0.0;
+  Eigen::Vector3i dims = Eigen::Vector3i::Zero();
+  /// Per point, bits: kClearPoint (clearance >= r at the point itself) and
+  /// kReachablePoint (an agent's centre may be within the point's cell);
+  /// the others are the flood's own.
+  std::vector<std::uint8_t> flags;
+  static constexpr std::uint8_t kClearPoint = 1;
+  static constexpr std::uint8_t kReachablePoint = 2;
+  bool clear(long long i) const { return flags[i] & kClearPoint; }
+  bool reachable(long long i) const { return flags[i] & kReachablePoint; }
+  long long index(int i, int j, int k) const { return (static_cast<long long>(k) * dims.y() + j) * dims.x() + i; }
+  Eigen::Vector3d point(int i, int j, int k) const { return origin + Eigen::Vector3d(i, j, k) * spacing; }
+  long long size() const { return static_cast<long long>(dims.x()) * dims.y() * dims.z(); }
+  /// Whether the lattice point whose cell holds `p` (the nearest) is reachable.
+  bool reachable_near(const Eigen::Vector3d& p) const;
+};
+
+/// Whether face `f` is walkable for `agent`.
+bool audit_walkable(const Mesh& mesh, const AuditAgent& agent, int f);
+
+/// Widest spacing, in radii, that keeps the flood from leaking through a
+/// surface: of two neighbours on either side of one, one lies within half a
+/// spacing of it, nearer than r less half a cell's diagonal.
+inline constexpr double kWidestLatticeSpacingInRadii = 0.7;
+
+/// The lattice of `spacing` (at most kWidestLatticeSpacingInRadii x r)
+/// over `box`, flooded from `seeds` (each a point at clearance >= r).
+AgentLattice reach_lattice(const TriangleDistances& distances, const AuditAgent& agent, const Aabb& box,
+                           double spacing, const std::vector<Eigen::Vector3d>& seeds, int threads);
+
+} // namespace hullcover::validate::detail

@@ -1,0 +1,204 @@
+#include "hullcover/validate/movement_audit.h"
+
+#include "agent_lattice.h"
+
+#include "hullcover/bvh/hull_world.h"
+#include "hullcover/geometry/parallel_for.h"
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <exception>
+#include <string>
+
+namespace hullcover::validate {
+namespace {
+
+using detail::AgentLattice;
+using detail::AuditAgent;
+
+Result<AuditAgent> resolve(const MovementOptions& o, double tol) {
+  AuditAgent agent;
+  agent.radius = o.radius;
+  agent.slop = o.slop < 0.0 ? kDefaultSlopPerRadius * o.radius : o.slop;
+  agent.height = o.height < 0.0 ? kDefaultHeightInRadii * o.radius : o.height;
+  agent.climb = o.climb < 0.0 ? kDefaultClimbInRadii * o.radius : o.climb;
+  agent.walking = o.reach == AgentReach::walk;
+  if (!(std::isfinite(agent.radius) && agent.radius > 0.0 && std::isfinite(agent.slop) && agent.slop >= 2.0 * tol &&
+        agent.slop < agent.radius && std::isfinite(agent.height) && agent.height >= 2.0 * agent.radius &&
+        std::isfinite(agent.climb) && agent.climb >= 0.0 && o.max_slope_degrees >= 0.0 && o.max_slope_degrees < 90.0))
+    return Status{StatusCode::invalid_argument,
+                  "agent out of range: radius > 0, 2 tol <= slop < radius, height >= 2 radius, climb >= 0, slope in "
+                  "[0, 90)"};
+  agent.min_up_cosine = std::cos(o.max_slope_degrees * M_PI / 180.0);
+  agent.up_axis = -1;
+  for (int a = 0; a < 3; ++a)
+    if (std::abs(o.up[a]) == 1.0) agent.up_axis = a;
+  if (agent.up_axis < 0 || o.up.cwiseAbs().sum() != 1.0)
+    return Status{StatusCode::invalid_argument, "up must be an axis direction"};
+  agent.up_sign = o.up[agent.up_axis];
+  return agent;
+}
+
+// The definition's default seeds: r (and 2 tol) in front of each walkable
+// face's centroid and of the middles between it and its corners, where clear.
+std::vector<Eigen::Vector3d> definition_seeds(const detail::TriangleDistances& distances, const AuditAgent& agent,
+                                              double tol) {
+  const Mesh& mesh = distances.mesh;
+  std::vector<Eigen::Vector3d> seeds;
+  for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) {
+    if (!detail::audit_walkable(mesh, agent, f)) continue;
+    const Eigen::Vector3i& t = mesh.triangles[f];
+    const Eigen::Vector3d &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+    const Eigen::Vector3d lift = (agent.radius + 2.0 * tol) * (b - a).cross(c - a).normalized();
+    const Eigen::Vector3d g = (a + b + c) / 3.0;
+    for (const Eigen::Vector3d& base : {g, Eigen::Vector3d(0.5 * (g + a)), Eigen::Vector3d(0.5 * (g + b)),
+                                        Eigen::Vector3d(0.5 * (g + c))})
+      if (distances.clearance(base + lift, agent.radius) >= agent.radius) seeds.push_back(base + lift);
+  }
+  return seeds;
+}
+
+// What one slab of the lattice found (added up in slab order).
+struct Findings {
+  long long clear = 0, reachable = 0, sinking = 0, touching = 0, lost = 0;
+  double deepest = 0.0;
+  Eigen::Vector3d deepest_at = Eigen::Vector3d::Zero();
+  int deepest_hull = -1;
+  Eigen::Vector3d first_lost_at = Eigen::Vector3d::Zero();
+};
+
+// The gap from point p to the nearest hull (0 inside one, within tol).
+double gap_to_hulls(const bvh::HullWorld& world, const Eigen::Vector3d& p, double tol, int* hull) {
+  bvh::DistanceRequest request;
+  request.shape = bvh::QueryShape::sphere(tol);
+  request.pose.translation() = p;
+  bvh::DistanceResult result;
+  if (!world.distance(request, result).ok()) return 0.0;
+  if (hull) *hull = result.hull;
+  return result.touching ? 0.0 : result.distance + tol;
+}
+
+Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh::RuntimeHull>& hulls,
+                                const MovementAuditOptions& options, int threads) {
+  const double tol = scene.tolerance.largest_length();
+  Result<AuditAgent> resolved = resolve(options.agent, tol);
+  if (!resolved.ok()) return resolved.status();
+  AuditAgent agent = resolved.value();
+  Result<std::shared_ptr<const bvh::HullWorld>> built = bvh::HullWorld::build(hulls);
+  if (!built.ok()) return built.status();
+  const bvh::HullWorld& world = *built.value();
+  const Mesh& mesh = scene.mesh;
+  const detail::TriangleDistances distances(mesh);
+  std::vector<Eigen::Vector3d> seeds = options.agent.seeds;
+  for (const Eigen::Vector3d& s : seeds)
+    if (!(distances.clearance(s, agent.radius) >= agent.radius))
+      return Status{StatusCode::invalid_argument, "a seed lies nearer than the agent radius to the triangles"};
+  if (seeds.empty()) seeds = definition_seeds(distances, agent, tol);
+  if (seeds.empty()) agent.walking = false; // nothing to stand on: flying, everywhere clear
+
+  Aabb box;
+  for (const Eigen::Vector3d& p : mesh.positions) box.extend(p);
+  box = grown(box, agent.radius);
+  MovementAuditReport report;
+  report.slop = agent.slop;
+  report.height = agent.height;
+  double spacing = options.spacing > 0.0 ? options.spacing : kDefaultAuditSpacingInRadii * agent.radius;
+  const Eigen::Vector3d extent = box.max - box.min;
+  const auto points_at = [&](double s) { return ((extent / s).array().floor() + 1.0).prod(); };
+  const double widest = detail::kWidestLatticeSpacingInRadii * agent.radius;
+  if (options.spacing > widest)
+    return Status{StatusCode::invalid_argument, "the lattice spacing must be at most " +
+                                                    std::to_string(detail::kWidestLatticeSpacingInRadii) +
+                                                    " x the agent radius (a wider one lets the flood through walls)"};
+  while (points_at(spacing) > static_cast<double>(kMostAuditLatticePoints) && spacing < widest)
+    spacing = std::min(widest, 1.25 * spacing);
+  if (points_at(spacing) > static_cast<double>(kMostAuditLatticePoints))
+    return Status{StatusCode::limit_exceeded,
+                  "the movement audit's lattice would need " + std::to_string(static_cast<long long>(points_at(spacing))) +
+                      " points at its widest spacing (at most " + std::to_string(kMostAuditLatticePoints) +
+                      "): audit a part of the scene"};
+  report.spacing = spacing;
+  AgentLattice lattice = detail::reach_lattice(distances, agent, box, spacing, seeds, threads);
+  if (options.agent.seeds.empty() && !agent.walking && seeds.empty())
+    for (std::uint8_t& f : lattice.flags)
+      if (f & AgentLattice::kClearPoint) f |= AgentLattice::kReachablePoint;
+  report.lattice_points = lattice.size();
+
+  // Reachable centres: each ball of radius r sinks at most E + tol into the hulls.
+  const double r = agent.radius;
+  std::vector<Findings> slabs(lattice.dims.z());
+  parallel_for(lattice.dims.z(), threads, [&](int k) {
+    Findings& f = slabs[k];
+    for (int j = 0; j < lattice.dims.y(); ++j)
+      for (int i = 0; i < lattice.dims.x(); ++i) {
+        const long long at = lattice.index(i, j, k);
+        f.clear += lattice.clear(at);
+        if (!lattice.clear(at) || !lattice.reachable(at)) continue;
+        ++f.reachable;
+        const Eigen::Vector3d p = lattice.point(i, j, k);
+        int hull = -1;
+        const double depth = r - gap_to_hulls(world, p, tol, &hull);
+        if (depth <= agent.slop + tol) continue;
+        ++f.sinking;
+        if (depth > f.deepest) {
+          f.deepest = depth;
+          f.deepest_at = p;
+          f.deepest_hull = hull;
+        }
+      }
+  });
+  // Touching poses: over points of every face, on either side, r away,
+  // where that face is the nearest and a reachable lattice cell holds it.
+  std::vector<Findings> faces(mesh.triangles.size());
+  parallel_for(static_cast<int>(mesh.triangles.size()), threads, [&](int face) {
+    Findings& f = faces[face];
+    const Eigen::Vector3i& t = mesh.triangles[face];
+    const Eigen::Vector3d &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    if (!(n.norm() > 0.0)) return;
+    const Eigen::Vector3d unit = n.normalized();
+    const int steps = std::max(1, static_cast<int>(std::ceil(std::max({(b - a).norm(), (c - a).norm(), (c - b).norm()}) / spacing)));
+    for (int u = 0; u <= steps; ++u)
+      for (int v = 0; u + v <= steps; ++v) {
+        const double s = (u + 1.0 / 3.0) / (steps + 1.0), w = (v + 1.0 / 3.0) / (steps + 1.0);
+        const Eigen::Vector3d on_face = a + s * (b - a) + w * (c - a);
+        for (double side : {1.0, -1.0}) {
+          const Eigen::Vector3d pose = on_face + side * (r + 2.0 * tol) * unit;
+          if (distances.clearance(pose, r) < r || !lattice.reachable_near(pose)) continue;
+          ++f.touching;
+          if (gap_to_hulls(world, pose, tol, nullptr) > r + 2.0 * tol + agent.slop + tol) {
+            if (f.lost++ == 0) f.first_lost_at = pose;
+          }
+        }
+      }
+  });
+  for (const std::vector<Findings>* part : {&slabs, &faces})
+    for (const Findings& f : *part) {
+      report.clear_points += f.clear;
+      report.reachable_points += f.reachable;
+      report.sinking += f.sinking;
+      if (f.deepest > report.deepest) {
+        report.deepest = f.deepest;
+        report.deepest_at = f.deepest_at;
+        report.deepest_hull = f.deepest_hull;
+      }
+      report.touching_poses += f.touching;
+      if (f.lost > 0 && report.contacts_lost == 0) report.first_lost_at = f.first_lost_at;
+      report.contacts_lost += f.lost;
+    }
+  return report;
+}
+
+} // namespace
+
+Result<MovementAuditReport> audit_movement(const PreparedMesh& scene, const std::vector<bvh::RuntimeHull>& hulls,
+                                           const MovementAuditOptions& options, int threads) {
+  try {
+    return run(scene, hulls, options, threads);
+  } catch (const std::exception& e) {
+    return Status{StatusCode::internal_error, std::string("movement audit failed: ") + e.what()};
+  }
+}
+
+} // namespace hullcover::validate
