@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace hullcover::validate::detail {
 namespace {
@@ -79,9 +80,14 @@ bool audit_walkable(const Mesh& mesh, const AuditAgent& agent, int f) {
 }
 
 bool AgentLattice::reachable_near(const Eigen::Vector3d& p) const {
-  const Eigen::Vector3d at = ((p - origin) / spacing).array().round();
-  if ((at.array() < 0.0).any() || (at.array() >= dims.cast<double>().array()).any()) return false;
-  return reachable(index(static_cast<int>(at.x()), static_cast<int>(at.y()), static_cast<int>(at.z())));
+  const Eigen::Vector3d at = (p - origin) / spacing;
+  for (int corner = 0; corner < 8; ++corner) {
+    Eigen::Vector3i c;
+    for (int a = 0; a < 3; ++a) c[a] = static_cast<int>(std::floor(at[a])) + ((corner >> a) & 1);
+    if ((c.array() < 0).any() || (c.array() >= dims.array()).any()) continue;
+    if (reachable(index(c.x(), c.y(), c.z()))) return true;
+  }
+  return false;
 }
 
 AgentLattice reach_lattice(const TriangleDistances& distances, const AuditAgent& agent, const Aabb& box,
@@ -94,76 +100,88 @@ AgentLattice reach_lattice(const TriangleDistances& distances, const AuditAgent&
   const long long count = lattice.size();
   lattice.flags.assign(count, 0);
   std::vector<std::uint8_t>& flags = lattice.flags;
-  constexpr std::uint8_t kPassable = 4; // a centre within the cell may be clear
-  constexpr std::uint8_t kStanding = 8; // ... and standing on a walkable face
-  // A point passes when a centre within its cell may be clear: its own
-  // clearance is then at least r less half the cell's diagonal.
-  const double cell_reach = 0.5 * spacing * std::sqrt(3.0);
+  constexpr std::uint8_t kPassable = 4; // an agent's centre may be here
+  constexpr std::uint8_t kStanding = 8; // ... standing on a walkable face
+  // The lattice samples the definition: a point passes when it is clear
+  // itself, so every centre the flood reaches is one (two neighbours both
+  // clear, less than 2 r apart, have no surface between them). Narrow
+  // passages between samples may be missed: the audit's reach is at most
+  // the definition's, and a violation it reports is a real pose.
   std::vector<int> walkable;
   for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f)
     if (audit_walkable(mesh, agent, f)) walkable.push_back(f);
   const AabbTree walkable_tree(triangle_boxes(mesh, walkable));
   const double rise = agent.rise();
   parallel_for(lattice.dims.z(), threads, [&](int k) {
-    std::vector<int> found;
     for (int j = 0; j < lattice.dims.y(); ++j)
       for (int i = 0; i < lattice.dims.x(); ++i) {
         const long long at = lattice.index(i, j, k);
-        const Eigen::Vector3d p = lattice.point(i, j, k);
-        const double d = distances.clearance(p, agent.radius);
+        const double d = distances.clearance(lattice.point(i, j, k), agent.radius);
         if (d >= agent.radius) flags[at] |= AgentLattice::kClearPoint;
-        if (d >= agent.radius - cell_reach) flags[at] |= kPassable;
-        if (!agent.walking || !(flags[at] & kPassable)) continue;
-        // Standing: a walkable point within r across of the cell, at most
-        // `rise` below it (the cell's extent added to both).
-        const double height = agent.height_of(p);
-        Aabb query;
-        query.extend(p);
-        query = grown(query, agent.radius + cell_reach);
-        if (agent.up_sign > 0) query.min[agent.up_axis] -= rise;
-        else query.max[agent.up_axis] += rise;
-        found.clear();
-        walkable_tree.overlapping(query, found);
-        for (int w : found) {
-          // Heights in the slab, as up measures them, turned back into coordinates.
-          const double low = height - rise - cell_reach, high = height + cell_reach;
-          const double lo = agent.up_sign > 0 ? low : -high, hi = agent.up_sign > 0 ? high : -low;
-          if (across_distance_in_slab(mesh, agent, walkable[w], p, lo, hi) <= agent.radius + cell_reach) {
-            flags[at] |= kStanding;
-            break;
-          }
-        }
+        if (d >= agent.radius) flags[at] |= kPassable;
       }
   });
-  // Headroom: an upright capsule's axis (H - 2r) crosses that length over a
-  // spacing of cells, each holding one of its clear points, all in one
-  // column: standing points in a shorter run of passable ones are not.
-  if (agent.walking) {
-    const int axis = agent.up_axis, a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
-    const int fewest = static_cast<int>(std::floor((agent.height - 2.0 * agent.radius) / spacing));
-    for (int u = 0; u < lattice.dims[a1]; ++u)
+  // Standing, column by column (each column's points read and written by
+  // one job): a walkable point within r across of it, at most `rise`
+  // below it, and headroom: the capsule's axis (H - 2r long) holds at
+  // least that length over a spacing of clear points in its column,
+  // between the face's lowest point and its highest plus `rise`.
+  const int axis = agent.up_axis, a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+  const int fewest = static_cast<int>(std::floor((agent.height - 2.0 * agent.radius) / spacing));
+  if (agent.walking)
+    parallel_for(lattice.dims[a1], threads, [&](int u) {
+      std::vector<int> found;
+      Eigen::Vector3i c;
+      c[a1] = u;
+      const auto at = [&](int w) {
+        c[axis] = w;
+        return lattice.index(c.x(), c.y(), c.z());
+      };
       for (int v = 0; v < lattice.dims[a2]; ++v) {
-        int run_start = 0;
-        for (int w = 0; w <= lattice.dims[axis]; ++w) {
-          Eigen::Vector3i c;
-          c[a1] = u;
-          c[a2] = v;
-          c[axis] = w;
-          const bool open = w < lattice.dims[axis] && (flags[lattice.index(c.x(), c.y(), c.z())] & kPassable);
-          if (open) continue;
-          if (w - run_start < fewest)
-            for (int x = run_start; x < w; ++x) {
-              c[axis] = x;
-              flags[lattice.index(c.x(), c.y(), c.z())] &= static_cast<std::uint8_t>(~kStanding);
+        c[a2] = v;
+        for (int w = 0; w < lattice.dims[axis]; ++w) {
+          if (!(flags[at(w)] & kPassable)) continue;
+          const Eigen::Vector3d p = lattice.point(c.x(), c.y(), c.z());
+          const double height = agent.height_of(p);
+          Aabb query;
+          query.extend(p);
+          query = grown(query, agent.radius);
+          if (agent.up_sign > 0) query.min[axis] -= rise;
+          else query.max[axis] += rise;
+          found.clear();
+          walkable_tree.overlapping(query, found);
+          for (int f : found) {
+            // Heights in the slab, as up measures them, turned back into coordinates.
+            const double low = height - rise, high = height;
+            const double lo = agent.up_sign > 0 ? low : -high, hi = agent.up_sign > 0 ? high : -low;
+            if (across_distance_in_slab(mesh, agent, walkable[f], p, lo, hi) > agent.radius) continue;
+            double floor_low = std::numeric_limits<double>::infinity(), floor_high = -floor_low;
+            for (int k = 0; k < 3; ++k) {
+              const double h = agent.height_of(mesh.positions[mesh.triangles[walkable[f]][k]]);
+              floor_low = std::min(floor_low, h);
+              floor_high = std::max(floor_high, h);
             }
-          run_start = w + 1;
+            // The run of passable points through this one, within the face's range.
+            const auto in_range = [&](int x) {
+              const double h = height + (x - w) * agent.up_sign * spacing;
+              return (flags[at(x)] & kPassable) && h >= floor_low && h <= floor_high + rise;
+            };
+            int run = 1;
+            for (int x = w + 1; x < lattice.dims[axis] && in_range(x); ++x) ++run;
+            for (int x = w - 1; x >= 0 && in_range(x); --x) ++run;
+            c[axis] = w;
+            if (run >= fewest) {
+              flags[at(w)] |= kStanding;
+              break;
+            }
+          }
+          c[axis] = w;
         }
       }
-  }
+    });
   // Walking: standing points, and the passable points below one in its
   // column (an agent stepping off a ledge falls straight down).
   if (agent.walking) {
-    const int axis = agent.up_axis, a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
     const int down = agent.up_sign > 0 ? -1 : 1;
     for (int u = 0; u < lattice.dims[a1]; ++u)
       for (int v = 0; v < lattice.dims[a2]; ++v) {

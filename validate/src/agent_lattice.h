@@ -1,10 +1,11 @@
 #pragma once
 /// \file agent_lattice.h
-/// The movement audit's own reach: a lattice of points, each kept when an
-/// agent's centre may be within its cell (half a spacing each way), found
-/// with the audit's own clearance samples, standing test and flood. A
-/// superset of the reachable centres the definition names, as the
-/// decomposer's reach grid is, by another route.
+/// The movement audit's own reach: a lattice of points at clearance r or
+/// more, found with the audit's own clearance samples, standing test and
+/// flood: the reachable centres the definition names, sampled (the
+/// decomposer's reach grid is a superset of them, cell by cell). Every
+/// point it reaches is a reachable centre; passages narrower than the
+/// lattice resolves may leave some out.
 
 #include "hullcover/covering/movement_covering.h"
 #include "hullcover/geometry/aabb_tree.h"
@@ -40,8 +41,7 @@ struct AgentLattice {
   double spacing = 0.0;
   Eigen::Vector3i dims = Eigen::Vector3i::Zero();
   /// Per point, bits: kClearPoint (clearance >= r at the point itself) and
-  /// kReachablePoint (an agent's centre may be within the point's cell);
-  /// the others are the flood's own.
+  /// kReachablePoint (a reachable centre); the others are the flood's own.
   std::vector<std::uint8_t> flags;
   static constexpr std::uint8_t kClearPoint = 1;
   static constexpr std::uint8_t kReachablePoint = 2;
@@ -50,16 +50,17 @@ struct AgentLattice {
   long long index(int i, int j, int k) const { return (static_cast<long long>(k) * dims.y() + j) * dims.x() + i; }
   Eigen::Vector3d point(int i, int j, int k) const { return origin + Eigen::Vector3d(i, j, k) * spacing; }
   long long size() const { return static_cast<long long>(dims.x()) * dims.y() * dims.z(); }
-  /// Whether the lattice point whose cell holds `p` (the nearest) is reachable.
+  /// Whether one of the 8 lattice points around `p` is reachable: for a
+  /// point `p` at clearance r or more, it is then reachable itself (the two,
+  /// less than 2 r apart and both clear, have no surface between them).
   bool reachable_near(const Eigen::Vector3d& p) const;
 };
 
 /// Whether face `f` is walkable for `agent`.
 bool audit_walkable(const Mesh& mesh, const AuditAgent& agent, int f);
 
-/// Widest spacing, in radii, that keeps the flood from leaking through a
-/// surface: of two neighbours on either side of one, one lies within half a
-/// spacing of it, nearer than r less half a cell's diagonal.
+/// Widest spacing, in radii: finer than the agent, so that standing and
+/// headroom are sampled several times along its height and across it.
 inline constexpr double kWidestLatticeSpacingInRadii = 0.7;
 
 /// The lattice of `spacing` (at most kWidestLatticeSpacingInRadii x r)

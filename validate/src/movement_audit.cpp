@@ -110,7 +110,7 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
   if (options.spacing > widest)
     return Status{StatusCode::invalid_argument, "the lattice spacing must be at most " +
                                                     std::to_string(detail::kWidestLatticeSpacingInRadii) +
-                                                    " x the agent radius (a wider one lets the flood through walls)"};
+                                                    " x the agent radius"};
   while (points_at(spacing) > static_cast<double>(kMostAuditLatticePoints) && spacing < widest)
     spacing = std::min(widest, 1.25 * spacing);
   if (points_at(spacing) > static_cast<double>(kMostAuditLatticePoints))

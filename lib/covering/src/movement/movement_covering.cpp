@@ -85,12 +85,12 @@ Result<MovementCovering> decompose_checked(const PreparedMesh& prepared, const M
   // Nothing to stand on: walking falls back to flying, through all clear space.
   if (seeds.empty()) agent.reach = AgentReach::fly;
   stats.reach = agent.reach;
-  Result<detail::ReachGrid> grid = build_reach_grid(mesh, clearance, agent, seeds, threads);
+  Result<detail::ReachGrid> grid = build_reach_grid(mesh, clearance, agent, seeds, !options.seeds.empty(), threads);
   if (!grid.ok()) return grid.status();
   stats.grid_cells = grid.value().cell_count();
   stats.reachable_cells = grid.value().reachable_count();
   stats.cell = grid.value().cell;
-  stats.seeds = static_cast<int>(seeds.size());
+  stats.seeds = grid.value().seeds_used;
 
   const int face_count = static_cast<int>(mesh.triangles.size());
   std::vector<char> touched(face_count, 0);

@@ -76,7 +76,11 @@ void cell_range(const ReachGrid& grid, const Aabb& box, Eigen::Vector3i& lo, Eig
 
 // Marks kStanding in the clear cells where an agent standing on walkable
 // face `face` may have a point of its axis: within r across of the face,
-// from the face's lowest point up to its highest plus climb + H - r.
+// from the face's lowest point up to its highest plus climb + H - r, in a
+// run of clear cells within that range long enough for the axis (H - 2r
+// long, it crosses at least that length over a cell side of cells, each
+// holding one of its clear points, all in one column): no upright capsule
+// stands where its head would be in a ceiling.
 void mark_standing(const ReachGrid& grid, const Mesh& mesh, const AgentShape& agent, int face,
                    std::vector<std::uint8_t>& marks) {
   Aabb box;
@@ -91,54 +95,26 @@ void mark_standing(const ReachGrid& grid, const Mesh& mesh, const AgentShape& ag
   else box.min[agent.up_axis] -= rise;
   Eigen::Vector3i lo, hi;
   cell_range(grid, box, lo, hi);
-  for (int k = lo.z(); k <= hi.z(); ++k)
-    for (int j = lo.y(); j <= hi.y(); ++j)
-      for (int i = lo.x(); i <= hi.x(); ++i) {
-        std::uint8_t& m = marks[grid.index(i, j, k)];
-        if (m & kClear) m |= kStanding;
-      }
-}
-
-// Calls visit(index list) for each run of consecutive cells along the up
-// axis that all hold `bits`, in every column.
-template <class Visit>
-void for_each_vertical_run(const ReachGrid& grid, const AgentShape& agent, const std::vector<std::uint8_t>& marks,
-                           std::uint8_t bits, Visit&& visit) {
-  const int axis = agent.up_axis, a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
-  const Eigen::Vector3i& dims = grid.dims;
-  std::vector<long long> run;
-  for (int u = 0; u < dims[a1]; ++u)
-    for (int v = 0; v < dims[a2]; ++v) {
-      run.clear();
-      for (int w = 0; w <= dims[axis]; ++w) {
-        long long at = -1;
-        if (w < dims[axis]) {
-          Eigen::Vector3i c;
-          c[axis] = w;
-          c[a1] = u;
-          c[a2] = v;
-          at = grid.index(c.x(), c.y(), c.z());
-        }
-        if (at >= 0 && (marks[at] & bits) == bits) {
-          run.push_back(at);
-          continue;
-        }
-        if (!run.empty()) visit(run);
-        run.clear();
+  const int axis = agent.up_axis;
+  const int fewest = static_cast<int>(std::floor((agent.height - 2.0 * agent.radius) / grid.cell));
+  Eigen::Vector3i c;
+  const auto at = [&](int w) {
+    c[axis] = w;
+    return grid.index(c.x(), c.y(), c.z());
+  };
+  const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+  for (int u = lo[a1]; u <= hi[a1]; ++u)
+    for (int v = lo[a2]; v <= hi[a2]; ++v) {
+      c[a1] = u;
+      c[a2] = v;
+      int run_start = lo[axis];
+      for (int w = lo[axis]; w <= hi[axis] + 1; ++w) {
+        if (w <= hi[axis] && (marks[at(w)] & kClear)) continue;
+        if (w - run_start >= fewest)
+          for (int x = run_start; x < w; ++x) marks[at(x)] |= kStanding;
+        run_start = w + 1;
       }
     }
-}
-
-// Takes kStanding from cells in a column of clear cells too short for the
-// agent's axis (H - 2r long, so it crosses at least that length over a
-// cell side of cells, each holding one of its clear points): no upright
-// capsule fits there.
-void drop_standing_without_headroom(const ReachGrid& grid, const AgentShape& agent, std::vector<std::uint8_t>& marks) {
-  const size_t fewest = static_cast<size_t>(std::floor((agent.height - 2.0 * agent.radius) / grid.cell));
-  for_each_vertical_run(grid, agent, marks, kClear, [&](const std::vector<long long>& run) {
-    if (run.size() >= fewest) return;
-    for (long long at : run) marks[at] &= static_cast<std::uint8_t>(~kStanding);
-  });
 }
 
 // Marks kDropping below every standing cell, down through clear cells: an
@@ -290,7 +266,7 @@ bool is_walkable(const Mesh& mesh, const AgentShape& agent, int face) {
 }
 
 Result<ReachGrid> build_reach_grid(const Mesh& mesh, const SceneClearance& clearance, const AgentShape& agent,
-                                   const std::vector<Eigen::Vector3d>& seeds, int threads) {
+                                   const std::vector<Eigen::Vector3d>& seeds, bool seeds_given, int threads) {
   ReachGrid grid;
   grid.cell = kReachCellInRadii * agent.radius;
   Aabb box;
@@ -318,10 +294,7 @@ Result<ReachGrid> build_reach_grid(const Mesh& mesh, const SceneClearance& clear
   for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f)
     if (is_walkable(mesh, agent, f)) mark_standing(grid, mesh, agent, f, marks);
   const bool walking = agent.reach == AgentReach::walk;
-  if (walking) {
-    drop_standing_without_headroom(grid, agent, marks);
-    mark_drops(grid, agent, marks);
-  }
+  if (walking) mark_drops(grid, agent, marks);
   const auto walkable_cell = [](std::uint8_t m) { return (m & kClear) && (m & (kStanding | kDropping)); };
   const auto occupiable = [&](std::uint8_t m) { return walking ? walkable_cell(m) : (m & kClear) != 0; };
 
@@ -331,6 +304,7 @@ Result<ReachGrid> build_reach_grid(const Mesh& mesh, const SceneClearance& clear
     if (!((at.array() >= 0.0).all() && (at.array() < grid.dims.cast<double>().array()).all()))
       continue; // beyond the scene's box grown by r: open space, touching nothing
     const long long c = grid.index(static_cast<int>(at.x()), static_cast<int>(at.y()), static_cast<int>(at.z()));
+    if (!occupiable(marks[c]) && !seeds_given) continue;
     if (!occupiable(marks[c]))
       return Status{StatusCode::invalid_argument,
                     "seed " + point_text(seed) +
@@ -338,6 +312,7 @@ Result<ReachGrid> build_reach_grid(const Mesh& mesh, const SceneClearance& clear
                                    "it, or too near the triangles)"
                                  : " is too near the triangles for the agent")};
     starts.push_back(c);
+    ++grid.seeds_used;
   }
   if (walking)
     for (std::uint8_t& m : marks)

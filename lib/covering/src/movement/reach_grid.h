@@ -36,6 +36,7 @@ public:
   Eigen::Vector3d origin = Eigen::Vector3d::Zero(); ///< lowest corner of cell (0, 0, 0)
   double cell = 0.0;                                 ///< side of a cell, scene units
   Eigen::Vector3i dims = Eigen::Vector3i::Zero();    ///< cells along x, y, z
+  int seeds_used = 0;                                ///< seeds in cells an agent may occupy
 
   long long cell_count() const { return static_cast<long long>(dims.x()) * dims.y() * dims.z(); }
   long long index(int i, int j, int k) const { return (static_cast<long long>(k) * dims.y() + j) * dims.x() + i; }
@@ -65,10 +66,12 @@ private:
 
 /// The reach grid of `mesh` for `agent`, from `seeds` (each already checked
 /// to have clearance >= r; empty: all clear space, flying). Fails with
-/// `limit_exceeded` when the grid would exceed kMostReachCells, and with
-/// `invalid_argument` for a seed no agent of this reach occupies.
+/// `limit_exceeded` when the grid would exceed kMostReachCells, and, when
+/// `seeds_given` (the user's spawn points), with `invalid_argument` for a
+/// seed no agent of this reach occupies; default seeds there are passed
+/// over (a walkable face under a low ceiling).
 Result<ReachGrid> build_reach_grid(const Mesh& mesh, const SceneClearance& clearance, const AgentShape& agent,
-                                   const std::vector<Eigen::Vector3d>& seeds, int threads);
+                                   const std::vector<Eigen::Vector3d>& seeds, bool seeds_given, int threads);
 
 /// Whether face `face` may be touched by an agent: some reachable cell lies
 /// within r of it (the cell's centre within r plus half its diagonal).
