@@ -69,8 +69,8 @@ int run_movement_audit(const AuditCommandOptions& o, const LoadedScene& scene, c
   const validate::MovementAuditReport& m = audited.value();
   std::printf("%s: %zu hulls against %s, movement audit (%s): agent radius %.6g, slop %.6g, height %.6g\n",
               o.hulls.c_str(), set.hulls.size(), o.mesh.c_str(), o.movement.reach.c_str(), radius, m.slop, m.height);
-  std::printf("  lattice spacing %.6g: %lld points, %lld clear, %lld reachable centres\n", m.spacing,
-              m.lattice_points, m.clear_points, m.reachable_points);
+  std::printf("  lattice spacing %.6g: %lld points, %lld clear, %lld reachable centres\n", m.spacing, m.lattice_points,
+              m.clear_points, m.reachable_points);
   std::printf("  reachable centres sinking deeper than the slop into a hull: %lld", m.sinking);
   if (m.sinking > 0)
     std::printf(" (deepest %.6g into hull %d at %.6g %.6g %.6g)", m.deepest, m.deepest_hull, m.deepest_at.x(),
@@ -96,7 +96,8 @@ int run_movement_audit(const AuditCommandOptions& o, const LoadedScene& scene, c
                                   {"touching_poses", m.touching_poses},
                                   {"contacts_lost", m.contacts_lost},
                                   {"clean", m.clean()}}}};
-    if (Status written = write_file_atomically(o.json_path, out.dump(1) + "\n"); !written.ok()) return bad_input(written);
+    if (Status written = write_file_atomically(o.json_path, out.dump(1) + "\n"); !written.ok())
+      return bad_input(written);
   }
   return m.clean() ? kExitSuccess : kExitFinding;
 }

@@ -13,7 +13,13 @@
 //
 //   build/release/tests/hullcover_bench_queries [--benchmark_filter=pandora]
 //
-// Only the scenes some benchmark of the filter names are decomposed.
+// Only the scenes some benchmark of the filter names are decomposed. A
+// filter naming "movement" also times each level's movement covering for
+// walking characters of the benchmark's capsule (radius 0.4 m, 1.8 m tall;
+// hullcover/covering/movement_covering.h), as rows
+// query/SCENE/movement/... beside the exact covering's, against the same
+// triangles: the ratio of the two speed-ups is the movement covering's
+// speed against the exact one.
 
 #include "shared_data.h"
 #include "temp_dir.h"
@@ -23,6 +29,7 @@
 #include "hullcover/bvh/runtime_file.h"
 #include "hullcover/bvh/triangle_world.h"
 #include "hullcover/covering/covering.h"
+#include "hullcover/covering/movement_covering.h"
 
 #include <benchmark/benchmark.h>
 
@@ -418,9 +425,11 @@ bool filter_selects_scene(const std::string& filter, const std::string& scene) {
   try {
     const std::regex pattern(filter);
     if (std::regex_search("load/" + scene, pattern)) return true;
-    for (const char* size : {"character", "large"})
-      for (const char* row : kRows)
-        if (std::regex_search("query/" + scene + "/" + size + "/" + row + "/manual_time", pattern)) return true;
+    for (const char* covering : {"", "/movement"})
+      for (const char* size : {"character", "large"})
+        for (const char* row : kRows)
+          if (std::regex_search("query/" + scene + covering + "/" + size + "/" + row + "/manual_time", pattern))
+            return true;
     return false;
   } catch (const std::regex_error&) {
     return true; // Google Benchmark reports the bad filter itself
@@ -444,6 +453,16 @@ int main(int argc, char** argv) {
     auto prepared = std::make_shared<PreparedMesh>(std::move(loaded).value());
     auto covering = std::make_shared<Covering>(decompose(*prepared, {}).value());
     register_scene(scene.file, std::make_shared<Scene>(make_scene(*prepared, *covering, scene.units_per_metre)));
+    if (filter.find("movement") != std::string::npos && scene.units_per_metre > 0.0) {
+      MovementOptions walking;
+      walking.radius = 0.4 * scene.units_per_metre;
+      walking.height = 1.8 * scene.units_per_metre;
+      Result<MovementCovering> movement = decompose_for_movement(*prepared, walking);
+      if (!movement.ok()) return std::fprintf(stderr, "%s\n", movement.status().message().c_str()), 2;
+      auto moving = std::make_shared<Covering>(std::move(movement).value().covering);
+      register_scene(std::string(scene.file) + "/movement",
+                     std::make_shared<Scene>(make_scene(*prepared, *moving, scene.units_per_metre)));
+    }
     // Loading the runtime file: read, check and build the tree.
     const std::vector<RuntimeHull> runtime = runtime_hulls(*covering);
     const std::string path = files.path(std::string(scene.file) + ".hcw");

@@ -41,24 +41,24 @@ inline void add_level_box(Mesh& mesh, const Eigen::Vector3d& lo, const Eigen::Ve
 struct MovementLevel {
   Mesh mesh;
   Eigen::Vector3d spawn{2.0, 0.5, 2.0};
-  Eigen::Vector3d in_void{9.0, 0.75, 2.0};    ///< the middle of the crate's sealed cavity
-  Eigen::Vector3d in_gap{5.0, 0.75, 6.5};     ///< the middle of the gap between the blocks
-  Eigen::Vector3d on_balcony{9.0, 3.2, 9.0};  ///< on top of the balcony, out of reach
-  double stair_rise = 0.15, stair_run = 0.3;  ///< each step
+  Eigen::Vector3d in_void{9.0, 0.75, 2.0};   ///< the middle of the crate's sealed cavity
+  Eigen::Vector3d in_gap{5.0, 0.75, 6.5};    ///< the middle of the gap between the blocks
+  Eigen::Vector3d on_balcony{9.0, 3.2, 9.0}; ///< on top of the balcony, out of reach
+  double stair_rise = 0.15, stair_run = 0.3; ///< each step
   int steps = 5;
-  Eigen::Vector3d stairs_lo{2.0, 0.0, 8.0};   ///< the flight's box, before its landing
-  int first_stair_face = 0, stair_faces = 0;  ///< the flight's triangles
-  int first_balcony_face = 0;                 ///< the balcony slab's 12 triangles
+  Eigen::Vector3d stairs_lo{2.0, 0.0, 8.0};  ///< the flight's box, before its landing
+  int first_stair_face = 0, stair_faces = 0; ///< the flight's triangles
+  int first_balcony_face = 0;                ///< the balcony slab's 12 triangles
 };
 
 inline MovementLevel movement_level() {
   MovementLevel level;
   Mesh& m = level.mesh;
   using V = Eigen::Vector3d;
-  add_level_box(m, V(0, -0.2, 0), V(12, 0, 12));               // the floor slab
-  add_level_box(m, V(8, 0, 1), V(10, 1.5, 3));                 // the crate
-  add_level_box(m, V(8.3, 0.3, 1.3), V(9.7, 1.2, 2.7), true);  // its sealed cavity
-  add_level_box(m, V(4, 0, 6), V(4.9, 1.5, 7));                // two blocks, 0.2 apart
+  add_level_box(m, V(0, -0.2, 0), V(12, 0, 12));              // the floor slab
+  add_level_box(m, V(8, 0, 1), V(10, 1.5, 3));                // the crate
+  add_level_box(m, V(8.3, 0.3, 1.3), V(9.7, 1.2, 2.7), true); // its sealed cavity
+  add_level_box(m, V(4, 0, 6), V(4.9, 1.5, 7));               // two blocks, 0.2 apart
   add_level_box(m, V(5.1, 0, 6), V(6, 1.5, 7));
   level.first_stair_face = static_cast<int>(m.triangles.size());
   for (int s = 0; s < level.steps; ++s) {
@@ -68,10 +68,10 @@ inline MovementLevel movement_level() {
   level.stair_faces = static_cast<int>(m.triangles.size()) - level.first_stair_face;
   const double top = level.steps * level.stair_rise;
   const V landing = level.stairs_lo + V(0, 0, level.steps * level.stair_run);
-  add_level_box(m, landing, landing + V(1.0, top, 1.5));       // the landing, reached by the stairs
-  add_level_box(m, V(8.8, 0, 8.8), V(9.2, 3.0, 9.2));          // the balcony's pillar
+  add_level_box(m, landing, landing + V(1.0, top, 1.5)); // the landing, reached by the stairs
+  add_level_box(m, V(8.8, 0, 8.8), V(9.2, 3.0, 9.2));    // the balcony's pillar
   level.first_balcony_face = static_cast<int>(m.triangles.size());
-  add_level_box(m, V(8, 3.0, 8), V(10, 3.2, 10));              // the balcony, 3 m up
+  add_level_box(m, V(8, 3.0, 8), V(10, 3.2, 10)); // the balcony, 3 m up
   m.material_ids.assign(m.triangles.size(), 0);
   m.material_names = {"default"};
   return level;

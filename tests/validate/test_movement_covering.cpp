@@ -49,9 +49,8 @@ Made make(const Mesh& mesh, const MovementOptions& options) {
 }
 
 bool inside_some_hull(const Covering& covering, const V& p) {
-  return std::any_of(covering.hulls.begin(), covering.hulls.end(), [&](const CoveringHull& h) {
-    return deepest_signed_distance(h.polytope.planes, p) < 0.0;
-  });
+  return std::any_of(covering.hulls.begin(), covering.hulls.end(),
+                     [&](const CoveringHull& h) { return deepest_signed_distance(h.polytope.planes, p) < 0.0; });
 }
 
 // The hulls holding any of faces [first, first + count).
@@ -94,8 +93,7 @@ TEST(MovementCovering, TheStairsBecomeOneHullAtASlopOfSixCentimetres) {
   MovementOptions options = walking_from(level);
   options.slop = 0.06;
   const Made made = make(level.mesh, options);
-  const std::set<int> holding =
-      hulls_holding(made.movement.covering, level.first_stair_face, level.stair_faces);
+  const std::set<int> holding = hulls_holding(made.movement.covering, level.first_stair_face, level.stair_faces);
   EXPECT_EQ(holding.size(), 1u);
   const validate::MovementAuditReport report = audited(made, bvh::runtime_hulls(made.movement.covering), options);
   EXPECT_EQ(report.sinking, 0) << "deepest " << report.deepest << " at " << report.deepest_at.transpose();

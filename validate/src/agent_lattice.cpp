@@ -56,7 +56,8 @@ double across_distance_in_slab(const Mesh& mesh, const AuditAgent& agent, int f,
   if (left || right) return 0.0;
   double best = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < n; ++i)
-    best = std::min(best, (closest_point_on_segment(target, flat(polygon[i]), flat(polygon[(i + 1) % n])) - target).norm());
+    best = std::min(best,
+                    (closest_point_on_segment(target, flat(polygon[i]), flat(polygon[(i + 1) % n])) - target).norm());
   return best;
 }
 
@@ -90,8 +91,8 @@ bool AgentLattice::reachable_near(const Eigen::Vector3d& p) const {
   return false;
 }
 
-AgentLattice reach_lattice(const TriangleDistances& distances, const AuditAgent& agent, const Aabb& box,
-                           double spacing, const std::vector<Eigen::Vector3d>& seeds, int threads) {
+AgentLattice reach_lattice(const TriangleDistances& distances, const AuditAgent& agent, const Aabb& box, double spacing,
+                           const std::vector<Eigen::Vector3d>& seeds, int threads) {
   const Mesh& mesh = distances.mesh;
   AgentLattice lattice;
   lattice.origin = box.min;
@@ -146,8 +147,10 @@ AgentLattice reach_lattice(const TriangleDistances& distances, const AuditAgent&
           Aabb query;
           query.extend(p);
           query = grown(query, agent.radius);
-          if (agent.up_sign > 0) query.min[axis] -= rise;
-          else query.max[axis] += rise;
+          if (agent.up_sign > 0)
+            query.min[axis] -= rise;
+          else
+            query.max[axis] += rise;
           found.clear();
           walkable_tree.overlapping(query, found);
           for (int f : found) {
@@ -192,9 +195,12 @@ AgentLattice reach_lattice(const TriangleDistances& distances, const AuditAgent&
           c[a1] = u;
           c[a2] = v;
           const long long at = lattice.index(c.x(), c.y(), c.z());
-          if (!(flags[at] & kPassable)) falling = false;
-          else if (flags[at] & kStanding) falling = true;
-          else if (!falling) flags[at] &= ~kPassable;
+          if (!(flags[at] & kPassable))
+            falling = false;
+          else if (flags[at] & kStanding)
+            falling = true;
+          else if (!falling)
+            flags[at] &= ~kPassable;
         }
       }
   }

@@ -65,7 +65,7 @@ inline constexpr double kWidestLatticeSpacingInRadii = 0.7;
 
 /// The lattice of `spacing` (at most kWidestLatticeSpacingInRadii x r)
 /// over `box`, flooded from `seeds` (each a point at clearance >= r).
-AgentLattice reach_lattice(const TriangleDistances& distances, const AuditAgent& agent, const Aabb& box,
-                           double spacing, const std::vector<Eigen::Vector3d>& seeds, int threads);
+AgentLattice reach_lattice(const TriangleDistances& distances, const AuditAgent& agent, const Aabb& box, double spacing,
+                           const std::vector<Eigen::Vector3d>& seeds, int threads);
 
 } // namespace hullcover::validate::detail

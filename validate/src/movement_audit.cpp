@@ -52,8 +52,8 @@ std::vector<Eigen::Vector3d> definition_seeds(const detail::TriangleDistances& d
     const Eigen::Vector3d &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
     const Eigen::Vector3d lift = (agent.radius + 2.0 * tol) * (b - a).cross(c - a).normalized();
     const Eigen::Vector3d g = (a + b + c) / 3.0;
-    for (const Eigen::Vector3d& base : {g, Eigen::Vector3d(0.5 * (g + a)), Eigen::Vector3d(0.5 * (g + b)),
-                                        Eigen::Vector3d(0.5 * (g + c))})
+    for (const Eigen::Vector3d& base :
+         {g, Eigen::Vector3d(0.5 * (g + a)), Eigen::Vector3d(0.5 * (g + b)), Eigen::Vector3d(0.5 * (g + c))})
       if (distances.clearance(base + lift, agent.radius) >= agent.radius) seeds.push_back(base + lift);
   }
   return seeds;
@@ -114,10 +114,11 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
   while (points_at(spacing) > static_cast<double>(kMostAuditLatticePoints) && spacing < widest)
     spacing = std::min(widest, 1.25 * spacing);
   if (points_at(spacing) > static_cast<double>(kMostAuditLatticePoints))
-    return Status{StatusCode::limit_exceeded,
-                  "the movement audit's lattice would need " + std::to_string(static_cast<long long>(points_at(spacing))) +
-                      " points at its widest spacing (at most " + std::to_string(kMostAuditLatticePoints) +
-                      "): audit a part of the scene"};
+    return Status{StatusCode::limit_exceeded, "the movement audit's lattice would need " +
+                                                  std::to_string(static_cast<long long>(points_at(spacing))) +
+                                                  " points at its widest spacing (at most " +
+                                                  std::to_string(kMostAuditLatticePoints) +
+                                                  "): audit a part of the scene"};
   report.spacing = spacing;
   AgentLattice lattice = detail::reach_lattice(distances, agent, box, spacing, seeds, threads);
   if (options.agent.seeds.empty() && !agent.walking && seeds.empty())
@@ -137,9 +138,16 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
         if (!lattice.clear(at) || !lattice.reachable(at)) continue;
         ++f.reachable;
         const Eigen::Vector3d p = lattice.point(i, j, k);
+        // Sinking deeper than E + tol is a ball of radius r - E - tol touching
+        // a hull: asked first (a walk that stops at the first hull), the
+        // depth only of those that do.
+        bvh::OverlapRequest ball;
+        ball.shape = bvh::QueryShape::sphere(r - agent.slop - tol);
+        ball.pose.translation() = p;
+        bvh::TouchResult touch;
+        if (!world.touches(ball, touch).ok() || !touch.touching) continue;
         int hull = -1;
         const double depth = r - gap_to_hulls(world, p, tol, &hull);
-        if (depth <= agent.slop + tol) continue;
         ++f.sinking;
         if (depth > f.deepest) {
           f.deepest = depth;
@@ -158,7 +166,8 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
     const Eigen::Vector3d n = (b - a).cross(c - a);
     if (!(n.norm() > 0.0)) return;
     const Eigen::Vector3d unit = n.normalized();
-    const int steps = std::max(1, static_cast<int>(std::ceil(std::max({(b - a).norm(), (c - a).norm(), (c - b).norm()}) / spacing)));
+    const int steps =
+        std::max(1, static_cast<int>(std::ceil(std::max({(b - a).norm(), (c - a).norm(), (c - b).norm()}) / spacing)));
     for (int u = 0; u <= steps; ++u)
       for (int v = 0; u + v <= steps; ++v) {
         const double s = (u + 1.0 / 3.0) / (steps + 1.0), w = (v + 1.0 / 3.0) / (steps + 1.0);
@@ -167,8 +176,14 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
           const Eigen::Vector3d pose = on_face + side * (r + 2.0 * tol) * unit;
           if (distances.clearance(pose, r) < r || !lattice.reachable_near(pose)) continue;
           ++f.touching;
-          if (gap_to_hulls(world, pose, tol, nullptr) > r + 2.0 * tol + agent.slop + tol) {
-            if (f.lost++ == 0) f.first_lost_at = pose;
+          // Lost: a ball of r + E + 3 tol there touches no hull.
+          bvh::OverlapRequest reach;
+          reach.shape = bvh::QueryShape::sphere(r + agent.slop + 3.0 * tol);
+          reach.pose.translation() = pose;
+          bvh::TouchResult touch;
+          if (world.touches(reach, touch).ok() && !touch.touching) {
+            if (f.lost == 0) f.first_lost_at = pose;
+            ++f.lost;
           }
         }
       }

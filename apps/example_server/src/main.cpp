@@ -2,7 +2,10 @@
 // hullcover (find_package(hullcover), hullcover::bvh only). Loads a runtime
 // file, stands capsule characters on free ground, moves them from several
 // threads at once through one shared, read-only HullWorld, and reports the
-// queries per second and any character that ended inside a hull.
+// queries per second and any character that ended inside a hull. With a
+// second world for rays (--rays-world: the exact covering, when the first is
+// a movement covering, which keeps no rays), the characters' shots are cast
+// there: each question asked of the world made for it.
 
 #include "character_controller.h"
 
@@ -36,6 +39,8 @@ constexpr int kExitRunFailed = 3;
 constexpr std::int64_t kMaxCharacters = 1000000;
 constexpr std::int64_t kMaxThreads = 1024;
 constexpr std::int64_t kMaxSweepsPerThread = INT64_C(1000000000000);
+/// With --rays-world: shots each character fires from where it ended.
+constexpr int kShotsPerCharacter = 16;
 
 /// Without --units-per-metre a metre is this fraction of the world box's
 /// diagonal, as `hullcover bench` assumes: a 50 m level.
@@ -55,6 +60,7 @@ constexpr double kRespawnDepthPerDiagonal = 0.1;
 
 struct ServerOptions {
   std::string world_path;
+  std::string rays_world_path; // empty: no shots
   int characters = 64;
   int threads = 4;
   std::int64_t sweeps_per_thread = 10000;
@@ -70,6 +76,7 @@ struct ThreadRun {
   Status failure;
   /// Per character of `characters`: the hulls its shrunk capsule overlaps at the end.
   std::vector<std::vector<int>> inside;
+  std::int64_t shots = 0, shot_hits = 0; ///< rays cast on the rays world, and those that hit
 };
 
 void print_usage(const char* program) {
@@ -92,6 +99,9 @@ void print_usage(const char* program) {
       "  --radius R           capsule radius, scene units (default 0.4 m)\n"
       "  --half-height H      half the capsule's axis segment, scene units (default 0.5 m)\n"
       "  --skin E             gap kept from hulls, scene units (default 0.02 m; radius > 2 E)\n"
+      "  --rays-world F.hcw   cast each character's shots (16, level, in random directions)\n"
+      "                       on this world: the exact covering, when WORLD.hcw is a\n"
+      "                       movement covering (`decompose --agent-reach`), which keeps no rays\n"
       "  -h, --help           this text\n"
       "\n"
       "Prints queries per second (sweeps, contacts and the final overlap checks) and\n"
@@ -139,6 +149,10 @@ bool parse_command_line(int argc, char** argv, ServerOptions& options, bool& hel
     }
     if (i + 1 >= argc) return complain(arg + " needs a value");
     const std::string value = argv[++i];
+    if (arg == "--rays-world") {
+      options.rays_world_path = value;
+      continue;
+    }
     std::int64_t integer = 0;
     double length = 0.0;
     if (arg == "--characters") {
@@ -176,9 +190,31 @@ bool parse_command_line(int argc, char** argv, ServerOptions& options, bool& hel
   return true;
 }
 
+/// Casts kShotsPerCharacter level rays from each of `run`'s characters, in
+/// directions drawn from its own stream, on `rays`.
+void fire_shots(const bvh::HullWorld& rays, int up_axis, ThreadRun& run) {
+  for (Character& character : run.characters)
+    for (int shot = 0; shot < kShotsPerCharacter; ++shot) {
+      bvh::RayRequest request;
+      request.origin = character.position;
+      std::normal_distribution<double> normal;
+      for (int a = 0; a < 3; ++a) request.direction[a] = a == up_axis ? 0.0 : normal(character.random);
+      if (!(request.direction.norm() > 0.0)) continue;
+      bvh::RayResult result;
+      if (Status s = rays.ray_cast(request, result); !s.ok()) {
+        run.failure = s;
+        return;
+      }
+      ++run.shots;
+      run.shot_hits += result.hit ? 1 : 0;
+    }
+}
+
 /// Moves `run`'s characters until the thread has swept `sweeps` times, then
-/// checks where each ended. Touches nothing but `run` and the const world.
-void move_characters(const CharacterController& controller, std::int64_t sweeps, ThreadRun& run) {
+/// checks where each ended and, with a rays world, fires their shots.
+/// Touches nothing but `run` and the const worlds.
+void move_characters(const CharacterController& controller, std::int64_t sweeps, const bvh::HullWorld* rays,
+                     int up_axis, ThreadRun& run) {
   if (run.characters.empty()) return;
   while (run.counts.sweeps < sweeps) {
     const std::int64_t sweeps_before = run.counts.sweeps;
@@ -198,21 +234,29 @@ void move_characters(const CharacterController& controller, std::int64_t sweeps,
       run.failure = s;
       return;
     }
+  if (rays) fire_shots(*rays, up_axis, run);
 }
 
-int serve(const ServerOptions& options) {
-  hullcover::Result<std::vector<bvh::RuntimeHull>> hulls = bvh::read_runtime_file(options.world_path);
+/// The world in `path`, or nothing after a message.
+std::shared_ptr<const bvh::HullWorld> load_world(const std::string& path) {
+  hullcover::Result<std::vector<bvh::RuntimeHull>> hulls = bvh::read_runtime_file(path);
   if (!hulls.ok()) {
     std::fprintf(stderr, "example_server: error: %s\n", hulls.status().message().c_str());
-    return kExitBadInput;
+    return nullptr;
   }
   hullcover::Result<std::shared_ptr<const bvh::HullWorld>> built = bvh::HullWorld::build(std::move(hulls).value());
   if (!built.ok()) {
-    std::fprintf(stderr, "example_server: error: %s: %s\n", options.world_path.c_str(),
-                 built.status().message().c_str());
-    return kExitBadInput;
+    std::fprintf(stderr, "example_server: error: %s: %s\n", path.c_str(), built.status().message().c_str());
+    return nullptr;
   }
-  const std::shared_ptr<const bvh::HullWorld> world = built.value();
+  return built.value();
+}
+
+int serve(const ServerOptions& options) {
+  const std::shared_ptr<const bvh::HullWorld> world = load_world(options.world_path);
+  if (!world) return kExitBadInput;
+  std::shared_ptr<const bvh::HullWorld> rays;
+  if (!options.rays_world_path.empty() && !(rays = load_world(options.rays_world_path))) return kExitBadInput;
   const hullcover::Aabb box = world_bounds(*world);
   const double diagonal = box.diagonal();
   const double metre = options.units_per_metre.value_or(kDiagonalsPerMetre * diagonal);
@@ -269,7 +313,8 @@ int serve(const ServerOptions& options) {
     std::vector<std::thread> threads;
     threads.reserve(runs.size());
     for (ThreadRun& run : runs)
-      threads.emplace_back(move_characters, std::cref(controller), options.sweeps_per_thread, std::ref(run));
+      threads.emplace_back(move_characters, std::cref(controller), options.sweeps_per_thread, rays.get(),
+                           options.up_axis, std::ref(run));
     for (std::thread& thread : threads) thread.join();
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
@@ -307,6 +352,15 @@ int serve(const ServerOptions& options) {
       std::printf("inside: character %d at (%.6g, %.6g, %.6g), hulls%s\n", c.id, c.position.x(), c.position.y(),
                   c.position.z(), hull_list.c_str());
     }
+  if (rays) {
+    std::int64_t shots = 0, hits = 0;
+    for (const ThreadRun& run : runs) {
+      shots += run.shots;
+      hits += run.shot_hits;
+    }
+    std::printf("shots: %lld rays on %s (%zu hulls), %lld hit\n", static_cast<long long>(shots),
+                options.rays_world_path.c_str(), rays->hulls().size(), static_cast<long long>(hits));
+  }
   std::printf("characters ended inside a hull: %d of %d\n", ended_inside, options.characters);
   return ended_inside > 0 ? kExitEndedInside : kExitSuccess;
 }

@@ -27,13 +27,22 @@ std::vector<int> sorted_union(const std::vector<int>& a, const std::vector<int>&
   return u;
 }
 
+// Whether `p` lies in `hull` or within `tol` of it: behind every plane, or
+// within tol of a facet (a plane test with slack would pass a point far
+// past a thin hull's sharp rim).
+bool holds(const ConvexPolytope& hull, const Eigen::Vector3d& p, double tol) {
+  return deepest_signed_distance(hull.planes, p) <= 0.0 || distance_to_facet_fans(hull, p) <= tol;
+}
+
 // Sorted by group, each group once with its lengths added up.
 std::vector<std::pair<int, double>> combined(std::vector<std::pair<int, double>> list) {
   std::sort(list.begin(), list.end());
   std::vector<std::pair<int, double>> out;
   for (const auto& [g, length] : list) {
-    if (!out.empty() && out.back().first == g) out.back().second += length;
-    else out.emplace_back(g, length);
+    if (!out.empty() && out.back().first == g)
+      out.back().second += length;
+    else
+      out.emplace_back(g, length);
   }
   return out;
 }
@@ -186,10 +195,11 @@ void MovementMerger::run() {
     around.insert(around.end(), gb.neighbours.begin(), gb.neighbours.end());
     for (const auto& [g, length] : ga.neighbours)
       if (g == pair.b) shared = length;
-    around.erase(std::remove_if(around.begin(), around.end(),
-                                [&](const std::pair<int, double>& n) {
-                                  return n.first == pair.a || n.first == pair.b || !groups_[n.first].alive;
-                                }),
+    around.erase(std::remove_if(
+                     around.begin(), around.end(),
+                     [&](const std::pair<int, double>& n) {
+      return n.first == pair.a || n.first == pair.b || !groups_[n.first].alive;
+                     }),
                  around.end());
     merged.neighbours = combined(std::move(around));
     merged.boundary = std::max(0.0, ga.boundary + gb.boundary - 2.0 * shared);
@@ -217,9 +227,13 @@ void MovementMerger::drop_held_groups() {
   std::vector<Aabb> boxes;
   for (const Group& g : groups_) boxes.push_back(g.alive ? grown(g.box, tol) : Aabb{});
   const AabbTree tree(boxes);
-  std::vector<int> found;
+  // A group that holds a dropped group's face stays: dropping it too would
+  // leave that face bare.
+  std::vector<char> holding(groups_.size(), 0);
+  std::vector<int> found, holders;
   for (int g = 0; g < static_cast<int>(groups_.size()); ++g) {
-    if (!groups_[g].alive) continue;
+    if (!groups_[g].alive || holding[g]) continue;
+    holders.clear();
     bool held = true;
     for (int f : groups_[g].faces) {
       Aabb face_box;
@@ -227,17 +241,22 @@ void MovementMerger::drop_held_groups() {
       found.clear();
       tree.overlapping(face_box, found);
       std::sort(found.begin(), found.end());
-      bool inside_one = false;
+      int holder = -1;
       for (int h : found) {
         if (h == g || !groups_[h].alive) continue;
         bool all = true;
-        for (int k = 0; k < 3 && all; ++k)
-          all = deepest_signed_distance(groups_[h].hull.planes, mesh.positions[mesh.triangles[f][k]]) <= tol;
-        if ((inside_one = all)) break;
+        for (int k = 0; k < 3 && all; ++k) all = holds(groups_[h].hull, mesh.positions[mesh.triangles[f][k]], tol);
+        if (all) {
+          holder = h;
+          break;
+        }
       }
-      if (!(held = inside_one)) break;
+      if (!(held = holder >= 0)) break;
+      holders.push_back(holder);
     }
-    if (held) groups_[g].alive = false;
+    if (!held) continue;
+    groups_[g].alive = false;
+    for (int h : holders) holding[h] = 1;
   }
 }
 

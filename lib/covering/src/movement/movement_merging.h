@@ -43,7 +43,7 @@ private:
     Aabb box;
     double area = 0.0;
     Eigen::Vector3d area_vector = Eigen::Vector3d::Zero(); ///< sum of face normals x areas
-    double boundary = 0.0;                                 ///< length of its faces' outline (edges not shared within it)
+    double boundary = 0.0; ///< length of its faces' outline (edges not shared within it)
     /// Groups it may merge with, ascending, each with the length of the
     /// edges they share (0 for groups only near it).
     std::vector<std::pair<int, double>> neighbours;

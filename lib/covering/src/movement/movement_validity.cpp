@@ -16,7 +16,7 @@ enum class RegionVerdict { clear, reached, undecided };
 RegionVerdict worse(RegionVerdict a, RegionVerdict b) {
   if (a == RegionVerdict::reached || b == RegionVerdict::reached) return RegionVerdict::reached;
   return a == RegionVerdict::undecided || b == RegionVerdict::undecided ? RegionVerdict::undecided
-                                                                         : RegionVerdict::clear;
+                                                                        : RegionVerdict::clear;
 }
 
 // Whether no reachable centre lies in a region: `lower(c)` bounds from
@@ -115,8 +115,8 @@ bool witness_away_from_mesh(const MovementContext& context, const Eigen::Vector3
   const NearestFace near = context.clearance.nearest(p, r);
   if (near.face < 0 || !(near.distance > 0.0)) return false;
   const Eigen::Vector3i& t = context.mesh.triangles[near.face];
-  const Eigen::Vector3d foot =
-      closest_point_on_triangle(p, context.mesh.positions[t[0]], context.mesh.positions[t[1]], context.mesh.positions[t[2]]);
+  const Eigen::Vector3d foot = closest_point_on_triangle(p, context.mesh.positions[t[0]], context.mesh.positions[t[1]],
+                                                         context.mesh.positions[t[2]]);
   const Eigen::Vector3d c = p + (r - context.agent.slop - 2.0 * tol) * (p - foot).normalized();
   return context.grid.reachable_at(c) && context.clearance.nearest(c, r).distance >= r - tol;
 }
@@ -179,15 +179,17 @@ RegionVerdict prove_piece(const MovementContext& context, const BoundaryPiece& p
     for (const Eigen::Vector3d& p : piece.corners) start.extend(p + side * reach * piece.normal);
   return no_centre_in(
       context, start, boxes_left, [&](const Eigen::Vector3d& c) { return column.distance(c); },
-      [&](const Eigen::Vector3d& c) { return column.distance(c) == 0.0 && std::abs(piece.normal.dot(c - piece.corners[0])) < reach - tol; });
+      [&](const Eigen::Vector3d& c) {
+    return column.distance(c) == 0.0 && std::abs(piece.normal.dot(c - piece.corners[0])) < reach - tol;
+      });
 }
 
 // Proves no reachable centre within r - E of segment a-b: it lies within E
 // of one triangle, or its halves do (halved while longer than twice the
 // slop, `depth` times at most), or the space around it holds no reachable
 // centre.
-RegionVerdict prove_segment(const MovementContext& context, const BoundarySegment& segment, int depth,
-                            int& boxes_left, std::vector<int>& near) {
+RegionVerdict prove_segment(const MovementContext& context, const BoundarySegment& segment, int depth, int& boxes_left,
+                            std::vector<int>& near) {
   if (within_slop_of_one_face(context, {segment.a, segment.b}, near)) return RegionVerdict::clear;
   const double reach = context.agent.radius - context.agent.slop;
   const double tol = context.tol;
@@ -248,8 +250,8 @@ MovementVerdict check_movement_hull(const MovementContext& context, const Convex
   // once the box is about r wide.
   double area = 0.0;
   for (const BoundaryPiece& piece : boundary.pieces) area += area_of(piece.corners);
-  int boxes_left = static_cast<int>(std::min<double>(kMostProofBoxesOfAHull,
-                                                     kMostProofBoxes + kProofBoxesPerSquareRadius * area / (r * r)));
+  int boxes_left = static_cast<int>(
+      std::min<double>(kMostProofBoxesOfAHull, kMostProofBoxes + kProofBoxesPerSquareRadius * area / (r * r)));
   bool undecided = false;
   for (const BoundaryPiece& piece : boundary.pieces) {
     const RegionVerdict verdict = prove_piece(context, piece, kMostPieceHalvings, boxes_left, near);

@@ -12,10 +12,10 @@ namespace hullcover::detail {
 namespace {
 
 // Per-cell marks while the grid is built.
-constexpr std::uint8_t kClear = 1;    // may hold a point at clearance >= r
-constexpr std::uint8_t kStanding = 2; // within a walkable face's standing envelope
-constexpr std::uint8_t kDropping = 4; // below a standing cell, falling straight down
-constexpr std::uint8_t kSeeded = 8;   // reached from a seed
+constexpr std::uint8_t kClear = 1;     // may hold a point at clearance >= r
+constexpr std::uint8_t kStanding = 2;  // within a walkable face's standing envelope
+constexpr std::uint8_t kDropping = 4;  // below a standing cell, falling straight down
+constexpr std::uint8_t kSeeded = 8;    // reached from a seed
 constexpr std::uint8_t kWalkable = 16; // clear, and standing or dropping: a walking agent's centre may be here
 
 // Blocks of this many cells a side are classified on their own (in parallel).
@@ -91,8 +91,10 @@ void mark_standing(const ReachGrid& grid, const Mesh& mesh, const AgentShape& ag
       box.max[a] += agent.radius;
     }
   const double rise = agent.climb + agent.height - agent.radius;
-  if (agent.up_sign > 0) box.max[agent.up_axis] += rise;
-  else box.min[agent.up_axis] -= rise;
+  if (agent.up_sign > 0)
+    box.max[agent.up_axis] += rise;
+  else
+    box.min[agent.up_axis] -= rise;
   Eigen::Vector3i lo, hi;
   cell_range(grid, box, lo, hi);
   const int axis = agent.up_axis;
@@ -134,9 +136,12 @@ void mark_drops(const ReachGrid& grid, const AgentShape& agent, std::vector<std:
         c[a1] = u;
         c[a2] = v;
         std::uint8_t& m = marks[grid.index(c.x(), c.y(), c.z())];
-        if (!(m & kClear)) falling = false;
-        else if (m & kStanding) falling = true;
-        else if (falling) m |= kDropping;
+        if (!(m & kClear))
+          falling = false;
+        else if (m & kStanding)
+          falling = true;
+        else if (falling)
+          m |= kDropping;
       }
     }
 }
@@ -246,8 +251,8 @@ bool ReachGrid::any_reachable(const Aabb& box) const {
       for (int bi = blo.x(); bi <= bhi.x(); ++bi) {
         if (brick_counts_[(static_cast<size_t>(bk) * bricks_.y() + bj) * bricks_.x() + bi] == 0) continue;
         const Eigen::Vector3i clo = lo.cwiseMax(Eigen::Vector3i(bi, bj, bk) * kBrick);
-        const Eigen::Vector3i chi = hi.cwiseMin((Eigen::Vector3i(bi, bj, bk).array() + 1).matrix() * kBrick -
-                                                Eigen::Vector3i::Ones());
+        const Eigen::Vector3i chi =
+            hi.cwiseMin((Eigen::Vector3i(bi, bj, bk).array() + 1).matrix() * kBrick - Eigen::Vector3i::Ones());
         for (int k = clo.z(); k <= chi.z(); ++k)
           for (int j = clo.y(); j <= chi.y(); ++j)
             for (int i = clo.x(); i <= chi.x(); ++i)
@@ -319,8 +324,10 @@ Result<ReachGrid> build_reach_grid(const Mesh& mesh, const SceneClearance& clear
       if (walkable_cell(m)) m |= kWalkable;
   const std::uint8_t through = walking ? kWalkable : kClear;
   if (!seeds.empty()) {
-    if (walking) flood_walking(grid, agent, std::move(starts), marks);
-    else flood(grid, std::move(starts), through, marks);
+    if (walking)
+      flood_walking(grid, agent, std::move(starts), marks);
+    else
+      flood(grid, std::move(starts), through, marks);
   } else {
     // No seed (flying over a scene with nothing to stand on): all clear
     // space, no connectivity asked.
@@ -362,8 +369,7 @@ bool face_may_be_touched(const ReachGrid& grid, const SceneClearance& clearance,
   for (int k = lo.z(); k <= hi.z(); ++k)
     for (int j = lo.y(); j <= hi.y(); ++j)
       for (int i = lo.x(); i <= hi.x(); ++i)
-        if (grid.reachable(grid.index(i, j, k)) && clearance.to_face(grid.centre(i, j, k), face) <= reach)
-          return true;
+        if (grid.reachable(grid.index(i, j, k)) && clearance.to_face(grid.centre(i, j, k), face) <= reach) return true;
   return false;
 }
 

@@ -34,13 +34,15 @@ struct AgentShape {
 class ReachGrid {
 public:
   Eigen::Vector3d origin = Eigen::Vector3d::Zero(); ///< lowest corner of cell (0, 0, 0)
-  double cell = 0.0;                                 ///< side of a cell, scene units
-  Eigen::Vector3i dims = Eigen::Vector3i::Zero();    ///< cells along x, y, z
-  int seeds_used = 0;                                ///< seeds in cells an agent may occupy
+  double cell = 0.0;                                ///< side of a cell, scene units
+  Eigen::Vector3i dims = Eigen::Vector3i::Zero();   ///< cells along x, y, z
+  int seeds_used = 0;                               ///< seeds in cells an agent may occupy
 
   long long cell_count() const { return static_cast<long long>(dims.x()) * dims.y() * dims.z(); }
   long long index(int i, int j, int k) const { return (static_cast<long long>(k) * dims.y() + j) * dims.x() + i; }
-  Eigen::Vector3d centre(int i, int j, int k) const { return origin + (Eigen::Vector3d(i, j, k).array() + 0.5).matrix() * cell; }
+  Eigen::Vector3d centre(int i, int j, int k) const {
+    return origin + (Eigen::Vector3d(i, j, k).array() + 0.5).matrix() * cell;
+  }
   /// Half the diagonal of a cell.
   double half_diagonal() const;
   bool reachable(long long index) const { return reachable_[index] != 0; }

@@ -21,8 +21,7 @@ SceneClearance::SceneClearance(const Mesh& mesh) : mesh_(mesh), tree_(face_boxes
 
 double SceneClearance::to_face(const Eigen::Vector3d& p, int face) const {
   const Eigen::Vector3i& t = mesh_.triangles[face];
-  return (closest_point_on_triangle(p, mesh_.positions[t[0]], mesh_.positions[t[1]], mesh_.positions[t[2]]) - p)
-      .norm();
+  return (closest_point_on_triangle(p, mesh_.positions[t[0]], mesh_.positions[t[1]], mesh_.positions[t[2]]) - p).norm();
 }
 
 NearestFace SceneClearance::nearest(const Eigen::Vector3d& p, double limit) const {

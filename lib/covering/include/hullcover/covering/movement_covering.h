@@ -50,11 +50,11 @@ inline constexpr long long kMostReachCells = 1LL << 28;
 
 /// How to make a movement covering. Lengths in scene units.
 struct MovementOptions {
-  double radius = 0.0;                ///< r > 0
-  double slop = -1.0;                 ///< E, 0 <= E < r; below 0: kDefaultSlopPerRadius x r
+  double radius = 0.0; ///< r > 0
+  double slop = -1.0;  ///< E, 0 <= E < r; below 0: kDefaultSlopPerRadius x r
   AgentReach reach = AgentReach::walk;
-  double height = -1.0;               ///< walk: H >= 2 r; below 0: kDefaultHeightInRadii x r
-  double climb = -1.0;                ///< walk: >= 0; below 0: kDefaultClimbInRadii x r
+  double height = -1.0;                               ///< walk: H >= 2 r; below 0: kDefaultHeightInRadii x r
+  double climb = -1.0;                                ///< walk: >= 0; below 0: kDefaultClimbInRadii x r
   double max_slope_degrees = kDefaultMaxSlopeDegrees; ///< walk: in [0, 90)
   /// Up: one of the six axis directions (a unit vector with one non-zero
   /// entry).

@@ -1,0 +1,111 @@
+// The movement covering's kernels (lib/covering/src/movement/), each
+// against the geometry it is meant to see: the uncovered boundary of a
+// hull, the reach grid's cells, and a hull's proof.
+
+#include "movement_scene.h"
+
+#include "movement/movement_validity.h"
+#include "movement/reach_grid.h"
+#include "movement/scene_clearance.h"
+#include "movement/uncovered_boundary.h"
+
+#include "hullcover/covering/convex_hull_3d.h"
+
+#include <gtest/gtest.h>
+
+namespace hullcover::detail {
+namespace {
+
+using V = Eigen::Vector3d;
+
+constexpr double kTol = 1e-6;
+
+ConvexPolytope unit_cube() {
+  ConvexHullBuilder builder;
+  std::vector<V> corners;
+  for (int i = 0; i < 8; ++i) corners.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+  return builder.build(corners).value();
+}
+
+AgentShape walker(AgentReach reach = AgentReach::walk) {
+  AgentShape agent;
+  agent.radius = 0.3;
+  agent.slop = 0.02;
+  agent.height = 1.8;
+  agent.climb = 0.4;
+  agent.min_up_cosine = std::cos(45.0 * M_PI / 180.0);
+  agent.reach = reach;
+  return agent;
+}
+
+TEST(UncoveredBoundary, ACubeOnItsOwnFacesHasNoneAndLosesOneSideWithThatFace) {
+  Mesh mesh;
+  test::add_level_box(mesh, V(0, 0, 0), V(1, 1, 1));
+  const ConvexPolytope cube = unit_cube();
+  UncoveredBoundary boundary;
+  uncovered_boundary(SceneClearance(mesh), cube, false, {}, kTol, boundary);
+  EXPECT_TRUE(boundary.pieces.empty());
+  EXPECT_TRUE(boundary.segments.empty());
+  // Without the top's two triangles (add_level_box's +y quad), the top is
+  // uncovered: one square, four sides on the cube's edges.
+  Mesh open = mesh;
+  open.triangles.erase(open.triangles.begin() + 6, open.triangles.begin() + 8);
+  uncovered_boundary(SceneClearance(open), cube, false, {}, kTol, boundary);
+  double area = 0.0;
+  for (const BoundaryPiece& piece : boundary.pieces) {
+    EXPECT_NEAR(piece.normal.y(), 1.0, 1e-12);
+    for (size_t i = 1; i + 1 < piece.corners.size(); ++i)
+      area += 0.5 * (piece.corners[i] - piece.corners[0]).cross(piece.corners[i + 1] - piece.corners[0]).norm();
+  }
+  EXPECT_NEAR(area, 1.0, 1e-9);
+  double length = 0.0;
+  for (const BoundarySegment& s : boundary.segments) length += (s.b - s.a).norm();
+  EXPECT_NEAR(length, 4.0, 1e-9);
+  // A known hull holding the top (the cube itself) leaves nothing to prove.
+  boundary.clear();
+  uncovered_boundary(SceneClearance(open), cube, false, {&cube}, kTol, boundary);
+  EXPECT_TRUE(boundary.pieces.empty());
+}
+
+TEST(ReachGrid, AWalkerReachesTheFloorAroundACrateButNotItsCavityOrTheSkyAboveItsHead) {
+  const test::MovementLevel level = test::movement_level();
+  const SceneClearance clearance(level.mesh);
+  const AgentShape agent = walker();
+  const Result<ReachGrid> grid = build_reach_grid(level.mesh, clearance, agent, {level.spawn}, true, 1);
+  ASSERT_TRUE(grid.ok()) << grid.status().message();
+  const ReachGrid& g = grid.value();
+  EXPECT_TRUE(g.reachable_at(level.spawn));
+  EXPECT_TRUE(g.reachable_at(V(6, 1.0, 2)));   // on the floor, beside the crate
+  EXPECT_FALSE(g.reachable_at(level.in_void)); // the crate's sealed cavity
+  EXPECT_FALSE(g.reachable_at(V(6, 3.0, 2)));  // above a walker's head
+  EXPECT_FALSE(g.reachable_at(V(9, 3.6, 9)));  // on the balcony, out of reach
+  // A flyer from the same spawn reaches both.
+  const Result<ReachGrid> flying =
+      build_reach_grid(level.mesh, clearance, walker(AgentReach::fly), {level.spawn}, true, 1);
+  ASSERT_TRUE(flying.ok());
+  EXPECT_TRUE(flying.value().reachable_at(V(6, 3.0, 2)));
+  EXPECT_TRUE(flying.value().reachable_at(V(9, 3.6, 9)));
+  EXPECT_FALSE(flying.value().reachable_at(level.in_void));
+}
+
+TEST(MovementProof, RefusesAHullAcrossTheFloorsCornerAndAcceptsTheCrate) {
+  const test::MovementLevel level = test::movement_level();
+  const SceneClearance clearance(level.mesh);
+  const AgentShape agent = walker();
+  const ReachGrid grid = build_reach_grid(level.mesh, clearance, agent, {level.spawn}, true, 1).value();
+  const MovementContext context{level.mesh, clearance, grid, agent, kTol};
+  ConvexHullBuilder builder;
+  UncoveredBoundary boundary;
+  // The crate's outside: every facet on its faces.
+  std::vector<V> crate;
+  for (int i = 0; i < 8; ++i) crate.emplace_back((i & 1) ? 10 : 8, (i & 2) ? 1.5 : 0, (i & 4) ? 3 : 1);
+  EXPECT_EQ(check_movement_hull(context, builder.build(crate).value(), false, {}, boundary), MovementVerdict::valid);
+  // The crate's side and the floor in front of it: the hull's slanted top
+  // runs through the space a walker stands in.
+  std::vector<V> wedge = {V(8, 0, 1), V(8, 1.5, 1), V(8, 0, 3), V(8, 1.5, 3), V(6, 0, 1), V(6, 0, 3)};
+  EXPECT_EQ(check_movement_hull(context, builder.build(wedge).value(), false, {}, boundary),
+            MovementVerdict::centre_near_boundary);
+}
+
+} // namespace
+} // namespace hullcover::detail
