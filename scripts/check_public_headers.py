@@ -39,6 +39,8 @@ hullcover/covering/covering.h
 hullcover/covering/covering_export.h
 hullcover/covering/covering_types.h
 hullcover/covering/decompose_options.h
+hullcover/covering/movement_covering.h
+hullcover/covering/movement_options.h
 hullcover/covering/staged_decomposition.h
 hullcover/covering/validity.h
 hullcover/geometry/aabb.h
@@ -61,6 +63,7 @@ hullcover/validate/audit.h
 hullcover/validate/behaviour_equivalence.h
 hullcover/validate/hull_set.h
 hullcover/validate/hull_under_check.h
+hullcover/validate/movement_audit.h
 hullcover/validate/validity_recheck.h
 """.split()
 

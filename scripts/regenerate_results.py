@@ -774,6 +774,49 @@ def gen_agent_radius(ctx):
     return scene_table(ctx, "docs/results/agents.md", "agent-radius", header, rows)
 
 
+# The levels of the movement-covering targets, with a character's radius
+# (0.3 m) in each one's units.
+MOVEMENT_SCENES = [("recast-nav_test", 0.3), ("threejs-collision-world", 0.3), ("recast-undulating", 0.3),
+                   ("recast-dungeon", 0.3), ("sauerbraten-fdm6", 6.0), ("sauerbraten-pandora", 6.0)]
+
+
+def movement_audit_cell(record):
+    """The movement audit's verdict, its sinking centres and lost contacts."""
+    if not record:
+        return NOT_RECORDED
+    f = flat(record["text"])
+    sinking = re.search(r"sinking deeper than the slop into a hull: (\d+)", f)
+    lost = re.search(r"contacts lost \(no hull within the slop\): (\d+)", f)
+    reach = re.search(r"(\d+) reachable centres", f)
+    figures = ", ".join(x for x in [
+        f"{grouped(int(reach.group(1)))} centres" if reach else "",
+        f"{sinking.group(1)} sinking" if sinking else "",
+        f"{lost.group(1)} lost contacts" if lost else ""] if x)
+    return f"{verdict_of(record)} ({figures}), {seconds(record['wall'])}"
+
+
+def gen_movement(ctx):
+    """Exact, walking and flying coverings of each level, timed in one run and audited."""
+    header = ("| scene | exact | walk | walk audit | fly | fly audit |\n"
+              "|---|--:|--:|---|--:|---|\n")
+    rows = {}
+    for name, radius in MOVEMENT_SCENES:
+        if not ctx.chosen(name):
+            continue
+        exact, _, _ = ctx.decompose("movement", name + ".exact", name, [], audit=False)
+        cells = [name, f"{grouped(exact['hulls'])}, {seconds(exact['seconds'])}" if exact else NOT_RECORDED]
+        for reach in ("walk", "fly"):
+            options = ["--agent-radius", str(radius), "--agent-reach", reach]
+            d, _, a = ctx.decompose("movement", f"{name}.{reach}", name, options, audit_options=options)
+            if not d or not exact:
+                cells += [NOT_RECORDED, NOT_RECORDED]
+                continue
+            h, e = int(d["hulls"]), int(exact["hulls"])
+            cells += [f"{grouped(h)} ({percent(h - e, e)}), {seconds(d['seconds'])}", movement_audit_cell(a)]
+        rows[name] = [cells]
+    return scene_table(ctx, "docs/results/agents.md", "movement", header, rows)
+
+
 BENCH_SCENES = ["recast-nav_test.obj@1", "threejs-collision-world.glb@1"]
 
 
@@ -1027,6 +1070,7 @@ GENERATED = [
     ("agent-allowances", "docs/results/agents.md", gen_agent_allowances),
     ("agent-radius", "docs/results/agents.md", gen_agent_radius),
     ("bench", "docs/results/agents.md", gen_bench),
+    ("movement", "docs/results/agents.md", gen_movement),
     ("vhacd", ["docs/results/audit.md", "README.md"], gen_vhacd),
     ("audit-threads", "docs/results/audit.md", gen_audit_threads),
     ("fcl", ["docs/results/runtime.md", "README.md"], gen_fcl),

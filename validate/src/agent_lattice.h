@@ -7,7 +7,7 @@
 /// point it reaches is a reachable centre; passages narrower than the
 /// lattice resolves may leave some out.
 
-#include "hullcover/covering/movement_covering.h"
+#include "hullcover/covering/movement_options.h"
 #include "hullcover/geometry/aabb_tree.h"
 #include "hullcover/geometry/mesh.h"
 

@@ -13,7 +13,7 @@
 
 #include "hullcover/covering/convex_hull_3d.h"
 #include "hullcover/covering/covering_types.h"
-#include "hullcover/covering/movement_covering.h"
+#include "hullcover/covering/movement_options.h"
 #include "hullcover/mesh/mesh_connectivity.h"
 
 #include <functional>

@@ -8,7 +8,7 @@
 
 #include "movement/scene_clearance.h"
 
-#include "hullcover/covering/movement_covering.h"
+#include "hullcover/covering/movement_options.h"
 
 #include <cstdint>
 #include <vector>

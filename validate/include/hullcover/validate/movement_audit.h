@@ -13,7 +13,7 @@
 /// deeper than s * sqrt(3) / 2 beyond the slop between its points.
 
 #include "hullcover/bvh/runtime_hull.h"
-#include "hullcover/covering/movement_covering.h"
+#include "hullcover/covering/movement_options.h"
 #include "hullcover/geometry/status.h"
 #include "hullcover/mesh/prepared_mesh.h"
 
@@ -51,6 +51,7 @@ struct MovementAuditReport {
   long long touching_poses = 0; ///< reachable poses touching a face
   long long contacts_lost = 0;  ///< of those, more than E + tol from every hull
   Eigen::Vector3d first_lost_at = Eigen::Vector3d::Zero();
+  /// No centre sinking deeper than the slop and no contact lost.
   bool clean() const { return sinking == 0 && contacts_lost == 0; }
 };
 
