@@ -129,6 +129,20 @@ void MovementMerger::push_pair(int a, int b, double shared) {
   const double cost = std::max(0.0, ga.boundary + gb.boundary - 2.0 * shared) / std::sqrt(ga.area + gb.area);
   queue_.push_back({cost, a, b, ga.version, gb.version});
   std::push_heap(queue_.begin(), queue_.end(), std::greater<Pair>());
+  // Every merge queues its group's pairs anew, and a large group has many:
+  // the entries of groups that changed since are dropped once they could
+  // crowd the memory (pandora flying kept 60 million).
+  if (queue_.size() >= queue_compacted_at_ + kQueueGrowthBeforeCompaction) {
+    queue_.erase(std::remove_if(queue_.begin(), queue_.end(),
+                                [&](const Pair& p) {
+                                  const Group& x = groups_[p.a];
+                                  const Group& y = groups_[p.b];
+                                  return !x.alive || !y.alive || x.version != p.version_a || y.version != p.version_b;
+                                }),
+                 queue_.end());
+    std::make_heap(queue_.begin(), queue_.end(), std::greater<Pair>());
+    queue_compacted_at_ = queue_.size();
+  }
 }
 
 bool MovementMerger::try_merge(int a, int b, Group& merged) {

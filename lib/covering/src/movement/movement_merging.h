@@ -74,6 +74,10 @@ private:
   std::function<void(double)> progress_;
   std::vector<Group> groups_;
   std::vector<Pair> queue_; // a min-heap by Pair::operator>
+  /// The queue's size after its last compaction (push_pair).
+  size_t queue_compacted_at_ = 0;
+  /// The queue grows by this many entries before its stale ones are dropped.
+  static constexpr size_t kQueueGrowthBeforeCompaction = size_t{1} << 22;
   ConvexHullBuilder builder_;
   UncoveredBoundary boundary_;
 };
