@@ -88,6 +88,24 @@ TEST(ReachGrid, AWalkerReachesTheFloorAroundACrateButNotItsCavityOrTheSkyAboveIt
   EXPECT_FALSE(flying.value().reachable_at(level.in_void));
 }
 
+// Regressions: the grid once ended r and a cell above the scene, so a
+// walker on the highest face had no headroom there and its seed was
+// refused; and a flying seed beyond the grid started the flood nowhere.
+TEST(ReachGrid, AWalkerStandsOnTheHighestFaceAndAFlyerFromTheSkyReachesTheScene) {
+  Mesh block;
+  test::add_level_box(block, V(0, 0, 0), V(4, 1, 4));
+  const SceneClearance clearance(block);
+  const Result<ReachGrid> walking = build_reach_grid(block, clearance, walker(), {V(2, 1.5, 2)}, true, 1);
+  ASSERT_TRUE(walking.ok()) << walking.status().message();
+  EXPECT_TRUE(walking.value().reachable_at(V(2, 2.5, 2))); // a walker's head, 1.5 above the top
+  const Result<ReachGrid> flying = build_reach_grid(block, clearance, walker(AgentReach::fly), {V(2, 100, 2)}, true, 1);
+  ASSERT_TRUE(flying.ok()) << flying.status().message();
+  EXPECT_TRUE(flying.value().reachable_at(V(2, 1.5, 2)));
+  EXPECT_TRUE(flying.value().reachable_at(V(-0.5, 0.5, 2))); // beside the block
+  const Result<ReachGrid> refused = build_reach_grid(block, clearance, walker(), {V(2, 100, 2)}, true, 1);
+  EXPECT_FALSE(refused.ok());
+}
+
 TEST(MovementProof, RefusesAHullAcrossTheFloorsCornerAndAcceptsTheCrate) {
   const test::MovementLevel level = test::movement_level();
   const SceneClearance clearance(level.mesh);

@@ -91,6 +91,12 @@ bool AgentLattice::reachable_near(const Eigen::Vector3d& p) const {
   return false;
 }
 
+bool AgentLattice::reachable_nearest(const Eigen::Vector3d& p) const {
+  const Eigen::Vector3d at = ((p - origin) / spacing).array().round();
+  if ((at.array() < 0.0).any() || (at.array() >= dims.cast<double>().array()).any()) return false;
+  return reachable(index(static_cast<int>(at.x()), static_cast<int>(at.y()), static_cast<int>(at.z())));
+}
+
 AgentLattice reach_lattice(const TriangleDistances& distances, const AuditAgent& agent, const Aabb& box, double spacing,
                            const std::vector<Eigen::Vector3d>& seeds, int threads) {
   const Mesh& mesh = distances.mesh;
@@ -154,10 +160,8 @@ AgentLattice reach_lattice(const TriangleDistances& distances, const AuditAgent&
           found.clear();
           walkable_tree.overlapping(query, found);
           for (int f : found) {
-            // Heights in the slab, as up measures them, turned back into coordinates.
-            const double low = height - rise, high = height;
-            const double lo = agent.up_sign > 0 ? low : -high, hi = agent.up_sign > 0 ? high : -low;
-            if (across_distance_in_slab(mesh, agent, walkable[f], p, lo, hi) > agent.radius) continue;
+            // Heights as up measures them (the slab is clipped along up).
+            if (across_distance_in_slab(mesh, agent, walkable[f], p, height - rise, height) > agent.radius) continue;
             double floor_low = std::numeric_limits<double>::infinity(), floor_high = -floor_low;
             for (int k = 0; k < 3; ++k) {
               const double h = agent.height_of(mesh.positions[mesh.triangles[walkable[f]][k]]);
@@ -205,7 +209,7 @@ AgentLattice reach_lattice(const TriangleDistances& distances, const AuditAgent&
       }
   }
   // Flood from the lattice points around each seed.
-  std::vector<long long> stack;
+  std::vector<std::uint32_t> stack;
   for (const Eigen::Vector3d& seed : seeds) {
     const Eigen::Vector3d at = (seed - lattice.origin) / spacing;
     for (int corner = 0; corner < 8; ++corner) {
@@ -215,7 +219,7 @@ AgentLattice reach_lattice(const TriangleDistances& distances, const AuditAgent&
       const long long i = lattice.index(c.x(), c.y(), c.z());
       if ((flags[i] & kPassable) && !lattice.reachable(i)) {
         flags[i] |= AgentLattice::kReachablePoint;
-        stack.push_back(i);
+        stack.push_back(static_cast<std::uint32_t>(i));
       }
     }
   }
@@ -238,7 +242,7 @@ AgentLattice reach_lattice(const TriangleDistances& distances, const AuditAgent&
         if (!(flags[next] & kPassable) || lattice.reachable(next)) continue;
         if (agent.walking && upward && !(flags[next] & kStanding)) continue;
         flags[next] |= AgentLattice::kReachablePoint;
-        stack.push_back(next);
+        stack.push_back(static_cast<std::uint32_t>(next));
       }
   }
   return lattice;

@@ -54,6 +54,8 @@ struct AgentLattice {
   /// point `p` at clearance r or more, it is then reachable itself (the two,
   /// less than 2 r apart and both clear, have no surface between them).
   bool reachable_near(const Eigen::Vector3d& p) const;
+  /// Whether the lattice point nearest to `p` is reachable.
+  bool reachable_nearest(const Eigen::Vector3d& p) const;
 };
 
 /// Whether face `f` is walkable for `agent`.

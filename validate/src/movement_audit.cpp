@@ -7,7 +7,9 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <string>
 
@@ -15,6 +17,9 @@ namespace hullcover::validate {
 namespace {
 
 using detail::AgentLattice;
+
+// A face is sampled on at most this many steps a side (about 2 x 10^5 poses).
+constexpr int kMostFaceSampleSteps = 640;
 using detail::AuditAgent;
 
 Result<AuditAgent> resolve(const MovementOptions& o, double tol) {
@@ -62,21 +67,23 @@ std::vector<Eigen::Vector3d> definition_seeds(const detail::TriangleDistances& d
 // What one slab of the lattice found (added up in slab order).
 struct Findings {
   long long clear = 0, reachable = 0, sinking = 0, touching = 0, lost = 0;
+  Status failure; ///< a runtime query that failed (the audit then fails with it)
   double deepest = 0.0;
   Eigen::Vector3d deepest_at = Eigen::Vector3d::Zero();
   int deepest_hull = -1;
   Eigen::Vector3d first_lost_at = Eigen::Vector3d::Zero();
 };
 
-// The gap from point p to the nearest hull (0 inside one, within tol).
-double gap_to_hulls(const bvh::HullWorld& world, const Eigen::Vector3d& p, double tol, int* hull) {
+// The gap from point p to the nearest hull (0 inside one, within tol), and that hull.
+Status gap_to_hulls(const bvh::HullWorld& world, const Eigen::Vector3d& p, double tol, double& gap, int& hull) {
   bvh::DistanceRequest request;
   request.shape = bvh::QueryShape::sphere(tol);
   request.pose.translation() = p;
   bvh::DistanceResult result;
-  if (!world.distance(request, result).ok()) return 0.0;
-  if (hull) *hull = result.hull;
-  return result.touching ? 0.0 : result.distance + tol;
+  if (Status s = world.distance(request, result); !s.ok()) return s;
+  hull = result.hull;
+  gap = result.touching ? 0.0 : result.distance + tol;
+  return Status::success();
 }
 
 Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh::RuntimeHull>& hulls,
@@ -100,6 +107,14 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
   Aabb box;
   for (const Eigen::Vector3d& p : mesh.positions) box.extend(p);
   box = grown(box, agent.radius);
+  // Room above the highest walkable face for a walker's whole axis.
+  if (agent.walking) {
+    const double rise = std::min(agent.rise(), box.diagonal() + agent.radius);
+    if (agent.up_sign > 0)
+      box.max[agent.up_axis] += rise;
+    else
+      box.min[agent.up_axis] -= rise;
+  }
   MovementAuditReport report;
   report.slop = agent.slop;
   report.height = agent.height;
@@ -111,14 +126,17 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
     return Status{StatusCode::invalid_argument, "the lattice spacing must be at most " +
                                                     std::to_string(detail::kWidestLatticeSpacingInRadii) +
                                                     " x the agent radius"};
-  while (points_at(spacing) > static_cast<double>(kMostAuditLatticePoints) && spacing < widest)
+  // The default spacing widens to fit; a given one is kept or refused.
+  while (options.spacing <= 0.0 && points_at(spacing) > static_cast<double>(kMostAuditLatticePoints) &&
+         spacing < widest)
     spacing = std::min(widest, 1.25 * spacing);
-  if (points_at(spacing) > static_cast<double>(kMostAuditLatticePoints))
-    return Status{StatusCode::limit_exceeded, "the movement audit's lattice would need " +
-                                                  std::to_string(static_cast<long long>(points_at(spacing))) +
-                                                  " points at its widest spacing (at most " +
-                                                  std::to_string(kMostAuditLatticePoints) +
-                                                  "): audit a part of the scene"};
+  if (points_at(spacing) > static_cast<double>(kMostAuditLatticePoints)) {
+    char count[32];
+    std::snprintf(count, sizeof count, "%.3g", points_at(spacing));
+    return Status{StatusCode::limit_exceeded, std::string("the movement audit's lattice would need ") + count +
+                                                  " points (at most " + std::to_string(kMostAuditLatticePoints) +
+                                                  "): a wider --lattice-spacing, or a part of the scene"};
+  }
   report.spacing = spacing;
   AgentLattice lattice = detail::reach_lattice(distances, agent, box, spacing, seeds, threads);
   if (options.agent.seeds.empty() && !agent.walking && seeds.empty())
@@ -145,9 +163,18 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
         ball.shape = bvh::QueryShape::sphere(r - agent.slop - tol);
         ball.pose.translation() = p;
         bvh::TouchResult touch;
-        if (!world.touches(ball, touch).ok() || !touch.touching) continue;
+        if (Status asked = world.touches(ball, touch); !asked.ok()) {
+          f.failure = asked;
+          return;
+        }
+        if (!touch.touching) continue;
         int hull = -1;
-        const double depth = r - gap_to_hulls(world, p, tol, &hull);
+        double gap = 0.0;
+        if (Status asked = gap_to_hulls(world, p, tol, gap, hull); !asked.ok()) {
+          f.failure = asked;
+          return;
+        }
+        const double depth = r - gap;
         ++f.sinking;
         if (depth > f.deepest) {
           f.deepest = depth;
@@ -166,28 +193,41 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
     const Eigen::Vector3d n = (b - a).cross(c - a);
     if (!(n.norm() > 0.0)) return;
     const Eigen::Vector3d unit = n.normalized();
-    const int steps =
-        std::max(1, static_cast<int>(std::ceil(std::max({(b - a).norm(), (c - a).norm(), (c - b).norm()}) / spacing)));
+    // A lattice of the spacing over the face, its side count capped so a
+    // long sliver cannot ask for billions.
+    const double longest = std::max({(b - a).norm(), (c - a).norm(), (c - b).norm()});
+    const int steps = static_cast<int>(std::clamp(std::ceil(longest / spacing), 1.0, double(kMostFaceSampleSteps)));
     for (int u = 0; u <= steps; ++u)
       for (int v = 0; u + v <= steps; ++v) {
         const double s = (u + 1.0 / 3.0) / (steps + 1.0), w = (v + 1.0 / 3.0) / (steps + 1.0);
         const Eigen::Vector3d on_face = a + s * (b - a) + w * (c - a);
         for (double side : {1.0, -1.0}) {
           const Eigen::Vector3d pose = on_face + side * (r + 2.0 * tol) * unit;
-          if (distances.clearance(pose, r) < r || !lattice.reachable_near(pose)) continue;
+          // A flyer moves from a reachable point to any clear point near it;
+          // a walker's pose is judged by its own sample (standing ends at a
+          // height).
+          const bool reachable = agent.walking ? lattice.reachable_nearest(pose) : lattice.reachable_near(pose);
+          if (distances.clearance(pose, r) < r || !reachable) continue;
           ++f.touching;
           // Lost: a ball of r + E + 3 tol there touches no hull.
           bvh::OverlapRequest reach;
           reach.shape = bvh::QueryShape::sphere(r + agent.slop + 3.0 * tol);
           reach.pose.translation() = pose;
           bvh::TouchResult touch;
-          if (world.touches(reach, touch).ok() && !touch.touching) {
+          if (Status asked = world.touches(reach, touch); !asked.ok()) {
+            f.failure = asked;
+            return;
+          }
+          if (!touch.touching) {
             if (f.lost == 0) f.first_lost_at = pose;
             ++f.lost;
           }
         }
       }
   });
+  for (const std::vector<Findings>* part : {&slabs, &faces})
+    for (const Findings& f : *part)
+      if (!f.failure.ok()) return Status{StatusCode::internal_error, "a runtime query failed: " + f.failure.message()};
   for (const std::vector<Findings>* part : {&slabs, &faces})
     for (const Findings& f : *part) {
       report.clear_points += f.clear;

@@ -94,9 +94,8 @@ Result<MovementCovering> decompose_checked(const PreparedMesh& prepared, const M
 
   const int face_count = static_cast<int>(mesh.triangles.size());
   std::vector<char> touched(face_count, 0);
-  parallel_for(face_count, threads, [&](int f) {
-    touched[f] = !prepared.connectivity.zero_area[f] && face_may_be_touched(grid.value(), clearance, agent, f);
-  });
+  parallel_for(face_count, threads,
+               [&](int f) { touched[f] = face_may_be_touched(grid.value(), clearance, agent, f); });
   std::vector<int> faces;
   for (int f = 0; f < face_count; ++f)
     if (touched[f]) faces.push_back(f);

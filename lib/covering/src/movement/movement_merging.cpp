@@ -133,12 +133,13 @@ void MovementMerger::push_pair(int a, int b, double shared) {
   // the entries of groups that changed since are dropped once they could
   // crowd the memory (pandora flying kept 60 million).
   if (queue_.size() >= queue_compacted_at_ + kQueueGrowthBeforeCompaction) {
-    queue_.erase(std::remove_if(queue_.begin(), queue_.end(),
-                                [&](const Pair& p) {
-                                  const Group& x = groups_[p.a];
-                                  const Group& y = groups_[p.b];
-                                  return !x.alive || !y.alive || x.version != p.version_a || y.version != p.version_b;
-                                }),
+    queue_.erase(std::remove_if(
+                     queue_.begin(), queue_.end(),
+                     [&](const Pair& p) {
+      const Group& x = groups_[p.a];
+      const Group& y = groups_[p.b];
+      return !x.alive || !y.alive || x.version != p.version_a || y.version != p.version_b;
+                     }),
                  queue_.end());
     std::make_heap(queue_.begin(), queue_.end(), std::greater<Pair>());
     queue_compacted_at_ = queue_.size();

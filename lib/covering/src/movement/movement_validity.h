@@ -10,8 +10,8 @@
 ///     from every reachable centre: within E of one triangle (then a centre
 ///     nearer than r - E would be nearer than r to that triangle), or by
 ///     halving boxes of the space around it until each holds no reachable
-///     centre (the reach grid clears it, or a triangle lies within r of all
-///     of it, by its corners) or lies too far;
+///     centre (the reach grid clears it, or a triangle lies within r - tol
+///     of all of it, by its corners) or lies too far;
 ///  2. points of the boundary on faces are at least r from every centre;
 ///  3. H shrunk by r - E holds no reachable centre (the same halving).
 /// A centre outside H is then at least r - E from it (its nearest point of

@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <string>
 
@@ -20,6 +21,12 @@ constexpr std::uint8_t kWalkable = 16; // clear, and standing or dropping: a wal
 
 // Blocks of this many cells a side are classified on their own (in parallel).
 constexpr int kBlock = 32;
+
+std::string number_text(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", x);
+  return text;
+}
 
 std::string point_text(const Eigen::Vector3d& p) {
   char text[96];
@@ -68,9 +75,14 @@ struct GridBuild {
 
 // Cell range [lo, hi] (inclusive) of the cells meeting `box`, clamped to the grid.
 void cell_range(const ReachGrid& grid, const Aabb& box, Eigen::Vector3i& lo, Eigen::Vector3i& hi) {
+  // Clamped as doubles first: a box far beyond the grid (a huge height)
+  // must not overflow the casts.
+  const auto index_of = [&](double x, int a) {
+    return static_cast<int>(std::clamp(std::floor((x - grid.origin[a]) / grid.cell), -1.0, double(grid.dims[a])));
+  };
   for (int a = 0; a < 3; ++a) {
-    lo[a] = std::max(0, static_cast<int>(std::floor((box.min[a] - grid.origin[a]) / grid.cell)));
-    hi[a] = std::min(grid.dims[a] - 1, static_cast<int>(std::floor((box.max[a] - grid.origin[a]) / grid.cell)));
+    lo[a] = std::max(0, index_of(box.min[a], a));
+    hi[a] = std::min(grid.dims[a] - 1, index_of(box.max[a], a));
   }
 }
 
@@ -98,7 +110,8 @@ void mark_standing(const ReachGrid& grid, const Mesh& mesh, const AgentShape& ag
   Eigen::Vector3i lo, hi;
   cell_range(grid, box, lo, hi);
   const int axis = agent.up_axis;
-  const int fewest = static_cast<int>(std::floor((agent.height - 2.0 * agent.radius) / grid.cell));
+  const int fewest = static_cast<int>(
+      std::min(std::floor((agent.height - 2.0 * agent.radius) / grid.cell), double(grid.dims[agent.up_axis] + 1)));
   Eigen::Vector3i c;
   const auto at = [&](int w) {
     c[axis] = w;
@@ -146,11 +159,27 @@ void mark_drops(const ReachGrid& grid, const AgentShape& agent, std::vector<std:
     }
 }
 
+// Appends the grid's outer clear cells (where the sky beyond meets it).
+void add_outer_cells(const ReachGrid& grid, const std::vector<std::uint8_t>& marks, std::vector<std::uint32_t>& out) {
+  const Eigen::Vector3i& d = grid.dims;
+  for (int k = 0; k < d.z(); ++k)
+    for (int j = 0; j < d.y(); ++j)
+      for (int i = 0; i < d.x(); ++i) {
+        const bool outer = i == 0 || j == 0 || k == 0 || i == d.x() - 1 || j == d.y() - 1 || k == d.z() - 1;
+        if (!outer) {
+          i = d.x() - 2; // jump to the far face of this row
+          continue;
+        }
+        const long long c = grid.index(i, j, k);
+        if (marks[c] & kClear) out.push_back(static_cast<std::uint32_t>(c));
+      }
+}
+
 // Floods kSeeded from the cells in `starts` through cells holding every bit
 // of `through`, across shared faces.
-void flood(const ReachGrid& grid, std::vector<long long> starts, std::uint8_t through,
+void flood(const ReachGrid& grid, std::vector<std::uint32_t> starts, std::uint8_t through,
            std::vector<std::uint8_t>& marks) {
-  std::vector<long long>& stack = starts;
+  std::vector<std::uint32_t>& stack = starts;
   for (long long c : stack) marks[c] |= kSeeded;
   const Eigen::Vector3i& dims = grid.dims;
   const long long step[3] = {1, dims.x(), static_cast<long long>(dims.x()) * dims.y()};
@@ -167,7 +196,7 @@ void flood(const ReachGrid& grid, std::vector<long long> starts, std::uint8_t th
         std::uint8_t& m = marks[next];
         if ((m & kSeeded) || (m & through) != through) continue;
         m |= kSeeded;
-        stack.push_back(next);
+        stack.push_back(static_cast<std::uint32_t>(next));
       }
   }
 }
@@ -177,9 +206,9 @@ void flood(const ReachGrid& grid, std::vector<long long> starts, std::uint8_t th
 // standing cell into a dropping cell beside or below it, and from a
 // dropping cell only straight down. Never up a drop: a ledge out of reach
 // stays out of reach.
-void flood_walking(const ReachGrid& grid, const AgentShape& agent, std::vector<long long> starts,
+void flood_walking(const ReachGrid& grid, const AgentShape& agent, std::vector<std::uint32_t> starts,
                    std::vector<std::uint8_t>& marks) {
-  std::vector<long long>& stack = starts;
+  std::vector<std::uint32_t>& stack = starts;
   for (long long c : stack) marks[c] |= kSeeded;
   const Eigen::Vector3i& dims = grid.dims;
   const long long step[3] = {1, dims.x(), static_cast<long long>(dims.x()) * dims.y()};
@@ -201,7 +230,7 @@ void flood_walking(const ReachGrid& grid, const AgentShape& agent, std::vector<l
         if ((m & kSeeded) || !(m & kWalkable)) continue;
         if (going_up && !(m & kStanding)) continue; // no climbing up a drop
         m |= kSeeded;
-        stack.push_back(next);
+        stack.push_back(static_cast<std::uint32_t>(next));
       }
   }
 }
@@ -278,19 +307,27 @@ Result<ReachGrid> build_reach_grid(const Mesh& mesh, const SceneClearance& clear
   for (const Eigen::Vector3i& t : mesh.triangles)
     for (int k = 0; k < 3; ++k) box.extend(mesh.positions[t[k]]);
   box = grown(box, agent.radius + grid.cell);
+  // Room above the highest walkable face for a walker's whole axis.
+  if (agent.reach == AgentReach::walk) {
+    const double rise = std::min(agent.climb + agent.height - agent.radius, box.diagonal() + agent.radius);
+    if (agent.up_sign > 0)
+      box.max[agent.up_axis] += rise;
+    else
+      box.min[agent.up_axis] -= rise;
+  }
   const Eigen::Vector3d cells = ((box.max - box.min) / grid.cell).array().ceil();
   if (!(cells.prod() <= static_cast<double>(kMostReachCells)))
     return Status{StatusCode::limit_exceeded,
                   "the reach grid of this scene at agent radius " + std::to_string(agent.radius) + " would need " +
-                      std::to_string(static_cast<long long>(cells.prod())) + " cells (at most " +
-                      std::to_string(kMostReachCells) + "): use a larger radius or a part of the scene"};
+                      number_text(cells.prod()) + " cells (at most " + std::to_string(kMostReachCells) +
+                      "): use a larger radius or a part of the scene"};
   grid.origin = box.min;
   grid.dims = cells.cast<int>().cwiseMax(1);
 
   std::vector<std::uint8_t> marks(static_cast<size_t>(grid.cell_count()), 0);
   const GridBuild build{grid, clearance, agent.radius - grid.half_diagonal(), agent.radius, marks};
   const Eigen::Vector3i blocks = (grid.dims.array() + kBlock - 1) / kBlock;
-  // Blocks in z-slabs: each writes only its own cells.
+  // Blocks of kBlock cells a side: each writes only its own cells.
   parallel_for(blocks.prod(), threads, [&](int b) {
     const Eigen::Vector3i at(b % blocks.x(), (b / blocks.x()) % blocks.y(), b / (blocks.x() * blocks.y()));
     build.classify(at * kBlock, kBlock);
@@ -303,11 +340,18 @@ Result<ReachGrid> build_reach_grid(const Mesh& mesh, const SceneClearance& clear
   const auto walkable_cell = [](std::uint8_t m) { return (m & kClear) && (m & (kStanding | kDropping)); };
   const auto occupiable = [&](std::uint8_t m) { return walking ? walkable_cell(m) : (m & kClear) != 0; };
 
-  std::vector<long long> starts;
+  std::vector<std::uint32_t> starts;
   for (const Eigen::Vector3d& seed : seeds) {
     const Eigen::Vector3d at = ((seed - grid.origin) / grid.cell).array().floor();
-    if (!((at.array() >= 0.0).all() && (at.array() < grid.dims.cast<double>().array()).all()))
-      continue; // beyond the scene's box grown by r: open space, touching nothing
+    if (!((at.array() >= 0.0).all() && (at.array() < grid.dims.cast<double>().array()).all())) {
+      // Beyond the grid: open sky, joined to the scene through the grid's
+      // outer cells (flying); no walker stands there.
+      if (walking && seeds_given)
+        return Status{StatusCode::invalid_argument,
+                      "seed " + point_text(seed) + " lies beyond the scene: no walkable face below it"};
+      if (!walking) add_outer_cells(grid, marks, starts);
+      continue;
+    }
     const long long c = grid.index(static_cast<int>(at.x()), static_cast<int>(at.y()), static_cast<int>(at.z()));
     if (!occupiable(marks[c]) && !seeds_given) continue;
     if (!occupiable(marks[c]))
@@ -316,7 +360,7 @@ Result<ReachGrid> build_reach_grid(const Mesh& mesh, const SceneClearance& clear
                         (walking ? " is not where a walking agent can be (no walkable face within its height below "
                                    "it, or too near the triangles)"
                                  : " is too near the triangles for the agent")};
-    starts.push_back(c);
+    starts.push_back(static_cast<std::uint32_t>(c));
     ++grid.seeds_used;
   }
   if (walking)

@@ -42,9 +42,12 @@ void split_by_line(const Polygon2& polygon, const Eigen::Vector2d& n, double c, 
   if (outer.size() < 3) outer.clear();
 }
 
-// Removes convex `cut` (counter-clockwise), its sides pushed out by `grow`,
-// from every piece of `pieces`.
-void subtract(std::vector<Polygon2>& pieces, const Polygon2& cut, double grow) {
+// Removes convex `cut` (counter-clockwise) from every piece of `pieces`.
+// Not grown: a triangle's sides pushed out by tol would move a sharp
+// corner out by tol / sin(half its angle), far beyond tol; the slivers
+// rounding leaves along shared sides are proven like any piece (within E
+// of one triangle, at once).
+void subtract(std::vector<Polygon2>& pieces, const Polygon2& cut) {
   std::vector<Polygon2> kept;
   Polygon2 inner, outer, rest;
   for (Polygon2& piece : pieces) {
@@ -54,7 +57,7 @@ void subtract(std::vector<Polygon2>& pieces, const Polygon2& cut, double grow) {
       const double length = edge.norm();
       if (!(length > 0.0)) continue;
       const Eigen::Vector2d n(edge.y() / length, -edge.x() / length); // outward for a counter-clockwise cut
-      split_by_line(rest, n, n.dot(cut[i]) + grow, inner, outer);
+      split_by_line(rest, n, n.dot(cut[i]), inner, outer);
       if (!outer.empty()) kept.push_back(outer);
       rest.swap(inner);
     }
@@ -112,7 +115,7 @@ void uncovered_boundary(const SceneClearance& scene, const ConvexPolytope& hull,
       cut.clear();
       for (int c : corners) cut.push_back(on_plane[c]);
       make_counter_clockwise(cut);
-      subtract(pieces, cut, tol);
+      subtract(pieces, cut);
     }
     std::vector<Eigen::Vector3d> corners;
     for (int v : hull.facets[f]) corners.push_back(hull.vertices[v]);
@@ -130,7 +133,7 @@ void uncovered_boundary(const SceneClearance& scene, const ConvexPolytope& hull,
       }
       if (!in_plane || !(std::abs(signed_area(cut)) > 0.0)) continue;
       make_counter_clockwise(cut);
-      subtract(pieces, cut, tol);
+      subtract(pieces, cut);
     }
     const auto to_space = [&](const Eigen::Vector2d& q) { return frame.origin + q.x() * frame.u + q.y() * frame.v; };
     for (const Polygon2& piece : pieces) {

@@ -7,8 +7,9 @@
 /// the runtime (HullWorld) whether
 ///  - any reachable centre's ball of radius r sinks more than E + tol into
 ///    a hull (it sinks into no triangle: its clearance is at least r), and
-///  - any agent touching a face at a reachable pose is more than E + tol
-///    from every hull (its contact vanished).
+///  - any agent touching a face at a reachable pose (its centre r + 2 tol
+///    from the face) has no hull within r + E + 3 tol of its centre (its
+///    contact vanished).
 /// Sampled, not proven: a lattice of spacing s can miss a violation no
 /// deeper than s * sqrt(3) / 2 beyond the slop between its points.
 
@@ -49,7 +50,7 @@ struct MovementAuditReport {
   Eigen::Vector3d deepest_at = Eigen::Vector3d::Zero();
   int deepest_hull = -1;
   long long touching_poses = 0; ///< reachable poses touching a face
-  long long contacts_lost = 0;  ///< of those, more than E + tol from every hull
+  long long contacts_lost = 0;  ///< of those, with no hull within r + E + 3 tol
   Eigen::Vector3d first_lost_at = Eigen::Vector3d::Zero();
   /// No centre sinking deeper than the slop and no contact lost.
   bool clean() const { return sinking == 0 && contacts_lost == 0; }
