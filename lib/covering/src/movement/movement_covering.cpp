@@ -7,6 +7,7 @@
 #include "hullcover/geometry/parallel_for.h"
 
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <string>
 
@@ -113,7 +114,7 @@ Result<MovementCovering> decompose_checked(const PreparedMesh& prepared, const M
   stats.seconds_merging = seconds_since(merging);
   covering.tolerance = prepared.tolerance;
   covering.statistics.faces = face_count;
-  covering.statistics.merges = face_count - static_cast<int>(covering.hulls.size());
+  covering.statistics.merges = static_cast<int>(stats.merges);
   covering.statistics.seconds_merging = stats.seconds_merging;
   covering.statistics.islands = static_cast<int>(prepared.islands.boxes.size());
   covering.statistics.cells = 1;

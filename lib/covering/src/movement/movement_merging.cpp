@@ -231,6 +231,7 @@ void MovementMerger::run() {
       n = combined(std::move(n));
       push_pair(pair.a, g, length);
     }
+    ++statistics_.merges;
     if (progress_ && (++merges & 255) == 0) progress_(std::min(0.95, merges / total));
   }
   drop_held_groups();

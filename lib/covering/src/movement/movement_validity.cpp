@@ -19,6 +19,25 @@ RegionVerdict worse(RegionVerdict a, RegionVerdict b) {
                                                                         : RegionVerdict::clear;
 }
 
+// Distance from `p` to convex polygon `corners` (in one plane with unit
+// normal `normal`).
+double distance_to_polygon(const Eigen::Vector3d& p, const std::vector<Eigen::Vector3d>& corners,
+                           const Eigen::Vector3d& normal) {
+  const size_t n = corners.size();
+  // Inside when on one side of every edge, either winding.
+  bool left = true, right = true;
+  for (size_t i = 0; i < n; ++i) {
+    const double side = (corners[(i + 1) % n] - corners[i]).cross(p - corners[i]).dot(normal);
+    left &= side >= 0.0;
+    right &= side <= 0.0;
+  }
+  if (left || right) return std::abs(normal.dot(p - corners[0]));
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < n; ++i)
+    best = std::min(best, (closest_point_on_segment(p, corners[i], corners[(i + 1) % n]) - p).norm());
+  return best;
+}
+
 // Whether no reachable centre lies in a region: `lower(c)` bounds from
 // below the distance from point c to the region, and `inside(c)` tells
 // whether c lies in it. Boxes from `start` are halved along their longest
@@ -219,23 +238,6 @@ double area_of(const std::vector<Eigen::Vector3d>& polygon) {
 }
 
 } // namespace
-
-double distance_to_polygon(const Eigen::Vector3d& p, const std::vector<Eigen::Vector3d>& corners,
-                           const Eigen::Vector3d& normal) {
-  const size_t n = corners.size();
-  // Inside when on one side of every edge, either winding.
-  bool left = true, right = true;
-  for (size_t i = 0; i < n; ++i) {
-    const double side = (corners[(i + 1) % n] - corners[i]).cross(p - corners[i]).dot(normal);
-    left &= side >= 0.0;
-    right &= side <= 0.0;
-  }
-  if (left || right) return std::abs(normal.dot(p - corners[0]));
-  double best = std::numeric_limits<double>::infinity();
-  for (size_t i = 0; i < n; ++i)
-    best = std::min(best, (closest_point_on_segment(p, corners[i], corners[(i + 1) % n]) - p).norm());
-  return best;
-}
 
 MovementVerdict check_movement_hull(const MovementContext& context, const ConvexPolytope& hull, bool flat,
                                     const std::vector<const ConvexPolytope*>& known, UncoveredBoundary& boundary) {

@@ -65,9 +65,4 @@ enum class MovementVerdict {
 MovementVerdict check_movement_hull(const MovementContext& context, const ConvexPolytope& hull, bool flat,
                                     const std::vector<const ConvexPolytope*>& known, UncoveredBoundary& boundary);
 
-/// Distance from `p` to convex polygon `corners` (in one plane with unit
-/// normal `normal`).
-double distance_to_polygon(const Eigen::Vector3d& p, const std::vector<Eigen::Vector3d>& corners,
-                           const Eigen::Vector3d& normal);
-
 } // namespace hullcover::detail

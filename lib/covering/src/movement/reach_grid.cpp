@@ -333,9 +333,10 @@ Result<ReachGrid> build_reach_grid(const Mesh& mesh, const SceneClearance& clear
     build.classify(at * kBlock, kBlock);
   });
 
-  for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f)
-    if (is_walkable(mesh, agent, f)) mark_standing(grid, mesh, agent, f, marks);
   const bool walking = agent.reach == AgentReach::walk;
+  if (walking)
+    for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f)
+      if (is_walkable(mesh, agent, f)) mark_standing(grid, mesh, agent, f, marks);
   if (walking) mark_drops(grid, agent, marks);
   const auto walkable_cell = [](std::uint8_t m) { return (m & kClear) && (m & (kStanding | kDropping)); };
   const auto occupiable = [&](std::uint8_t m) { return walking ? walkable_cell(m) : (m & kClear) != 0; };

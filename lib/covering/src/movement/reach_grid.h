@@ -25,9 +25,6 @@ struct AgentShape {
   int up_axis = 1;            ///< 0, 1 or 2
   double up_sign = 1.0;       ///< +1 or -1
   AgentReach reach = AgentReach::walk;
-
-  /// How high point `p` is (its coordinate along up).
-  double height_of(const Eigen::Vector3d& p) const { return up_sign * p[up_axis]; }
 };
 
 /// A grid of cubes over the scene's box grown by the radius and a cell.

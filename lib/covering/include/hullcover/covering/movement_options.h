@@ -72,6 +72,7 @@ struct MovementStatistics {
   int seeds = 0;                 ///< seeds used (given ones, or one per walkable face)
   int touchable_faces = 0;       ///< faces an agent may touch: the faces covered
   long candidates = 0;           ///< merges tried
+  long merges = 0;               ///< merges made
   long undecided = 0;            ///< merges refused because their proof ran out of budget
   double seconds_reach = 0.0;    ///< the reach grid and touchable faces
   double seconds_merging = 0.0;
