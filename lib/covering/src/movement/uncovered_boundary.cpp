@@ -42,22 +42,37 @@ void split_by_line(const Polygon2& polygon, const Eigen::Vector2d& n, double c, 
   if (outer.size() < 3) outer.clear();
 }
 
-// Removes convex `cut` (counter-clockwise) from every piece of `pieces`.
-// Not grown: a triangle's sides pushed out by tol would move a sharp
-// corner out by tol / sin(half its angle), far beyond tol; the slivers
-// rounding leaves along shared sides are proven like any piece (within E
-// of one triangle, at once).
-void subtract(std::vector<Polygon2>& pieces, const Polygon2& cut) {
+// Removes convex `cut` (counter-clockwise), grown by `grow`, from every
+// piece of `pieces`. Each side is pushed out by `grow`, and each corner is
+// capped by a line across its bisector `grow` beyond it: pushed sides
+// alone would carry a sharp corner out by grow / sin(half its angle), far
+// beyond `grow`; capped, no point of the grown polygon lies farther than
+// grow * sqrt(2) from `cut`.
+void subtract(std::vector<Polygon2>& pieces, const Polygon2& cut, double grow) {
+  // The grown polygon's half-planes n . x <= offset.
+  std::vector<std::pair<Eigen::Vector2d, double>> sides;
+  const size_t count = cut.size();
+  for (size_t i = 0; i < count; ++i) {
+    const Eigen::Vector2d edge = cut[(i + 1) % count] - cut[i];
+    const double length = edge.norm();
+    if (!(length > 0.0)) continue;
+    const Eigen::Vector2d n(edge.y() / length, -edge.x() / length); // outward for a counter-clockwise cut
+    sides.emplace_back(n, n.dot(cut[i]) + grow);
+  }
+  for (size_t i = 0; i < count; ++i) {
+    const Eigen::Vector2d& corner = cut[i];
+    const Eigen::Vector2d out = (corner - cut[(i + count - 1) % count]).normalized() +
+                                (corner - cut[(i + 1) % count]).normalized();
+    if (!(out.norm() > 0.0) || !out.allFinite()) continue;
+    const Eigen::Vector2d u = out.normalized();
+    sides.emplace_back(u, u.dot(corner) + grow);
+  }
   std::vector<Polygon2> kept;
   Polygon2 inner, outer, rest;
   for (Polygon2& piece : pieces) {
     rest = piece;
-    for (size_t i = 0; i < cut.size() && !rest.empty(); ++i) {
-      const Eigen::Vector2d edge = cut[(i + 1) % cut.size()] - cut[i];
-      const double length = edge.norm();
-      if (!(length > 0.0)) continue;
-      const Eigen::Vector2d n(edge.y() / length, -edge.x() / length); // outward for a counter-clockwise cut
-      split_by_line(rest, n, n.dot(cut[i]), inner, outer);
+    for (size_t i = 0; i < sides.size() && !rest.empty(); ++i) {
+      split_by_line(rest, sides[i].first, sides[i].second, inner, outer);
       if (!outer.empty()) kept.push_back(outer);
       rest.swap(inner);
     }
@@ -115,7 +130,7 @@ void uncovered_boundary(const SceneClearance& scene, const ConvexPolytope& hull,
       cut.clear();
       for (int c : corners) cut.push_back(on_plane[c]);
       make_counter_clockwise(cut);
-      subtract(pieces, cut);
+      subtract(pieces, cut, tol);
     }
     std::vector<Eigen::Vector3d> corners;
     for (int v : hull.facets[f]) corners.push_back(hull.vertices[v]);
@@ -133,7 +148,7 @@ void uncovered_boundary(const SceneClearance& scene, const ConvexPolytope& hull,
       }
       if (!in_plane || !(std::abs(signed_area(cut)) > 0.0)) continue;
       make_counter_clockwise(cut);
-      subtract(pieces, cut);
+      subtract(pieces, cut, tol);
     }
     const auto to_space = [&](const Eigen::Vector2d& q) { return frame.origin + q.x() * frame.u + q.y() * frame.v; };
     for (const Polygon2& piece : pieces) {

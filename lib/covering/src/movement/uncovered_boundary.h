@@ -45,9 +45,11 @@ struct UncoveredBoundary {
 /// point on one is as far from every centre as it) and on no part of the
 /// boundaries of `known` (hulls inside `hull` whose own boundaries were
 /// proven before: where the two boundaries meet, the merged one is
-/// theirs). A triangle or polygon covers the part of a facet it overlaps
-/// when its corners lie within `tol` of the facet's plane. A side of a
-/// piece within `tol` of a side of its facet is a segment.
+/// theirs). A triangle or polygon whose corners lie within `tol` of the
+/// facet's plane covers the part of the facet within `tol` of it (its
+/// sides pushed out by tol, its corners capped at tol beyond them, so no
+/// point counts as covered farther than tol * sqrt(2) from it). A side of
+/// a piece within `tol` of a side of its facet is a segment.
 void uncovered_boundary(const SceneClearance& scene, const ConvexPolytope& hull, bool flat,
                         const std::vector<const ConvexPolytope*>& known, double tol, UncoveredBoundary& out);
 
