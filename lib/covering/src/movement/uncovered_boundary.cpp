@@ -61,8 +61,8 @@ void subtract(std::vector<Polygon2>& pieces, const Polygon2& cut, double grow) {
   }
   for (size_t i = 0; i < count; ++i) {
     const Eigen::Vector2d& corner = cut[i];
-    const Eigen::Vector2d out = (corner - cut[(i + count - 1) % count]).normalized() +
-                                (corner - cut[(i + 1) % count]).normalized();
+    const Eigen::Vector2d out =
+        (corner - cut[(i + count - 1) % count]).normalized() + (corner - cut[(i + 1) % count]).normalized();
     if (!(out.norm() > 0.0) || !out.allFinite()) continue;
     const Eigen::Vector2d u = out.normalized();
     sides.emplace_back(u, u.dot(corner) + grow);
