@@ -23,25 +23,18 @@ constexpr int kMostFaceSampleSteps = 640;
 using detail::AuditAgent;
 
 Result<AuditAgent> resolve(const MovementOptions& o, double tol) {
+  const Result<AgentShape> shape = resolve_agent_shape(o, tol);
+  if (!shape.ok()) return shape.status();
+  const AgentShape& s = shape.value();
   AuditAgent agent;
-  agent.radius = o.radius;
-  agent.slop = o.slop < 0.0 ? kDefaultSlopPerRadius * o.radius : o.slop;
-  agent.height = o.height < 0.0 ? kDefaultHeightInRadii * o.radius : o.height;
-  agent.climb = o.climb < 0.0 ? kDefaultClimbInRadii * o.radius : o.climb;
-  agent.walking = o.reach == AgentReach::walk;
-  if (!(std::isfinite(agent.radius) && agent.radius > 0.0 && std::isfinite(agent.slop) && agent.slop >= 2.0 * tol &&
-        agent.slop < agent.radius && std::isfinite(agent.height) && agent.height >= 2.0 * agent.radius &&
-        std::isfinite(agent.climb) && agent.climb >= 0.0 && o.max_slope_degrees >= 0.0 && o.max_slope_degrees < 90.0))
-    return Status{StatusCode::invalid_argument,
-                  "agent out of range: radius > 0, 2 tol <= slop < radius, height >= 2 radius, climb >= 0, slope in "
-                  "[0, 90)"};
-  agent.min_up_cosine = std::cos(o.max_slope_degrees * M_PI / 180.0);
-  agent.up_axis = -1;
-  for (int a = 0; a < 3; ++a)
-    if (std::abs(o.up[a]) == 1.0) agent.up_axis = a;
-  if (agent.up_axis < 0 || o.up.cwiseAbs().sum() != 1.0)
-    return Status{StatusCode::invalid_argument, "up must be an axis direction"};
-  agent.up_sign = o.up[agent.up_axis];
+  agent.radius = s.radius;
+  agent.slop = s.slop;
+  agent.height = s.height;
+  agent.climb = s.climb;
+  agent.min_up_cosine = s.min_up_cosine;
+  agent.up_axis = s.up_axis;
+  agent.up_sign = s.up_sign;
+  agent.walking = s.reach == AgentReach::walk;
   return agent;
 }
 

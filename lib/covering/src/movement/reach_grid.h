@@ -15,18 +15,6 @@
 
 namespace hullcover::detail {
 
-/// MovementOptions with every default resolved and the up axis split out.
-struct AgentShape {
-  double radius = 0.0;
-  double slop = 0.0;
-  double height = 0.0;
-  double climb = 0.0;
-  double min_up_cosine = 0.0; ///< a walkable face's normal . up is at least this
-  int up_axis = 1;            ///< 0, 1 or 2
-  double up_sign = 1.0;       ///< +1 or -1
-  AgentReach reach = AgentReach::walk;
-};
-
 /// A grid of cubes over the scene's box grown by the radius and a cell.
 class ReachGrid {
 public:

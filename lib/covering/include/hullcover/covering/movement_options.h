@@ -5,6 +5,8 @@
 /// Kept apart from movement_covering.h so the decomposer's parts, which
 /// read both, do not depend on the result they feed.
 
+#include "hullcover/geometry/status.h"
+
 #include <Eigen/Core>
 
 #include <functional>
@@ -77,5 +79,25 @@ struct MovementStatistics {
   double seconds_reach = 0.0;    ///< the reach grid and touchable faces
   double seconds_merging = 0.0;
 };
+
+/// The agent MovementOptions describe, with every default filled in and
+/// the up axis split out: what the decomposer and the movement audit both
+/// work from.
+struct AgentShape {
+  double radius = 0.0;
+  double slop = 0.0;
+  double height = 0.0;
+  double climb = 0.0;
+  double min_up_cosine = 0.0; ///< a walkable face's normal . up is at least this
+  int up_axis = 1;            ///< 0, 1 or 2
+  double up_sign = 1.0;       ///< +1 or -1
+  AgentReach reach = AgentReach::walk;
+};
+
+/// The agent of `options`, or `invalid_argument` naming the option out of
+/// range (radius > 0; 2 `tol` <= slop < radius, `tol` the scene's largest
+/// tolerance; height >= 2 radius; climb >= 0; slope in [0, 90); up an axis
+/// direction).
+Result<AgentShape> resolve_agent_shape(const MovementOptions& options, double tol);
 
 } // namespace hullcover
