@@ -1,6 +1,7 @@
 #include "movement/uncovered_boundary.h"
 
 #include "hullcover/geometry/planar_hull.h"
+#include "hullcover/geometry/triangle_distance.h"
 
 #include <algorithm>
 #include <cmath>
@@ -20,44 +21,29 @@ double signed_area(const Polygon2& p) {
   return 0.5 * a;
 }
 
-// Splits convex `polygon` by the line n . x = c into the part with
-// n . x <= c (`inner`) and the rest (`outer`).
-void split_by_line(const Polygon2& polygon, const Eigen::Vector2d& n, double c, Polygon2& inner, Polygon2& outer) {
-  inner.clear();
-  outer.clear();
-  const size_t count = polygon.size();
-  for (size_t i = 0; i < count; ++i) {
-    const Eigen::Vector2d& a = polygon[i];
-    const Eigen::Vector2d& b = polygon[(i + 1) % count];
-    const double da = n.dot(a) - c, db = n.dot(b) - c;
-    if (da <= 0.0) inner.push_back(a);
-    if (da >= 0.0) outer.push_back(a);
-    if ((da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0)) {
-      const Eigen::Vector2d x = a + (b - a) * (da / (da - db));
-      inner.push_back(x);
-      outer.push_back(x);
-    }
-  }
-  if (inner.size() < 3) inner.clear();
-  if (outer.size() < 3) outer.clear();
-}
+using Polygon3 = std::vector<Eigen::Vector3d>;
 
-// Removes convex `cut` (counter-clockwise), grown by `grow`, from every
-// piece of `pieces`. Each side is pushed out by `grow`, and each corner is
-// capped by a line across its bisector `grow` beyond it: pushed sides
-// alone would carry a sharp corner out by grow / sin(half its angle), far
-// beyond `grow`; capped, no point of the grown polygon lies farther than
-// grow * sqrt(2) from `cut`.
-void subtract(std::vector<Polygon2>& pieces, const Polygon2& cut, double grow) {
-  // The grown polygon's half-planes n . x <= offset.
-  std::vector<std::pair<Eigen::Vector2d, double>> sides;
+// Removes convex `cut` (counter-clockwise in `frame`'s plane), grown by
+// `grow`, from every piece of `pieces` (polygons in that plane). Each side
+// is pushed out by `grow`, and each corner is capped by a line across its
+// bisector `grow` beyond it: pushed sides alone would carry a sharp corner
+// out by grow / sin(half its angle), far beyond `grow`; capped, no point of
+// the grown polygon lies farther than grow * sqrt(2) from `cut`.
+void subtract(std::vector<Polygon3>& pieces, const Polygon2& cut, const PlaneFrame& frame, double grow) {
+  // The grown polygon's half-planes n . x <= offset in the frame, each as
+  // a plane across the facet's.
+  std::vector<Plane> sides;
+  const auto add_side = [&](const Eigen::Vector2d& n, double offset) {
+    const Eigen::Vector3d normal = n.x() * frame.u + n.y() * frame.v;
+    sides.push_back({normal, offset + normal.dot(frame.origin)});
+  };
   const size_t count = cut.size();
   for (size_t i = 0; i < count; ++i) {
     const Eigen::Vector2d edge = cut[(i + 1) % count] - cut[i];
     const double length = edge.norm();
     if (!(length > 0.0)) continue;
     const Eigen::Vector2d n(edge.y() / length, -edge.x() / length); // outward for a counter-clockwise cut
-    sides.emplace_back(n, n.dot(cut[i]) + grow);
+    add_side(n, n.dot(cut[i]) + grow);
   }
   for (size_t i = 0; i < count; ++i) {
     const Eigen::Vector2d& corner = cut[i];
@@ -65,34 +51,28 @@ void subtract(std::vector<Polygon2>& pieces, const Polygon2& cut, double grow) {
         (corner - cut[(i + count - 1) % count]).normalized() + (corner - cut[(i + 1) % count]).normalized();
     if (!(out.norm() > 0.0) || !out.allFinite()) continue;
     const Eigen::Vector2d u = out.normalized();
-    sides.emplace_back(u, u.dot(corner) + grow);
+    add_side(u, u.dot(corner) + grow);
   }
-  std::vector<Polygon2> kept;
-  Polygon2 inner, outer, rest;
-  for (Polygon2& piece : pieces) {
+  std::vector<Polygon3> kept;
+  Polygon3 inner, outer, rest;
+  for (Polygon3& piece : pieces) {
     rest = piece;
-    for (size_t i = 0; i < sides.size() && !rest.empty(); ++i) {
-      split_by_line(rest, sides[i].first, sides[i].second, inner, outer);
-      if (!outer.empty()) kept.push_back(outer);
+    for (size_t i = 0; i < sides.size() && rest.size() >= 3; ++i) {
+      split_polygon(rest, sides[i], inner, outer);
+      if (outer.size() >= 3) kept.push_back(outer);
       rest.swap(inner);
     }
   }
   pieces.swap(kept);
 }
 
-double distance_to_segment_2d(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double length2 = ab.squaredNorm();
-  const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).norm();
-}
-
 // Whether segment p-q lies along one side of `polygon`, within `tol`.
-bool on_side_of(const Polygon2& polygon, const Eigen::Vector2d& p, const Eigen::Vector2d& q, double tol) {
+bool on_side_of(const Polygon3& polygon, const Eigen::Vector3d& p, const Eigen::Vector3d& q, double tol) {
   for (size_t i = 0; i < polygon.size(); ++i) {
-    const Eigen::Vector2d& a = polygon[i];
-    const Eigen::Vector2d& b = polygon[(i + 1) % polygon.size()];
-    if (distance_to_segment_2d(p, a, b) <= tol && distance_to_segment_2d(q, a, b) <= tol) return true;
+    const Eigen::Vector3d& a = polygon[i];
+    const Eigen::Vector3d& b = polygon[(i + 1) % polygon.size()];
+    if ((closest_point_on_segment(p, a, b) - p).norm() <= tol && (closest_point_on_segment(q, a, b) - q).norm() <= tol)
+      return true;
   }
   return false;
 }
@@ -108,15 +88,14 @@ void uncovered_boundary(const SceneClearance& scene, const ConvexPolytope& hull,
   const Mesh& mesh = scene.mesh();
   std::vector<int> faces;
   const size_t facet_count = flat ? std::min<size_t>(1, hull.facets.size()) : hull.facets.size();
-  std::vector<Polygon2> pieces;
+  std::vector<Polygon3> pieces;
   Polygon2 cut;
   std::vector<Eigen::Vector2d> on_plane;
   for (size_t f = 0; f < facet_count; ++f) {
     const Plane& plane = hull.planes[f];
     const PlaneFrame frame = PlaneFrame::from_normal(hull.vertices[hull.facets[f][0]], plane.normal);
-    Polygon2 facet;
-    for (int v : hull.facets[f]) facet.push_back(frame.to_plane(hull.vertices[v]));
-    make_counter_clockwise(facet);
+    Polygon3 facet;
+    for (int v : hull.facets[f]) facet.push_back(hull.vertices[v]);
     pieces.assign(1, facet);
     // The parts first: they hold most of a merged hull's boundary.
     for (const ConvexPolytope* part : known) {
@@ -130,12 +109,10 @@ void uncovered_boundary(const SceneClearance& scene, const ConvexPolytope& hull,
       cut.clear();
       for (int c : corners) cut.push_back(on_plane[c]);
       make_counter_clockwise(cut);
-      subtract(pieces, cut, tol);
+      subtract(pieces, cut, frame, tol);
     }
-    std::vector<Eigen::Vector3d> corners;
-    for (int v : hull.facets[f]) corners.push_back(hull.vertices[v]);
     faces.clear();
-    if (!pieces.empty()) scene.faces_meeting(grown(bounding_box_of(corners), tol), faces);
+    if (!pieces.empty()) scene.faces_meeting(grown(bounding_box_of(facet), tol), faces);
     std::sort(faces.begin(), faces.end());
     for (int face : faces) {
       if (pieces.empty()) break;
@@ -148,19 +125,15 @@ void uncovered_boundary(const SceneClearance& scene, const ConvexPolytope& hull,
       }
       if (!in_plane || !(std::abs(signed_area(cut)) > 0.0)) continue;
       make_counter_clockwise(cut);
-      subtract(pieces, cut, tol);
+      subtract(pieces, cut, frame, tol);
     }
-    const auto to_space = [&](const Eigen::Vector2d& q) { return frame.origin + q.x() * frame.u + q.y() * frame.v; };
-    for (const Polygon2& piece : pieces) {
-      BoundaryPiece b;
-      b.normal = plane.normal;
-      for (const Eigen::Vector2d& q : piece) b.corners.push_back(to_space(q));
-      out.pieces.push_back(std::move(b));
+    for (Polygon3& piece : pieces) {
       for (size_t i = 0; i < piece.size(); ++i) {
-        const Eigen::Vector2d& p = piece[i];
-        const Eigen::Vector2d& q = piece[(i + 1) % piece.size()];
-        if (on_side_of(facet, p, q, tol)) out.segments.push_back({to_space(p), to_space(q)});
+        const Eigen::Vector3d& p = piece[i];
+        const Eigen::Vector3d& q = piece[(i + 1) % piece.size()];
+        if (on_side_of(facet, p, q, tol)) out.segments.push_back({p, q});
       }
+      out.pieces.push_back({std::move(piece), plane.normal});
     }
   }
 }
