@@ -106,6 +106,25 @@ TEST(ReachGrid, AWalkerStandsOnTheHighestFaceAndAFlyerFromTheSkyReachesTheScene)
   EXPECT_FALSE(refused.ok());
 }
 
+// Regression: a walkable face's standing envelope once reached down to the
+// face's lowest point in every column, so walkers on sloping ground walked
+// on under it (round its side edges) and every hull below a hillside was
+// refused.
+TEST(ReachGrid, AWalkerOnAHillsideStaysAboveIt) {
+  const double slope = std::tan(40.0 * M_PI / 180.0);
+  Mesh hillside;
+  hillside.positions = {V(0, 0, 0), V(6, 6 * slope, 0), V(6, 6 * slope, 6), V(0, 0, 6)};
+  hillside.triangles = {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 3, 2)};
+  const SceneClearance clearance(hillside);
+  const V above(3, 3 * slope + 0.5, 3), under(3, 3 * slope - 1.5, 3);
+  ASSERT_GE(clearance.nearest(under, 1.0).distance, 1.0);
+  const Result<ReachGrid> grid = build_reach_grid(hillside, clearance, walker(), {above}, true, 1);
+  ASSERT_TRUE(grid.ok()) << grid.status().message();
+  EXPECT_TRUE(grid.value().reachable_at(above));
+  EXPECT_FALSE(grid.value().reachable_at(under));
+  EXPECT_FALSE(grid.value().reachable_at(V(1, slope - 1.0, 1)));
+}
+
 TEST(MovementProof, RefusesAHullAcrossTheFloorsCornerAndAcceptsTheCrate) {
   const test::MovementLevel level = test::movement_level();
   const SceneClearance clearance(level.mesh);

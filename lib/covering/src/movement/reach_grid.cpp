@@ -1,5 +1,6 @@
 #include "movement/reach_grid.h"
 
+#include "hullcover/geometry/convex_polytope.h"
 #include "hullcover/geometry/parallel_for.h"
 
 #include <Eigen/Geometry>
@@ -87,16 +88,23 @@ void cell_range(const ReachGrid& grid, const Aabb& box, Eigen::Vector3i& lo, Eig
 }
 
 // Marks kStanding in the clear cells where an agent standing on walkable
-// face `face` may have a point of its axis: within r across of the face,
-// from the face's lowest point up to its highest plus climb + H - r, in a
-// run of clear cells within that range long enough for the axis (H - 2r
-// long, it crosses at least that length over a cell side of cells, each
-// holding one of its clear points, all in one column): no upright capsule
-// stands where its head would be in a ceiling.
+// face `face` may have a point of its axis: within r across of a point w of
+// the face and above it (a standing agent rests on w), up to the face's
+// highest point plus climb + H - r, in a run of clear cells within that
+// range long enough for the axis (H - 2r long, it crosses at least that
+// length over a cell side of cells, each holding one of its clear points,
+// all in one column): no upright capsule stands where its head would be in
+// a ceiling. Cells under the face's lowest point within r across of their
+// column are left out: an agent under a surface does not stand on it (and
+// walkers would otherwise walk the envelopes under sloping ground).
 void mark_standing(const ReachGrid& grid, const Mesh& mesh, const AgentShape& agent, int face,
                    std::vector<std::uint8_t>& marks) {
   Aabb box;
-  for (int k = 0; k < 3; ++k) box.extend(mesh.positions[mesh.triangles[face][k]]);
+  std::vector<Eigen::Vector3d> triangle;
+  for (int k = 0; k < 3; ++k) {
+    box.extend(mesh.positions[mesh.triangles[face][k]]);
+    triangle.push_back(mesh.positions[mesh.triangles[face][k]]);
+  }
   for (int a = 0; a < 3; ++a)
     if (a != agent.up_axis) {
       box.min[a] -= agent.radius;
@@ -118,13 +126,39 @@ void mark_standing(const ReachGrid& grid, const Mesh& mesh, const AgentShape& ag
     return grid.index(c.x(), c.y(), c.z());
   };
   const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+  std::vector<Eigen::Vector3d> part, clipped;
   for (int u = lo[a1]; u <= hi[a1]; ++u)
     for (int v = lo[a2]; v <= hi[a2]; ++v) {
       c[a1] = u;
       c[a2] = v;
-      int run_start = lo[axis];
-      for (int w = lo[axis]; w <= hi[axis] + 1; ++w) {
-        if (w <= hi[axis] && (marks[at(w)] & kClear)) continue;
+      // The part of the face within r across of the column (its square
+      // grown by r: a superset of the disc), and its lowest coordinate
+      // along up: a plane's extremes over a polygon lie at its corners.
+      part = triangle;
+      for (const auto& [a, index] : {std::pair{a1, u}, std::pair{a2, v}}) {
+        Eigen::Vector3d n = Eigen::Vector3d::Zero();
+        n[a] = 1.0;
+        const double low = grid.origin[a] + index * grid.cell - agent.radius;
+        const double high = grid.origin[a] + (index + 1) * grid.cell + agent.radius;
+        clip_polygon_into(part, Plane{n, high}, 0.0, clipped);
+        clip_polygon_into(clipped, Plane{-n, -low}, 0.0, part);
+      }
+      if (part.empty()) continue;
+      int first = lo[axis], last = hi[axis];
+      // One cell more than the cell of w's height: rounding in the floor
+      // never leaves out the cell holding w itself.
+      if (agent.up_sign > 0) {
+        double lowest = part[0][axis];
+        for (const Eigen::Vector3d& q : part) lowest = std::min(lowest, q[axis]);
+        first = std::max(first, static_cast<int>(std::floor((lowest - grid.origin[axis]) / grid.cell)) - 1);
+      } else {
+        double lowest = part[0][axis];
+        for (const Eigen::Vector3d& q : part) lowest = std::max(lowest, q[axis]);
+        last = std::min(last, static_cast<int>(std::floor((lowest - grid.origin[axis]) / grid.cell)) + 1);
+      }
+      int run_start = first;
+      for (int w = first; w <= last + 1; ++w) {
+        if (w <= last && (marks[at(w)] & kClear)) continue;
         if (w - run_start >= fewest)
           for (int x = run_start; x < w; ++x) marks[at(x)] |= kStanding;
         run_start = w + 1;
