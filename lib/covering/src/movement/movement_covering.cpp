@@ -1,11 +1,15 @@
 #include "hullcover/covering/movement_covering.h"
 
+#include "movement/movement_groups.h"
 #include "movement/movement_merging.h"
 #include "movement/reach_grid.h"
 #include "movement/scene_clearance.h"
 
+#include "hullcover/covering/covering.h"
 #include "hullcover/geometry/parallel_for.h"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cmath>
@@ -22,6 +26,48 @@ std::string length_text(double x) {
   char text[32];
   std::snprintf(text, sizeof text, "%.6g", x);
   return text;
+}
+
+// Regions hold at most this many touchable faces: enough that most merges
+// stay within one, few enough that every core has regions to merge.
+constexpr int kMostFacesPerRegion = 512;
+
+// The region of each of `faces`: its box halved at the median of their
+// centroids along its longest side until each holds at most `most`.
+std::vector<int> split_into_regions(const Mesh& mesh, const std::vector<int>& faces, int most) {
+  std::vector<int> region(faces.size(), 0);
+  if (faces.empty()) return region;
+  std::vector<Eigen::Vector3d> centroid(faces.size());
+  for (size_t i = 0; i < faces.size(); ++i) {
+    const Eigen::Vector3i& t = mesh.triangles[faces[i]];
+    centroid[i] = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+  }
+  std::vector<int> order(faces.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  int regions = 0;
+  // Ranges of `order` still to split.
+  std::vector<std::pair<int, int>> ranges{{0, static_cast<int>(order.size())}};
+  while (!ranges.empty()) {
+    const auto [begin, end] = ranges.back();
+    ranges.pop_back();
+    if (end - begin <= most) {
+      for (int i = begin; i < end; ++i) region[order[i]] = regions;
+      ++regions;
+      continue;
+    }
+    Aabb box;
+    for (int i = begin; i < end; ++i) box.extend(centroid[order[i]]);
+    int axis = 0;
+    (box.max - box.min).maxCoeff(&axis);
+    const int middle = begin + (end - begin) / 2;
+    // Ties broken by index: the same regions on every machine.
+    std::nth_element(order.begin() + begin, order.begin() + middle, order.begin() + end, [&](int x, int y) {
+      return centroid[x][axis] != centroid[y][axis] ? centroid[x][axis] < centroid[y][axis] : x < y;
+    });
+    ranges.emplace_back(middle, end);
+    ranges.emplace_back(begin, middle);
+  }
+  return region;
 }
 
 // The agent of `o`, and the decomposer's own limits.
@@ -80,13 +126,78 @@ Result<MovementCovering> decompose_checked(const PreparedMesh& prepared, const M
   stats.seconds_reach = seconds_since(start);
   if (options.progress) options.progress(0.05);
 
+  // The exact covering's hulls are the first groups: most already keep the
+  // movement promise (they hold no free space a ray reaches), and the
+  // merging then starts from a covering no worse than the exact one.
+  DecomposeOptions exact;
+  exact.threads = options.threads;
+  exact.max_hull_vertices = options.max_hull_vertices;
+  Result<Covering> exact_covering = decompose(prepared, exact);
+  if (!exact_covering.ok()) return exact_covering.status();
+  std::vector<std::vector<int>> start_groups;
+  for (const CoveringHull& hull : exact_covering.value().hulls) start_groups.push_back(hull.faces);
+  if (options.progress) options.progress(0.1);
+
   const Clock::time_point merging = Clock::now();
   const detail::MovementContext context{mesh, clearance, grid.value(), agent, tol};
-  detail::MovementMerger merger(context, prepared.connectivity, faces, agent.radius, options.max_hull_vertices, stats,
-                                options.progress);
-  merger.run();
+  // Regions merge on their own, at once; then the pairs across them.
+  const std::vector<int> region_of_face = split_into_regions(mesh, faces, kMostFacesPerRegion);
+  const int regions = region_of_face.empty() ? 1 : 1 + *std::max_element(region_of_face.begin(), region_of_face.end());
+  std::vector<std::vector<int>> region_faces(regions);
+  std::vector<std::vector<std::vector<int>>> region_starts(regions);
+  std::vector<int> region_of(face_count, -1);
+  for (size_t i = 0; i < faces.size(); ++i) region_of[faces[i]] = region_of_face[i];
+  for (std::vector<int>& group_faces : start_groups) {
+    // A group goes whole to the region of its first touchable face.
+    const auto first = std::find_if(group_faces.begin(), group_faces.end(), [&](int f) { return region_of[f] >= 0; });
+    if (first == group_faces.end()) continue;
+    const int region = region_of[*first];
+    for (int f : group_faces)
+      if (region_of[f] >= 0) region_of[f] = region;
+    region_starts[region].push_back(std::move(group_faces));
+  }
+  for (int f : faces) region_faces[region_of[f]].push_back(f);
+  std::vector<std::vector<detail::MovementGroup>> region_groups(regions);
+  // Counts per region: candidates, undecided, merges.
+  std::vector<std::array<long long, 3>> region_counts(regions);
+  int regions_done = 0;
+  parallel_for_ordered(
+      regions, threads, threads,
+      [&](int region) {
+    detail::GroupProver prover;
+    std::vector<detail::MovementGroup> groups = detail::starting_groups(
+        context, region_faces[region], region_starts[region], options.max_hull_vertices, prover);
+    detail::MovementMerger merger(context, prepared.connectivity, std::move(groups), {}, agent.radius,
+                                  options.max_hull_vertices, prover);
+    merger.merge({});
+    region_counts[region] = {prover.candidates, prover.undecided, merger.merges()};
+    region_groups[region] = merger.take_groups();
+      },
+      [&](int region) {
+    stats.candidates += region_counts[region][0];
+    stats.undecided += region_counts[region][1];
+    stats.merges += region_counts[region][2];
+    if (options.progress) options.progress(0.1 + 0.7 * ++regions_done / regions);
+  });
+  std::vector<detail::MovementGroup> groups;
+  std::vector<int> group_region;
+  for (int region = 0; region < regions; ++region)
+    for (detail::MovementGroup& g : region_groups[region]) {
+      groups.push_back(std::move(g));
+      group_region.push_back(region);
+    }
+  detail::GroupProver prover;
+  detail::MovementMerger merger(context, prepared.connectivity, std::move(groups), group_region, agent.radius,
+                                options.max_hull_vertices, prover);
+  merger.merge([&](double done) {
+    if (options.progress) options.progress(0.8 + 0.15 * done);
+  });
+  merger.drop_held_groups();
+  stats.candidates += prover.candidates;
+  stats.undecided += prover.undecided;
+  stats.merges += merger.merges();
   Covering& covering = result.covering;
-  covering.hulls = merger.hulls();
+  covering.hulls = detail::hulls_of_groups(mesh, tol, merger.take_groups());
   stats.seconds_merging = seconds_since(merging);
   covering.tolerance = prepared.tolerance;
   covering.statistics.faces = face_count;

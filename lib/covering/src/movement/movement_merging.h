@@ -1,19 +1,18 @@
 #pragma once
 /// \file movement_merging.h
-/// Greedy merging of the faces an agent may touch into hulls that keep the
-/// movement covering's promise (movement_validity.h): every face starts as
-/// its own flat hull; pairs of groups that share an edge, or whose faces
-/// come within the near distance, are tried cheapest first (the paper's
-/// cost: the union's outline length over the square root of its area, so
-/// compact unions first); a merge is made when the
-/// hull of the union passes the proof. Then every group whose faces all
+/// Greedy merging of groups of the faces an agent may touch into hulls that
+/// keep the movement covering's promise (movement_validity.h): pairs of
+/// groups that share an edge, or whose faces come within the near
+/// distance, are tried cheapest first (the paper's cost: the union's
+/// outline length over the square root of its area, so compact unions
+/// first); a merge is made when the hull of the union passes the proof.
+/// Run per region of the scene at once, then once over every region's
+/// groups for the pairs across regions. Then every group whose faces all
 /// lie inside other hulls is dropped: its faces are covered.
 
-#include "movement/movement_validity.h"
+#include "movement/movement_groups.h"
 
-#include "hullcover/covering/convex_hull_3d.h"
 #include "hullcover/covering/covering_types.h"
-#include "hullcover/covering/movement_options.h"
 #include "hullcover/mesh/mesh_connectivity.h"
 
 #include <functional>
@@ -23,27 +22,28 @@ namespace hullcover::detail {
 
 class MovementMerger {
 public:
-  /// Groups start as the faces `faces` (ascending), each alone. Pairs are
-  /// faces sharing an edge or within `near_distance` of each other.
-  MovementMerger(const MovementContext& context, const MeshConnectivity& connectivity, const std::vector<int>& faces,
-                 double near_distance, int max_hull_vertices, MovementStatistics& statistics,
-                 std::function<void(double)> progress);
+  /// Merges from `groups` (each keeping the promise, no face in two).
+  /// With `region` (one per group), the first pairs are those of groups in
+  /// different regions only: the pairs within one were tried before; a
+  /// merged group then tries all its pairs. Pairs are groups with faces
+  /// sharing an edge or within `near_distance` of each other.
+  MovementMerger(const MovementContext& context, const MeshConnectivity& connectivity,
+                 std::vector<MovementGroup> groups, const std::vector<int>& region, double near_distance,
+                 int max_hull_vertices, GroupProver& prover);
 
-  /// Merges until no pair is left, then drops the groups other hulls hold.
-  void run();
-  /// The hulls of the groups left, ordered by their first face.
-  std::vector<CoveringHull> hulls() const;
+  /// Merges until no pair is left; `progress` (may be empty) hears the
+  /// fraction of groups merged away.
+  void merge(const std::function<void(double)>& progress);
+  /// Drops every group whose faces each lie inside another group's hull.
+  void drop_held_groups();
+  /// Merges made.
+  long long merges() const { return merges_; }
+  /// The groups left, in the order they started.
+  std::vector<MovementGroup> take_groups();
 
 private:
-  struct Group {
-    std::vector<int> faces;
-    std::vector<int> corners; ///< mesh vertex ids of its hull's corners
-    ConvexPolytope hull;
-    bool flat = true;
-    Aabb box;
-    double area = 0.0;
-    Eigen::Vector3d area_vector = Eigen::Vector3d::Zero(); ///< sum of face normals x areas
-    double boundary = 0.0; ///< length of its faces' outline (edges not shared within it)
+  struct Entry {
+    MovementGroup group;
     /// Groups it may merge with, ascending, each with the length of the
     /// edges they share (0 for groups only near it).
     std::vector<std::pair<int, double>> neighbours;
@@ -60,26 +60,23 @@ private:
     }
   };
 
-  /// The group of face `f` alone, or nothing for a face with no area.
-  bool start_group(int f, Group& group) const;
   void push_pair(int a, int b, double shared);
   /// The union of groups a and b as a hull that keeps the promise, if it does.
-  bool try_merge(int a, int b, Group& merged);
-  /// Drops every group whose faces each lie inside another group's hull.
-  void drop_held_groups();
+  bool try_merge(int a, int b, MovementGroup& merged);
 
   const MovementContext& context_;
   int max_hull_vertices_;
-  MovementStatistics& statistics_;
-  std::function<void(double)> progress_;
-  std::vector<Group> groups_;
+  GroupProver& prover_;
+  std::vector<Entry> entries_;
   std::vector<Pair> queue_; // a min-heap by Pair::operator>
   /// The queue's size after its last compaction (push_pair).
   size_t queue_compacted_at_ = 0;
   /// The queue grows by this many entries before its stale ones are dropped.
   static constexpr size_t kQueueGrowthBeforeCompaction = size_t{1} << 22;
-  ConvexHullBuilder builder_;
-  UncoveredBoundary boundary_;
+  long long merges_ = 0;
 };
+
+/// The covering's hulls of `groups`, ordered by their first face.
+std::vector<CoveringHull> hulls_of_groups(const Mesh& mesh, double tol, const std::vector<MovementGroup>& groups);
 
 } // namespace hullcover::detail

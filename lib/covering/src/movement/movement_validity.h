@@ -30,7 +30,7 @@ namespace hullcover::detail {
 /// next), the
 /// candidate is then refused (counted as undecided), never accepted on a
 /// guess.
-inline constexpr int kMostProofBoxes = 65536;
+inline constexpr int kMostProofBoxes = 1 << 17;
 /// ... and this many more per r^2 of uncovered boundary,
 inline constexpr double kProofBoxesPerSquareRadius = 64.0;
 /// ... and never more than this.
