@@ -1,4 +1,5 @@
-// `hullcover bench SCENE... [--agent-radius LIST] [--max-deviation LIST]`:
+// `hullcover bench SCENE... [--agent-radius LIST] [--max-deviation LIST]
+// [--agent-reach LIST] [--agent-slop LIST]`:
 // speed against error. Every scene at every setting of the sweep, in one
 // process: the covering, its runtime file timed against the triangles, and
 // its audit; written as a CSV, a Markdown table and a plot.
@@ -30,6 +31,8 @@ struct BenchCommandOptions {
   std::vector<std::string> scenes;
   std::vector<std::string> agent_radii{"0", "0.3m"};
   std::vector<std::string> max_deviations{"0", "0.2%"};
+  std::vector<std::string> agent_reaches{bench::kExactReach};
+  std::vector<std::string> agent_slops;
   std::string query_radius = "0.4m";
   std::string out_dir = "bench";
   bench::BenchRunOptions run;
@@ -54,7 +57,8 @@ double capsule_radius(const bench::SceneSpec& scene, double diagonal, const benc
 }
 
 int run_bench(BenchCommandOptions& o) {
-  const Result<std::vector<bench::Setting>> settings = bench::sweep_settings(o.agent_radii, o.max_deviations);
+  const Result<std::vector<bench::Setting>> settings =
+      bench::sweep_settings(o.agent_radii, o.max_deviations, o.agent_reaches, o.agent_slops);
   if (!settings.ok()) return fail(settings.status().message());
   const Result<bench::LengthSpec> query_radius = bench::parse_length(o.query_radius);
   if (!query_radius.ok()) return fail(query_radius.status().message());
@@ -123,9 +127,11 @@ void register_bench_command(CLI::App& app, int& exit_status) {
   auto o = std::make_shared<BenchCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
       "bench",
-      "Speed against error: decompose every scene at every setting of the sweep (each agent radius with each\n"
-      "max deviation), write its runtime file, time it against the scene's triangles on the same capsule poses\n"
-      "and rays (yes/no, contacts, ray; side by side, as speed-ups), and audit it with the setting's allowance.\n"
+      "Speed against error: decompose every scene at every setting of the sweep (the exact covering at each\n"
+      "agent radius with each max deviation; with --agent-reach walk or fly, movement coverings at each agent\n"
+      "radius with each slop), write its runtime file, time it against the scene's triangles on the same capsule\n"
+      "poses and rays (yes/no, contacts, ray; side by side, as speed-ups), and audit it with the setting's\n"
+      "allowance (a movement covering: the movement audit for its agent).\n"
       "Writes DIR/bench.csv (every figure), bench.md (a table), bench.svg and bench.png (the plot) and one .hcw\n"
       "per row, and prints the table. Lengths are scene units, or end in 'm' (metres: the scene's units per\n"
       "metre) or '%' (of the scene's bounding-box diagonal); 0 is off.\n"
@@ -140,6 +146,14 @@ void register_bench_command(CLI::App& app, int& exit_status) {
   cmd->add_option("--max-deviation", o->max_deviations, "Max deviations to sweep, comma-separated")
       ->delimiter(',')
       ->capture_default_str();
+  cmd->add_option("--agent-reach", o->agent_reaches,
+                  "Coverings to sweep, comma-separated: exact (each agent radius with each max deviation), walk\n"
+                  "and fly (movement coverings: each agent radius above 0 with each --agent-slop; they keep no rays)")
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--agent-slop", o->agent_slops,
+                  "Slops to sweep for walk and fly, comma-separated, each above 0 (default: the decomposer's, r / 15)")
+      ->delimiter(',');
   cmd->add_option("--query-radius", o->query_radius,
                   "Radius of the timed capsule (half height 1.25 radii), raised to the sweep's largest agent radius")
       ->capture_default_str();

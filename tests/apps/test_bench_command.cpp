@@ -118,6 +118,46 @@ TEST(BenchCommand, EveryRowAgreesWithDecomposeTheFilesAndTheAudit) {
   EXPECT_EQ(r.out.find(markdown.substr(0, 40)), 0u); // the table is printed too
 }
 
+TEST(BenchCommand, MovementRowsAgreeWithDecomposeAndTheMovementAudit) {
+  TempDir dir;
+  const std::string scene = dir.write("crates.obj", crates_obj());
+  const CommandRun r = run_hullcover(dir, "bench " + scene +
+                                              "@1 --agent-radius 0,0.3m --max-deviation 0 --agent-reach exact,walk "
+                                              "--agent-slop 0.02m,0.06m --out " +
+                                              dir.path("out") + kQuick);
+  ASSERT_EQ(r.status, 0) << r.err << r.out;
+  const auto rows = read_csv(slurp(dir.path("out/bench.csv")));
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_EQ(rows[0].at("reach"), "exact");
+  EXPECT_EQ(rows[1].at("setting"), "r=0.3m");
+  const char* slops[] = {"0.02", "0.06"};
+  for (int i = 0; i < 2; ++i) {
+    const auto& row = rows[2 + i];
+    SCOPED_TRACE(row.at("setting"));
+    EXPECT_EQ(row.at("setting"), std::string("walk r=0.3m slop=") + slops[i] + "m");
+    EXPECT_EQ(row.at("reach"), "walk");
+    EXPECT_DOUBLE_EQ(std::stod(row.at("slop")), std::stod(slops[i]));
+    const std::string options = std::string(" --agent-radius 0.3 --agent-reach walk --agent-slop ") + slops[i];
+    const CommandRun d = run_hullcover(dir, "decompose " + scene + options + " -o " + dir.path("d.obj") + " -q");
+    ASSERT_EQ(d.status, 0) << d.err;
+    EXPECT_EQ(std::stoi(row.at("hulls")), hull_groups(slurp(dir.path("d.obj"))));
+    // Fewer hulls than the exact covering: the floor under the crates and
+    // the gap between them are nobody's.
+    EXPECT_LT(std::stoi(row.at("hulls")), std::stoi(rows[0].at("hulls")));
+    const std::string hcw = dir.path(std::string("out/crates.walk_r0.3m_slop") + slops[i] + "m.hcw");
+    ASSERT_TRUE(std::filesystem::exists(hcw)) << hcw;
+    const CommandRun audit = run_hullcover(dir, "audit " + scene + " " + hcw + options);
+    EXPECT_EQ(audit.status, 0) << audit.out;
+    EXPECT_EQ(row.at("clean"), "yes");
+    EXPECT_GT(std::stol(row.at("reachable_centres")), 0);
+    EXPECT_GT(std::stol(row.at("touching_poses")), 0);
+    EXPECT_EQ(row.at("sinking_centres"), "0");
+    EXPECT_EQ(row.at("contacts_lost"), "0");
+  }
+  const std::string markdown = slurp(dir.path("out/bench.md"));
+  EXPECT_NE(markdown.find("| crates.obj | walk r=0.3m slop=0.06m |"), std::string::npos) << markdown;
+}
+
 TEST(BenchCommand, LengthsResolveInMetresAndPercentOfTheDiagonal) {
   TempDir dir;
   const std::string scene = dir.write("crates.obj", crates_obj());
@@ -137,7 +177,9 @@ TEST(BenchCommand, BadSweepsAndScenesExitWithTwoAndSaySo) {
   const std::string scene = dir.write("crates.obj", crates_obj());
   for (const std::string& arguments :
        {scene + " --agent-radius 0.3x", scene + " --max-deviation -1", scene + "@0", scene + "@metres",
-        dir.path("missing.obj"), scene + " --query-radius 0", scene + " --max-triangles 2"}) {
+        dir.path("missing.obj"), scene + " --query-radius 0", scene + " --max-triangles 2",
+        scene + " --agent-reach swim", scene + " --agent-reach walk --agent-radius 0",
+        scene + " --agent-reach fly --agent-slop 0", scene + " --agent-reach walk --agent-slop 1q"}) {
     const CommandRun r = run_hullcover(dir, "bench " + arguments + " --out " + dir.path("out") + kQuick);
     EXPECT_EQ(r.status, 2) << arguments;
     EXPECT_NE(r.err.find("error"), std::string::npos) << arguments << ": " << r.err;

@@ -4,7 +4,9 @@
 #include "hullcover/bvh/hull_world.h"
 #include "hullcover/bvh/runtime_file.h"
 #include "hullcover/covering/covering.h"
+#include "hullcover/covering/movement_covering.h"
 #include "hullcover/validate/audit.h"
+#include "hullcover/validate/movement_audit.h"
 
 #include <chrono>
 #include <filesystem>
@@ -68,11 +70,27 @@ Result<BenchRow> bench_setting(const PreparedMesh& prepared, const SceneSpec& sc
   row.max_deviation = setting.max_deviation.resolve(metre, row.diagonal);
   row.max_deviation_percent = row.diagonal > 0.0 ? 100.0 * row.max_deviation / row.diagonal : 0.0;
 
+  row.reach = setting.reach;
+  MovementOptions movement;
+  movement.radius = row.agent_radius;
+  movement.reach = setting.reach == "fly" ? AgentReach::fly : AgentReach::walk;
+  if (setting.slop.value > 0.0) movement.slop = setting.slop.resolve(metre, row.diagonal);
   DecomposeOptions decompose_options;
   decompose_options.agent_radius = on_or_off(row.agent_radius);
   decompose_options.max_deviation = on_or_off(row.max_deviation);
   const Clock::time_point start = Clock::now();
-  const Result<Covering> covering = decompose(prepared, decompose_options);
+  Result<Covering> covering = Status{};
+  if (row.reach.empty()) {
+    covering = decompose(prepared, decompose_options);
+  } else {
+    Result<MovementCovering> made = decompose_for_movement(prepared, movement);
+    if (made.ok()) {
+      row.slop = made.value().movement.slop;
+      covering = std::move(made).value().covering;
+    } else {
+      covering = made.status();
+    }
+  }
   row.decompose_seconds = seconds_since(start);
   if (!covering.ok()) return covering.status();
   count_shapes(covering.value(), row);
@@ -95,12 +113,32 @@ Result<BenchRow> bench_setting(const PreparedMesh& prepared, const SceneSpec& sc
   if (!timed.ok()) return timed.status();
   row.queries = timed.value();
 
+  const Clock::time_point audit_start = Clock::now();
+  if (!row.reach.empty()) {
+    Result<std::vector<bvh::RuntimeHull>> hulls = bvh::read_runtime_file(row.runtime_path);
+    if (!hulls.ok()) return hulls.status();
+    validate::MovementAuditOptions audit;
+    audit.agent = movement;
+    const Result<validate::MovementAuditReport> report =
+        validate::audit_movement(prepared, hulls.value(), audit, movement.threads);
+    row.audit_seconds = seconds_since(audit_start);
+    if (!report.ok()) return report.status();
+    const validate::MovementAuditReport& m = report.value();
+    row.clean = m.clean();
+    if (m.sinking > 0) row.findings = "centres_sinking";
+    if (m.contacts_lost > 0) row.findings += (row.findings.empty() ? "" : " ") + std::string("contacts_lost");
+    row.reachable_centres = m.reachable_points;
+    row.sinking = m.sinking;
+    row.deepest_sinking = m.deepest;
+    row.touching_poses = m.touching_poses;
+    row.contacts_lost = m.contacts_lost;
+    return row;
+  }
   const Result<validate::HullSet> set = validate::load_hull_set(row.runtime_path);
   if (!set.ok()) return set.status();
   validate::AuditOptions audit_options;
   audit_options.probe.allowance.agent_radius = on_or_off(row.agent_radius);
   audit_options.probe.allowance.max_deviation = on_or_off(row.max_deviation);
-  const Clock::time_point audit_start = Clock::now();
   const Result<validate::AuditReport> audited = validate::run_audit(prepared, set.value(), audit_options);
   row.audit_seconds = seconds_since(audit_start);
   if (!audited.ok()) return audited.status();

@@ -18,6 +18,8 @@ struct BenchRow {
   std::string scene;                              ///< the file's name, without folders
   std::string setting;                            ///< Setting::label()
   double agent_radius = 0.0, max_deviation = 0.0; ///< resolved, scene units (0 = off)
+  std::string reach;                              ///< "" (the exact covering), "walk" or "fly"
+  double slop = 0.0;                              ///< movement coverings: resolved, scene units
   double max_deviation_percent = 0.0;             ///< max_deviation as % of the diagonal
   double tolerance = 0.0, diagonal = 0.0;         ///< scene units
   int faces = 0;
@@ -41,6 +43,9 @@ struct BenchRow {
   long centre_rays = 0, reach_lost = 0, undecided = 0;       ///< agent radius only
   long proxies = 0, missed_contacts = 0, false_contacts = 0; ///< false: deeper than tol (boxes included)
   double coverage_percent = 0.0; ///< of the mesh's area on or (with an allowance) inside a hull
+  // Movement coverings: the movement audit (hullcover audit --agent-reach).
+  long long reachable_centres = 0, sinking = 0, touching_poses = 0, contacts_lost = 0;
+  double deepest_sinking = 0.0; ///< scene units; within the slop when clean
 };
 
 /// How every cell is run.
@@ -52,7 +57,8 @@ struct BenchRunOptions {
 
 /// Decomposes `prepared` at `setting`, writes `<out_dir>/<scene>.<setting>.hcw`,
 /// times `poses` on its HullWorld against `triangles`, and audits the file
-/// as `hullcover audit` does with the setting's allowance. Fails with the
+/// as `hullcover audit` does with the setting's allowance (a movement
+/// covering: with its agent). Fails with the
 /// first failing step's status (decompose's, the file's, the audit's).
 [[nodiscard]] Result<BenchRow> bench_setting(const PreparedMesh& prepared, const SceneSpec& scene,
                                              const Setting& setting, const bvh::TriangleWorld& triangles,

@@ -77,6 +77,8 @@ Result<SceneSpec> parse_scene(const std::string& text) {
 }
 
 std::string Setting::label() const {
+  if (!reach.empty())
+    return reach + " r=" + agent_radius.text + (slop.value > 0.0 ? " slop=" + slop.text : std::string());
   std::string out;
   if (agent_radius.value > 0.0) out = "r=" + agent_radius.text;
   if (max_deviation.value > 0.0) out += (out.empty() ? "" : " ") + std::string("E=") + max_deviation.text;
@@ -84,6 +86,9 @@ std::string Setting::label() const {
 }
 
 std::string Setting::file_label() const {
+  if (!reach.empty())
+    return reach + "_r" + for_file(agent_radius.text) +
+           (slop.value > 0.0 ? "_slop" + for_file(slop.text) : std::string());
   std::string out;
   if (agent_radius.value > 0.0) out = "r" + for_file(agent_radius.text);
   if (max_deviation.value > 0.0) out += (out.empty() ? "" : "_") + std::string("E") + for_file(max_deviation.text);
@@ -91,24 +96,46 @@ std::string Setting::file_label() const {
 }
 
 Result<std::vector<Setting>> sweep_settings(const std::vector<std::string>& agent_radii,
-                                            const std::vector<std::string>& max_deviations) {
-  if (agent_radii.empty() || max_deviations.empty())
+                                            const std::vector<std::string>& max_deviations,
+                                            const std::vector<std::string>& reaches,
+                                            const std::vector<std::string>& slops) {
+  if (agent_radii.empty() || max_deviations.empty() || reaches.empty())
     return Status(StatusCode::invalid_argument,
-                  "the sweep needs at least one agent radius and one max deviation (0 = off)");
-  std::vector<LengthSpec> radii, deviations;
-  for (const std::string& text : agent_radii) {
-    Result<LengthSpec> r = parse_length(text);
-    if (!r.ok()) return r.status();
-    radii.push_back(r.value());
-  }
-  for (const std::string& text : max_deviations) {
-    Result<LengthSpec> e = parse_length(text);
-    if (!e.ok()) return e.status();
-    deviations.push_back(e.value());
-  }
+                  "the sweep needs at least one agent radius, one max deviation (0 = off) and one agent reach");
+  const auto lengths = [](const std::vector<std::string>& texts) -> Result<std::vector<LengthSpec>> {
+    std::vector<LengthSpec> out;
+    for (const std::string& text : texts) {
+      Result<LengthSpec> x = parse_length(text);
+      if (!x.ok()) return x.status();
+      out.push_back(x.value());
+    }
+    return out;
+  };
+  const Result<std::vector<LengthSpec>> radii = lengths(agent_radii);
+  if (!radii.ok()) return radii.status();
+  const Result<std::vector<LengthSpec>> deviations = lengths(max_deviations);
+  if (!deviations.ok()) return deviations.status();
+  Result<std::vector<LengthSpec>> slop_lengths = lengths(slops);
+  if (!slop_lengths.ok()) return slop_lengths.status();
+  std::vector<LengthSpec> slop_list = slop_lengths.value();
+  for (const LengthSpec& e : slop_list)
+    if (!(e.value > 0.0)) return bad("a slop must be above 0, not", e.text);
+  if (slop_list.empty()) slop_list.push_back(LengthSpec{});
   std::vector<Setting> settings;
-  for (const LengthSpec& r : radii)
-    for (const LengthSpec& e : deviations) settings.push_back({r, e});
+  for (const std::string& reach : reaches) {
+    if (reach == kExactReach) {
+      for (const LengthSpec& r : radii.value())
+        for (const LengthSpec& e : deviations.value()) settings.push_back({r, e, "", LengthSpec{}});
+      continue;
+    }
+    if (reach != "walk" && reach != "fly") return bad("an agent reach is exact, walk or fly, not", reach);
+    const size_t before = settings.size();
+    for (const LengthSpec& r : radii.value())
+      for (const LengthSpec& e : slop_list)
+        if (r.value > 0.0) settings.push_back({r, LengthSpec{}, reach, e});
+    if (settings.size() == before)
+      return bad("a movement covering needs an agent radius above 0 in the sweep, for", reach);
+  }
   return settings;
 }
 

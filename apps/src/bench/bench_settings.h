@@ -1,6 +1,7 @@
 #pragma once
 // What `hullcover bench` sweeps: the scenes (each with its scale) and the
-// settings (agent radius x max deviation), as the command line writes them
+// settings (agent radius x max deviation for the exact covering, agent
+// radius x slop for the movement coverings), as the command line writes them
 // and as they resolve to scene units for one scene.
 
 #include "hullcover/geometry/status.h"
@@ -47,20 +48,37 @@ inline constexpr double kObjectDiagonalsPerMetre = 1.0 / 50.0;
 /// or a U that is not a finite number > 0.
 [[nodiscard]] Result<SceneSpec> parse_scene(const std::string& text);
 
-/// One point of the sweep: an agent radius and a max deviation, either off.
+/// One point of the sweep: the exact covering with an agent radius and a
+/// max deviation, either off; or a movement covering (`reach` walk or fly)
+/// for agents of that radius, with a slop.
 struct Setting {
   LengthSpec agent_radius, max_deviation;
+  std::string reach; ///< "" (the exact covering), "walk" or "fly"
+  LengthSpec slop;   ///< movement coverings: 0 = the decomposer's default (r / 15)
 
-  /// "exact", "r=0.3m", "E=0.2%" or "r=0.3m E=0.2%".
+  /// "exact", "r=0.3m", "E=0.2%", "r=0.3m E=0.2%", "walk r=0.3m" or
+  /// "fly r=0.3m slop=0.02m".
   std::string label() const;
-  /// The same, fit for a file name ("exact", "r0.3m", "E0.2pct", "r0.3m_E0.2pct").
+  /// The same, fit for a file name ("exact", "r0.3m", "E0.2pct",
+  /// "r0.3m_E0.2pct", "walk_r0.3m", "fly_r0.3m_slop0.02m").
   std::string file_label() const;
 };
 
-/// Every agent radius with every max deviation, agent radius outermost, in
-/// the order given. Fails with `invalid_argument` for an unparsable value
-/// or an empty list.
+/// The modes `--agent-reach` names: the exact covering and the two
+/// movement coverings.
+inline constexpr const char* kExactReach = "exact";
+
+/// For the exact covering (`reaches` holding "exact"): every agent radius
+/// with every max deviation, agent radius outermost, in the order given;
+/// then for each of "walk" and "fly" in `reaches`, in their order: every
+/// agent radius above 0 with every slop (an empty list: the default slop
+/// alone). Fails with `invalid_argument` for an unparsable value, a mode
+/// that is none of the three, an empty list, or a movement mode with no
+/// radius above 0 (a movement covering for agents of radius 0 is the exact
+/// one).
 [[nodiscard]] Result<std::vector<Setting>> sweep_settings(const std::vector<std::string>& agent_radii,
-                                                          const std::vector<std::string>& max_deviations);
+                                                          const std::vector<std::string>& max_deviations,
+                                                          const std::vector<std::string>& reaches = {kExactReach},
+                                                          const std::vector<std::string>& slops = {});
 
 } // namespace hullcover::app::bench

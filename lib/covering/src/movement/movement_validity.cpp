@@ -247,6 +247,7 @@ MovementVerdict check_movement_hull(const MovementContext& context, const Convex
   const double tol = context.tol;
   boundary.clear();
   uncovered_boundary(context.clearance, hull, flat, known, tol, boundary);
+  if (boundary.overflow) return MovementVerdict::undecided;
   std::vector<int> near;
   // The budget grows with the area to prove: one triangle clears a box only
   // once the box is about r wide.

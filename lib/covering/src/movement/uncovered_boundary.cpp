@@ -126,6 +126,10 @@ void uncovered_boundary(const SceneClearance& scene, const ConvexPolytope& hull,
       if (!in_plane || !(std::abs(signed_area(cut)) > 0.0)) continue;
       make_counter_clockwise(cut);
       subtract(pieces, cut, frame, tol);
+      if (pieces.size() + out.pieces.size() > kMostUncoveredPieces) {
+        out.overflow = true;
+        return;
+      }
     }
     for (Polygon3& piece : pieces) {
       for (size_t i = 0; i < piece.size(); ++i) {

@@ -34,11 +34,22 @@ struct BoundarySegment {
 struct UncoveredBoundary {
   std::vector<BoundaryPiece> pieces;
   std::vector<BoundarySegment> segments;
+  /// The pieces outgrew kMostUncoveredPieces (a facet cut by many triangles
+  /// that do not tile it): the boundary is not complete, so nothing may be
+  /// proven from it.
+  bool overflow = false;
   void clear() {
     pieces.clear();
     segments.clear();
+    overflow = false;
   }
 };
+
+/// The most pieces one hull's uncovered boundary is split into before it
+/// is given up (UncoveredBoundary::overflow): each triangle taken from a
+/// piece can split it in up to six, so the count is bounded, not the
+/// triangles.
+inline constexpr size_t kMostUncoveredPieces = 4096;
 
 /// Appends to `out` the parts of the boundary of `hull` (a flat hull: its
 /// polygon, once) that lie on no triangle of the scene (any triangle: a
@@ -49,7 +60,8 @@ struct UncoveredBoundary {
 /// facet's plane covers the part of the facet within `tol` of it (its
 /// sides pushed out by tol, its corners capped at tol beyond them, so no
 /// point counts as covered farther than tol * sqrt(2) from it). A side of
-/// a piece within `tol` of a side of its facet is a segment.
+/// a piece within `tol` of a side of its facet is a segment. Stops with
+/// `out.overflow` set once the pieces outnumber kMostUncoveredPieces.
 void uncovered_boundary(const SceneClearance& scene, const ConvexPolytope& hull, bool flat,
                         const std::vector<const ConvexPolytope*>& known, double tol, UncoveredBoundary& out);
 
