@@ -67,6 +67,32 @@ TEST(UncoveredBoundary, ACubeOnItsOwnFacesHasNoneAndLosesOneSideWithThatFace) {
   EXPECT_TRUE(boundary.pieces.empty());
 }
 
+// Regression: a facet cut by many triangles that do not tile it (pandora's
+// floors, once the merging started from whole exact hulls) split into
+// ever more slivers until a bake held 23 GB; past kMostUncoveredPieces the
+// boundary is given up and the hull's proof is undecided.
+TEST(UncoveredBoundary, AFacetCutIntoTooManyPiecesIsGivenUpAndItsHullIsUndecided) {
+  Mesh specks;
+  constexpr int kSide = 80; // 6,400 small triangles on the top of the cube, gaps between them
+  for (int i = 0; i < kSide; ++i)
+    for (int j = 0; j < kSide; ++j) {
+      const double x = (i + 0.2) / kSide, z = (j + 0.2) / kSide, d = 0.5 / kSide;
+      const int base = static_cast<int>(specks.positions.size());
+      specks.positions.insert(specks.positions.end(), {V(x, 1, z), V(x, 1, z + d), V(x + d, 1, z)});
+      specks.triangles.emplace_back(base, base + 1, base + 2);
+    }
+  const SceneClearance clearance(specks);
+  const ConvexPolytope cube = unit_cube();
+  UncoveredBoundary boundary;
+  uncovered_boundary(clearance, cube, false, {}, kTol, boundary);
+  EXPECT_TRUE(boundary.overflow);
+  EXPECT_LE(boundary.pieces.size(), kMostUncoveredPieces);
+  const AgentShape agent = walker(AgentReach::fly);
+  const ReachGrid grid = build_reach_grid(specks, clearance, agent, {V(0.5, 3, 0.5)}, true, 1).value();
+  const MovementContext context{specks, clearance, grid, agent, kTol};
+  EXPECT_EQ(check_movement_hull(context, cube, false, {}, boundary), MovementVerdict::undecided);
+}
+
 TEST(ReachGrid, AWalkerReachesTheFloorAroundACrateButNotItsCavityOrTheSkyAboveItsHead) {
   const test::MovementLevel level = test::movement_level();
   const SceneClearance clearance(level.mesh);
