@@ -156,7 +156,8 @@ int run_decompose(DecomposeCommandOptions& o) {
     std::printf("  reach grid: %lld cells of %.6g, %lld reachable, %d seed%s; %d of %d faces touchable; %.3f s\n",
                 m.grid_cells, m.cell, m.reachable_cells, m.seeds, m.seeds == 1 ? "" : "s", m.touchable_faces, faces,
                 m.seconds_reach);
-    std::printf("  merges tried %ld, refused undecided %ld\n", m.candidates, m.undecided);
+    std::printf("  exact covering to start from: %.3f s; hulls proven %lld, merges %lld, refused undecided %lld\n",
+                m.seconds_exact, m.candidates, m.merges, m.undecided);
   } else if (has_allowance(o.decompose))
     std::printf("  allowance: agent radius %.6g, max deviation %.6g\n", o.decompose.agent_radius.value_or(0.0),
                 o.decompose.max_deviation.value_or(0.0));

@@ -179,7 +179,8 @@ TEST(BenchCommand, BadSweepsAndScenesExitWithTwoAndSaySo) {
        {scene + " --agent-radius 0.3x", scene + " --max-deviation -1", scene + "@0", scene + "@metres",
         dir.path("missing.obj"), scene + " --query-radius 0", scene + " --max-triangles 2",
         scene + " --agent-reach swim", scene + " --agent-reach walk --agent-radius 0",
-        scene + " --agent-reach fly --agent-slop 0", scene + " --agent-reach walk --agent-slop 1q"}) {
+        scene + " --agent-reach fly --agent-slop 0", scene + " --agent-reach walk --agent-slop 1q",
+        scene + " --agent-slop 0.02m", scene + " --agent-radius 0.3m,0.3m"}) {
     const CommandRun r = run_hullcover(dir, "bench " + arguments + " --out " + dir.path("out") + kQuick);
     EXPECT_EQ(r.status, 2) << arguments;
     EXPECT_NE(r.err.find("error"), std::string::npos) << arguments << ": " << r.err;

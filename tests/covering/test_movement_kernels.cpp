@@ -67,9 +67,8 @@ TEST(UncoveredBoundary, ACubeOnItsOwnFacesHasNoneAndLosesOneSideWithThatFace) {
   EXPECT_TRUE(boundary.pieces.empty());
 }
 
-// Regression: a facet cut by many triangles that do not tile it (pandora's
-// floors, once the merging started from whole exact hulls) split into
-// ever more slivers until a bake held 23 GB; past kMostUncoveredPieces the
+// A facet cut by many triangles that do not tile it splits into ever more
+// slivers (on pandora's floors, past 23 GB): past kMostUncoveredPieces the
 // boundary is given up and the hull's proof is undecided.
 TEST(UncoveredBoundary, AFacetCutIntoTooManyPiecesIsGivenUpAndItsHullIsUndecided) {
   Mesh specks;
@@ -132,23 +131,33 @@ TEST(ReachGrid, AWalkerStandsOnTheHighestFaceAndAFlyerFromTheSkyReachesTheScene)
   EXPECT_FALSE(refused.ok());
 }
 
-// Regression: a walkable face's standing envelope once reached down to the
-// face's lowest point in every column, so walkers on sloping ground walked
-// on under it (round its side edges) and every hull below a hillside was
-// refused.
+// A walker on a hillside stands above it: the standing cells of a column
+// start at the lowest point of the face near it, not at the face's lowest
+// point, so no walker reaches the space under the slope round its side
+// edges (where every hull below a hillside would be refused).
 TEST(ReachGrid, AWalkerOnAHillsideStaysAboveIt) {
   const double slope = std::tan(40.0 * M_PI / 180.0);
-  Mesh hillside;
-  hillside.positions = {V(0, 0, 0), V(6, 6 * slope, 0), V(6, 6 * slope, 6), V(0, 0, 6)};
-  hillside.triangles = {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 3, 2)};
-  const SceneClearance clearance(hillside);
-  const V above(3, 3 * slope + 0.5, 3), under(3, 3 * slope - 1.5, 3);
-  ASSERT_GE(clearance.nearest(under, 1.0).distance, 1.0);
-  const Result<ReachGrid> grid = build_reach_grid(hillside, clearance, walker(), {above}, true, 1);
-  ASSERT_TRUE(grid.ok()) << grid.status().message();
-  EXPECT_TRUE(grid.value().reachable_at(above));
-  EXPECT_FALSE(grid.value().reachable_at(under));
-  EXPECT_FALSE(grid.value().reachable_at(V(1, slope - 1.0, 1)));
+  // Up +y, and the same hillside upside down with up -y.
+  for (double up : {1.0, -1.0}) {
+    SCOPED_TRACE(up);
+    const V flip(1, up, 1);
+    Mesh hillside;
+    for (const V& p : {V(0, 0, 0), V(6, 6 * slope, 0), V(6, 6 * slope, 6), V(0, 0, 6)})
+      hillside.positions.push_back(p.cwiseProduct(flip));
+    hillside.triangles = {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 3, 2)};
+    if (up < 0)
+      for (Eigen::Vector3i& t : hillside.triangles) std::swap(t[1], t[2]);
+    AgentShape agent = walker();
+    agent.up_sign = up;
+    const SceneClearance clearance(hillside);
+    const V above = V(3, 3 * slope + 0.5, 3).cwiseProduct(flip), under = V(3, 3 * slope - 1.5, 3).cwiseProduct(flip);
+    ASSERT_GE(clearance.nearest(under, 1.0).distance, 1.0);
+    const Result<ReachGrid> grid = build_reach_grid(hillside, clearance, agent, {above}, true, 1);
+    ASSERT_TRUE(grid.ok()) << grid.status().message();
+    EXPECT_TRUE(grid.value().reachable_at(above));
+    EXPECT_FALSE(grid.value().reachable_at(under));
+    EXPECT_FALSE(grid.value().reachable_at(V(1, slope - 1.0, 1).cwiseProduct(flip)));
+  }
 }
 
 TEST(MovementProof, RefusesAHullAcrossTheFloorsCornerAndAcceptsTheCrate) {

@@ -116,17 +116,32 @@ TEST(MovementCovering, FlyingAgentsReachTheBalcony) {
   EXPECT_EQ(report.contacts_lost, 0);
 }
 
+// With the default regions (one, on this level) and with regions of 8
+// faces, merged at once on two threads and then across regions.
 TEST(MovementCovering, TheSameHullsForAnyThreadCount) {
   const test::MovementLevel level = test::movement_level();
-  MovementOptions options = walking_from(level);
-  options.threads = 1;
-  const Made one = make(level.mesh, options);
-  options.threads = 2;
-  const Made two = make(level.mesh, options);
-  ASSERT_EQ(one.movement.covering.hulls.size(), two.movement.covering.hulls.size());
-  for (size_t h = 0; h < one.movement.covering.hulls.size(); ++h) {
-    EXPECT_EQ(one.movement.covering.hulls[h].faces, two.movement.covering.hulls[h].faces);
-    EXPECT_EQ(one.movement.covering.hulls[h].polytope.vertices, two.movement.covering.hulls[h].polytope.vertices);
+  for (int faces_per_region : {512, 8}) {
+    SCOPED_TRACE(faces_per_region);
+    MovementOptions options = walking_from(level);
+    options.faces_per_region = faces_per_region;
+    options.threads = 1;
+    const Made one = make(level.mesh, options);
+    options.threads = 2;
+    const Made two = make(level.mesh, options);
+    ASSERT_EQ(one.movement.covering.hulls.size(), two.movement.covering.hulls.size());
+    for (size_t h = 0; h < one.movement.covering.hulls.size(); ++h) {
+      EXPECT_EQ(one.movement.covering.hulls[h].faces, two.movement.covering.hulls[h].faces);
+      EXPECT_EQ(one.movement.covering.hulls[h].polytope.vertices, two.movement.covering.hulls[h].polytope.vertices);
+    }
+    if (faces_per_region == 8) {
+      // Small regions keep the promise too, and still merge across them:
+      // the void and the gap are filled.
+      EXPECT_TRUE(inside_some_hull(two.movement.covering, level.in_void));
+      EXPECT_TRUE(inside_some_hull(two.movement.covering, level.in_gap));
+      const validate::MovementAuditReport report = audited(two, bvh::runtime_hulls(two.movement.covering), options);
+      EXPECT_EQ(report.sinking, 0) << "deepest " << report.deepest << " at " << report.deepest_at.transpose();
+      EXPECT_EQ(report.contacts_lost, 0);
+    }
   }
 }
 
@@ -152,6 +167,9 @@ TEST(MovementCovering, OptionsOutOfRangeAndSeedsInsideTheSceneAreRefusedWithAMes
   options = walking_from(level);
   options.up = V(0, 0.6, 0.8);
   refused(options, "up");
+  options = walking_from(level);
+  options.faces_per_region = 0;
+  refused(options, "faces per region");
   options = walking_from(level);
   options.seeds = {V(9, 0.75, 2)}; // in the crate's cavity: clear, but where no walker stands
   refused(options, "walking agent");

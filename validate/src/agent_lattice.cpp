@@ -61,6 +61,62 @@ double across_distance_in_slab(const Mesh& mesh, const AuditAgent& agent, int f,
   return best;
 }
 
+// The lowest height, as up measures it, of the part of triangle `f` whose
+// height lies in [low, high] and that lies within r across up of p:
+// the lowest point a walker at p may rest on. Infinity when there is none.
+// Height is linear across the face, so its least value on that convex part
+// is at a corner of the slab's polygon inside the circle, where a side of
+// it crosses the circle, or at the circle's point straight downhill of p.
+double lowest_rest_near(const Mesh& mesh, const AuditAgent& agent, int f, const Eigen::Vector3d& p, double low,
+                        double high) {
+  std::vector<Eigen::Vector3d> polygon;
+  for (int k = 0; k < 3; ++k) polygon.push_back(mesh.positions[mesh.triangles[f][k]]);
+  Eigen::Vector3d up = Eigen::Vector3d::Zero();
+  up[agent.up_axis] = agent.up_sign;
+  polygon = clip_polygon(polygon, Plane{up, high}, 0.0);
+  polygon = clip_polygon(polygon, Plane{-up, -low}, 0.0);
+  const double infinity = std::numeric_limits<double>::infinity();
+  if (polygon.size() < 3) return infinity;
+  const auto across = [&](const Eigen::Vector3d& q) { return Eigen::Vector3d(q - up.dot(q) * up); };
+  const double r = agent.radius, r2 = r * r;
+  const Eigen::Vector3d centre = across(p);
+  double lowest = infinity;
+  const size_t n = polygon.size();
+  for (size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d& a = polygon[i];
+    const Eigen::Vector3d& b = polygon[(i + 1) % n];
+    if ((across(a) - centre).squaredNorm() <= r2) lowest = std::min(lowest, agent.height_of(a));
+    // Where side a-b crosses the circle: |across(a) + t d - centre| = r.
+    const Eigen::Vector3d d = across(b) - across(a), e = across(a) - centre;
+    const double qa = d.squaredNorm(), qb = 2.0 * d.dot(e), qc = e.squaredNorm() - r2;
+    const double disc = qb * qb - 4.0 * qa * qc;
+    if (!(qa > 0.0) || disc < 0.0) continue;
+    for (double sign : {-1.0, 1.0}) {
+      const double t = (-qb + sign * std::sqrt(disc)) / (2.0 * qa);
+      if (t >= 0.0 && t <= 1.0) lowest = std::min(lowest, agent.height_of(a + t * (b - a)));
+    }
+  }
+  // Straight downhill of p on the circle, when the polygon holds it: the
+  // face's plane falls fastest along its normal's part across up.
+  const Eigen::Vector3d normal = (polygon[1] - polygon[0]).cross(polygon[2] - polygon[0]);
+  Eigen::Vector3d downhill = across(normal);
+  if (downhill.norm() > 0.0 && std::abs(normal.dot(up)) > 0.0) {
+    downhill = (normal.dot(up) > 0.0 ? 1.0 : -1.0) * downhill.normalized();
+    const Eigen::Vector3d foot = centre + r * downhill;
+    // The face's point over `foot`, and whether it lies in the polygon.
+    const double t = normal.dot(polygon[0] - foot) / normal.dot(up);
+    const Eigen::Vector3d q = foot + t * up;
+    bool left = true, right = true;
+    for (size_t i = 0; i < n; ++i) {
+      const double side = (polygon[(i + 1) % n] - polygon[i]).cross(q - polygon[i]).dot(normal);
+      left &= side >= 0.0;
+      right &= side <= 0.0;
+    }
+    if (left || right) lowest = std::min(lowest, agent.height_of(q));
+  }
+  return lowest;
+}
+
 } // namespace
 
 TriangleDistances::TriangleDistances(const Mesh& m) : mesh(m), tree(triangle_boxes(m, all_faces(m))) {}
@@ -132,7 +188,8 @@ AgentLattice reach_lattice(const TriangleDistances& distances, const AuditAgent&
   // one job): a walkable point within r across of it, at most `rise`
   // below it, and headroom: the capsule's axis (H - 2r long) holds at
   // least that length over a spacing of clear points in its column,
-  // between the face's lowest point and its highest plus `rise`.
+  // above the lowest such walkable point and below its face's highest
+  // point plus `rise`.
   const int axis = agent.up_axis, a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
   const int fewest = static_cast<int>(std::floor((agent.height - 2.0 * agent.radius) / spacing));
   if (agent.walking)
@@ -162,12 +219,12 @@ AgentLattice reach_lattice(const TriangleDistances& distances, const AuditAgent&
           for (int f : found) {
             // Heights as up measures them (the slab is clipped along up).
             if (across_distance_in_slab(mesh, agent, walkable[f], p, height - rise, height) > agent.radius) continue;
-            double floor_low = std::numeric_limits<double>::infinity(), floor_high = -floor_low;
-            for (int k = 0; k < 3; ++k) {
-              const double h = agent.height_of(mesh.positions[mesh.triangles[walkable[f]][k]]);
-              floor_low = std::min(floor_low, h);
-              floor_high = std::max(floor_high, h);
-            }
+            // The axis stands on the face: above the lowest point of it a
+            // walker at p rests on, below its highest plus `rise`.
+            const double floor_low = lowest_rest_near(mesh, agent, walkable[f], p, height - rise, height);
+            double floor_high = -std::numeric_limits<double>::infinity();
+            for (int k = 0; k < 3; ++k)
+              floor_high = std::max(floor_high, agent.height_of(mesh.positions[mesh.triangles[walkable[f]][k]]));
             // The run of passable points through this one, within the face's range.
             const auto in_range = [&](int x) {
               const double h = height + (x - w) * agent.up_sign * spacing;

@@ -23,7 +23,7 @@ std::string csv_field(const std::string& text) {
 }
 
 // "1,234" for counts people compare at a glance.
-std::string grouped(long n) {
+std::string grouped(long long n) {
   std::string digits = std::to_string(n < 0 ? -n : n), out;
   for (size_t i = 0; i < digits.size(); ++i) {
     if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
@@ -86,10 +86,9 @@ namespace {
 // The audit's columns of a movement covering's row: the exact covering's
 // ray, allowance and coverage figures do not apply to it.
 std::string movement_audit_cells(const BenchRow& r) {
-  return "- | - | - | - | - | " + grouped(static_cast<long>(r.reachable_centres)) + ", " +
-         grouped(static_cast<long>(r.sinking)) + format(" (deepest %.3g", r.deepest_sinking) +
-         format(", slop %.3g), ", r.slop) + grouped(static_cast<long>(r.contacts_lost)) + " of " +
-         grouped(static_cast<long>(r.touching_poses));
+  return "- | - | - | - | - | " + grouped(r.reachable_centres) + ", " + grouped(r.sinking) +
+         format(" (deepest %.3g", r.deepest_sinking) + format(", slop %.3g), ", r.slop) + grouped(r.contacts_lost) +
+         " of " + grouped(r.touching_poses);
 }
 
 std::string exact_audit_cells(const BenchRow& r) {

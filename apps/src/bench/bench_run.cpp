@@ -86,6 +86,7 @@ Result<BenchRow> bench_setting(const PreparedMesh& prepared, const SceneSpec& sc
     Result<MovementCovering> made = decompose_for_movement(prepared, movement);
     if (made.ok()) {
       row.slop = made.value().movement.slop;
+      row.undecided = made.value().movement.undecided;
       covering = std::move(made).value().covering;
     } else {
       covering = made.status();

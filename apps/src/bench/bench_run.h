@@ -38,9 +38,12 @@ struct BenchRow {
   bool clean = false;
   std::string findings; ///< space-separated finding names; empty when clean
   long front_rays = 0, front_lost = 0, opening_rays = 0, opening_lost = 0; ///< strict definition
-  double max_lost_depth = 0.0;     ///< strict definition: deepest lost point, scene units
-  double max_lost_deviation = 0.0; ///< farthest lost point from the mesh (allowance audit; 0 without one)
-  long centre_rays = 0, reach_lost = 0, undecided = 0;       ///< agent radius only
+  double max_lost_depth = 0.0;          ///< strict definition: deepest lost point, scene units
+  double max_lost_deviation = 0.0;      ///< farthest lost point from the mesh (allowance audit; 0 without one)
+  long centre_rays = 0, reach_lost = 0; ///< agent radius only
+  /// Agent radius: the allowance audit's undecided centres; a movement
+  /// covering: hulls its decomposer refused as undecided.
+  long long undecided = 0;
   long proxies = 0, missed_contacts = 0, false_contacts = 0; ///< false: deeper than tol (boxes included)
   double coverage_percent = 0.0; ///< of the mesh's area on or (with an allowance) inside a hull
   // Movement coverings: the movement audit (hullcover audit --agent-reach).

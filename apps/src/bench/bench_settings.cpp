@@ -2,6 +2,7 @@
 
 #include "number_checks.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 
@@ -121,6 +122,10 @@ Result<std::vector<Setting>> sweep_settings(const std::vector<std::string>& agen
   for (const LengthSpec& e : slop_list)
     if (!(e.value > 0.0)) return bad("a slop must be above 0, not", e.text);
   if (slop_list.empty()) slop_list.push_back(LengthSpec{});
+  const bool moving =
+      std::any_of(reaches.begin(), reaches.end(), [](const std::string& m) { return m != kExactReach; });
+  if (!slops.empty() && !moving)
+    return bad("--agent-slop needs --agent-reach walk or fly in the sweep, not", reaches[0]);
   std::vector<Setting> settings;
   for (const std::string& reach : reaches) {
     if (reach == kExactReach) {
@@ -136,6 +141,12 @@ Result<std::vector<Setting>> sweep_settings(const std::vector<std::string>& agen
     if (settings.size() == before)
       return bad("a movement covering needs an agent radius above 0 in the sweep, for", reach);
   }
+  // Each setting writes its own runtime file: a value given twice would
+  // overwrite one row's file with another's.
+  for (size_t i = 0; i < settings.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (settings[i].file_label() == settings[j].file_label())
+        return bad("the sweep holds a setting twice", settings[i].label());
   return settings;
 }
 

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <mutex>
 #include <cstdio>
 #include <cmath>
 #include <string>
@@ -27,10 +28,6 @@ std::string length_text(double x) {
   std::snprintf(text, sizeof text, "%.6g", x);
   return text;
 }
-
-// Regions hold at most this many touchable faces: enough that most merges
-// stay within one, few enough that every core has regions to merge.
-constexpr int kMostFacesPerRegion = 512;
 
 // The region of each of `faces`: its box halved at the median of their
 // centroids along its longest side until each holds at most `most`.
@@ -75,6 +72,7 @@ Result<AgentShape> resolve_agent(const MovementOptions& o, double tol) {
   if (o.max_hull_vertices < 8)
     return Status{StatusCode::invalid_argument, "max hull vertices must be at least 8 (a prism over a quad)"};
   if (o.threads < 0) return Status{StatusCode::invalid_argument, "threads must be >= 0 (0: every core)"};
+  if (o.faces_per_region < 1) return Status{StatusCode::invalid_argument, "faces per region must be at least 1"};
   return resolve_agent_shape(o, tol);
 }
 
@@ -129,19 +127,22 @@ Result<MovementCovering> decompose_checked(const PreparedMesh& prepared, const M
   // The exact covering's hulls are the first groups: most already keep the
   // movement promise (they hold no free space a ray reaches), and the
   // merging then starts from a covering no worse than the exact one.
+  // Without it (a scene exact mode refuses), every face starts alone.
+  const Clock::time_point exact_start = Clock::now();
   DecomposeOptions exact;
   exact.threads = options.threads;
   exact.max_hull_vertices = options.max_hull_vertices;
-  Result<Covering> exact_covering = decompose(prepared, exact);
-  if (!exact_covering.ok()) return exact_covering.status();
+  if (options.progress) exact.progress = [&](double done) { options.progress(0.05 + 0.05 * done); };
   std::vector<std::vector<int>> start_groups;
-  for (const CoveringHull& hull : exact_covering.value().hulls) start_groups.push_back(hull.faces);
+  if (Result<Covering> exact_covering = decompose(prepared, exact); exact_covering.ok())
+    for (const CoveringHull& hull : exact_covering.value().hulls) start_groups.push_back(hull.faces);
+  stats.seconds_exact = seconds_since(exact_start);
   if (options.progress) options.progress(0.1);
 
   const Clock::time_point merging = Clock::now();
   const detail::MovementContext context{mesh, clearance, grid.value(), agent, tol};
   // Regions merge on their own, at once; then the pairs across them.
-  const std::vector<int> region_of_face = split_into_regions(mesh, faces, kMostFacesPerRegion);
+  const std::vector<int> region_of_face = split_into_regions(mesh, faces, options.faces_per_region);
   const int regions = region_of_face.empty() ? 1 : 1 + *std::max_element(region_of_face.begin(), region_of_face.end());
   std::vector<std::vector<int>> region_faces(regions);
   std::vector<std::vector<std::vector<int>>> region_starts(regions);
@@ -160,10 +161,9 @@ Result<MovementCovering> decompose_checked(const PreparedMesh& prepared, const M
   std::vector<std::vector<detail::MovementGroup>> region_groups(regions);
   // Counts per region: candidates, undecided, merges.
   std::vector<std::array<long long, 3>> region_counts(regions);
+  std::mutex progress_mutex;
   int regions_done = 0;
-  parallel_for_ordered(
-      regions, threads, threads,
-      [&](int region) {
+  parallel_for(regions, threads, [&](int region) {
     detail::GroupProver prover;
     std::vector<detail::MovementGroup> groups = detail::starting_groups(
         context, region_faces[region], region_starts[region], options.max_hull_vertices, prover);
@@ -172,13 +172,16 @@ Result<MovementCovering> decompose_checked(const PreparedMesh& prepared, const M
     merger.merge({});
     region_counts[region] = {prover.candidates, prover.undecided, merger.merges()};
     region_groups[region] = merger.take_groups();
-      },
-      [&](int region) {
-    stats.candidates += region_counts[region][0];
-    stats.undecided += region_counts[region][1];
-    stats.merges += region_counts[region][2];
-    if (options.progress) options.progress(0.1 + 0.7 * ++regions_done / regions);
+    if (options.progress) {
+      const std::lock_guard<std::mutex> lock(progress_mutex);
+      options.progress(0.1 + 0.7 * ++regions_done / regions);
+    }
   });
+  for (const std::array<long long, 3>& counts : region_counts) {
+    stats.candidates += counts[0];
+    stats.undecided += counts[1];
+    stats.merges += counts[2];
+  }
   std::vector<detail::MovementGroup> groups;
   std::vector<int> group_region;
   for (int region = 0; region < regions; ++region)

@@ -110,6 +110,10 @@ void uncovered_boundary(const SceneClearance& scene, const ConvexPolytope& hull,
       for (int c : corners) cut.push_back(on_plane[c]);
       make_counter_clockwise(cut);
       subtract(pieces, cut, frame, tol);
+      if (pieces.size() + out.pieces.size() > kMostUncoveredPieces) {
+        out.overflow = true;
+        return;
+      }
     }
     faces.clear();
     if (!pieces.empty()) scene.faces_meeting(grown(bounding_box_of(facet), tol), faces);
@@ -130,6 +134,10 @@ void uncovered_boundary(const SceneClearance& scene, const ConvexPolytope& hull,
         out.overflow = true;
         return;
       }
+    }
+    if (pieces.size() + out.pieces.size() > kMostUncoveredPieces) {
+      out.overflow = true;
+      return;
     }
     for (Polygon3& piece : pieces) {
       for (size_t i = 0; i < piece.size(); ++i) {

@@ -60,6 +60,10 @@ struct MovementOptions {
   std::vector<Eigen::Vector3d> seeds;
   int max_hull_vertices = 255; ///< >= 8
   int threads = 0;             ///< 0: every core; the covering does not depend on it
+  /// The touchable faces are split into regions of at most this many
+  /// (before an exact hull's faces join the region of its first), merged
+  /// each on its own, at once on the threads, then across regions (>= 1).
+  int faces_per_region = 512;
   /// Called now and then with the fraction of work done (0..1); may be empty.
   std::function<void(double)> progress;
 };
@@ -73,10 +77,11 @@ struct MovementStatistics {
   double cell = 0.0;             ///< the grid's cell side, scene units
   int seeds = 0;                 ///< seeds used (given ones, or one per walkable face)
   int touchable_faces = 0;       ///< faces an agent may touch: the faces covered
-  long candidates = 0;           ///< merges tried
-  long merges = 0;               ///< merges made
-  long undecided = 0;            ///< merges refused because their proof ran out of budget
+  long long candidates = 0;      ///< hulls proven: the exact covering's hulls tried as groups, and merges tried
+  long long merges = 0;          ///< merges made
+  long long undecided = 0;       ///< hulls refused because their proof ran out of budget
   double seconds_reach = 0.0;    ///< the reach grid and touchable faces
+  double seconds_exact = 0.0;    ///< the exact covering the merging starts from
   double seconds_merging = 0.0;
 };
 
