@@ -177,6 +177,32 @@ TEST(MovementCovering, OptionsOutOfRangeAndSeedsInsideTheSceneAreRefusedWithAMes
   refused(options, "nearest triangle");
 }
 
+// The audit's reach holds every centre of a walker on a level floor, far
+// from the floor's triangle edges too (where the lowest point a walker
+// rests on lies inside the face): a block hung over the middle of one of
+// its two triangles, 1.1 m from every edge, is found sinking, and the
+// floor's own covering is clean.
+TEST(MovementAudit, ReachesEveryCentreOfAWalkerOnALevelFloor) {
+  Mesh floor;
+  floor.positions = {V(0, 0, 0), V(0, 0, 4), V(4, 0, 4), V(4, 0, 0)};
+  floor.triangles = {Eigen::Vector3i(0, 1, 2), Eigen::Vector3i(0, 2, 3)}; // split along x = z
+  floor.material_ids = {0, 0};
+  MovementOptions options;
+  options.radius = kRadius;
+  options.height = 1.8;
+  options.climb = 0.4;
+  options.seeds = {V(2, 0.5, 2)};
+  const Made made = make(floor, options);
+  std::vector<bvh::RuntimeHull> hulls = bvh::runtime_hulls(made.movement.covering);
+  const validate::MovementAuditReport clean = audited(made, hulls, options);
+  EXPECT_EQ(clean.sinking, 0);
+  EXPECT_EQ(clean.contacts_lost, 0);
+  hulls.push_back(test::box_hull(V(2.9, 0.9, 0.9), V(3.1, 1.1, 1.1)));
+  const validate::MovementAuditReport blocked = audited(made, hulls, options);
+  EXPECT_GT(blocked.sinking, 0);
+  EXPECT_GT(blocked.deepest, 0.2);
+}
+
 // The audit can fail: a block hung in reachable space, and a covering
 // without the floor's hull.
 TEST(MovementAudit, FindsAHullInReachableSpaceAndAFloorWithoutItsHull) {

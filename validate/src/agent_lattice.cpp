@@ -97,11 +97,14 @@ double lowest_rest_near(const Mesh& mesh, const AuditAgent& agent, int f, const 
     }
   }
   // Straight downhill of p on the circle, when the polygon holds it: the
-  // face's plane falls fastest along its normal's part across up.
+  // face's plane falls fastest along its normal's part across up. A level
+  // face falls nowhere: its point under p, when the polygon holds it.
   const Eigen::Vector3d normal = (polygon[1] - polygon[0]).cross(polygon[2] - polygon[0]);
   Eigen::Vector3d downhill = across(normal);
-  if (downhill.norm() > 0.0 && std::abs(normal.dot(up)) > 0.0) {
-    downhill = (normal.dot(up) > 0.0 ? 1.0 : -1.0) * downhill.normalized();
+  if (std::abs(normal.dot(up)) > 0.0) {
+    const double fall = downhill.norm();
+    downhill =
+        fall > 0.0 ? Eigen::Vector3d((normal.dot(up) > 0.0 ? 1.0 : -1.0) * downhill / fall) : Eigen::Vector3d::Zero();
     const Eigen::Vector3d foot = centre + r * downhill;
     // The face's point over `foot`, and whether it lies in the polygon.
     const double t = normal.dot(polygon[0] - foot) / normal.dot(up);
