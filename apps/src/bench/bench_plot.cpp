@@ -73,9 +73,13 @@ void text_at(cairo_t* cr, double x, double y, const std::string& text, double al
   cairo_show_text(cr, text.c_str());
 }
 
+// Setting labels wider than the space between two settings are drawn
+// slanted by this angle, each ending under its setting.
+constexpr double kSlantedLabelAngle = 35.0 * M_PI / 180.0;
+
 void draw_panel(cairo_t* cr, const Panel& panel, const std::vector<BenchRow>& rows,
                 const std::vector<std::string>& scenes, const std::vector<std::string>& settings, double x0, double y0,
-                double w, double h) {
+                double w, double h, bool slanted) {
   double top = panel.reference_line_at_one ? 1.0 : 100.0;
   for (const BenchRow& r : rows)
     if (const double v = panel.value(r, rows); std::isfinite(v)) top = std::max(top, v);
@@ -113,7 +117,17 @@ void draw_panel(cairo_t* cr, const Panel& panel, const std::vector<BenchRow>& ro
   cairo_set_source_rgb(cr, 0, 0, 0);
   cairo_rectangle(cr, x0, y0, w, h);
   cairo_stroke(cr);
-  for (size_t i = 0; i < settings.size(); ++i) text_at(cr, px(i), y0 + h + 16, settings[i], 0.5);
+  for (size_t i = 0; i < settings.size(); ++i) {
+    if (!slanted) {
+      text_at(cr, px(i), y0 + h + 16, settings[i], 0.5);
+      continue;
+    }
+    cairo_save(cr);
+    cairo_translate(cr, px(i) + 4, y0 + h + 12);
+    cairo_rotate(cr, -kSlantedLabelAngle);
+    text_at(cr, 0, 0, settings[i], 1.0);
+    cairo_restore(cr);
+  }
 
   for (size_t s = 0; s < scenes.size(); ++s) {
     const Colour c = kPalette[s % kPalette.size()];
@@ -155,10 +169,23 @@ void draw(cairo_t* cr, const std::vector<BenchRow>& rows) {
                           {"ray speed-up (triangles / hulls)",
                            [](const BenchRow& r, const auto&) { return r.queries.ray.speedup(); }, true},
                           {"hulls, % of exact", hulls_percent, false}};
-  const double pw = (kWidth - 3 * kMargin) / 2, ph = (kHeight - kLegendHeight - 3 * kMargin) / 2;
+  const double pw = (kWidth - 3 * kMargin) / 2;
+  // Long labels (movement settings) are slanted, and the rows of panels
+  // move apart to make room for them.
+  cairo_set_font_size(cr, 11);
+  double widest = 0.0;
+  for (const std::string& setting : settings) {
+    cairo_text_extents_t e;
+    cairo_text_extents(cr, setting.c_str(), &e);
+    widest = std::max(widest, e.width);
+  }
+  const double spacing = settings.size() > 1 ? 0.9 * pw / (settings.size() - 1.0) : pw;
+  const bool slanted = widest > 0.9 * spacing;
+  const double labels = slanted ? widest * std::sin(kSlantedLabelAngle) + 16 : kMargin / 2;
+  const double ph = (kHeight - kLegendHeight - kMargin / 1.5 - 2 * labels - kMargin / 2) / 2;
   for (int p = 0; p < 4; ++p)
     draw_panel(cr, panels[p], rows, scenes, settings, kMargin + (p % 2) * (pw + kMargin),
-               kMargin / 1.5 + (p / 2) * (ph + kMargin), pw, ph);
+               kMargin / 1.5 + (p / 2) * (ph + labels + kMargin / 2), pw, ph, slanted);
   cairo_set_font_size(cr, 12); // legend
   const double legend_y = kHeight - kLegendHeight + 20, column = (kWidth - 2 * kMargin) / 4;
   for (size_t s = 0; s < scenes.size(); ++s) {
