@@ -124,9 +124,10 @@ Result<MovementCovering> decompose_checked(const PreparedMesh& prepared, const M
   stats.seconds_reach = seconds_since(start);
   if (options.progress) options.progress(0.05);
 
-  // The exact covering's hulls are the first groups: most already keep the
-  // movement promise (they hold no free space a ray reaches), and the
-  // merging then starts from a covering no worse than the exact one.
+  // The exact covering's hulls are the first groups where they keep the
+  // movement promise (they hold no free space a ray reaches, so walking
+  // most do; flying, a hull behind a face a flyer reaches does not): the
+  // merging starts from the exact grouping instead of single faces.
   // Without it (a scene exact mode refuses), every face starts alone.
   const Clock::time_point exact_start = Clock::now();
   DecomposeOptions exact;
