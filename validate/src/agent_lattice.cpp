@@ -29,17 +29,27 @@ std::vector<int> all_faces(const Mesh& mesh) {
   return faces;
 }
 
-// The 2D distance, across up, from p to the part of triangle `f` whose
-// height lies in [low, high]; infinity when no part does.
-double across_distance_in_slab(const Mesh& mesh, const AuditAgent& agent, int f, const Eigen::Vector3d& p, double low,
-                               double high) {
-  std::vector<Eigen::Vector3d> polygon;
-  for (int k = 0; k < 3; ++k) polygon.push_back(mesh.positions[mesh.triangles[f][k]]);
+Eigen::Vector3d up_of(const AuditAgent& agent) {
   Eigen::Vector3d up = Eigen::Vector3d::Zero();
   up[agent.up_axis] = agent.up_sign;
+  return up;
+}
+
+// The part of triangle `f` whose height, as up measures it, lies in
+// [low, high]: where a walker standing at height `high` may rest.
+std::vector<Eigen::Vector3d> face_in_slab(const Mesh& mesh, const AuditAgent& agent, int f, double low, double high) {
+  std::vector<Eigen::Vector3d> polygon;
+  for (int k = 0; k < 3; ++k) polygon.push_back(mesh.positions[mesh.triangles[f][k]]);
+  const Eigen::Vector3d up = up_of(agent);
   polygon = clip_polygon(polygon, Plane{up, high}, 0.0);
-  polygon = clip_polygon(polygon, Plane{-up, -low}, 0.0);
+  return clip_polygon(polygon, Plane{-up, -low}, 0.0);
+}
+
+// The 2D distance, across up, from p to convex `polygon` (face_in_slab);
+// infinity when it is empty.
+double across_distance(const AuditAgent& agent, const std::vector<Eigen::Vector3d>& polygon, const Eigen::Vector3d& p) {
   if (polygon.empty()) return std::numeric_limits<double>::infinity();
+  const Eigen::Vector3d up = up_of(agent);
   // Flattened along up: the nearest point of a convex polygon.
   const auto flat = [&](Eigen::Vector3d q) {
     q[agent.up_axis] = 0.0;
@@ -61,20 +71,15 @@ double across_distance_in_slab(const Mesh& mesh, const AuditAgent& agent, int f,
   return best;
 }
 
-// The lowest height, as up measures it, of the part of triangle `f` whose
-// height lies in [low, high] and that lies within r across up of p:
-// the lowest point a walker at p may rest on. Infinity when there is none.
+// The lowest height, as up measures it, of the part of `polygon` (a face
+// in its slab, face_in_slab) that lies within r across up of p: the lowest
+// point a walker at p may rest on. Infinity when there is none.
 // Height is linear across the face, so its least value on that convex part
-// is at a corner of the slab's polygon inside the circle, where a side of
-// it crosses the circle, or at the circle's point straight downhill of p.
-double lowest_rest_near(const Mesh& mesh, const AuditAgent& agent, int f, const Eigen::Vector3d& p, double low,
-                        double high) {
-  std::vector<Eigen::Vector3d> polygon;
-  for (int k = 0; k < 3; ++k) polygon.push_back(mesh.positions[mesh.triangles[f][k]]);
-  Eigen::Vector3d up = Eigen::Vector3d::Zero();
-  up[agent.up_axis] = agent.up_sign;
-  polygon = clip_polygon(polygon, Plane{up, high}, 0.0);
-  polygon = clip_polygon(polygon, Plane{-up, -low}, 0.0);
+// is at a corner of the polygon inside the circle, where a side of it
+// crosses the circle, or at the circle's point straight downhill of p.
+double lowest_rest_near(const AuditAgent& agent, const std::vector<Eigen::Vector3d>& polygon,
+                        const Eigen::Vector3d& p) {
+  const Eigen::Vector3d up = up_of(agent);
   const double infinity = std::numeric_limits<double>::infinity();
   if (polygon.size() < 3) return infinity;
   const auto across = [&](const Eigen::Vector3d& q) { return Eigen::Vector3d(q - up.dot(q) * up); };
@@ -221,10 +226,11 @@ AgentLattice reach_lattice(const TriangleDistances& distances, const AuditAgent&
           walkable_tree.overlapping(query, found);
           for (int f : found) {
             // Heights as up measures them (the slab is clipped along up).
-            if (across_distance_in_slab(mesh, agent, walkable[f], p, height - rise, height) > agent.radius) continue;
+            const std::vector<Eigen::Vector3d> rest = face_in_slab(mesh, agent, walkable[f], height - rise, height);
+            if (across_distance(agent, rest, p) > agent.radius) continue;
             // The axis stands on the face: above the lowest point of it a
             // walker at p rests on, below its highest plus `rise`.
-            const double floor_low = lowest_rest_near(mesh, agent, walkable[f], p, height - rise, height);
+            const double floor_low = lowest_rest_near(agent, rest, p);
             double floor_high = -std::numeric_limits<double>::infinity();
             for (int k = 0; k < 3; ++k)
               floor_high = std::max(floor_high, agent.height_of(mesh.positions[mesh.triangles[walkable[f]][k]]));
