@@ -10,13 +10,14 @@
 namespace hullcover::detail {
 namespace {
 
-// The group of the faces of `faces` with an area, `wanted` ones only, its
-// outline without the edges two of them share; false when none is left.
-bool gather(const Mesh& mesh, const std::vector<int>& faces, const std::vector<char>& wanted, MovementGroup& group) {
+// The group of the faces of `faces` with an area that are also in `wanted`
+// (ascending), its outline without the edges two of them share; false when
+// none is left.
+bool gather(const Mesh& mesh, const std::vector<int>& faces, const std::vector<int>& wanted, MovementGroup& group) {
   group = MovementGroup{};
   std::vector<std::pair<int, int>> edges;
   for (int f : faces) {
-    if (!wanted[f]) continue;
+    if (!std::binary_search(wanted.begin(), wanted.end(), f)) continue;
     const Eigen::Vector3i& t = mesh.triangles[f];
     const Eigen::Vector3d &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
     const Eigen::Vector3d n = (b - a).cross(c - a);
@@ -82,23 +83,25 @@ std::vector<MovementGroup> starting_groups(const MovementContext& context, const
                                            const std::vector<std::vector<int>>& start_groups, int max_hull_vertices,
                                            GroupProver& prover) {
   const Mesh& mesh = context.mesh;
-  std::vector<char> wanted(mesh.triangles.size(), 0), grouped(mesh.triangles.size(), 0);
-  for (int f : faces) wanted[f] = 1;
+  // Per face of `faces` (a region's, not the scene's: many regions run).
+  std::vector<char> grouped(faces.size(), 0);
+  const auto slot = [&](int f) { return std::lower_bound(faces.begin(), faces.end(), f) - faces.begin(); };
   std::vector<MovementGroup> groups;
   MovementGroup group;
   for (const std::vector<int>& start : start_groups) {
-    if (!gather(mesh, start, wanted, group) || group.faces.size() < 2) continue;
-    if (std::any_of(group.faces.begin(), group.faces.end(), [&](int f) { return grouped[f] != 0; })) continue;
+    if (!gather(mesh, start, faces, group) || group.faces.size() < 2) continue;
+    if (std::any_of(group.faces.begin(), group.faces.end(), [&](int f) { return grouped[slot(f)] != 0; })) continue;
     if (!make_group_hull(context, max_hull_vertices, group.area_vector, prover.builder, group)) continue;
     ++prover.candidates;
     const MovementVerdict verdict = check_movement_hull(context, group.hull, group.flat, {}, prover.boundary);
     if (verdict == MovementVerdict::undecided) ++prover.undecided;
     if (verdict != MovementVerdict::valid) continue;
-    for (int f : group.faces) grouped[f] = 1;
+    for (int f : group.faces) grouped[slot(f)] = 1;
     groups.push_back(std::move(group));
   }
-  for (int f : faces) {
-    if (grouped[f] || !gather(mesh, {f}, wanted, group)) continue;
+  for (size_t i = 0; i < faces.size(); ++i) {
+    const int f = faces[i];
+    if (grouped[i] || !gather(mesh, {f}, faces, group)) continue;
     // A face alone keeps the promise: it is the scene's own surface.
     const Eigen::Vector3i& t = mesh.triangles[f];
     FlatPolygon polygon = flat_triangle(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);

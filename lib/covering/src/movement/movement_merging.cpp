@@ -82,10 +82,8 @@ MovementMerger::MovementMerger(const MovementContext& context, const MeshConnect
       }
   }
   if (near_distance > 0.0) {
-    std::vector<int> grouped;
     std::vector<Aabb> boxes;
     for (const auto& [f, g] : face_group) {
-      grouped.push_back(f);
       Aabb box;
       for (int k = 0; k < 3; ++k) box.extend(mesh.positions[mesh.triangles[f][k]]);
       boxes.push_back(grown(box, 0.5 * near_distance));
@@ -93,15 +91,15 @@ MovementMerger::MovementMerger(const MovementContext& context, const MeshConnect
     const AabbTree tree(boxes);
     std::vector<int> found;
     Eigen::Vector3d s[3], t[3];
-    for (int i = 0; i < static_cast<int>(grouped.size()); ++i) {
+    for (int i = 0; i < static_cast<int>(face_group.size()); ++i) {
       found.clear();
       tree.overlapping(boxes[i], found);
-      triangle_of(mesh, grouped[i], s);
+      triangle_of(mesh, face_group[i].first, s);
       const int ga = face_group[i].second;
       for (int j : found) {
         const int gb = face_group[j].second;
         if (j <= i || ga == gb) continue;
-        triangle_of(mesh, grouped[j], t);
+        triangle_of(mesh, face_group[j].first, t);
         if (!triangles_within(s, t, near_distance)) continue;
         neighbours[ga].emplace_back(gb, 0.0);
         neighbours[gb].emplace_back(ga, 0.0);
