@@ -106,7 +106,8 @@ Result<BenchRow> bench_setting(const PreparedMesh& prepared, const SceneSpec& sc
   // Timed and audited from the file, as a server and a level designer get it.
   Result<std::vector<bvh::RuntimeHull>> loaded = bvh::read_runtime_file(row.runtime_path);
   if (!loaded.ok()) return loaded.status();
-  Result<std::shared_ptr<const bvh::HullWorld>> world = bvh::HullWorld::build(std::move(loaded).value());
+  const std::vector<bvh::RuntimeHull> file_hulls = std::move(loaded).value();
+  Result<std::shared_ptr<const bvh::HullWorld>> world = bvh::HullWorld::build(file_hulls);
   if (!world.ok()) return world.status();
   row.query_radius = poses.radius;
   row.query_half_height = poses.half_height;
@@ -116,12 +117,10 @@ Result<BenchRow> bench_setting(const PreparedMesh& prepared, const SceneSpec& sc
 
   const Clock::time_point audit_start = Clock::now();
   if (!row.reach.empty()) {
-    Result<std::vector<bvh::RuntimeHull>> hulls = bvh::read_runtime_file(row.runtime_path);
-    if (!hulls.ok()) return hulls.status();
     validate::MovementAuditOptions audit;
     audit.agent = movement;
     const Result<validate::MovementAuditReport> report =
-        validate::audit_movement(prepared, hulls.value(), audit, movement.threads);
+        validate::audit_movement(prepared, file_hulls, audit, movement.threads);
     row.audit_seconds = seconds_since(audit_start);
     if (!report.ok()) return report.status();
     const validate::MovementAuditReport& m = report.value();
