@@ -4,17 +4,19 @@
                               [--scheduler tcp://HOST:8786] [--workers N]
 
 Without --scheduler the bake runs on a LocalCluster of this machine's cores
-(one single-threaded worker process per core). With one, the scene's path
-must name the same file on every worker (a shared folder): each worker
-checks the file's SHA-256 against the client's before it uses it.
+(one single-threaded worker process per core). With one, the prepared scene
+file (--prepared) must lie in a folder every worker reads: each worker
+checks its SHA-256 against the client's before it uses it.
 
 How it runs (docs/worlds.md, "The distributed bake"):
-  1. The client hashes the scene and learns its cells (as StagedBake does:
-     islands, cells, scene index).
-  2. Each cell is a task, largest first. A worker loads the scene once and
-     keeps it for every later task of the same scene and options; a task
-     returns the cell's result as bytes (the checked form of
-     lib/covering/src/cells/cell_result_bytes.h).
+  1. The client prepares the scene (islands, cells, scene index) and writes
+     it to the prepared scene file.
+  2. Each cell is a task, largest first. A worker maps the prepared file
+     once (StagedBake.map: the scene index is read in place, not loaded)
+     and keeps it for every later task of the same file and options; after
+     each task it hands the file's pages back, so its memory holds what the
+     cell at hand reads, not the world. A task returns the cell's result as
+     bytes (the checked form of lib/covering/src/cells/cell_result_bytes.h).
   3. The client gathers the bytes in cell order and finishes: the seam pass
      and the hulls. The output is the same, byte for byte, as
      `hullcover decompose WORLD -o HULLS.obj --world H.hcw` with the same
@@ -36,9 +38,9 @@ import time
 
 from . import _hullcover
 
-# One loaded scene per worker process, kept between tasks: loading (import,
-# weld, scene index) costs far more than most cells. The key holds the file's
-# hash and the options, so a worker that served another bake reloads.
+# One mapped prepared scene per worker process, kept between tasks. The key
+# holds the file's hash and the options, so a worker that served another
+# bake maps anew.
 _loaded_lock = threading.Lock()
 _loaded = {}
 
@@ -61,14 +63,29 @@ def _scene_on_this_worker(path, sha256, options):
                 raise ValueError(f"{path} on this worker is not the client's scene (SHA-256 {found[:12]}..., "
                                  f"expected {sha256[:12]}...): bake from a folder every worker shares")
             _loaded.clear()
-            bake = _hullcover.StagedBake.load(path, **options)
+            bake = _hullcover.StagedBake.map(path, **_map_options(options))
             _loaded[key] = bake
         return bake
 
 
 def merge_cell_task(path, sha256, options, cell):
     """One Dask task: the bytes of cell `cell` (run on a worker)."""
-    return _scene_on_this_worker(path, sha256, options).merge_cell(cell)
+    bake = _scene_on_this_worker(path, sha256, options)
+    try:
+        return bake.merge_cell(cell)
+    finally:
+        bake.release_pages()
+
+
+def _peak_memory_mb():
+    """This process's peak resident memory, MB (run on each worker)."""
+    import resource
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+
+
+def _map_options(options):
+    # The tolerance is the prepared scene's own.
+    return {k: v for k, v in options.items() if k != "tol"}
 
 
 def _options(args):
@@ -94,6 +111,9 @@ def _parser():
     p.add_argument("--cell-size", type=float, help="Cell side, scene units (as `hullcover decompose`)")
     p.add_argument("--agent-radius", type=float, help="As `hullcover decompose --agent-radius`")
     p.add_argument("--max-deviation", type=float, help="As `hullcover decompose --max-deviation`")
+    p.add_argument("--prepared", help="Where to write the prepared scene file the workers map (default: a "
+                                      "temporary file beside the output, removed after the bake); with "
+                                      "--scheduler, in a folder every worker reads")
     p.add_argument("--report-cells", action="store_true",
                    help="Print a line to stderr as each cell arrives (what tests watch)")
     p.add_argument("-q", "--quiet", action="store_true", help="No progress bar")
@@ -116,32 +136,37 @@ def bake(args):
 
     start = time.monotonic()
     path = os.path.abspath(args.scene)
-    sha256 = _sha256(path)
     options = _options(args)
-    # The client needs the scene too (cell count, then the finish); it loads
-    # while the workers start.
+    output_folder = os.path.dirname(os.path.abspath(args.output))
+    prepared = os.path.abspath(args.prepared) if args.prepared else os.path.join(
+        output_folder, f".{os.path.basename(args.output)}.{os.getpid()}.hcp")
+    # The client prepares the scene (it needs it for the cell count and the
+    # finish) and writes it for the workers while they start.
     local = {}
 
-    def load_here():
+    def prepare_here():
         try:
             local["bake"] = _hullcover.StagedBake.load(path, **dict(options, threads=0))
+            local["bake"].write_prepared(prepared)
+            local["sha256"] = _sha256(prepared)
         except Exception as e:  # reported after the join
             local["error"] = e
 
-    loader = threading.Thread(target=load_here)
-    loader.start()
+    preparer = threading.Thread(target=prepare_here)
+    preparer.start()
     client, cluster = _client(args)
     try:
-        loader.join()
+        preparer.join()
         if "error" in local:
             raise local["error"]
         staged = local["bake"]
+        sha256 = local["sha256"]
         count = staged.cell_count()
         cells = sorted(range(count), key=lambda c: -staged.cell_face_count(c))
         # By the module's name, so Dask pickles a reference to it, not the
         # function's globals (as it would for __main__'s under -m).
         task = importlib.import_module("hullcover.bake").merge_cell_task
-        futures = [client.submit(task, path, sha256, options, c,
+        futures = [client.submit(task, prepared, sha256, options, c,
                                  key=f"hullcover-cell-{sha256[:16]}-{c}", priority=count - i, pure=False)
                    for i, c in enumerate(cells)]
         cell_of = {f.key: c for f, c in zip(futures, cells)}
@@ -157,10 +182,14 @@ def bake(args):
         for c, result in zip(cells, results):
             ordered[c] = result
         workers_seen = len(client.scheduler_info()["workers"])
+        peak_module = importlib.import_module("hullcover.bake")
+        worker_peaks = sorted(client.run(peak_module._peak_memory_mb).values())
     finally:
         client.close()
         if cluster is not None:
             cluster.close()
+        if not args.prepared and os.path.exists(prepared):
+            os.remove(prepared)
     baked = time.monotonic()
     d = staged.finish(ordered)
     if args.world:
@@ -169,7 +198,8 @@ def bake(args):
         d.write_json(args.json, json.dumps({"input": args.scene, "seconds_including_import":
                                             time.monotonic() - start}))
     d.write_obj(args.output)
-    return {"cells": count, "hulls": d.hull_count(), "workers": workers_seen,
+    return {"cells": count, "hulls": d.hull_count(), "workers": workers_seen, "worker_peak_mb": worker_peaks,
+            "client_peak_mb": _peak_memory_mb(),
             "seconds_cells": baked - start, "seconds_finish": time.monotonic() - baked}
 
 
@@ -193,6 +223,8 @@ def main(argv=None):
         return 1
     print(f"{args.scene}: {figures['cells']} cells on {figures['workers']} workers -> {figures['hulls']} hulls, "
           f"cells {figures['seconds_cells']:.1f} s, finish {figures['seconds_finish']:.1f} s; wrote {args.output}")
+    peaks = ", ".join(f"{mb:.0f}" for mb in figures["worker_peak_mb"])
+    print(f"  peak memory: workers {peaks} MB, client {figures['client_peak_mb']:.0f} MB")
     return 0
 
 

@@ -43,6 +43,17 @@ std::shared_ptr<StagedBake> load_staged(const std::string& path, std::optional<d
   return bake;
 }
 
+std::shared_ptr<StagedBake> map_staged(const std::string& path, const DecomposeOptions& options) {
+  auto bake = std::make_shared<StagedBake>();
+  Result<std::unique_ptr<StagedDecomposition>> staged = [&] {
+    py::gil_scoped_release unlocked;
+    return StagedDecomposition::map_prepared(path, options);
+  }();
+  if (!staged.ok()) raise(staged.status());
+  bake->staged = std::move(staged).value();
+  return bake;
+}
+
 void check_cell(const StagedBake& bake, int cell) {
   if (cell < 0 || cell >= bake.staged->cell_count())
     throw py::index_error("no cell " + std::to_string(cell) + " (the scene has " +
@@ -88,6 +99,28 @@ void bind_staged_bake(py::module_& m) {
           py::arg("agent_radius") = py::none(), py::arg("max_deviation") = py::none(),
           py::arg("near_merge_distance") = py::none(), py::arg("max_hull_vertices") = kDefaultMaxHullVertices,
           py::arg("max_hull_triangles") = py::none())
+      .def_static(
+          "map",
+          [](const std::string& path, int threads, std::optional<double> cell_size, std::optional<double> agent_radius,
+             std::optional<double> max_deviation, std::optional<double> near_merge_distance, int max_hull_vertices,
+             std::optional<int> max_hull_triangles) {
+    return map_staged(path, options_of(threads, cell_size, agent_radius, max_deviation, near_merge_distance,
+                                       max_hull_vertices, max_hull_triangles));
+          },
+          py::arg("path"), py::arg("threads") = 0, py::arg("cell_size") = py::none(),
+          py::arg("agent_radius") = py::none(), py::arg("max_deviation") = py::none(),
+          py::arg("near_merge_distance") = py::none(), py::arg("max_hull_vertices") = kDefaultMaxHullVertices,
+          py::arg("max_hull_triangles") = py::none())
+      .def(
+          "write_prepared",
+          [](const StagedBake& b, const std::string& path) {
+    Status written = [&] {
+      py::gil_scoped_release unlocked;
+      return b.staged->write_prepared(path);
+    }();
+    if (!written.ok()) raise(written);
+          })
+      .def("release_pages", [](const StagedBake& b) { b.staged->release_mapped_pages(); })
       .def("cell_count", [](const StagedBake& b) { return b.staged->cell_count(); })
       .def(
           "cell_face_count",

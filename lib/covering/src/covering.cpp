@@ -55,8 +55,8 @@ Status check_options(const DecomposeOptions& o) {
 
 namespace detail {
 
-Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& scene,
-                                                            const DecomposeOptions& options) {
+Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& scene, const DecomposeOptions& options,
+                                                            MadeStages* made) {
   if (Status s = check_options(options); !s.ok()) return s;
   const Eigen::Vector3d origin = local_frame_origin(scene);
   auto stages = origin.isZero() ? std::make_unique<DecompositionStages>(scene)
@@ -87,7 +87,7 @@ Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& 
 
   const Clock::time_point start = Clock::now();
   stages->islands = prepared.islands;
-  stages->cells = lay_out_cells(prepared, stages->islands, options.cell_size);
+  stages->cells = made ? std::move(made->cells) : lay_out_cells(prepared, stages->islands, options.cell_size);
   covering.island_extents.clear();
   for (const Aabb& box : stages->islands.boxes)
     covering.island_extents.push_back(box.diagonal() > 0.0 ? box.diagonal() : prepared.tolerance.local_extent);
@@ -114,7 +114,12 @@ Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& 
   bars.threads = options.threads;
   for (int island = 0; island < static_cast<int>(stages->islands.boxes.size()); ++island)
     bars.half_length_of_island.push_back(island_bar_half_length(*stages, island));
-  stages->index_data = build_scene_index(prepared, bars);
+  if (made) {
+    stages->index_data = std::move(made->index);
+    stages->index_data.prepared = &prepared;
+  } else {
+    stages->index_data = build_scene_index(prepared, bars);
+  }
   for (int island = 0; island < static_cast<int>(stages->islands.boxes.size()); ++island) {
     stages->island_index.emplace_back(stages->index_data, stages->island_tolerance[island],
                                       covering.island_extents[island]);

@@ -37,20 +37,25 @@ AabbTree::FloatBox AabbTree::outward(const Aabb& box) {
 AabbTree::AabbTree(const std::vector<Aabb>& boxes) {
   // Empty boxes overlap nothing: left out, they cannot stretch a node's box
   // to infinity (an empty box's min is +infinity) or give NaN centres.
+  Building building;
   for (int i = 0; i < static_cast<int>(boxes.size()); ++i)
-    if (!boxes[i].empty()) items_.push_back(i);
-  if (items_.empty()) return;
+    if (!boxes[i].empty()) building.items.push_back(i);
+  if (building.items.empty()) return;
   std::vector<Eigen::Vector3d> centres(boxes.size());
   for (size_t i = 0; i < boxes.size(); ++i) centres[i] = 0.5 * (boxes[i].min + boxes[i].max);
   // Median splits would give at most n / 2 leaves; a surface-area split may
   // leave one item alone, so this is a first guess, not a bound.
-  nodes_.reserve(items_.size() / 2 + 1);
+  building.nodes.reserve(building.items.size() / 2 + 1);
   Aabb root_box;
-  root_ = build(0, static_cast<int>(items_.size()), 0, boxes, centres, root_box);
+  root_ = build(building, 0, static_cast<int>(building.items.size()), 0, boxes, centres, root_box);
   root_box_ = outward(root_box);
   // A leaf's boxes side by side, in the order its items are listed.
-  leaf_boxes_.reserve(items_.size());
-  for (int item : items_) leaf_boxes_.push_back(boxes[item]);
+  std::vector<Aabb> leaf_boxes;
+  leaf_boxes.reserve(building.items.size());
+  for (int item : building.items) leaf_boxes.push_back(boxes[item]);
+  nodes_ = std::move(building.nodes);
+  items_ = std::move(building.items);
+  leaf_boxes_ = std::move(leaf_boxes);
 }
 
 namespace {
@@ -70,7 +75,7 @@ void extend_by_box(Aabb& box, const Aabb& other) {
 }
 } // namespace
 
-int AabbTree::surface_area_split(int begin, int end, const std::vector<Aabb>& boxes,
+int AabbTree::surface_area_split(std::vector<int>& items, int begin, int end, const std::vector<Aabb>& boxes,
                                  const std::vector<Eigen::Vector3d>& centres, const Aabb& centre_box) {
   // A line or a box meets a child about in proportion to its surface area,
   // so the split that minimises area x items on both sides opens the fewest
@@ -96,9 +101,9 @@ int AabbTree::surface_area_split(int begin, int end, const std::vector<Aabb>& bo
     Aabb bin_box[kSplitBins];
     int bin_count[kSplitBins] = {};
     for (int i = begin; i < end; ++i) {
-      const int bin = bin_of(items_[i], axis);
+      const int bin = bin_of(items[i], axis);
       ++bin_count[bin];
-      extend_by_box(bin_box[bin], boxes[items_[i]]);
+      extend_by_box(bin_box[bin], boxes[items[i]]);
     }
     // Above each plane, swept from the top; below it, from the bottom.
     double above_area[kSplitBins] = {};
@@ -127,38 +132,40 @@ int AabbTree::surface_area_split(int begin, int end, const std::vector<Aabb>& bo
     }
   }
   if (best_axis < 0) return -1;
-  const auto middle = std::partition(items_.begin() + begin, items_.begin() + end,
+  const auto middle = std::partition(items.begin() + begin, items.begin() + end,
                                      [&](int item) { return bin_of(item, best_axis) <= best_bin; });
-  return static_cast<int>(middle - items_.begin());
+  return static_cast<int>(middle - items.begin());
 }
 
-AabbTree::ChildRef AabbTree::build(int begin, int end, int depth, const std::vector<Aabb>& boxes,
+AabbTree::ChildRef AabbTree::build(Building& building, int begin, int end, int depth, const std::vector<Aabb>& boxes,
                                    const std::vector<Eigen::Vector3d>& centres, Aabb& box) {
   Aabb centre_box;
   for (int i = begin; i < end; ++i) {
-    extend_by_box(box, boxes[items_[i]]);
-    centre_box.extend(centres[items_[i]]);
+    extend_by_box(box, boxes[building.items[i]]);
+    centre_box.extend(centres[building.items[i]]);
   }
   if (end - begin <= kLeafSize) return ChildRef{begin, end - begin};
   // The parent before its children, the left child (when inner) right after
   // it: a walk going left reads the next cache line.
-  const int index = static_cast<int>(nodes_.size());
-  nodes_.emplace_back();
-  int middle = depth < kMaxSurfaceAreaDepth ? surface_area_split(begin, end, boxes, centres, centre_box) : -1;
+  const int index = static_cast<int>(building.nodes.size());
+  building.nodes.emplace_back();
+  int middle =
+      depth < kMaxSurfaceAreaDepth ? surface_area_split(building.items, begin, end, boxes, centres, centre_box) : -1;
   if (middle <= begin || middle >= end) {
     // All centres in one bin (or too deep): the median on the longest axis,
     // which halves the items and so bounds the depth.
     Eigen::Index axis = 0;
     (centre_box.max - centre_box.min).maxCoeff(&axis);
     middle = begin + (end - begin) / 2;
-    std::nth_element(items_.begin() + begin, items_.begin() + middle, items_.begin() + end, [&](int a, int b) {
+    std::nth_element(building.items.begin() + begin, building.items.begin() + middle, building.items.begin() + end,
+                     [&](int a, int b) {
       return centres[a][axis] < centres[b][axis] || (centres[a][axis] == centres[b][axis] && a < b);
     });
   }
   Aabb left_box, right_box;
-  const ChildRef left = build(begin, middle, depth + 1, boxes, centres, left_box);
-  const ChildRef right = build(middle, end, depth + 1, boxes, centres, right_box);
-  Node& node = nodes_[index];
+  const ChildRef left = build(building, begin, middle, depth + 1, boxes, centres, left_box);
+  const ChildRef right = build(building, middle, end, depth + 1, boxes, centres, right_box);
+  Node& node = building.nodes[index];
   node.box[0] = outward(left_box);
   node.box[1] = outward(right_box);
   node.child[0] = left;

@@ -30,10 +30,19 @@ struct CellResult {
   CoveringStatistics statistics;
 };
 
+/// Cells and a scene index made before (read from a prepared scene file,
+/// prepared_scene_file.h), for prepare_stages to take instead of making them.
+struct MadeStages {
+  CellLayout cells;
+  SceneIndexData index;
+};
+
 /// Checks the options, resolves lengths, finds islands and cells and builds
-/// the scene index. Fails with `invalid_argument` for options out of range.
+/// the scene index; or, given `made`, takes its cells and index (moved out
+/// of it). Fails with `invalid_argument` for options out of range.
 Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& prepared,
-                                                            const DecomposeOptions& options);
+                                                            const DecomposeOptions& options,
+                                                            MadeStages* made = nullptr);
 
 /// The near-merge distance cell `cell` merges with: the user's, else its
 /// island's own (the largest island's for the one cell of --cell-size 0).

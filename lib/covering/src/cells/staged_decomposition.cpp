@@ -2,6 +2,9 @@
 
 #include "cells/cell_merging.h"
 #include "cells/cell_result_bytes.h"
+#include "cells/prepared_scene_file.h"
+
+#include "hullcover/geometry/mapped_file.h"
 
 #include <exception>
 
@@ -30,7 +33,45 @@ Result<std::unique_ptr<StagedDecomposition>> StagedDecomposition::prepare(Prepar
   }
 }
 
+Result<std::unique_ptr<StagedDecomposition>> StagedDecomposition::map_prepared(const std::string& path,
+                                                                               const DecomposeOptions& options) {
+  try {
+    Result<std::unique_ptr<MappedFile>> file = MappedFile::open(path);
+    if (!file.ok()) return file.status();
+    Result<detail::MappedPreparedScene> read = detail::read_prepared_scene(*file.value(), path);
+    if (!read.ok()) return read.status();
+    detail::MappedPreparedScene& parts = read.value();
+    std::unique_ptr<StagedDecomposition> staged(new StagedDecomposition());
+    staged->mapping_ = std::move(file).value();
+    staged->prepared_ = std::make_unique<PreparedMesh>(std::move(parts.scene));
+    detail::MadeStages made{std::move(parts.cells), std::move(parts.index)};
+    Result<std::unique_ptr<detail::DecompositionStages>> stages =
+        detail::prepare_stages(*staged->prepared_, options, &made);
+    if (!stages.ok()) return stages.status();
+    staged->stages_ = std::move(stages).value();
+    staged->stages_->covering.options.progress = nullptr;
+    if (detail::prepared_options_key(*staged->stages_) != parts.options_key)
+      return Status{StatusCode::invalid_argument,
+                    path + " was prepared with other options than these: prepare it again with them"};
+    return Result<std::unique_ptr<StagedDecomposition>>(std::move(staged));
+  } catch (const std::exception& e) {
+    return failed(e);
+  }
+}
+
 StagedDecomposition::~StagedDecomposition() = default;
+
+Status StagedDecomposition::write_prepared(const std::string& path) const {
+  try {
+    return detail::write_prepared_scene(path, *prepared_, *stages_);
+  } catch (const std::exception& e) {
+    return failed(e);
+  }
+}
+
+void StagedDecomposition::release_mapped_pages() const {
+  if (mapping_) mapping_->release_pages();
+}
 
 int StagedDecomposition::cell_count() const { return static_cast<int>(stages_->cells.faces_of_cell.size()); }
 

@@ -8,6 +8,7 @@
 #include "validity/free_space_sweep.h"
 #include "hullcover/covering/validity.h"
 #include "hullcover/geometry/aabb_tree.h"
+#include "hullcover/geometry/mappable_array.h"
 #include "hullcover/mesh/prepared_mesh.h"
 
 #include <array>
@@ -43,12 +44,12 @@ struct SceneIndexData {
   /// Per edge: the use (index into MeshConnectivity::edge_uses) of the face
   /// whose plane holds the opening beyond it (boundary and, in exact mode,
   /// fold edges), or -1 for an edge that is not open.
-  std::vector<int> open_edge_use;
+  MappableArray<int> open_edge_use;
   /// Unit front normal per face; zero for zero-area faces.
-  std::vector<Eigen::Vector3d> face_normals;
+  MappableArray<Eigen::Vector3d> face_normals;
   /// Area per face, scene units squared.
-  std::vector<double> face_areas;
-  std::vector<BoundaryBar> bars;
+  MappableArray<double> face_areas;
+  MappableArray<BoundaryBar> bars;
   AabbTree vertex_tree; ///< over mesh vertices
   AabbTree edge_tree;   ///< over MeshConnectivity::edges
   AabbTree face_tree;   ///< over faces
@@ -59,19 +60,19 @@ struct SceneIndexData {
   /// front_sweep_face[i] (a face may have several items). A hull can lose a
   /// face's front space only where its box meets one of that face's boxes.
   AabbTree front_sweep_tree;
-  std::vector<int> front_sweep_face;
+  MappableArray<int> front_sweep_face;
   /// Exact mode, per face: how far its front sweep runs, scene units: the
   /// free-space reach, or less where every ray of it meets a face sooner
   /// (first_hit_bound, witness_rays.h). 0 for a face with no sweep.
-  std::vector<double> front_reach;
+  MappableArray<double> front_reach;
   /// Exact mode: the same for the openings beyond open edges; item i is
   /// edge opening_sweep_edge[i] (an edge may have several items).
   AabbTree opening_sweep_tree;
-  std::vector<int> opening_sweep_edge;
+  MappableArray<int> opening_sweep_edge;
   /// Exact mode, per open edge and fan (free_space_sweep.h): how far that
   /// fan runs, as front_reach.
-  std::vector<std::array<double, kOpeningFans>> opening_reach;
-  std::vector<int> bar_of_piece; ///< bar index of each piece in bar_tree
+  MappableArray<std::array<double, kOpeningFans>> opening_reach;
+  MappableArray<int> bar_of_piece; ///< bar index of each piece in bar_tree
 };
 
 /// The mesh as the validity checks see it, at one tolerance: a view of a
@@ -90,21 +91,21 @@ struct SceneIndex {
   double free_space_reach;
   double agent_radius;
   double max_deviation;
-  const std::vector<int>& open_edge_use;
-  const std::vector<Eigen::Vector3d>& face_normals;
-  const std::vector<double>& face_areas;
-  const std::vector<BoundaryBar>& bars;
+  const MappableArray<int>& open_edge_use;
+  const MappableArray<Eigen::Vector3d>& face_normals;
+  const MappableArray<double>& face_areas;
+  const MappableArray<BoundaryBar>& bars;
   const AabbTree& vertex_tree;
   const AabbTree& edge_tree;
   const AabbTree& face_tree;
   const AabbTree& bar_tree;
   const AabbTree& front_sweep_tree;
-  const std::vector<int>& front_sweep_face;
-  const std::vector<double>& front_reach;
+  const MappableArray<int>& front_sweep_face;
+  const MappableArray<double>& front_reach;
   const AabbTree& opening_sweep_tree;
-  const std::vector<int>& opening_sweep_edge;
-  const std::vector<std::array<double, kOpeningFans>>& opening_reach;
-  const std::vector<int>& bar_of_piece;
+  const MappableArray<int>& opening_sweep_edge;
+  const MappableArray<std::array<double, kOpeningFans>>& opening_reach;
+  const MappableArray<int>& bar_of_piece;
   /// The place (hullcover/mesh/tolerance.h) whose hulls this view checks,
   /// or -1 for hulls that may span places (the one cell of --cell-size 0).
   /// Rays of that place are enclosed only by its own faces, as in the place

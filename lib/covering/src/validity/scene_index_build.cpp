@@ -18,16 +18,16 @@ Aabb box_of(std::initializer_list<Eigen::Vector3d> points) {
   return box;
 }
 
-void add_bar(SceneIndexData& index, int edge, int face, double half_length) {
+void add_bar(const SceneIndexData& index, std::vector<BoundaryBar>& bars, int edge, int face, double half_length) {
   const MeshEdge& e = index.prepared->connectivity.edges[edge];
   const Eigen::Vector3d& p0 = index.prepared->mesh.positions[e.v0];
   const Eigen::Vector3d& p1 = index.prepared->mesh.positions[e.v1];
   const Eigen::Vector3d offset = half_length * index.face_normals[face];
   if (index.mode == ValidityMode::exact) {
-    index.bars.push_back({p0 - offset, p0 + offset, p1 - p0, edge, face});
+    bars.push_back({p0 - offset, p0 + offset, p1 - p0, edge, face});
   } else {
     const Eigen::Vector3d mid = 0.5 * (p0 + p1);
-    index.bars.push_back({mid - offset, mid + offset, Eigen::Vector3d::Zero(), edge, face});
+    bars.push_back({mid - offset, mid + offset, Eigen::Vector3d::Zero(), edge, face});
   }
 }
 
@@ -108,7 +108,7 @@ void index_sweeps(SceneIndexData& index, double hull_margin, const std::vector<A
   const AabbTree zone_tree(zones);
   // The reaches, each face's and edge's alone, on `threads` threads; the
   // boxes then in order, so the trees do not depend on the thread count.
-  index.front_reach.assign(mesh.triangles.size(), 0.0);
+  std::vector<double> front_reach(mesh.triangles.size(), 0.0);
   parallel_for(static_cast<int>(mesh.triangles.size()), threads, [&](int f) {
     if (c.zero_area[f]) return;
     const double tol = prepared.face_tolerance(f);
@@ -117,9 +117,9 @@ void index_sweeps(SceneIndexData& index, double hull_margin, const std::vector<A
     std::vector<int> own_scratch;
     triangle_corners(mesh, f, corners);
     const FreeSpaceSweep full = front_space_sweep(corners, index.face_normals[f], reach, tol);
-    index.front_reach[f] = std::min(reach, detail::first_hit_bound(at_face, full, own_scratch));
+    front_reach[f] = std::min(reach, detail::first_hit_bound(at_face, full, own_scratch));
   });
-  index.opening_reach.assign(c.edges.size(), {});
+  std::vector<std::array<double, kOpeningFans>> opening_reach(c.edges.size());
   parallel_for(static_cast<int>(c.edges.size()), threads, [&](int e) {
     if (index.open_edge_use[e] < 0) return;
     const EdgeUse& use = c.edge_uses[index.open_edge_use[e]];
@@ -131,26 +131,31 @@ void index_sweeps(SceneIndexData& index, double hull_margin, const std::vector<A
       const FreeSpaceSweep full =
           opening_fan(mesh.positions[t[use.corner]], mesh.positions[t[(use.corner + 1) % 3]],
                       mesh.positions[t[(use.corner + 2) % 3]], index.face_normals[use.face], fan, reach, tol);
-      index.opening_reach[e][fan] = std::min(reach, detail::first_hit_bound(at_edge, full, own_scratch));
+      opening_reach[e][fan] = std::min(reach, detail::first_hit_bound(at_edge, full, own_scratch));
     }
   });
+  index.front_reach = std::move(front_reach);
+  index.opening_reach = std::move(opening_reach);
   // The two sweep trees, each from its boxes in face or edge order, side by
   // side: each job writes only its own tree and item list.
   parallel_for(2, threads, [&](int job) {
     std::vector<int> near;
     std::vector<Aabb> boxes;
     if (job == 0) {
+      std::vector<int> sweep_faces;
       std::vector<Eigen::Vector3d> triangle(3);
       for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) {
         if (c.zero_area[f]) continue;
         const double tol = prepared.face_tolerance(f);
         triangle_corners(mesh, f, triangle);
         const FreeSpaceSweep sweep = front_space_sweep(triangle, index.face_normals[f], index.front_reach[f], tol);
-        add_sweep_boxes(sweep, f, zones, zone_tree, tol, near, boxes, index.front_sweep_face);
+        add_sweep_boxes(sweep, f, zones, zone_tree, tol, near, boxes, sweep_faces);
       }
       index.front_sweep_tree = AabbTree(boxes);
+      index.front_sweep_face = std::move(sweep_faces);
       return;
     }
+    std::vector<int> sweep_edges;
     for (int e = 0; e < static_cast<int>(c.edges.size()); ++e) {
       if (index.open_edge_use[e] < 0) continue;
       const EdgeUse& use = c.edge_uses[index.open_edge_use[e]];
@@ -175,15 +180,16 @@ void index_sweeps(SceneIndexData& index, double hull_margin, const std::vector<A
       if (fan_boxes.size() <= 1 || zones.size() == 1) {
         if (box.empty()) continue;
         boxes.push_back(box);
-        index.opening_sweep_edge.push_back(e);
+        sweep_edges.push_back(e);
         continue;
       }
       for (const Aabb& part : fan_boxes) {
         boxes.push_back(part);
-        index.opening_sweep_edge.push_back(e);
+        sweep_edges.push_back(e);
       }
     }
     index.opening_sweep_tree = AabbTree(boxes);
+    index.opening_sweep_edge = std::move(sweep_edges);
   });
 }
 
@@ -196,7 +202,8 @@ SceneIndexData build_scene_index(const PreparedMesh& prepared, const BarOptions&
   index.free_space_reach = options.free_space_reach;
   index.agent_radius = options.agent_radius;
   index.max_deviation = options.max_deviation;
-  index.open_edge_use.assign(prepared.connectivity.edges.size(), -1);
+  std::vector<int> open_edge_use(prepared.connectivity.edges.size(), -1);
+  std::vector<BoundaryBar> bars;
   const Mesh& mesh = prepared.mesh;
   const MeshConnectivity& c = prepared.connectivity;
   const int face_count = static_cast<int>(mesh.triangles.size());
@@ -205,31 +212,35 @@ SceneIndexData build_scene_index(const PreparedMesh& prepared, const BarOptions&
                                                  : options.half_length_of_island[prepared.islands.island_of_face[face]];
   };
 
-  index.face_normals.resize(face_count, Eigen::Vector3d::Zero());
-  index.face_areas.resize(face_count, 0.0);
+  std::vector<Eigen::Vector3d> face_normals(face_count, Eigen::Vector3d::Zero());
+  std::vector<double> face_areas(face_count, 0.0);
   for (int f = 0; f < face_count; ++f) {
     const Eigen::Vector3d area_vector = triangle_area_vector(mesh, f);
-    index.face_areas[f] = 0.5 * area_vector.norm();
-    if (!c.zero_area[f]) index.face_normals[f] = area_vector.normalized();
+    face_areas[f] = 0.5 * area_vector.norm();
+    if (!c.zero_area[f]) face_normals[f] = area_vector.normalized();
   }
+  index.face_normals = std::move(face_normals);
+  index.face_areas = std::move(face_areas);
 
   for (int e = 0; e < static_cast<int>(c.edges.size()); ++e) {
     const MeshEdge& edge = c.edges[e];
     if (edge.kind == EdgeKind::boundary) {
       const int face = c.edge_uses[edge.first_use].face;
       if (c.zero_area[face]) continue;
-      add_bar(index, e, face, half_length(face));
-      index.open_edge_use[e] = edge.first_use;
+      add_bar(index, bars, e, face, half_length(face));
+      open_edge_use[e] = edge.first_use;
     } else if (options.mode == ValidityMode::exact && is_fold_edge(prepared, e)) {
-      add_bar(index, e, c.edge_uses[edge.first_use].face, half_length(c.edge_uses[edge.first_use].face));
-      index.open_edge_use[e] = edge.first_use;
+      add_bar(index, bars, e, c.edge_uses[edge.first_use].face, half_length(c.edge_uses[edge.first_use].face));
+      open_edge_use[e] = edge.first_use;
     } else if (options.material_boundaries && edge.kind == EdgeKind::manifold) {
       const int f0 = c.edge_uses[edge.first_use].face, f1 = c.edge_uses[edge.first_use + 1].face;
       if (mesh.material_ids[f0] == mesh.material_ids[f1]) continue;
       for (int face : {f0, f1})
-        if (!c.zero_area[face]) add_bar(index, e, face, half_length(face));
+        if (!c.zero_area[face]) add_bar(index, bars, e, face, half_length(face));
     }
   }
+  index.open_edge_use = std::move(open_edge_use);
+  index.bars = std::move(bars);
 
   // The four element trees are independent, so they are built side by side
   // on the bake's threads (a re-bake after a small edit spends much of its
@@ -253,6 +264,7 @@ SceneIndexData build_scene_index(const PreparedMesh& prepared, const BarOptions&
       index.vertex_tree = AabbTree(boxes);
     } else {
       const double piece_length = prepared.tolerance.diagonal / kBarPiecesPerDiagonal;
+      std::vector<int> bar_of_piece;
       for (int b = 0; b < static_cast<int>(index.bars.size()); ++b) {
         const BoundaryBar& bar = index.bars[b];
         const int pieces = std::max(1, static_cast<int>(std::ceil((bar.b - bar.a).norm() / piece_length)));
@@ -260,10 +272,11 @@ SceneIndexData build_scene_index(const PreparedMesh& prepared, const BarOptions&
           const Eigen::Vector3d from = bar.a + (bar.b - bar.a) * (static_cast<double>(k) / pieces);
           const Eigen::Vector3d to = bar.a + (bar.b - bar.a) * (static_cast<double>(k + 1) / pieces);
           boxes.push_back(box_of({from, to, from + bar.along, to + bar.along}));
-          index.bar_of_piece.push_back(b);
+          bar_of_piece.push_back(b);
         }
       }
       index.bar_tree = AabbTree(boxes);
+      index.bar_of_piece = std::move(bar_of_piece);
     }
   });
   if (index.mode == ValidityMode::exact) index_sweeps(index, options.hull_margin, options.hull_zones, threads);

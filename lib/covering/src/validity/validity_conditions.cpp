@@ -58,7 +58,8 @@ Validity judge_sweep(const SceneIndex& hull_view, const SweepRef& ref, const Hul
 
 // The items of `tree` whose boxes meet `box`, as their owners (a sweep has a
 // box per hull zone it crosses: each face or edge once), ascending.
-void sweep_owners(const AabbTree& tree, const std::vector<int>& owner_of_item, const Aabb& box, std::vector<int>& out) {
+void sweep_owners(const AabbTree& tree, const MappableArray<int>& owner_of_item, const Aabb& box,
+                  std::vector<int>& out) {
   out.clear();
   tree.overlapping(box, out);
   for (int& item : out) item = owner_of_item[item];

@@ -28,6 +28,7 @@
 
 namespace hullcover {
 
+class MappedFile;
 namespace detail {
 struct DecompositionStages;
 }
@@ -41,7 +42,28 @@ public:
   /// `internal_error` (out of memory).
   [[nodiscard]] static Result<std::unique_ptr<StagedDecomposition>> prepare(PreparedMesh prepared,
                                                                             const DecomposeOptions& options);
+  /// Stage 1 read from a prepared scene file that write_prepared() wrote
+  /// (docs/worlds.md, "The prepared scene file"): the scene and its cells
+  /// are copied out of it, and the scene index (its search trees and
+  /// free-space sweeps, most of stage 1's memory) is read in place from the
+  /// file mapped into memory, so a process holds only the pages its cells'
+  /// checks read. `options` must be those the file was prepared with.
+  /// Fails with `file_not_found`, `unknown_format` (not a prepared scene
+  /// file, or another version), `unreadable_file` (damaged: the message
+  /// names the part), `invalid_argument` (prepared with other options, or
+  /// options out of range) or `internal_error`.
+  [[nodiscard]] static Result<std::unique_ptr<StagedDecomposition>> map_prepared(const std::string& path,
+                                                                                 const DecomposeOptions& options);
   ~StagedDecomposition();
+
+  /// Writes stage 1 (the scene, its cells and the scene index) to `path`
+  /// for map_prepared(), atomically: versioned, little-endian, each part
+  /// checksummed. Fails with `unwritable_file` or `internal_error`.
+  [[nodiscard]] Status write_prepared(const std::string& path) const;
+  /// For stages read by map_prepared(): hands the file's pages read so far
+  /// back to the system, so that memory holds only what later cells read
+  /// (a bake's worker calls it between cells). Nothing for other stages.
+  void release_mapped_pages() const;
   StagedDecomposition(const StagedDecomposition&) = delete;
   StagedDecomposition& operator=(const StagedDecomposition&) = delete;
 
@@ -79,6 +101,8 @@ public:
 
 private:
   StagedDecomposition() = default;
+  // Declared first, so destroyed last: the stages read the file in place.
+  std::unique_ptr<MappedFile> mapping_;
   std::unique_ptr<PreparedMesh> prepared_;
   std::unique_ptr<detail::DecompositionStages> stages_;
 };

@@ -5,6 +5,7 @@
 /// on space partitioning to speed up this process").
 
 #include "hullcover/geometry/aabb.h"
+#include "hullcover/geometry/mappable_array.h"
 
 #include <Eigen/Core>
 
@@ -16,6 +17,10 @@
 #include <vector>
 
 namespace hullcover {
+
+namespace detail {
+struct AabbTreeStorage;
+}
 
 /// Built once over a fixed list of boxes; answers box-overlap queries with
 /// the indices of the boxes in that list.
@@ -74,6 +79,10 @@ public:
   bool empty() const { return items_.empty(); }
 
 private:
+  // Writes a tree's arrays to a prepared scene file and views them there
+  // (lib/covering/src/cells/prepared_scene_file.cpp).
+  friend struct detail::AabbTreeStorage;
+
   /// A box in floats, rounded outward from the doubles it stands for: an
   /// inner node then fits one 64-byte cache line with both of its
   /// children's boxes, and the walks (memory-bound on large scenes) read
@@ -144,22 +153,27 @@ private:
   static constexpr int kMaxSurfaceAreaDepth = 64;
   static_assert(kMaxSurfaceAreaDepth + 32 < kMaxDepth, "a walk's stack holds the deepest tree");
 
-  /// Reorders items_[begin, end) about the binned split plane of least
+  /// The arrays a build fills, moved into the tree when it is done.
+  struct Building {
+    std::vector<Node> nodes;
+    std::vector<int> items;
+  };
+  /// Reorders items[begin, end) about the binned split plane of least
   /// surface-area cost and returns where the second part starts, or -1 when
   /// no plane parts them (every centre in one bin, or extents too large to
   /// bin).
-  int surface_area_split(int begin, int end, const std::vector<Aabb>& boxes,
+  int surface_area_split(std::vector<int>& items, int begin, int end, const std::vector<Aabb>& boxes,
                          const std::vector<Eigen::Vector3d>& centres, const Aabb& centre_box);
-  /// Builds the subtree over items_[begin, end), `depth` levels below the
-  /// root; returns it and its box.
-  ChildRef build(int begin, int end, int depth, const std::vector<Aabb>& boxes,
+  /// Builds the subtree over building.items[begin, end), `depth` levels
+  /// below the root, into `building`; returns it and its box.
+  ChildRef build(Building& building, int begin, int end, int depth, const std::vector<Aabb>& boxes,
                  const std::vector<Eigen::Vector3d>& centres, Aabb& box);
 
-  std::vector<Node> nodes_; ///< the inner nodes
-  ChildRef root_{0, 0};     ///< the root: an inner node, or the only leaf
-  FloatBox root_box_{};     ///< the root's box (a leaf's when the root is the only leaf)
-  std::vector<int> items_;
-  std::vector<Aabb> leaf_boxes_; ///< the box of items_[i] at i: read in the order the walks read them
+  MappableArray<Node> nodes_; ///< the inner nodes
+  ChildRef root_{0, 0};       ///< the root: an inner node, or the only leaf
+  FloatBox root_box_{};       ///< the root's box (a leaf's when the root is the only leaf)
+  MappableArray<int> items_;
+  MappableArray<Aabb> leaf_boxes_; ///< the box of items_[i] at i: read in the order the walks read them
 };
 
 template <class Box>

@@ -1,0 +1,49 @@
+#pragma once
+/// \file mappable_array.h
+/// A read-only array that either owns its elements or views elements kept
+/// elsewhere: the pages of a prepared scene file mapped into memory
+/// (hullcover/covering/staged_decomposition.h). The decomposer's search
+/// trees and per-face tables are built into owned arrays; a bake's worker
+/// maps them from the file instead, and then holds in memory only the pages
+/// its cells read.
+
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+namespace hullcover {
+
+/// Owned (a std::vector) or a view (pointer and count); read through one
+/// interface. A view's elements must outlive every copy of it.
+template <class T>
+class MappableArray {
+public:
+  MappableArray() = default;
+  /// Owns `elements`.
+  MappableArray(std::vector<T> elements) : owned_(std::move(elements)) {} // NOLINT: a vector converts as itself
+  /// Views `count` elements at `first` (not owned).
+  static MappableArray view(const T* first, std::size_t count) {
+    MappableArray a;
+    a.view_ = first;
+    a.view_count_ = count;
+    return a;
+  }
+
+  const T* data() const { return view_ ? view_ : owned_.data(); }
+  std::size_t size() const { return view_ ? view_count_ : owned_.size(); }
+  bool empty() const { return size() == 0; }
+  const T& operator[](std::size_t i) const { return data()[i]; }
+  const T* begin() const { return data(); }
+  const T* end() const { return data() + size(); }
+  const T& front() const { return data()[0]; }
+  const T& back() const { return data()[size() - 1]; }
+  /// Whether the elements live elsewhere (a mapped file).
+  bool is_view() const { return view_ != nullptr; }
+
+private:
+  std::vector<T> owned_;
+  const T* view_ = nullptr;
+  std::size_t view_count_ = 0;
+};
+
+} // namespace hullcover
