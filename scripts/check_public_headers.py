@@ -45,6 +45,7 @@ hullcover/covering/staged_decomposition.h
 hullcover/covering/validity.h
 hullcover/geometry/aabb.h
 hullcover/geometry/aabb_tree.h
+hullcover/geometry/mappable_array.h
 hullcover/geometry/convex_polytope.h
 hullcover/geometry/mesh.h
 hullcover/geometry/status.h

@@ -11,6 +11,7 @@
 
 #include "hullcover/covering/convex_hull_3d.h"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 namespace hullcover::detail {

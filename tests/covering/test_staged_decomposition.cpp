@@ -15,13 +15,6 @@
 namespace hullcover {
 namespace {
 
-std::unique_ptr<StagedDecomposition> staged(const Mesh& mesh, const DecomposeOptions& options) {
-  Result<PreparedMesh> prepared = prepare_mesh(mesh, std::nullopt);
-  if (!prepared.ok()) return nullptr;
-  Result<std::unique_ptr<StagedDecomposition>> s = StagedDecomposition::prepare(std::move(prepared).value(), options);
-  return s.ok() ? std::move(s).value() : nullptr;
-}
-
 // Every cell merged, last cell first (the order must not matter).
 std::vector<std::string> merge_every_cell(const StagedDecomposition& s) {
   std::vector<std::string> cells(s.cell_count());
@@ -37,7 +30,7 @@ TEST(StagedDecomposition, CellsCarriedAsBytesGiveDecomposesCovering) {
   const Mesh building = demo_building();
   const DecomposeOptions o = test::options_with_small_cells(building);
   const auto whole = test::decompose_and_check(building, o);
-  const auto s = staged(building, o);
+  const auto s = test::staged_decomposition(building, o);
   ASSERT_TRUE(whole && s);
   ASSERT_GT(s->cell_count(), 8);
   Result<Covering> finished = s->finish(merge_every_cell(*s));
@@ -56,7 +49,7 @@ TEST(StagedDecomposition, CellsCarriedAsBytesGiveDecomposesCovering) {
 
 TEST(StagedDecomposition, CellBytesAreCheckedBeforeUse) {
   const Mesh building = demo_building();
-  const auto s = staged(building, test::options_with_small_cells(building));
+  const auto s = test::staged_decomposition(building, test::options_with_small_cells(building));
   ASSERT_TRUE(s);
   const std::vector<std::string> cells = merge_every_cell(*s);
   const auto finish_with = [&](int cell, const std::string& bytes) {
@@ -100,14 +93,14 @@ TEST(StagedDecomposition, AnEditInvalidatesOnlyTheHullsItReaches) {
   const Mesh before = box_on_floor();
   DecomposeOptions o;
   o.cell_size = 4.0;
-  const auto old_bake = staged(before, o);
+  const auto old_bake = test::staged_decomposition(before, o);
   ASSERT_TRUE(old_bake);
   const std::vector<std::string> old_cells = merge_every_cell(*old_bake);
   // The edit: a long thin triangle whose centroid lies in the next cell
   // over (x < 0) but whose tip reaches into the box.
   Mesh after = before;
   test::add_triangle(after, {-6.0, 0.3, 3.0}, {-6.0, 0.4, 3.1}, {3.0, 0.5, 3.0});
-  const auto new_bake = staged(after, o);
+  const auto new_bake = test::staged_decomposition(after, o);
   ASSERT_TRUE(new_bake);
   ASSERT_EQ(new_bake->cell_count(), old_bake->cell_count());
   const int box_faces = static_cast<int>(before.triangles.size()) - 12;

@@ -22,6 +22,7 @@ inline constexpr const char* kRuntimeFile = "runtime_file";
 inline constexpr const char* kHullObj = "hull_obj";
 inline constexpr const char* kCellResult = "cell_result";
 inline constexpr const char* kSceneSnapshot = "scene_snapshot";
+inline constexpr const char* kPreparedScene = "prepared_scene";
 
 /// Mesh import (mesh_import.h), then prepare_mesh as every command does.
 /// The first byte picks the extension (.obj .ply .stl .gltf .glb, modulo
@@ -51,5 +52,10 @@ int fuzz_one_cell_result(const std::uint8_t* data, std::size_t size);
 /// as edits (a u16 position and a byte, each) to the valid record with its
 /// checksum made right afterwards.
 int fuzz_one_scene_snapshot(const std::uint8_t* data, std::size_t size);
+
+/// The prepared scene file (StagedDecomposition::map_prepared) of a small
+/// scene in cells: the input as the file, and as edits (u16 position,
+/// byte) to the valid file with every checksum made right.
+int fuzz_one_prepared_scene(const std::uint8_t* data, std::size_t size);
 
 } // namespace hullcover::fuzz

@@ -33,7 +33,8 @@ const Target kTargets[] = {{kMeshImport, fuzz_one_mesh_import},
                            {kRuntimeFile, fuzz_one_runtime_file},
                            {kHullObj, fuzz_one_hull_obj},
                            {kCellResult, fuzz_one_cell_result},
-                           {kSceneSnapshot, fuzz_one_scene_snapshot}};
+                           {kSceneSnapshot, fuzz_one_scene_snapshot},
+                           {kPreparedScene, fuzz_one_prepared_scene}};
 
 struct Input {
   std::string target;

@@ -49,6 +49,13 @@ void add_quad_facing(Mesh& mesh, const Eigen::Vector3d& a, const Eigen::Vector3d
     add_quad(mesh, a, d, c, b, material);
 }
 
+std::unique_ptr<StagedDecomposition> staged_decomposition(const Mesh& mesh, const DecomposeOptions& options) {
+  Result<PreparedMesh> prepared = prepare_mesh(mesh, std::nullopt);
+  if (!prepared.ok()) return nullptr;
+  Result<std::unique_ptr<StagedDecomposition>> s = StagedDecomposition::prepare(std::move(prepared).value(), options);
+  return s.ok() ? std::move(s).value() : nullptr;
+}
+
 std::string covering_obj_bytes(const Covering& covering) {
   TempDir dir;
   const std::string path = dir.path("hulls.obj");

@@ -5,6 +5,7 @@
 #include "hullcover/validate/validity_recheck.h"
 
 #include "hullcover/covering/covering.h"
+#include "hullcover/covering/staged_decomposition.h"
 #include "hullcover/mesh/prepared_mesh.h"
 
 #include <gtest/gtest.h>
@@ -49,6 +50,10 @@ inline Eigen::Vector3d random_unit(std::mt19937& rng) {
 /// Options putting `mesh` in cells a sixth of its extent wide: several
 /// cells, so stages, caches and re-bakes have cells to carry.
 DecomposeOptions options_with_small_cells(const Mesh& mesh);
+
+/// `mesh` prepared (default tolerance) and its stage 1 made; null when
+/// either fails.
+std::unique_ptr<StagedDecomposition> staged_decomposition(const Mesh& mesh, const DecomposeOptions& options);
 
 /// The audit's findings by name, for failure messages.
 std::string finding_names(const std::vector<validate::AuditFinding>& findings);

@@ -6,7 +6,7 @@
 Without --scheduler the bake runs on a LocalCluster of this machine's cores
 (one single-threaded worker process per core). With one, the prepared scene
 file (--prepared) must lie in a folder every worker reads: each worker
-checks its SHA-256 against the client's before it uses it.
+checks its header checksum against the client's before it uses it.
 
 How it runs (docs/worlds.md, "The distributed bake"):
   1. The client prepares the scene (islands, cells, scene index) and writes
@@ -28,7 +28,7 @@ status: 0 done, 2 bad input or options, 1 anything else.
 """
 
 import argparse
-import hashlib
+import ctypes
 import importlib
 import json
 import os
@@ -45,36 +45,59 @@ _loaded_lock = threading.Lock()
 _loaded = {}
 
 
-def _sha256(path):
-    digest = hashlib.sha256()
+def _libc_trim():
+    # glibc keeps freed memory for reuse; a worker hands it back between
+    # cells, so its peak follows the largest cell, not the sum of the
+    # scraps every cell left. Elsewhere: nothing.
+    try:
+        return ctypes.CDLL("libc.so.6").malloc_trim
+    except (OSError, AttributeError):
+        return None
+
+
+_trim_heap = _libc_trim()
+
+
+def _fingerprint(path):
+    """The prepared scene file's header checksum, as hex: it covers every
+    section's checksum, which StagedBake.map checks against the sections,
+    so it names the file's content without reading the whole file (docs/
+    worlds.md, "The prepared scene file"). "" for a file too short."""
     with open(path, "rb") as f:
-        for block in iter(lambda: f.read(1 << 20), b""):
-            digest.update(block)
-    return digest.hexdigest()
+        head = f.read(16)
+        if len(head) < 16:
+            return ""
+        count = int.from_bytes(head[12:16], "little")
+        f.seek(32 + 32 * count)
+        tail = f.read(8)
+    return tail.hex() if len(tail) == 8 else ""
 
 
-def _scene_on_this_worker(path, sha256, options):
-    key = (path, sha256, tuple(sorted(options.items())))
+def _scene_on_this_worker(path, fingerprint, options):
+    key = (path, fingerprint, tuple(sorted(options.items())))
     with _loaded_lock:
         bake = _loaded.get(key)
         if bake is None:
-            found = _sha256(path)
-            if found != sha256:
-                raise ValueError(f"{path} on this worker is not the client's scene (SHA-256 {found[:12]}..., "
-                                 f"expected {sha256[:12]}...): bake from a folder every worker shares")
+            found = _fingerprint(path)
+            if found != fingerprint:
+                raise ValueError(f"{path} on this worker is not the client's prepared scene (checksum "
+                                 f"{found[:12] or 'none'}, expected {fingerprint[:12]}): give --prepared a path "
+                                 f"in a folder every worker shares")
             _loaded.clear()
             bake = _hullcover.StagedBake.map(path, **_map_options(options))
             _loaded[key] = bake
         return bake
 
 
-def merge_cell_task(path, sha256, options, cell):
+def merge_cell_task(path, fingerprint, options, cell):
     """One Dask task: the bytes of cell `cell` (run on a worker)."""
-    bake = _scene_on_this_worker(path, sha256, options)
+    bake = _scene_on_this_worker(path, fingerprint, options)
     try:
         return bake.merge_cell(cell)
     finally:
         bake.release_pages()
+        if _trim_heap is not None:
+            _trim_heap(0)
 
 
 def _peak_memory_mb():
@@ -132,7 +155,7 @@ def _client(args):
 
 def bake(args):
     """Runs the bake; returns the figures it prints."""
-    from distributed import as_completed, progress
+    from distributed import as_completed
 
     start = time.monotonic()
     path = os.path.abspath(args.scene)
@@ -148,7 +171,7 @@ def bake(args):
         try:
             local["bake"] = _hullcover.StagedBake.load(path, **dict(options, threads=0))
             local["bake"].write_prepared(prepared)
-            local["sha256"] = _sha256(prepared)
+            local["fingerprint"] = _fingerprint(prepared)
         except Exception as e:  # reported after the join
             local["error"] = e
 
@@ -160,27 +183,31 @@ def bake(args):
         if "error" in local:
             raise local["error"]
         staged = local["bake"]
-        sha256 = local["sha256"]
+        fingerprint = local["fingerprint"]
         count = staged.cell_count()
         cells = sorted(range(count), key=lambda c: -staged.cell_face_count(c))
         # By the module's name, so Dask pickles a reference to it, not the
         # function's globals (as it would for __main__'s under -m).
         task = importlib.import_module("hullcover.bake").merge_cell_task
-        futures = [client.submit(task, prepared, sha256, options, c,
-                                 key=f"hullcover-cell-{sha256[:16]}-{c}", priority=count - i, pure=False)
+        futures = [client.submit(task, prepared, fingerprint, options, c,
+                                 key=f"hullcover-cell-{fingerprint}-{c}", priority=count - i, pure=False)
                    for i, c in enumerate(cells)]
         cell_of = {f.key: c for f, c in zip(futures, cells)}
-        if args.report_cells:
-            for done, future in enumerate(as_completed(futures), 1):
+        # Each result is taken as it arrives and its future let go, so the
+        # worker that made it frees it at once instead of holding every
+        # result it made until the end.
+        ordered = [None] * count
+        for done, (future, result) in enumerate(as_completed(futures, with_results=True), 1):
+            ordered[cell_of[future.key]] = result
+            future.release()
+            if args.report_cells:
                 print(f"hullcover.bake: cell {cell_of[future.key]} done ({done} of {count})",
                       file=sys.stderr, flush=True)
-        elif not args.quiet:
-            progress(futures)
+            elif not args.quiet:
+                print(f"\rhullcover.bake: {done} of {count} cells", end="", file=sys.stderr, flush=True)
+        if not args.quiet and not args.report_cells:
             print(file=sys.stderr)
-        results = client.gather(futures)
-        ordered = [None] * count
-        for c, result in zip(cells, results):
-            ordered[c] = result
+        del futures
         workers_seen = len(client.scheduler_info()["workers"])
         peak_module = importlib.import_module("hullcover.bake")
         worker_peaks = sorted(client.run(peak_module._peak_memory_mb).values())

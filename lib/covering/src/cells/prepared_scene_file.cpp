@@ -10,6 +10,7 @@
 
 #include "hullcover/geometry/atomic_file.h"
 #include "hullcover/geometry/little_endian_bytes.h"
+#include "hullcover/geometry/mapped_file.h"
 
 #include <cstring>
 
@@ -144,7 +145,10 @@ Status write_prepared_scene(const std::string& path, const PreparedMesh& scene, 
   write_scalars(scene, stages, out, scalars);
   out.add_blob(kScalars, std::move(scalars.bytes));
   const std::string header = out.header(prepared_options_key(stages));
-  return write_file_atomically(path, [&](std::FILE* file) { return out.write(header, file); });
+  Status written = write_file_atomically(path, [&](std::FILE* file) { return out.write(header, file); });
+  // Readers on this machine then bring in the pages they read one by one.
+  if (written.ok()) drop_cached_pages(path);
+  return written;
 }
 
 } // namespace hullcover::detail

@@ -79,8 +79,7 @@ std::string section_name(std::uint32_t id) {
   return "section " + std::to_string(id);
 }
 
-std::uint64_t section_checksum(const unsigned char* data, std::size_t bytes) {
-  std::uint64_t hash = 0xcbf29ce484222325ull;
+std::uint64_t section_checksum(const unsigned char* data, std::size_t bytes, std::uint64_t hash) {
   std::size_t i = 0;
   for (; i + 8 <= bytes; i += 8) {
     std::uint64_t word;

@@ -72,7 +72,10 @@ std::string section_name(std::uint32_t id);
 /// FNV-1a-64 taken a 64-bit little-endian word at a time (the last word
 /// padded with zeros): a checksum against damage, eight times as fast as
 /// FNV-1a byte by byte on files of gigabytes.
-std::uint64_t section_checksum(const unsigned char* data, std::size_t bytes);
+/// `hash` continues a checksum over bytes before these (their count a
+/// multiple of 8).
+std::uint64_t section_checksum(const unsigned char* data, std::size_t bytes,
+                               std::uint64_t hash = 0xcbf29ce484222325ull);
 
 bool host_is_little_endian();
 

@@ -29,13 +29,21 @@ public:
     return a;
   }
 
+  /// The first element (the vector's, or the viewed ones').
   const T* data() const { return view_ ? view_ : owned_.data(); }
+  /// How many elements.
   std::size_t size() const { return view_ ? view_count_ : owned_.size(); }
+  /// Whether it has none.
   bool empty() const { return size() == 0; }
+  /// Element i (i < size(), not checked).
   const T& operator[](std::size_t i) const { return data()[i]; }
+  /// The elements, for range loops and algorithms.
   const T* begin() const { return data(); }
+  /// Past the last element.
   const T* end() const { return data() + size(); }
+  /// The first element (not empty).
   const T& front() const { return data()[0]; }
+  /// The last element (not empty).
   const T& back() const { return data()[size() - 1]; }
   /// Whether the elements live elsewhere (a mapped file).
   bool is_view() const { return view_ != nullptr; }

@@ -28,6 +28,11 @@ public:
   MappedFile& operator=(const MappedFile&) = delete;
 
   const unsigned char* data() const { return data_; }
+  /// Copies `bytes` bytes at `offset` to `out` by reading the file, not the
+  /// mapping: what is read this way takes no memory of the process (a
+  /// checksum pass over the whole file). False on a read error or past the
+  /// end.
+  bool read(std::size_t offset, void* out, std::size_t bytes) const;
   std::size_t size() const { return size_; }
   /// Hands the pages of [offset, offset + bytes) back to the system (they
   /// are read from the file again when next touched): the mapping stays
@@ -38,9 +43,17 @@ public:
   void release_pages() const { release_pages(0, size_); }
 
 private:
-  MappedFile(const unsigned char* data, std::size_t size) : data_(data), size_(size) {}
+  MappedFile(int fd, const unsigned char* data, std::size_t size) : fd_(fd), data_(data), size_(size) {}
+  int fd_;
   const unsigned char* data_;
   std::size_t size_;
 };
+
+/// Asks the system to drop the pages of `path` it holds in its cache (a file
+/// just written), so that readers that map it bring in only the pages they
+/// read, one by one, instead of pages the writer left in large blocks that
+/// a mapping takes in whole. Only a hint: nothing happens where the system
+/// declines.
+void drop_cached_pages(const std::string& path);
 
 } // namespace hullcover
