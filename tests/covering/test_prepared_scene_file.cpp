@@ -20,9 +20,7 @@
 namespace hullcover {
 namespace {
 
-void write_bytes(const std::string& path, const std::string& bytes) {
-  std::ofstream(path, std::ios::binary) << bytes;
-}
+void write_bytes(const std::string& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
 
 // Maps the file and expects it merged and finished exactly as `written`.
 void expect_same_stages(const StagedDecomposition& written, const std::string& path, const DecomposeOptions& options) {
@@ -63,8 +61,7 @@ TEST(PreparedSceneFile, MappedStagesMergeAndFinishAsTheStagesThatWroteIt) {
 TEST(PreparedSceneFile, AFarSceneIsMappedInTheSameLocalFrame) {
   // Far from the origin the stages work on a moved copy; the mapped stages
   // must move the scene read back exactly alike.
-  const Mesh far =
-      test::transformed(demo_building(), Eigen::Affine3d(Eigen::Translation3d(3.0e6, -2.0e5, 7.0e5)));
+  const Mesh far = test::transformed(demo_building(), Eigen::Affine3d(Eigen::Translation3d(3.0e6, -2.0e5, 7.0e5)));
   const DecomposeOptions o = test::options_with_small_cells(far);
   const auto s = test::staged_decomposition(far, o);
   ASSERT_TRUE(s);

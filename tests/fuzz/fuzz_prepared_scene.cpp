@@ -35,8 +35,8 @@ DecomposeOptions small_scene_options() {
 }
 
 void map(const std::string& bytes) {
-  const std::string path = write_scratch_file("scene.hcp", reinterpret_cast<const std::uint8_t*>(bytes.data()),
-                                              bytes.size());
+  const std::string path =
+      write_scratch_file("scene.hcp", reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
   Result<std::unique_ptr<StagedDecomposition>> mapped = StagedDecomposition::map_prepared(path, small_scene_options());
   if (mapped.ok()) mapped.value()->release_mapped_pages();
   remove_scratch_file(path);
