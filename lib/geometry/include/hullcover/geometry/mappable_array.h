@@ -19,8 +19,9 @@ template <class T>
 class MappableArray {
 public:
   MappableArray() = default;
-  /// Owns `elements`.
-  MappableArray(std::vector<T> elements) : owned_(std::move(elements)) {} // NOLINT: a vector converts as itself
+  /// Owns `elements`. Implicit, so that a vector just built is assigned as
+  /// it is.
+  MappableArray(std::vector<T> elements) : owned_(std::move(elements)) {} // NOLINT(google-explicit-constructor)
   /// Views `count` elements at `first` (not owned).
   static MappableArray view(const T* first, std::size_t count) {
     MappableArray a;
