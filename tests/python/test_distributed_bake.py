@@ -158,7 +158,27 @@ def test_the_default_local_cluster_gives_the_same_covering(scene, tmp_path):
                          timeout=DEADLINE_SECONDS)
     assert run.returncode == 0, run.stderr
     assert f"{cells} cells on 2 workers" in run.stdout
+    assert "peak memory: workers" in run.stdout
     assert_same_as_reference(out, files)
+    # The temporary prepared scene file is gone.
+    assert not [name for name in os.listdir(tmp_path) if name.endswith(".hcp")]
+
+
+def test_a_kept_prepared_file_names_its_scene_and_a_worker_refuses_another(scene, tmp_path):
+    path, files, cells = scene
+    out = str(tmp_path / "kept")
+    prepared = str(tmp_path / "terrain.hcp")
+    run = subprocess.run(bake_command(path, out, "--workers", "2", "-q", "--prepared", prepared),
+                         capture_output=True, text=True, timeout=DEADLINE_SECONDS)
+    assert run.returncode == 0, run.stderr
+    assert_same_as_reference(out, files)
+    from hullcover import bake
+    fingerprint = bake._fingerprint(prepared)
+    assert len(fingerprint) == 16
+    options = {"tol": None, "cell_size": CELL_SIZE, "agent_radius": None, "max_deviation": None, "threads": 1}
+    assert len(bake.merge_cell_task(prepared, fingerprint, options, 0)) > 0
+    with pytest.raises(ValueError, match="not the client's prepared scene"):
+        bake.merge_cell_task(prepared, "0" * 16, options, 0)
 
 
 def test_bad_input_exits_2_with_a_message(tmp_path):
