@@ -1,9 +1,9 @@
-// Reading the prepared scene file (prepared_scene_file.h). Nothing in it is
-// trusted: every length, index and tree link the decomposer follows is
-// checked against what it points into before the stages read it, so a
-// damaged or hostile file is refused with a message, never read past an
-// array's end. (Its numbers are trusted as its writer made them, as the
-// cell cache's are: a checksum finds damage, it does not sign.)
+// Reading the prepared scene file (prepared_scene_file.h). No length, index
+// or tree link in it is trusted: each is checked against what it points
+// into before the stages read it, so a damaged or hostile file is refused
+// with a message, never read past an array's end. Its numbers (reaches,
+// boxes) are trusted as its writer made them, as the cell cache's are: a
+// checksum finds damage, it does not sign.
 
 #include "cells/prepared_scene_file.h"
 #include "cells/prepared_scene_sections.h"
