@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <deque>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace hullcover::detail {
@@ -83,9 +84,12 @@ bool host_is_little_endian();
 /// made for the file (the blobs).
 class PreparedSections {
 public:
-  template <class T>
-  void add(std::uint32_t id, const T* data, std::size_t count) {
-    add_bytes(id, sizeof(T), reinterpret_cast<const unsigned char*>(data), count * sizeof(T));
+  /// The elements of `array` (a std::vector or MappableArray), where they
+  /// lie; it must outlive write().
+  template <class Array>
+  void add(std::uint32_t id, const Array& array) {
+    using T = std::remove_cv_t<std::remove_reference_t<decltype(*array.data())>>;
+    add_bytes(id, sizeof(T), reinterpret_cast<const unsigned char*>(array.data()), array.size() * sizeof(T));
   }
   void add_blob(std::uint32_t id, std::string bytes);
   /// The magic, version, table and header checksum, sections laid out in
