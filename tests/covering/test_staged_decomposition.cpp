@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace hullcover {
 namespace {
@@ -76,6 +77,100 @@ TEST(StagedDecomposition, CellBytesAreCheckedBeforeUse) {
   EXPECT_EQ(finish_with(1, "not a cell at all").code(), StatusCode::unknown_format);
   EXPECT_EQ(s->finish({cells[0]}).status().code(), StatusCode::invalid_argument);
   EXPECT_EQ(s->merge_cell(s->cell_count()).status().code(), StatusCode::invalid_argument);
+}
+
+// A building, a floor and a box apart from both: three islands, the
+// building's and the floor's cut into several cells.
+Mesh three_islands() {
+  Mesh m = demo_building();
+  std::vector<double> ticks;
+  for (int i = 0; i <= 12; ++i) ticks.push_back(40.0 + i);
+  add_height_field(m, ticks, ticks, [](double x, double z) { return 0.1 * std::sin(x) * std::cos(z); });
+  add_box(m, {-30.0, 0.0, -30.0}, {-28.0, 2.0, -27.0});
+  return m;
+}
+
+// Every seam cell finished from its cells' bytes, last seam cell first.
+std::vector<std::string> finish_every_seam(const StagedDecomposition& s, const std::vector<std::string>& cells) {
+  std::vector<std::string> seams(s.seam_count());
+  for (int seam = s.seam_count() - 1; seam >= 0; --seam) {
+    std::vector<std::string> its;
+    for (int c : s.seam_cells(seam)) its.push_back(cells[c]);
+    Result<std::string> bytes = s.finish_seam(seam, its);
+    EXPECT_TRUE(bytes.ok()) << bytes.status().message();
+    if (bytes.ok()) seams[seam] = std::move(bytes).value();
+  }
+  return seams;
+}
+
+TEST(StagedDecomposition, SeamCellsFinishedApartGiveDecomposesCovering) {
+  const Mesh mesh = three_islands();
+  const DecomposeOptions o = test::options_with_small_cells(mesh);
+  const auto whole = test::decompose_and_check(mesh, o);
+  const auto s = test::staged_decomposition(mesh, o);
+  ASSERT_TRUE(whole && s);
+  ASSERT_GE(s->seam_count(), 3);
+  // The seam cells share out the cells, each cell to one.
+  std::vector<int> seam_of(s->cell_count(), -1);
+  size_t most = 0;
+  for (int seam = 0; seam < s->seam_count(); ++seam) {
+    const std::vector<int> cells = s->seam_cells(seam);
+    most = std::max(most, cells.size());
+    for (int c : cells) {
+      EXPECT_EQ(seam_of[c], -1) << "cell " << c << " in two seam cells";
+      seam_of[c] = seam;
+    }
+  }
+  EXPECT_EQ(std::count(seam_of.begin(), seam_of.end(), -1), 0);
+  EXPECT_GT(most, 1u) << "no seam cell has a border to merge across";
+  const std::vector<std::string> cells = merge_every_cell(*s);
+  Result<Covering> finished = s->finish_seams(finish_every_seam(*s, cells));
+  ASSERT_TRUE(finished.ok()) << finished.status().message();
+  EXPECT_EQ(test::covering_obj_bytes(finished.value()), test::covering_obj_bytes(whole->covering));
+  const CoveringStatistics& a = finished.value().statistics;
+  const CoveringStatistics& b = whole->covering.statistics;
+  EXPECT_GT(b.seam_merges, 0);
+  EXPECT_EQ(a.merges, b.merges);
+  EXPECT_EQ(a.seam_merges, b.seam_merges);
+  EXPECT_EQ(a.qhull_calls, b.qhull_calls);
+  EXPECT_EQ(a.rejections, b.rejections);
+  EXPECT_EQ(a.kept_try, b.kept_try);
+  EXPECT_EQ(a.faces_given_flat_hulls, b.faces_given_flat_hulls);
+}
+
+TEST(StagedDecomposition, SeamBytesAreCheckedBeforeUse) {
+  const Mesh mesh = three_islands();
+  const auto s = test::staged_decomposition(mesh, test::options_with_small_cells(mesh));
+  ASSERT_TRUE(s);
+  const std::vector<std::string> cells = merge_every_cell(*s);
+  const std::vector<std::string> seams = finish_every_seam(*s, cells);
+  ASSERT_TRUE(s->finish_seams(seams).ok());
+  const auto finish_with = [&](int seam, const std::string& bytes) {
+    std::vector<std::string> changed = seams;
+    changed[seam] = bytes;
+    return s->finish_seams(changed).status();
+  };
+  for (size_t at : {size_t{0}, size_t{9}, seams[0].size() / 2, seams[0].size() - 1}) {
+    std::string flipped = seams[0];
+    flipped[at] = static_cast<char>(flipped[at] ^ 0x20);
+    EXPECT_NE(finish_with(0, flipped).code(), StatusCode::ok) << at;
+  }
+  for (size_t keep : {size_t{0}, size_t{7}, size_t{20}, seams[0].size() - 1})
+    EXPECT_NE(finish_with(0, seams[0].substr(0, keep)).code(), StatusCode::ok) << keep;
+  // Another seam cell's bytes, whole and checksummed.
+  const Status other = finish_with(0, seams[1]);
+  EXPECT_EQ(other.code(), StatusCode::unreadable_file);
+  EXPECT_NE(other.message().find("another seam cell"), std::string::npos) << other.message();
+  EXPECT_EQ(finish_with(0, "not a seam cell at all").code(), StatusCode::unknown_format);
+  EXPECT_EQ(s->finish_seams({seams[0]}).status().code(), StatusCode::invalid_argument);
+  // A cell's bytes standing in for another's, too few, and no such seam cell.
+  const std::vector<int> first = s->seam_cells(0);
+  std::vector<std::string> wrong;
+  for (int c : first) wrong.push_back(cells[(c + 1) % s->cell_count()]);
+  EXPECT_EQ(s->finish_seam(0, wrong).status().code(), StatusCode::unreadable_file);
+  EXPECT_EQ(s->finish_seam(0, {}).status().code(), StatusCode::invalid_argument);
+  EXPECT_EQ(s->finish_seam(s->seam_count(), {}).status().code(), StatusCode::invalid_argument);
+  EXPECT_TRUE(s->seam_cells(-1).empty());
 }
 
 // A closed box (its 12 faces last) just above a floor, cut into cells.

@@ -176,9 +176,39 @@ def test_a_kept_prepared_file_names_its_scene_and_a_worker_refuses_another(scene
     fingerprint = bake._fingerprint(prepared)
     assert len(fingerprint) == 16
     options = {"tol": None, "cell_size": CELL_SIZE, "agent_radius": None, "max_deviation": None, "threads": 1}
-    assert len(bake.merge_cell_task(prepared, fingerprint, options, 0)) > 0
+    batch = bake.merge_batch_task(prepared, fingerprint, options, [1, 0])
+    assert [cell for cell, _ in batch] == [1, 0] and all(len(data) > 0 for _, data in batch)
     with pytest.raises(ValueError, match="not the client's prepared scene"):
-        bake.merge_cell_task(prepared, "0" * 16, options, 0)
+        bake.merge_batch_task(prepared, "0" * 16, options, [0])
+    # The terrain is one island: one seam cell, finished from every cell.
+    every = bake.merge_batch_task(prepared, fingerprint, options, list(range(2, cells))) + batch
+    seams = bake.finish_seams_task(prepared, fingerprint, options, [0], every[:5], every[5:])
+    assert [seam for seam, _ in seams] == [0] and len(seams[0][1]) > 0
+    with pytest.raises(KeyError):
+        bake.finish_seams_task(prepared, fingerprint, options, [0], every[1:])
+
+
+def test_tasks_are_planned_largest_first_and_hold_each_cell_once():
+    from hullcover import bake
+    # Seam cells of 1, 2, 40 and 3 cells; cell c has c + 1 faces.
+    seam_cells = [[0], [1, 2], list(range(3, 43)), [43, 44, 45]]
+    faces = [c + 1 for c in range(46)]
+    plan = bake.plan_tasks(seam_cells, faces, workers=2)
+    target = sum(faces) // (2 * bake.BATCHES_PER_WORKER)
+    seen_seams = [s for group, _ in plan for s in group]
+    assert sorted(seen_seams) == [0, 1, 2, 3]
+    seen_cells = [c for _, batches in plan for batch in batches for c in batch]
+    assert sorted(seen_cells) == list(range(46))
+    for group, batches in plan:
+        group_cells = {c for s in group for c in seam_cells[s]}
+        for batch in batches:
+            assert set(batch) <= group_cells
+            assert len(batch) == 1 or sum(faces[c] for c in batch) <= target
+    # The largest seam cell's group first, its batches largest first.
+    assert plan[0][0] == [2]
+    costs = [sum(faces[c] for c in batch) for batch in plan[0][1]]
+    assert costs[0] == max(costs)
+    assert len(plan[0][1]) > 1
 
 
 def test_bad_input_exits_2_with_a_message(tmp_path):

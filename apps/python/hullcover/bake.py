@@ -9,19 +9,24 @@ file (--prepared) must lie in a folder every worker reads: each worker
 checks its header checksum against the client's before it uses it.
 
 How it runs (docs/worlds.md, "The distributed bake"):
-  1. The client prepares the scene (islands, cells, scene index) and writes
-     it to the prepared scene file.
-  2. Each cell is a task, largest first. A worker maps the prepared file
-     once (StagedBake.map: the scene index is read in place, not loaded)
-     and keeps it for every later task of the same file and options; after
-     each task it hands the file's pages back, so its memory holds what the
-     cell at hand reads, not the world. A task returns the cell's result as
-     bytes (the checked form of lib/covering/src/cells/cell_result_bytes.h).
-  3. The client gathers the bytes in cell order and finishes: the seam pass
-     and the hulls. The output is the same, byte for byte, as
-     `hullcover decompose WORLD -o HULLS.obj --world H.hcw` with the same
-     options, whichever worker ran which cell, and whether or not a worker
-     died on the way (Dask runs its tasks again elsewhere).
+  1. The client prepares the scene (islands, cells, scene index), writes it
+     to the prepared scene file, and from then on reads it mapped, as the
+     workers do.
+  2. Cells are batched into tasks of similar cost (faces), largest first,
+     each batch within one group of seam cells (islands). A worker maps the
+     prepared file once (StagedBake.map: the scene index is read in place,
+     not loaded) and keeps it for every later task of the same file and
+     options; after each cell it hands the file's pages back, so its memory
+     holds what the cell at hand reads, not the world. A batch returns its
+     cells' results as bytes (lib/covering/src/cells/cell_result_bytes.h).
+  3. Each group's seam pass and hulls is a task too, on the batches of its
+     cells (Dask moves their bytes between workers; the client never holds
+     them). It returns the group's hulls as bytes (seam_result_bytes.h).
+  4. The client puts the hulls together (flat hulls for faces no hull
+     covers, every hull in order) and writes the files. The output is the
+     same, byte for byte, as `hullcover decompose WORLD -o HULLS.obj --world
+     H.hcw` with the same options, whichever worker ran what, and whether
+     or not a worker died on the way (Dask runs its tasks again elsewhere).
 
 Files are written atomically (a reader never sees one half written). Exit
 status: 0 done, 2 bad input or options, 1 anything else.
@@ -89,19 +94,96 @@ def _scene_on_this_worker(path, fingerprint, options):
         return bake
 
 
-def merge_cell_task(path, fingerprint, options, cell):
-    """One Dask task: the bytes of cell `cell` (run on a worker)."""
+def _hand_back(bake):
+    bake.release_pages()
+    if _trim_heap is not None:
+        _trim_heap(0)
+
+
+def merge_batch_task(path, fingerprint, options, cells):
+    """One Dask task: [(cell, bytes)] for each of `cells` (run on a worker)."""
     bake = _scene_on_this_worker(path, fingerprint, options)
-    try:
-        return bake.merge_cell(cell)
-    finally:
-        bake.release_pages()
-        if _trim_heap is not None:
-            _trim_heap(0)
+    results = []
+    for cell in cells:
+        try:
+            results.append((cell, bake.merge_cell(cell)))
+        finally:
+            _hand_back(bake)
+    return results
+
+
+def finish_seams_task(path, fingerprint, options, seams, *batches):
+    """One Dask task: [(seam cell, bytes)] for each of `seams`, from the
+    batches that hold their cells (run on a worker)."""
+    bake = _scene_on_this_worker(path, fingerprint, options)
+    cell_bytes = {cell: data for batch in batches for cell, data in batch}
+    results = []
+    for seam in seams:
+        try:
+            results.append((seam, bake.finish_seam(seam, [cell_bytes.pop(c) for c in bake.seam_cells(seam)])))
+        finally:
+            _hand_back(bake)
+    return results
+
+
+# Tasks per worker the cells are cut into: enough that the last to finish
+# is small and a dead worker's batch costs little, few enough that Dask's
+# per-task cost stays out of sight at a million cells.
+BATCHES_PER_WORKER = 8
+
+
+def plan_tasks(seam_cells, cell_faces, workers):
+    """Groups of seam cells, and each group's batches of cells, largest
+    first: [(seams, [cells, ...])]. A group is one seam cell of at least
+    the target cost (faces), or small ones together up to it; a batch is up
+    to the target's worth of one group's cells (a cell larger than the
+    target is a batch of its own). Groups, and each group's batches, come
+    most faces first."""
+    seam_faces = [sum(cell_faces[c] for c in cells) for cells in seam_cells]
+    total = sum(seam_faces)
+    target = max(1, total // max(1, workers * BATCHES_PER_WORKER))
+    order = sorted(range(len(seam_cells)), key=lambda s: (-seam_faces[s], s))
+    groups, seams, faces = [], [], 0
+    for s in order:
+        seams.append(s)
+        faces += seam_faces[s]
+        if faces >= target:
+            groups.append(seams)
+            seams, faces = [], 0
+    if seams:
+        groups.append(seams)
+    plan = []
+    for group in groups:
+        cells = sorted((c for s in group for c in seam_cells[s]), key=lambda c: (-cell_faces[c], c))
+        batches, batch, faces = [], [], 0
+        for c in cells:
+            if batch and faces + cell_faces[c] > target:
+                batches.append(batch)
+                batch, faces = [], 0
+            batch.append(c)
+            faces += cell_faces[c]
+        if batch:
+            batches.append(batch)
+        batches.sort(key=lambda b: -sum(cell_faces[c] for c in b))
+        plan.append((group, batches))
+    plan.sort(key=lambda entry: -sum(seam_faces[s] for s in entry[0]))
+    return plan
 
 
 def _peak_memory_mb():
-    """This process's peak resident memory, MB (run on each worker)."""
+    """This process's peak resident memory, MB (run on each worker).
+
+    Linux's VmHWM, the peak of this process's own memory: getrusage's
+    ru_maxrss is carried across exec, so a worker that a LocalCluster's
+    nanny started by forking the client would report the client's memory
+    at that moment (the client is preparing the scene then) as its own."""
+    try:
+        with open("/proc/self/status") as status:
+            for line in status:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) / 1024.0
+    except OSError:
+        pass
     import resource
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
 
@@ -163,15 +245,18 @@ def bake(args):
     output_folder = os.path.dirname(os.path.abspath(args.output))
     prepared = os.path.abspath(args.prepared) if args.prepared else os.path.join(
         output_folder, f".{os.path.basename(args.output)}.{os.getpid()}.hcp")
-    # The client prepares the scene (it needs it for the cell count and the
-    # finish) and writes it for the workers while they start.
+    # The client prepares the scene and writes it for the workers while they
+    # start; then it lets the prepared stages go and maps the file as they
+    # do (the finish reads only what it needs).
     local = {}
 
     def prepare_here():
         try:
-            local["bake"] = _hullcover.StagedBake.load(path, **dict(options, threads=0))
-            local["bake"].write_prepared(prepared)
+            loaded = _hullcover.StagedBake.load(path, **dict(options, threads=0))
+            loaded.write_prepared(prepared)
+            del loaded
             local["fingerprint"] = _fingerprint(prepared)
+            local["bake"] = _hullcover.StagedBake.map(prepared, **dict(_map_options(options), threads=0))
         except Exception as e:  # reported after the join
             local["error"] = e
 
@@ -185,48 +270,68 @@ def bake(args):
         staged = local["bake"]
         fingerprint = local["fingerprint"]
         count = staged.cell_count()
-        cells = sorted(range(count), key=lambda c: -staged.cell_face_count(c))
+        seam_count = staged.seam_count()
+        workers = max(1, len(client.scheduler_info()["workers"]))
+        plan = plan_tasks([staged.seam_cells(s) for s in range(seam_count)],
+                          [staged.cell_face_count(c) for c in range(count)], workers)
         # By the module's name, so Dask pickles a reference to it, not the
         # function's globals (as it would for __main__'s under -m).
-        task = importlib.import_module("hullcover.bake").merge_cell_task
-        futures = [client.submit(task, prepared, fingerprint, options, c,
-                                 key=f"hullcover-cell-{fingerprint}-{c}", priority=count - i, pure=False)
-                   for i, c in enumerate(cells)]
-        cell_of = {f.key: c for f, c in zip(futures, cells)}
-        # Each result is taken as it arrives and its future let go, so the
-        # worker that made it frees it at once instead of holding every
-        # result it made until the end.
-        ordered = [None] * count
-        for done, (future, result) in enumerate(as_completed(futures, with_results=True), 1):
-            ordered[cell_of[future.key]] = result
-            future.release()
-            if args.report_cells:
-                print(f"hullcover.bake: cell {cell_of[future.key]} done ({done} of {count})",
-                      file=sys.stderr, flush=True)
-            elif not args.quiet:
+        module = importlib.import_module("hullcover.bake")
+        tasks = sum(len(batches) for _, batches in plan)
+        batch_futures, seam_futures, cells_of = [], [], {}
+        for g, (seams, batches) in enumerate(plan):
+            group_batches = []
+            for cells in batches:
+                # Largest first; a group's seam task before any later batch,
+                # so its cells' bytes are freed as soon as they can be.
+                f = client.submit(module.merge_batch_task, prepared, fingerprint, options, cells,
+                                  key=f"hullcover-cells-{fingerprint}-{cells[0]}", priority=tasks - len(batch_futures),
+                                  pure=False)
+                cells_of[f.key] = cells
+                group_batches.append(f)
+                batch_futures.append(f)
+            seam_futures.append(client.submit(module.finish_seams_task, prepared, fingerprint, options, seams,
+                                              *group_batches, key=f"hullcover-seams-{fingerprint}-{g}",
+                                              priority=2 * tasks, pure=False))
+        done = 0
+        for future in as_completed(batch_futures):
+            for cell in cells_of[future.key]:
+                done += 1
+                if args.report_cells:
+                    print(f"hullcover.bake: cell {cell} done ({done} of {count})", file=sys.stderr, flush=True)
+            if not args.quiet and not args.report_cells:
                 print(f"\rhullcover.bake: {done} of {count} cells", end="", file=sys.stderr, flush=True)
         if not args.quiet and not args.report_cells:
             print(file=sys.stderr)
-        del futures
+        # Each group's hulls are taken as they arrive and the task let go,
+        # so the worker that made them frees them at once.
+        seam_bytes = [None] * seam_count
+        for future, results in as_completed(seam_futures, with_results=True):
+            for seam, data in results:
+                seam_bytes[seam] = data
+            future.release()
+        del batch_futures, seam_futures
         workers_seen = len(client.scheduler_info()["workers"])
-        peak_module = importlib.import_module("hullcover.bake")
-        worker_peaks = sorted(client.run(peak_module._peak_memory_mb).values())
+        worker_peaks = sorted(client.run(module._peak_memory_mb).values())
     finally:
         client.close()
         if cluster is not None:
             cluster.close()
+    baked = time.monotonic()
+    try:
+        d = staged.finish_seams(seam_bytes)
+    finally:
+        del staged
         if not args.prepared and os.path.exists(prepared):
             os.remove(prepared)
-    baked = time.monotonic()
-    d = staged.finish(ordered)
     if args.world:
         d.write_world(args.world)
     if args.json:
         d.write_json(args.json, json.dumps({"input": args.scene, "seconds_including_import":
                                             time.monotonic() - start}))
     d.write_obj(args.output)
-    return {"cells": count, "hulls": d.hull_count(), "workers": workers_seen, "worker_peak_mb": worker_peaks,
-            "client_peak_mb": _peak_memory_mb(),
+    return {"cells": count, "tasks": tasks + len(plan), "hulls": d.hull_count(), "workers": workers_seen,
+            "worker_peak_mb": worker_peaks, "client_peak_mb": _peak_memory_mb(),
             "seconds_cells": baked - start, "seconds_finish": time.monotonic() - baked}
 
 
@@ -248,7 +353,8 @@ def main(argv=None):
         print(f"hullcover.bake: error: {e} (is the scheduler at {args.scheduler or 'the local cluster'} "
               f"reachable?)", file=sys.stderr)
         return 1
-    print(f"{args.scene}: {figures['cells']} cells on {figures['workers']} workers -> {figures['hulls']} hulls, "
+    print(f"{args.scene}: {figures['cells']} cells on {figures['workers']} workers ({figures['tasks']} tasks) -> "
+          f"{figures['hulls']} hulls, "
           f"cells {figures['seconds_cells']:.1f} s, finish {figures['seconds_finish']:.1f} s; wrote {args.output}")
     peaks = ", ".join(f"{mb:.0f}" for mb in figures["worker_peak_mb"])
     print(f"  peak memory: workers {peaks} MB, client {figures['client_peak_mb']:.0f} MB")

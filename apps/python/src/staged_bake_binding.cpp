@@ -60,6 +60,29 @@ void check_cell(const StagedBake& bake, int cell) {
                           std::to_string(bake.staged->cell_count()) + ")");
 }
 
+void check_seam(const StagedBake& bake, int seam) {
+  if (seam < 0 || seam >= bake.staged->seam_count())
+    throw py::index_error("no seam cell " + std::to_string(seam) + " (the scene has " +
+                          std::to_string(bake.staged->seam_count()) + ")");
+}
+
+// The Decomposition `finish` makes of the given bytes (with the GIL
+// released while it runs).
+template <class Finish>
+std::shared_ptr<Decomposition> finished(const StagedBake& bake, const Finish& finish,
+                                        const std::vector<py::bytes>& parts) {
+  std::vector<std::string> contents(parts.begin(), parts.end());
+  auto d = std::make_shared<Decomposition>();
+  Result<Covering> covering = [&] {
+    py::gil_scoped_release unlocked;
+    return finish(contents);
+  }();
+  if (!covering.ok()) raise(covering.status());
+  d->prepared = bake.staged->prepared();
+  d->covering = std::move(covering).value();
+  return d;
+}
+
 } // namespace
 
 void bind_staged_bake(py::module_& m) {
@@ -158,17 +181,34 @@ void bind_staged_bake(py::module_& m) {
     }
     return py::make_tuple(valid, why);
           })
+      .def("seam_count", [](const StagedBake& b) { return b.staged->seam_count(); })
+      .def(
+          "seam_cells",
+          [](const StagedBake& b, int seam) {
+    check_seam(b, seam);
+    return b.staged->seam_cells(seam);
+          })
+      .def(
+          "finish_seam",
+          [](const StagedBake& b, int seam, const std::vector<py::bytes>& cells) {
+    check_seam(b, seam);
+    std::vector<std::string> contents(cells.begin(), cells.end());
+    Result<std::string> bytes = [&] {
+      py::gil_scoped_release unlocked;
+      return b.staged->finish_seam(seam, contents);
+    }();
+    if (!bytes.ok()) raise(bytes.status());
+    return py::bytes(bytes.value());
+          })
+      .def(
+          "finish_seams",
+          [](const StagedBake& b, const std::vector<py::bytes>& seams) {
+    return finished(
+        b, [&](const std::vector<std::string>& contents) { return b.staged->finish_seams(contents); }, seams);
+          })
       .def("finish", [](const StagedBake& b, const std::vector<py::bytes>& cells) {
-        std::vector<std::string> contents(cells.begin(), cells.end());
-        auto d = std::make_shared<Decomposition>();
-        Result<Covering> covering = [&] {
-          py::gil_scoped_release unlocked;
-          return b.staged->finish(contents);
-        }();
-        if (!covering.ok()) raise(covering.status());
-        d->prepared = b.staged->prepared();
-        d->covering = std::move(covering).value();
-        return d;
+        return finished(
+            b, [&](const std::vector<std::string>& contents) { return b.staged->finish(contents); }, cells);
       });
 }
 

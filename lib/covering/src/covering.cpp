@@ -7,15 +7,12 @@
 #include "cells/cell_merging.h"
 #include "cells/local_frame.h"
 #include "merging/patch_merging.h"
-#include "merging/patch_hulls.h"
-#include "merging/face_coverage.h"
 #include "validity/scene_index_build.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <numeric>
 
 namespace hullcover {
 namespace {
@@ -131,104 +128,6 @@ Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& 
   stats.cells = static_cast<int>(stages->cells.faces_of_cell.size());
   stats.seconds_index = seconds_since(start);
   return Result<std::unique_ptr<DecompositionStages>>(std::move(stages));
-}
-
-Covering finish_stages(const DecompositionStages& stages, std::vector<CellResult> results, double seconds_cells) {
-  const PreparedMesh& prepared = stages.prepared;
-  const CellLayout& cells = stages.cells;
-  const DecomposeOptions& options = stages.covering.options;
-  Covering covering = stages.covering;
-  CoveringStatistics& stats = covering.statistics;
-  const int threads = threads_to_use(options.threads);
-  // Kept try: the largest cell's (the one that weighs most in the count).
-  int largest = 0;
-  // The seam pass runs per island (no edge joins two islands), each island
-  // one seam cell (the whole scene one, with --cell-size 0); islands in
-  // parallel.
-  const CellLayout seams = options.cell_size && *options.cell_size == 0.0 ? lay_out_cells(prepared, stages.islands, 0.0)
-                                                                          : lay_out_islands(prepared, stages.islands);
-  const int seam_count = static_cast<int>(seams.faces_of_cell.size());
-  std::vector<std::vector<Patch>> seam_patches(seam_count);
-  std::vector<std::vector<int>> seam_origins(seam_count);
-  // Each cell made its patches' hulls: kept for the patches the seam pass
-  // leaves as they are (same version).
-  std::vector<std::vector<PatchHull>> seam_hulls(seam_count);
-  std::vector<std::vector<int>> seam_versions(seam_count);
-  for (int c = 0; c < stats.cells; ++c) {
-    add_counts(stats, results[c].statistics);
-    if (cells.faces_of_cell[c].size() > cells.faces_of_cell[largest].size()) largest = c;
-    for (size_t p = 0; p < results[c].patches.size(); ++p) {
-      Patch& patch = results[c].patches[p];
-      const int s = seams.cell_of_face[patch.faces.front()];
-      seam_versions[s].push_back(patch.version);
-      seam_hulls[s].push_back(std::move(results[c].hulls[p]));
-      seam_patches[s].push_back(std::move(patch));
-      seam_origins[s].push_back(c);
-    }
-  }
-  stats.kept_try = results.empty() ? 0 : results[largest].statistics.kept_try;
-  stats.order_tries = options.order_tries;
-  results.clear();
-  DecomposeOptions seam_options = options;
-  seam_options.progress = nullptr;
-  std::vector<CoveringStatistics> seam_stats(seam_count);
-  std::vector<std::unique_ptr<PatchMerger>> seam_mergers(seam_count);
-  std::vector<int> seam_order(seam_count);
-  std::iota(seam_order.begin(), seam_order.end(), 0);
-  std::stable_sort(seam_order.begin(), seam_order.end(),
-                   [&](int a, int b) { return seams.faces_of_cell[a].size() > seams.faces_of_cell[b].size(); });
-  const Clock::time_point seams_start = Clock::now();
-  run_in_parallel(seam_count, threads, seam_order, [&](int s) {
-    seam_mergers[s] =
-        std::make_unique<PatchMerger>(stages.index_of_island(seams.island_of_cell[s]), seam_options, seams, s,
-                                      std::move(seam_patches[s]), std::move(seam_origins[s]), seam_stats[s]);
-    seam_mergers[s]->run_seams();
-  });
-  stats.seconds_seams = seconds_since(seams_start);
-  for (const CoveringStatistics& s : seam_stats) {
-    stats.seam_merges += s.merges;
-    add_counts(stats, s);
-  }
-  stats.seconds_merging = seconds_cells + stats.seconds_seams;
-
-  const Clock::time_point start = Clock::now();
-  // Every surviving patch, as (seam cell, patch id), in seam cell order.
-  std::vector<std::pair<int, int>> alive;
-  for (int s = 0; s < seam_count; ++s)
-    for (int id = 0; id < static_cast<int>(seam_mergers[s]->patches().size()); ++id)
-      if (seam_mergers[s]->patches()[id].alive) alive.emplace_back(s, id);
-  covering.hulls.resize(alive.size());
-  std::vector<CoveringStatistics> output_stats(alive.size());
-  // Hulls are made in runs, each with its own Qhull builder and scratch.
-  constexpr int kHullsPerRun = 64;
-  const int hull_count = static_cast<int>(alive.size());
-  run_in_parallel((hull_count + kHullsPerRun - 1) / kHullsPerRun, threads, {}, [&](int run) {
-    ConvexHullBuilder builder;
-    std::vector<int> scratch;
-    for (int i = run * kHullsPerRun; i < std::min(hull_count, (run + 1) * kHullsPerRun); ++i) {
-      const auto [s, id] = alive[i];
-      const PatchMerger& merger = *seam_mergers[s];
-      const bool unchanged =
-          id < static_cast<int>(seam_versions[s].size()) && merger.patches()[id].version == seam_versions[s][id];
-      PatchHull made = unchanged ? std::move(seam_hulls[s][id])
-                                 : make_patch_hull(stages, stages.index_of_island(seams.island_of_cell[s]), merger, id,
-                                                   builder, scratch);
-      count_hull_making(output_stats[i], made);
-      covering.hulls[i] = std::move(made.hull);
-    }
-  });
-  for (const CoveringStatistics& s : output_stats) add_counts(stats, s);
-  const FaceCoverageCount coverage = cover_uncovered_faces(stages, covering, threads);
-  stats.faces_given_flat_hulls = coverage.covered;
-  stats.thin_faces_given_flat_hulls = coverage.thin_covered;
-  stats.faces_left_uncovered = coverage.bare;
-  std::sort(covering.hulls.begin(), covering.hulls.end(),
-            [](const CoveringHull& x, const CoveringHull& y) { return x.faces.front() < y.faces.front(); });
-  for (CoveringHull& hull : covering.hulls) hull.cell = cells.cell_of_face[hull.faces.front()];
-  if (!stages.frame_origin.isZero()) to_scene_frame(covering, stages.frame_origin);
-  stats.seconds_output = seconds_since(start);
-  if (options.progress) options.progress(1.0);
-  return covering;
 }
 
 } // namespace detail

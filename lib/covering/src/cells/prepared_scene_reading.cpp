@@ -242,10 +242,12 @@ Status read_scene(const SectionTable& file, LittleEndianReader& scalars, Prepare
   scene.unreferenced_dropped = scalars.i32();
   MeshConnectivity& c = scene.connectivity;
   c.component_count = scalars.i32();
-  const std::vector<StoredEdge> edges = file.copy<StoredEdge>(kEdges);
   c.edge_uses = file.copy<EdgeUse>(kEdgeUses);
   const auto uses = static_cast<long long>(c.edge_uses.size());
-  c.edges.resize(edges.size());
+  // Read from the mapping field by field (a MeshEdge has padding): no
+  // second copy of the largest array.
+  const StoredEdge* edges = file.at<StoredEdge>(kEdges);
+  c.edges.resize(file.count(kEdges));
   for (std::size_t e = 0; e < c.edges.size(); ++e) {
     const StoredEdge& f = edges[e];
     if (f[0] < 0 || f[0] >= vertices || f[1] < 0 || f[1] >= vertices || f[2] < 0 || f[3] < 0 || f[2] > uses - f[3] ||
@@ -253,6 +255,7 @@ Status read_scene(const SectionTable& file, LittleEndianReader& scalars, Prepare
       return file.damaged("edges");
     c.edges[e] = {f[0], f[1], f[2], f[3], static_cast<EdgeKind>(f[4])};
   }
+  file.release(kEdges);
   for (const EdgeUse& use : c.edge_uses)
     if (use.face < 0 || use.face >= faces || use.corner < 0 || use.corner > 2) return file.damaged("edge uses");
   c.face_edges = file.copy<Eigen::Vector3i>(kFaceEdges);

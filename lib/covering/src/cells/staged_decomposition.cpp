@@ -3,6 +3,10 @@
 #include "cells/cell_merging.h"
 #include "cells/cell_result_bytes.h"
 #include "cells/prepared_scene_file.h"
+#include "cells/seam_result_bytes.h"
+
+#include "hullcover/covering/merge_cells.h"
+#include "hullcover/geometry/parallel_for.h"
 
 #include "hullcover/geometry/mapped_file.h"
 
@@ -103,20 +107,91 @@ bool StagedDecomposition::still_valid(int cell, const std::string& bytes, std::s
   }
 }
 
+namespace {
+
+// The results of `cells` read back from their bytes (same order).
+Result<std::vector<detail::CellResult>> read_cells(const detail::DecompositionStages& stages,
+                                                   const std::vector<int>& cells,
+                                                   const std::vector<std::string>& bytes) {
+  std::vector<detail::CellResult> results;
+  results.reserve(cells.size());
+  for (size_t i = 0; i < cells.size(); ++i) {
+    Result<detail::CellResult> result = detail::cell_result_from_bytes(stages, cells[i], bytes[i]);
+    if (!result.ok())
+      return Status{result.status().code(), "cell " + std::to_string(cells[i]) + ": " + result.status().message()};
+    results.push_back(std::move(result).value());
+  }
+  return results;
+}
+
+} // namespace
+
 Result<Covering> StagedDecomposition::finish(const std::vector<std::string>& cells) const {
   if (static_cast<int>(cells.size()) != cell_count())
     return Status{StatusCode::invalid_argument, "finish needs one result per cell (" + std::to_string(cell_count()) +
                                                     "), got " + std::to_string(cells.size())};
   try {
-    std::vector<detail::CellResult> results;
-    results.reserve(cells.size());
-    for (int c = 0; c < cell_count(); ++c) {
-      Result<detail::CellResult> result = detail::cell_result_from_bytes(*stages_, c, cells[c]);
+    std::vector<int> every_cell(cells.size());
+    for (int c = 0; c < cell_count(); ++c) every_cell[c] = c;
+    Result<std::vector<detail::CellResult>> results = read_cells(*stages_, every_cell, cells);
+    if (!results.ok()) return results.status();
+    return detail::finish_stages(*stages_, std::move(results).value(), 0.0);
+  } catch (const std::exception& e) {
+    return failed(e);
+  }
+}
+
+const CellLayout& StagedDecomposition::seams() const {
+  std::call_once(seams_laid_out_, [this] {
+    seams_ = std::make_unique<CellLayout>(detail::seam_layout(*stages_));
+    cells_of_seam_.assign(seams_->faces_of_cell.size(), {});
+    for (int c = 0; c < cell_count(); ++c)
+      cells_of_seam_[seams_->cell_of_face[stages_->cells.faces_of_cell[c].front()]].push_back(c);
+  });
+  return *seams_;
+}
+
+int StagedDecomposition::seam_count() const { return static_cast<int>(seams().faces_of_cell.size()); }
+
+const std::vector<int>& StagedDecomposition::seam_cells(int seam) const {
+  if (seam < 0 || seam >= seam_count()) return no_cells_;
+  return cells_of_seam_[static_cast<size_t>(seam)];
+}
+
+Result<std::string> StagedDecomposition::finish_seam(int seam, const std::vector<std::string>& cells) const {
+  try {
+    if (seam < 0 || seam >= seam_count()) return Status{StatusCode::invalid_argument, "no such seam cell"};
+    const std::vector<int>& its_cells = seam_cells(seam);
+    if (cells.size() != its_cells.size())
+      return Status{StatusCode::invalid_argument, "seam cell " + std::to_string(seam) + " has " +
+                                                      std::to_string(its_cells.size()) + " cells, got " +
+                                                      std::to_string(cells.size()) + " results"};
+    Result<std::vector<detail::CellResult>> results = read_cells(*stages_, its_cells, cells);
+    if (!results.ok()) return results.status();
+    const detail::SeamResult result =
+        detail::finish_seam(*stages_, seams(), seam, its_cells, std::move(results).value(),
+                            threads_to_use(stages_->covering.options.threads));
+    return detail::seam_result_bytes(*stages_, seams(), seam, result);
+  } catch (const std::exception& e) {
+    return failed(e);
+  }
+}
+
+Result<Covering> StagedDecomposition::finish_seams(const std::vector<std::string>& seam_bytes) const {
+  try {
+    if (static_cast<int>(seam_bytes.size()) != seam_count())
+      return Status{StatusCode::invalid_argument, "finish_seams needs one result per seam cell (" +
+                                                      std::to_string(seam_count()) + "), got " +
+                                                      std::to_string(seam_bytes.size())};
+    std::vector<detail::SeamResult> results;
+    results.reserve(seam_bytes.size());
+    for (int s = 0; s < seam_count(); ++s) {
+      Result<detail::SeamResult> result = detail::seam_result_from_bytes(*stages_, seams(), s, seam_bytes[s]);
       if (!result.ok())
-        return Status{result.status().code(), "cell " + std::to_string(c) + ": " + result.status().message()};
+        return Status{result.status().code(), "seam cell " + std::to_string(s) + ": " + result.status().message()};
       results.push_back(std::move(result).value());
     }
-    return detail::finish_stages(*stages_, std::move(results), 0.0);
+    return detail::assemble_covering(*stages_, std::move(results), 0.0, 0.0, 0.0);
   } catch (const std::exception& e) {
     return failed(e);
   }

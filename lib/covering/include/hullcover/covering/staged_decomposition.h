@@ -23,12 +23,14 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
 namespace hullcover {
 
 class MappedFile;
+struct CellLayout;
 namespace detail {
 struct DecompositionStages;
 }
@@ -96,15 +98,43 @@ public:
   /// (cell_result_bytes.h), or `internal_error`.
   [[nodiscard]] Result<Covering> finish(const std::vector<std::string>& cells) const;
 
+  /// Stage 3 in two steps, for bakes that run the seam pass as tasks. The
+  /// seam cells: one per island (no edge joins two), or one for the whole
+  /// scene when the cells are (cell_size 0). Counted 0 .. seam_count() - 1.
+  int seam_count() const;
+  /// The cells of seam cell `seam`, ascending: whose bytes finish_seam
+  /// takes (empty for a seam cell out of range).
+  const std::vector<int>& seam_cells(int seam) const;
+  /// Step 1 for one seam cell: the seam pass across its cells' borders and
+  /// its hulls, from its cells' bytes (seam_cells' order), as bytes (a
+  /// checked binary form, lib/covering/src/cells/seam_result_bytes.h).
+  /// Fails as finish() does, or with `invalid_argument` for a seam cell out
+  /// of range.
+  [[nodiscard]] Result<std::string> finish_seam(int seam, const std::vector<std::string>& cells) const;
+  /// Step 2: the covering from every seam cell's bytes (index = seam cell):
+  /// flat hulls for faces no hull covers, every hull in the order of its
+  /// first face. finish_seams() on finish_seam()'s bytes equals finish() on
+  /// the same cells' bytes. Fails with `invalid_argument` for a wrong count,
+  /// `unknown_format` or `unreadable_file` for bytes that do not read back
+  /// for their seam cell, or `internal_error`.
+  [[nodiscard]] Result<Covering> finish_seams(const std::vector<std::string>& seams) const;
+
   /// The mesh the stages work on.
   const PreparedMesh& prepared() const { return *prepared_; }
 
 private:
   StagedDecomposition() = default;
+  /// The seam cells and the cells of each, laid out on first use (once:
+  /// calls may come from many threads).
+  const CellLayout& seams() const;
   // Declared first, so destroyed last: the stages read the file in place.
   std::unique_ptr<MappedFile> mapping_;
   std::unique_ptr<PreparedMesh> prepared_;
   std::unique_ptr<detail::DecompositionStages> stages_;
+  mutable std::once_flag seams_laid_out_;
+  mutable std::unique_ptr<CellLayout> seams_;
+  mutable std::vector<std::vector<int>> cells_of_seam_;
+  const std::vector<int> no_cells_;
 };
 
 } // namespace hullcover
