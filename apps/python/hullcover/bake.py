@@ -267,6 +267,7 @@ def bake(args):
         preparer.join()
         if "error" in local:
             raise local["error"]
+        prepared_at = time.monotonic()
         staged = local["bake"]
         fingerprint = local["fingerprint"]
         count = staged.cell_count()
@@ -293,8 +294,15 @@ def bake(args):
             seam_futures.append(client.submit(module.finish_seams_task, prepared, fingerprint, options, seams,
                                               *group_batches, key=f"hullcover-seams-{fingerprint}-{g}",
                                               priority=2 * tasks, pure=False))
+        # A batch's future is let go once it is counted: its bytes stay on
+        # the worker only until its group's seam task has read them (Dask
+        # keeps, and after a lost worker runs again, what a pending task
+        # needs).
         done = 0
-        for future in as_completed(batch_futures):
+        batches_done = as_completed(batch_futures)
+        del batch_futures, group_batches
+        for future in batches_done:
+            future.release()
             for cell in cells_of[future.key]:
                 done += 1
                 if args.report_cells:
@@ -310,7 +318,7 @@ def bake(args):
             for seam, data in results:
                 seam_bytes[seam] = data
             future.release()
-        del batch_futures, seam_futures
+        del seam_futures
         workers_seen = len(client.scheduler_info()["workers"])
         worker_peaks = sorted(client.run(module._peak_memory_mb).values())
     finally:
@@ -324,6 +332,7 @@ def bake(args):
         del staged
         if not args.prepared and os.path.exists(prepared):
             os.remove(prepared)
+    assembled = time.monotonic()
     if args.world:
         d.write_world(args.world)
     if args.json:
@@ -332,7 +341,9 @@ def bake(args):
     d.write_obj(args.output)
     return {"cells": count, "tasks": tasks + len(plan), "hulls": d.hull_count(), "workers": workers_seen,
             "worker_peak_mb": worker_peaks, "client_peak_mb": _peak_memory_mb(),
-            "seconds_cells": baked - start, "seconds_finish": time.monotonic() - baked}
+            "seconds_prepare": prepared_at - start, "seconds_cells": baked - prepared_at,
+            "seconds_assembly": assembled - baked,
+            "seconds_writing": time.monotonic() - assembled}
 
 
 def main(argv=None):
@@ -355,7 +366,9 @@ def main(argv=None):
         return 1
     print(f"{args.scene}: {figures['cells']} cells on {figures['workers']} workers ({figures['tasks']} tasks) -> "
           f"{figures['hulls']} hulls, "
-          f"cells {figures['seconds_cells']:.1f} s, finish {figures['seconds_finish']:.1f} s; wrote {args.output}")
+          f"prepare {figures['seconds_prepare']:.1f} s, cells and seams {figures['seconds_cells']:.1f} s, "
+          f"assembly {figures['seconds_assembly']:.1f} s, "
+          f"writing {figures['seconds_writing']:.1f} s; wrote {args.output}")
     peaks = ", ".join(f"{mb:.0f}" for mb in figures["worker_peak_mb"])
     print(f"  peak memory: workers {peaks} MB, client {figures['client_peak_mb']:.0f} MB")
     return 0

@@ -1,31 +1,82 @@
 #include "hullcover/covering/covering_export.h"
 
 #include "hullcover/geometry/atomic_file.h"
+#include "hullcover/geometry/parallel_for.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 namespace hullcover {
 
 namespace {
 
-// The OBJ text; the stream's error flag tells whether it was all written.
-void print_covering_obj(const Covering& covering, std::FILE* out) {
-  std::fprintf(out, "# hullcover covering: %zu hulls of %d faces, tolerance %.17g\n", covering.hulls.size(),
-               covering.statistics.faces, covering.tolerance.length);
-  long base = 1;
-  for (size_t h = 0; h < covering.hulls.size(); ++h) {
+// Appends printf-formatted text to `text`.
+template <class... Values>
+void append(std::string& text, const char* format, Values... values) {
+  char line[128];
+  const int n = std::snprintf(line, sizeof line, format, values...);
+  if (n <= 0) return;
+  if (n < static_cast<int>(sizeof line)) {
+    text.append(line, static_cast<size_t>(n));
+    return;
+  }
+  std::string longer(static_cast<size_t>(n) + 1, '\0');
+  std::snprintf(longer.data(), longer.size(), format, values...);
+  text.append(longer.data(), static_cast<size_t>(n));
+}
+
+// The OBJ text of hulls [first, last), whose first vertex is number `base`.
+std::string covering_obj_text(const Covering& covering, size_t first, size_t last, long base) {
+  std::string text;
+  for (size_t h = first; h < last; ++h) {
     const CoveringHull& hull = covering.hulls[h];
-    std::fprintf(out, "o hull_%zu\n", h);
-    for (const Eigen::Vector3d& p : hull.polytope.vertices)
-      std::fprintf(out, "v %.17g %.17g %.17g\n", p.x(), p.y(), p.z());
+    append(text, "o hull_%zu\n", h);
+    for (const Eigen::Vector3d& p : hull.polytope.vertices) append(text, "v %.17g %.17g %.17g\n", p.x(), p.y(), p.z());
     const bool flat = hull.planar && hull.thickness == 0.0;
     const size_t facet_count = flat ? 1 : hull.polytope.facets.size();
     for (size_t f = 0; f < facet_count; ++f) {
-      std::fputc('f', out);
-      for (int v : hull.polytope.facets[f]) std::fprintf(out, " %ld", base + v);
-      std::fputc('\n', out);
+      text.push_back('f');
+      for (int v : hull.polytope.facets[f]) append(text, " %ld", base + v);
+      text.push_back('\n');
     }
     base += static_cast<long>(hull.polytope.vertices.size());
+  }
+  return text;
+}
+
+// Hulls a thread formats at a time: text of a few MB per thread, so the
+// memory held stays bounded whatever the covering's size.
+constexpr size_t kHullsPerTextBlock = 4096;
+
+// The OBJ text; the stream's error flag tells whether it was all written.
+// Formatting (the %.17g of every coordinate) is most of the cost: blocks
+// of hulls are formatted on the covering's threads, each from its first
+// vertex number (the vertex counts before it), and written in order, so
+// the file is the same for any thread count.
+void print_covering_obj(const Covering& covering, std::FILE* out) {
+  std::fprintf(out, "# hullcover covering: %zu hulls of %d faces, tolerance %.17g\n", covering.hulls.size(),
+               covering.statistics.faces, covering.tolerance.length);
+  const size_t hull_count = covering.hulls.size();
+  const size_t block_count = (hull_count + kHullsPerTextBlock - 1) / kHullsPerTextBlock;
+  std::vector<long> block_base(block_count + 1, 1);
+  for (size_t b = 0; b < block_count; ++b) {
+    long vertices = 0;
+    for (size_t h = b * kHullsPerTextBlock; h < std::min(hull_count, (b + 1) * kHullsPerTextBlock); ++h)
+      vertices += static_cast<long>(covering.hulls[h].polytope.vertices.size());
+    block_base[b + 1] = block_base[b] + vertices;
+  }
+  const int threads = threads_to_use(covering.options.threads);
+  std::vector<std::string> texts(static_cast<size_t>(threads));
+  for (size_t round = 0; round < block_count; round += static_cast<size_t>(threads)) {
+    const int blocks = static_cast<int>(std::min(static_cast<size_t>(threads), block_count - round));
+    parallel_for(blocks, threads, [&](int i) {
+      const size_t b = round + static_cast<size_t>(i);
+      texts[i] = covering_obj_text(covering, b * kHullsPerTextBlock,
+                                   std::min(hull_count, (b + 1) * kHullsPerTextBlock), block_base[b]);
+    });
+    for (int i = 0; i < blocks; ++i) std::fwrite(texts[i].data(), 1, texts[i].size(), out);
   }
 }
 

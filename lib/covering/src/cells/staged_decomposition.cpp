@@ -183,14 +183,21 @@ Result<Covering> StagedDecomposition::finish_seams(const std::vector<std::string
       return Status{StatusCode::invalid_argument, "finish_seams needs one result per seam cell (" +
                                                       std::to_string(seam_count()) + "), got " +
                                                       std::to_string(seam_bytes.size())};
-    std::vector<detail::SeamResult> results;
-    results.reserve(seam_bytes.size());
-    for (int s = 0; s < seam_count(); ++s) {
-      Result<detail::SeamResult> result = detail::seam_result_from_bytes(*stages_, seams(), s, seam_bytes[s]);
-      if (!result.ok())
-        return Status{result.status().code(), "seam cell " + std::to_string(s) + ": " + result.status().message()};
-      results.push_back(std::move(result).value());
-    }
+    // Read (and checked: every hull against its faces) on every thread;
+    // the first failure in seam cell order is the one reported.
+    const CellLayout& layout = seams();
+    std::vector<detail::SeamResult> results(seam_bytes.size());
+    std::vector<Status> failures(seam_bytes.size(), Status::success());
+    parallel_for(seam_count(), threads_to_use(stages_->covering.options.threads), [&](int s) {
+      Result<detail::SeamResult> result = detail::seam_result_from_bytes(*stages_, layout, s, seam_bytes[s]);
+      if (result.ok())
+        results[s] = std::move(result).value();
+      else
+        failures[s] = result.status();
+    });
+    for (int s = 0; s < seam_count(); ++s)
+      if (!failures[s].ok())
+        return Status{failures[s].code(), "seam cell " + std::to_string(s) + ": " + failures[s].message()};
     return detail::assemble_covering(*stages_, std::move(results), 0.0, 0.0, 0.0);
   } catch (const std::exception& e) {
     return failed(e);
