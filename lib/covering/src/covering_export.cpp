@@ -73,8 +73,8 @@ void print_covering_obj(const Covering& covering, std::FILE* out) {
     const int blocks = static_cast<int>(std::min(static_cast<size_t>(threads), block_count - round));
     parallel_for(blocks, threads, [&](int i) {
       const size_t b = round + static_cast<size_t>(i);
-      texts[i] = covering_obj_text(covering, b * kHullsPerTextBlock,
-                                   std::min(hull_count, (b + 1) * kHullsPerTextBlock), block_base[b]);
+      texts[i] = covering_obj_text(covering, b * kHullsPerTextBlock, std::min(hull_count, (b + 1) * kHullsPerTextBlock),
+                                   block_base[b]);
     });
     for (int i = 0; i < blocks; ++i) std::fwrite(texts[i].data(), 1, texts[i].size(), out);
   }
