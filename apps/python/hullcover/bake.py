@@ -10,14 +10,15 @@ checks its header checksum against the client's before it uses it.
 
 How it runs (docs/worlds.md, "The distributed bake"):
   1. The client prepares the scene (islands, cells, scene index), writes it
-     to the prepared scene file, and from then on reads it mapped, as the
-     workers do.
+     to the prepared scene file, plans and sends the tasks, and from then on
+     reads the file mapped, as the workers do.
   2. Cells are batched into tasks of similar cost (faces), largest first,
      each batch within one group of seam cells (islands). A worker maps the
      prepared file once (StagedBake.map: the scene index is read in place,
      not loaded) and keeps it for every later task of the same file and
-     options; after each cell it hands the file's pages back, so its memory
-     holds what the cell at hand reads, not the world. A batch returns its
+     options; as it goes (every HAND_BACK_FACES faces' work) it hands the
+     file's pages back, so its memory holds what the cells at hand read,
+     not the world. A batch returns its
      cells' results as bytes (lib/covering/src/cells/cell_result_bytes.h).
   3. Each group's seam pass and hulls is a task too, on the batches of its
      cells (Dask moves their bytes between workers; the client never holds
@@ -94,21 +95,42 @@ def _scene_on_this_worker(path, fingerprint, options):
         return bake
 
 
-def _hand_back(bake):
-    bake.release_pages()
-    if _trim_heap is not None:
-        _trim_heap(0)
+# A worker hands the file's pages and its heap back after at least this
+# many faces' work, and at the end of each task: after every cell of a
+# batch of tiny ones (a world of scattered islands), the calls would cost
+# more than the cells.
+HAND_BACK_FACES = 2000
+
+
+class _HandBack:
+    """Counts a task's work and hands pages and heap back as it goes."""
+
+    def __init__(self, bake):
+        self.bake, self.faces = bake, 0
+
+    def after(self, faces):
+        self.faces += faces
+        if self.faces >= HAND_BACK_FACES:
+            self.now()
+
+    def now(self):
+        self.faces = 0
+        self.bake.release_pages()
+        if _trim_heap is not None:
+            _trim_heap(0)
 
 
 def merge_batch_task(path, fingerprint, options, cells):
     """One Dask task: [(cell, bytes)] for each of `cells` (run on a worker)."""
     bake = _scene_on_this_worker(path, fingerprint, options)
+    hand_back = _HandBack(bake)
     results = []
-    for cell in cells:
-        try:
+    try:
+        for cell in cells:
             results.append((cell, bake.merge_cell(cell)))
-        finally:
-            _hand_back(bake)
+            hand_back.after(bake.cell_face_count(cell))
+    finally:
+        hand_back.now()
     return results
 
 
@@ -116,13 +138,16 @@ def finish_seams_task(path, fingerprint, options, seams, *batches):
     """One Dask task: [(seam cell, bytes)] for each of `seams`, from the
     batches that hold their cells (run on a worker)."""
     bake = _scene_on_this_worker(path, fingerprint, options)
+    hand_back = _HandBack(bake)
     cell_bytes = {cell: data for batch in batches for cell, data in batch}
     results = []
-    for seam in seams:
-        try:
-            results.append((seam, bake.finish_seam(seam, [cell_bytes.pop(c) for c in bake.seam_cells(seam)])))
-        finally:
-            _hand_back(bake)
+    try:
+        for seam in seams:
+            cells = bake.seam_cells(seam)
+            results.append((seam, bake.finish_seam(seam, [cell_bytes.pop(c) for c in cells])))
+            hand_back.after(sum(bake.cell_face_count(c) for c in cells))
+    finally:
+        hand_back.now()
     return results
 
 
@@ -246,17 +271,15 @@ def bake(args):
     prepared = os.path.abspath(args.prepared) if args.prepared else os.path.join(
         output_folder, f".{os.path.basename(args.output)}.{os.getpid()}.hcp")
     # The client prepares the scene and writes it for the workers while they
-    # start; then it lets the prepared stages go and maps the file as they
-    # do (the finish reads only what it needs).
+    # start; once the tasks are out it lets the prepared stages go and maps
+    # the file as the workers do (the finish reads only what it needs).
     local = {}
 
     def prepare_here():
         try:
-            loaded = _hullcover.StagedBake.load(path, **dict(options, threads=0))
-            loaded.write_prepared(prepared)
-            del loaded
+            local["bake"] = _hullcover.StagedBake.load(path, **dict(options, threads=0))
+            local["bake"].write_prepared(prepared)
             local["fingerprint"] = _fingerprint(prepared)
-            local["bake"] = _hullcover.StagedBake.map(prepared, **dict(_map_options(options), threads=0))
         except Exception as e:  # reported after the join
             local["error"] = e
 
@@ -268,7 +291,7 @@ def bake(args):
         if "error" in local:
             raise local["error"]
         prepared_at = time.monotonic()
-        staged = local["bake"]
+        staged = local.pop("bake")
         fingerprint = local["fingerprint"]
         count = staged.cell_count()
         seam_count = staged.seam_count()
@@ -294,6 +317,8 @@ def bake(args):
             seam_futures.append(client.submit(module.finish_seams_task, prepared, fingerprint, options, seams,
                                               *group_batches, key=f"hullcover-seams-{fingerprint}-{g}",
                                               priority=2 * tasks, pure=False))
+        staged = None
+        staged = _hullcover.StagedBake.map(prepared, **dict(_map_options(options), threads=0))
         # A batch's future is let go once it is counted: its bytes stay on
         # the worker only until its group's seam task has read them (Dask
         # keeps, and after a lost worker runs again, what a pending task

@@ -134,7 +134,7 @@ private:
   mutable std::once_flag seams_laid_out_;
   mutable std::unique_ptr<CellLayout> seams_;
   mutable std::vector<std::vector<int>> cells_of_seam_;
-  const std::vector<int> no_cells_;
+  const std::vector<int> no_cells_{};
 };
 
 } // namespace hullcover
