@@ -226,7 +226,8 @@ def _options(args):
 def _parser():
     p = argparse.ArgumentParser(
         prog="python3 -m hullcover.bake",
-        description="Decompose a scene on a Dask cluster, one task per cell; the output is the same as "
+        description="Decompose a scene on a Dask cluster (cells in batches, each group of islands' seam pass a "
+                    "task); the output is the same as "
                     "`hullcover decompose` gives on one machine.")
     p.add_argument("scene", help="Scene file (OBJ, PLY, STL, glTF/GLB, FBX); with --scheduler, a path "
                                  "every worker can read")
