@@ -16,15 +16,22 @@
 namespace hullcover {
 namespace {
 
-// Every cell merged, last cell first (the order must not matter).
-std::vector<std::string> merge_every_cell(const StagedDecomposition& s) {
-  std::vector<std::string> cells(s.cell_count());
-  for (int c = s.cell_count() - 1; c >= 0; --c) {
-    Result<std::string> bytes = s.merge_cell(c);
-    EXPECT_TRUE(bytes.ok()) << bytes.status().message();
-    if (bytes.ok()) cells[c] = std::move(bytes).value();
+// The bytes `make(i)` gives for every i < count, last first (the order
+// must not matter).
+template <class Make>
+std::vector<std::string> bytes_of_each(int count, const Make& make) {
+  std::vector<std::string> all(static_cast<size_t>(count));
+  for (int i = count - 1; i >= 0; --i) {
+    Result<std::string> bytes = make(i);
+    EXPECT_TRUE(bytes.ok()) << i << ": " << bytes.status().message();
+    if (bytes.ok()) all[i] = std::move(bytes).value();
   }
-  return cells;
+  return all;
+}
+
+// Every cell merged.
+std::vector<std::string> merge_every_cell(const StagedDecomposition& s) {
+  return bytes_of_each(s.cell_count(), [&](int c) { return s.merge_cell(c); });
 }
 
 TEST(StagedDecomposition, CellsCarriedAsBytesGiveDecomposesCovering) {
@@ -90,17 +97,13 @@ Mesh three_islands() {
   return m;
 }
 
-// Every seam cell finished from its cells' bytes, last seam cell first.
+// Every seam cell finished from its cells' bytes.
 std::vector<std::string> finish_every_seam(const StagedDecomposition& s, const std::vector<std::string>& cells) {
-  std::vector<std::string> seams(s.seam_count());
-  for (int seam = s.seam_count() - 1; seam >= 0; --seam) {
+  return bytes_of_each(s.seam_count(), [&](int seam) {
     std::vector<std::string> its;
     for (int c : s.seam_cells(seam)) its.push_back(cells[c]);
-    Result<std::string> bytes = s.finish_seam(seam, its);
-    EXPECT_TRUE(bytes.ok()) << bytes.status().message();
-    if (bytes.ok()) seams[seam] = std::move(bytes).value();
-  }
-  return seams;
+    return s.finish_seam(seam, its);
+  });
 }
 
 TEST(StagedDecomposition, SeamCellsFinishedApartGiveDecomposesCovering) {

@@ -36,8 +36,7 @@ void write_patch_hull(LittleEndianWriter& out, const PatchHull& made, const Vert
   out.f64(made.hull.thickness);
   out.f64(made.hull.volume);
   out.u8(made.kept_as_grown);
-  out.u32(static_cast<std::uint32_t>(made.hull.surface_planes.size()));
-  for (bool own : made.hull.surface_planes) out.u8(own);
+  write_surface_planes(out, made.hull);
 }
 
 bool read_patch_hull(LittleEndianReader& in, const VertexNaming& vertices, const Patch& patch, const Mesh& mesh,
@@ -47,22 +46,14 @@ bool read_patch_hull(LittleEndianReader& in, const VertexNaming& vertices, const
   hull.thickness = in.f64();
   hull.volume = in.f64();
   made.kept_as_grown = in.u8() != 0;
-  std::uint32_t n = 0;
-  if (!read_count(in, 1, n) || n != hull.polytope.planes.size()) return false;
-  for (std::uint32_t i = 0; i < n; ++i) hull.surface_planes.push_back(in.u8() != 0);
+  if (!read_surface_planes(in, hull)) return false;
   hull.planar = patch.planar;
   hull.material = patch.material;
   hull.faces = patch.faces;
   std::sort(hull.faces.begin(), hull.faces.end());
-  if (in.failed || !std::isfinite(hull.thickness) || hull.thickness < 0.0 || !std::isfinite(hull.volume) ||
-      hull.volume < 0.0 || (!patch.planar && hull.thickness != 0.0))
-    return false;
   // Whatever else it is, a hull holds its own faces (within its place's
-  // tolerance): bytes can never drop a face's collision.
-  for (int f : patch.faces)
-    for (int k = 0; k < 3; ++k)
-      if (deepest_signed_distance(hull.polytope.planes, mesh.positions[mesh.triangles[f][k]]) > tol) return false;
-  return true;
+  // tolerance).
+  return !in.failed && hull_holds_its_faces(hull, mesh, tol);
 }
 
 Status unreadable(const std::string& what) { return {StatusCode::unreadable_file, "cell result: " + what}; }
@@ -154,17 +145,11 @@ std::string cell_result_bytes(const DecompositionStages& stages, int cell, const
 }
 
 Result<CellResult> cell_result_from_bytes(const DecompositionStages& stages, int cell, const std::string& bytes) {
-  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
-  if (bytes.size() < sizeof kMagic + 4 || std::memcmp(data, kMagic, sizeof kMagic) != 0)
-    return Status{StatusCode::unknown_format, "not a hullcover cell result"};
-  LittleEndianReader version{data, bytes.size(), sizeof kMagic};
-  if (version.u32() != kVersion) return Status{StatusCode::unknown_format, "cell result of another version"};
   // Magic, version, key, the two sizes, the checksum.
   constexpr size_t kSmallest = sizeof kMagic + 4 + 8 + 4 + 4 + 8;
-  if (bytes.size() < kSmallest) return unreadable("truncated");
-  LittleEndianReader tail{data, bytes.size(), bytes.size() - 8};
-  if (tail.u64() != fnv1a(data, bytes.size() - 8)) return unreadable("checksum mismatch");
-  LittleEndianReader in{data, bytes.size() - 8, sizeof kMagic + 4};
+  LittleEndianReader in;
+  if (Status opened = open_checked_record(bytes, kMagic, kVersion, kSmallest, "cell result", in); !opened.ok())
+    return opened;
   const std::vector<int>& faces = stages.cells.faces_of_cell[cell];
   const VertexNaming vertices = cell_vertices(stages, cell);
   if (in.u64() != key_of_cell(stages, cell, vertices))

@@ -1,6 +1,7 @@
 #include "cells/hull_record_bytes.h"
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace hullcover::detail {
@@ -109,6 +110,42 @@ bool read_solid(LittleEndianReader& in, const VertexNaming& naming, ConvexPolyto
     solid.vertex_ids.push_back(id);
   }
   return !in.failed;
+}
+
+Status open_checked_record(const std::string& bytes, const char (&magic)[8], std::uint32_t version,
+                           std::size_t smallest, const std::string& what, LittleEndianReader& in) {
+  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+  if (bytes.size() < sizeof magic + 4 || std::memcmp(data, magic, sizeof magic) != 0)
+    return Status{StatusCode::unknown_format, "not a hullcover " + what};
+  LittleEndianReader stored{data, bytes.size(), sizeof magic};
+  if (stored.u32() != version) return Status{StatusCode::unknown_format, what + " of another version"};
+  if (bytes.size() < smallest) return {StatusCode::unreadable_file, what + ": truncated"};
+  LittleEndianReader tail{data, bytes.size(), bytes.size() - 8};
+  if (tail.u64() != fnv1a(data, bytes.size() - 8)) return {StatusCode::unreadable_file, what + ": checksum mismatch"};
+  in = LittleEndianReader{data, bytes.size() - 8, sizeof magic + 4};
+  return Status::success();
+}
+
+void write_surface_planes(LittleEndianWriter& out, const CoveringHull& hull) {
+  out.u32(static_cast<std::uint32_t>(hull.surface_planes.size()));
+  for (bool own : hull.surface_planes) out.u8(own);
+}
+
+bool read_surface_planes(LittleEndianReader& in, CoveringHull& hull) {
+  std::uint32_t n = 0;
+  if (!read_count(in, 1, n) || n != hull.polytope.planes.size()) return false;
+  for (std::uint32_t i = 0; i < n; ++i) hull.surface_planes.push_back(in.u8() != 0);
+  return !in.failed;
+}
+
+bool hull_holds_its_faces(const CoveringHull& hull, const Mesh& mesh, double tol) {
+  if (!std::isfinite(hull.thickness) || hull.thickness < 0.0 || !std::isfinite(hull.volume) || hull.volume < 0.0 ||
+      (!hull.planar && hull.thickness != 0.0))
+    return false;
+  for (int f : hull.faces)
+    for (int k = 0; k < 3; ++k)
+      if (deepest_signed_distance(hull.polytope.planes, mesh.positions[mesh.triangles[f][k]]) > tol) return false;
+  return true;
 }
 
 } // namespace hullcover::detail

@@ -8,8 +8,12 @@
 #include "hullcover/covering/covering_types.h"
 #include "hullcover/geometry/convex_polytope.h"
 #include "hullcover/geometry/little_endian_bytes.h"
+#include "hullcover/geometry/mesh.h"
+#include "hullcover/geometry/status.h"
 
+#include <cstddef>
 #include <cstdint>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -56,5 +60,23 @@ bool read_count(LittleEndianReader& in, size_t entry_bytes, std::uint32_t& n);
 /// none, else as `naming` stores them).
 void write_solid(LittleEndianWriter& out, const ConvexPolytope& solid, const VertexNaming& naming);
 bool read_solid(LittleEndianReader& in, const VertexNaming& naming, ConvexPolytope& solid);
+
+/// Opens a record laid out as an 8-byte magic, u32 version, its body, and
+/// u64 FNV-1a-64 of everything before it: `unknown_format` for another
+/// magic ("not a hullcover WHAT") or version, `unreadable_file` for fewer
+/// than `smallest` bytes or a checksum that does not match; else `in`
+/// reads the body.
+Status open_checked_record(const std::string& bytes, const char (&magic)[8], std::uint32_t version,
+                           std::size_t smallest, const std::string& what, LittleEndianReader& in);
+
+/// A hull's surface planes (CoveringHull::surface_planes): u32 P + P u8;
+/// read back, P must be the polytope's plane count.
+void write_surface_planes(LittleEndianWriter& out, const CoveringHull& hull);
+bool read_surface_planes(LittleEndianReader& in, CoveringHull& hull);
+
+/// Whether a hull read back is sound: finite thickness and volume, neither
+/// negative, a thickness only for a planar hull; and every corner of its
+/// faces within `tol` of it, so bytes can never drop a face's collision.
+bool hull_holds_its_faces(const CoveringHull& hull, const Mesh& mesh, double tol);
 
 } // namespace hullcover::detail

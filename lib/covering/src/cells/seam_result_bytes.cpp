@@ -3,8 +3,6 @@
 #include "cells/hull_record_bytes.h"
 
 #include <algorithm>
-#include <cmath>
-#include <cstring>
 #include <limits>
 
 namespace hullcover::detail {
@@ -23,8 +21,7 @@ void write_hull(LittleEndianWriter& out, const CoveringHull& hull, const VertexN
   out.f64(hull.thickness);
   out.i32(hull.material);
   out.f64(hull.volume);
-  out.u32(static_cast<std::uint32_t>(hull.surface_planes.size()));
-  for (bool own : hull.surface_planes) out.u8(own);
+  write_surface_planes(out, hull);
 }
 
 // A hull of seam cell `seam`; `used` marks, by slot in the seam cell, the
@@ -49,18 +46,10 @@ bool read_hull(LittleEndianReader& in, const DecompositionStages& stages, const 
   hull.thickness = in.f64();
   hull.material = in.i32();
   hull.volume = in.f64();
-  if (!read_count(in, 1, n) || n != hull.polytope.planes.size()) return false;
-  for (std::uint32_t i = 0; i < n; ++i) hull.surface_planes.push_back(in.u8() != 0);
-  if (in.failed || !std::isfinite(hull.thickness) || hull.thickness < 0.0 || !std::isfinite(hull.volume) ||
-      hull.volume < 0.0 || (!hull.planar && hull.thickness != 0.0) || hull.material != smallest_material)
-    return false;
+  if (!read_surface_planes(in, hull) || hull.material != smallest_material) return false;
   // As a cell result's: a hull holds its own faces within its island's
-  // tolerance, so bytes can never drop a face's collision.
-  const double tol = stages.index_of_island(seams.island_of_cell[seam]).tol();
-  for (int f : hull.faces)
-    for (int k = 0; k < 3; ++k)
-      if (deepest_signed_distance(hull.polytope.planes, mesh.positions[mesh.triangles[f][k]]) > tol) return false;
-  return true;
+  // tolerance.
+  return hull_holds_its_faces(hull, mesh, stages.index_of_island(seams.island_of_cell[seam]).tol());
 }
 
 } // namespace
@@ -86,17 +75,11 @@ std::string seam_result_bytes(const DecompositionStages& stages, const CellLayou
 
 Result<SeamResult> seam_result_from_bytes(const DecompositionStages& stages, const CellLayout& seams, int seam,
                                           const std::string& bytes) {
-  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
-  if (bytes.size() < sizeof kMagic + 4 || std::memcmp(data, kMagic, sizeof kMagic) != 0)
-    return Status{StatusCode::unknown_format, "not a hullcover seam result"};
-  LittleEndianReader version{data, bytes.size(), sizeof kMagic};
-  if (version.u32() != kVersion) return Status{StatusCode::unknown_format, "seam result of another version"};
   // Magic, version, the three counts, the checksum.
   constexpr size_t kSmallest = sizeof kMagic + 4 + 3 * 4 + 8;
-  if (bytes.size() < kSmallest) return unreadable("truncated");
-  LittleEndianReader tail{data, bytes.size(), bytes.size() - 8};
-  if (tail.u64() != fnv1a(data, bytes.size() - 8)) return unreadable("checksum mismatch");
-  LittleEndianReader in{data, bytes.size() - 8, sizeof kMagic + 4};
+  LittleEndianReader in;
+  if (Status opened = open_checked_record(bytes, kMagic, kVersion, kSmallest, "seam result", in); !opened.ok())
+    return opened;
   const Mesh& mesh = stages.prepared.mesh;
   if (in.u32() != static_cast<std::uint32_t>(seam) || in.u32() != seams.faces_of_cell[seam].size() ||
       in.u32() != mesh.triangles.size())
