@@ -179,9 +179,9 @@ TEST(MergeCells, EveryFaceIsInOneCellAndSmallIslandsAreOneCell) {
   const Result<PreparedMesh> p = prepare_mesh(flat_floor(8), std::nullopt);
   ASSERT_TRUE(p.ok());
   const MeshIslands islands = find_mesh_islands(p.value().mesh);
-  const CellLayout automatic = lay_out_cells(p.value(), islands, std::nullopt);
+  const CellLayout automatic = lay_out_cells(view_of(p.value()), view_of(islands), std::nullopt);
   EXPECT_EQ(automatic.faces_of_cell.size(), 1u); // 128 faces: far below kFacesPerAutomaticCell
-  const CellLayout cells = lay_out_cells(p.value(), islands, 2.0);
+  const CellLayout cells = lay_out_cells(view_of(p.value()), view_of(islands), 2.0);
   EXPECT_EQ(cells.faces_of_cell.size(), 16u); // a grid of side 2 centred on (4, 4) over [0, 8]^2
   std::vector<int> seen(p.value().mesh.triangles.size(), 0);
   for (size_t c = 0; c < cells.faces_of_cell.size(); ++c) {
@@ -204,7 +204,7 @@ TEST(MergeCells, AQuarterTurnKeepsTheCells) {
   for (Eigen::Vector3d& v : turned.positions) v = Eigen::Vector3d(-v.z(), v.y(), v.x());
   const auto partition = [](const Mesh& m) {
     const Result<PreparedMesh> p = prepare_mesh(m, std::nullopt);
-    const CellLayout cells = lay_out_cells(p.value(), find_mesh_islands(p.value().mesh), 2.0);
+    const CellLayout cells = lay_out_cells(view_of(p.value()), view_of(find_mesh_islands(p.value().mesh)), 2.0);
     return std::set<std::vector<int>>(cells.faces_of_cell.begin(), cells.faces_of_cell.end());
   };
   EXPECT_EQ(partition(floor), partition(turned));
@@ -228,12 +228,12 @@ TEST(MergeCells, ACrowdedCellIsCutIntoTheEightOfHalfItsSide) {
   ASSERT_TRUE(p.ok());
   const MeshIslands islands = find_mesh_islands(p.value().mesh);
   ASSERT_EQ(islands.boxes.size(), 1u);
-  const CellLayout automatic = lay_out_cells(p.value(), islands, std::nullopt);
+  const CellLayout automatic = lay_out_cells(view_of(p.value()), view_of(islands), std::nullopt);
   const double side = automatic.island_cell_size[0];
   ASSERT_GT(side, 0.0);
   // The grid alone, at the side the automatic layout chose, has a cell over
   // the bound: the dense corner's.
-  const CellLayout grid = lay_out_cells(p.value(), islands, side);
+  const CellLayout grid = lay_out_cells(view_of(p.value()), view_of(islands), side);
   size_t largest = 0;
   for (const std::vector<int>& cell : grid.faces_of_cell) largest = std::max(largest, cell.size());
   ASSERT_GT(largest, static_cast<size_t>(kMostFacesPerAutomaticCell));
@@ -273,11 +273,12 @@ TEST(MergeCells, ACrowdedCellIsCutIntoTheEightOfHalfItsSide) {
   for (Eigen::Vector3d& v : turned.positions) v = Eigen::Vector3d(-v.z(), v.y(), v.x());
   const Result<PreparedMesh> q = prepare_mesh(turned, std::nullopt);
   ASSERT_TRUE(q.ok());
-  const CellLayout turned_cells = lay_out_cells(q.value(), find_mesh_islands(q.value().mesh), std::nullopt);
+  const CellLayout turned_cells =
+      lay_out_cells(view_of(q.value()), view_of(find_mesh_islands(q.value().mesh)), std::nullopt);
   EXPECT_EQ(std::set<std::vector<int>>(automatic.faces_of_cell.begin(), automatic.faces_of_cell.end()),
             std::set<std::vector<int>>(turned_cells.faces_of_cell.begin(), turned_cells.faces_of_cell.end()));
   // A side the user gives is kept as it is: no cell is cut.
-  EXPECT_EQ(lay_out_cells(p.value(), islands, side).faces_of_cell.size(), grid.faces_of_cell.size());
+  EXPECT_EQ(lay_out_cells(view_of(p.value()), view_of(islands), side).faces_of_cell.size(), grid.faces_of_cell.size());
 }
 
 TEST(MergeCells, EachCellKeepsItsOwnHalvingsBesideAnIslandLeftWhole) {
@@ -292,7 +293,7 @@ TEST(MergeCells, EachCellKeepsItsOwnHalvingsBesideAnIslandLeftWhole) {
   const auto layout_of = [](const Mesh& m) {
     const Result<PreparedMesh> p = prepare_mesh(m, std::nullopt);
     EXPECT_TRUE(p.ok());
-    return lay_out_cells(p.value(), find_mesh_islands(p.value().mesh), std::nullopt);
+    return lay_out_cells(view_of(p.value()), view_of(find_mesh_islands(p.value().mesh)), std::nullopt);
   };
   const CellLayout alone = layout_of(floor_with_a_dense_corner());
   const CellLayout beside = layout_of(both);

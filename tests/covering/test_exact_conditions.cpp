@@ -123,7 +123,7 @@ TEST(ExactConditions, FoldEdgeIsOpen) {
   ASSERT_TRUE(prepared.ok());
   int folds = 0;
   for (int e = 0; e < static_cast<int>(prepared.value().connectivity.edges.size()); ++e)
-    folds += is_fold_edge(prepared.value(), e);
+    folds += is_fold_edge(view_of(prepared.value()), e);
   EXPECT_EQ(folds, 3);
 }
 
@@ -144,7 +144,7 @@ Validity exact_verdict(const Mesh& m, const ConvexPolytope& hull, int hull_place
   EXPECT_TRUE(prepared.ok());
   const double margin = 0.0; // the hulls below lie within the scene's box
   BarOptions bars{kExactBarHalfLengthInTolerances * prepared.value().tolerance.length, false, ValidityMode::exact,
-                  uncapped_free_space_reach(prepared.value(), margin), margin};
+                  uncapped_free_space_reach(view_of(prepared.value()), margin), margin};
   const auto scene = test::index_scene(m, std::nullopt, bars);
   SceneIndex view = scene->index;
   view.place = hull_place;
@@ -174,7 +174,7 @@ TEST(StrictFreeSpace, RecentRejectionsChangeNoVerdict) {
   ASSERT_TRUE(prepared.ok());
   const double margin = 0.0;
   BarOptions bars{kExactBarHalfLengthInTolerances * prepared.value().tolerance.length, false, ValidityMode::exact,
-                  uncapped_free_space_reach(prepared.value(), margin), margin};
+                  uncapped_free_space_reach(view_of(prepared.value()), margin), margin};
   const auto scene = test::index_scene(m, std::nullopt, bars);
   Aabb box;
   for (const V& p : m.positions) box.extend(p);
@@ -358,7 +358,7 @@ TEST(StrictFreeSpace, RaysEnteringAGrownHullBetweenNearlyCoplanarFacetsAreJudged
   ASSERT_TRUE(prepared.ok());
   const double margin = 10.0; // the hull lies this far from the face, beyond the scene's box
   BarOptions bars{kExactBarHalfLengthInTolerances * tol, false, ValidityMode::exact,
-                  uncapped_free_space_reach(prepared.value(), margin), margin};
+                  uncapped_free_space_reach(view_of(prepared.value()), margin), margin};
   const auto scene = test::index_scene(m, tol, bars);
   std::vector<int> scratch;
   EXPECT_EQ(check_solid_hull(scene->index, hull, scratch), Validity::front_space_inside);

@@ -42,7 +42,7 @@ struct Bake {
 Bake bake(const Mesh& mesh, const DecomposeOptions& options, bool merge) {
   Bake b;
   b.prepared = std::make_unique<PreparedMesh>(prepare_mesh(mesh, std::nullopt).value());
-  b.stages = detail::prepare_stages(*b.prepared, options).value();
+  b.stages = detail::prepare_stages(view_of(*b.prepared), options).value();
   if (merge)
     for (int c = 0; c < static_cast<int>(b.stages->cells.faces_of_cell.size()); ++c)
       b.cells.push_back(detail::cell_result_bytes(*b.stages, c, detail::merge_cell(*b.stages, c, nullptr)));

@@ -233,13 +233,13 @@ TEST(StagedDecomposition, AnEditInvalidatesOnlyTheHullsItReaches) {
   Result<Covering> covering = new_bake->finish(cells);
   ASSERT_TRUE(covering.ok()) << covering.status().message();
   const validate::CheckReport report =
-      validate::check_covering_independently(new_bake->prepared(), covering.value(), false);
+      validate::check_covering_independently(*new_bake->prepared(), covering.value(), false);
   EXPECT_EQ(report.violations(), 0) << report.summary();
   // Reusing the refused cells too (unchecked) would be wrong: the
   // independent check finds what the re-check caught.
   Result<Covering> unchecked = new_bake->finish(stale);
   ASSERT_TRUE(unchecked.ok()) << unchecked.status().message();
-  EXPECT_GT(validate::check_covering_independently(new_bake->prepared(), unchecked.value(), false).violations(), 0);
+  EXPECT_GT(validate::check_covering_independently(*new_bake->prepared(), unchecked.value(), false).violations(), 0);
 }
 
 } // namespace

@@ -3,9 +3,8 @@
 // it (scene_index.h is private to lib/covering: only the covering tests, which
 // have its folder on their include path, use this header).
 
+#include "prepared_scene_view.h"
 #include "validity/scene_index_build.h"
-
-#include "hullcover/mesh/prepared_mesh.h"
 
 #include <gtest/gtest.h>
 
@@ -14,16 +13,17 @@
 
 namespace hullcover::test {
 
-/// The prepared mesh, its index and a view of it at the scene's smallest
+/// The prepared mesh, the decomposer's view of its arrays, its index and a view of it at the scene's smallest
 /// tolerance (each refers to the one before, so all live together, behind a
 /// pointer that does not move).
 struct IndexedScene {
   IndexedScene(PreparedMesh mesh, const BarOptions& bars)
-      : prepared(std::move(mesh)), data(build_scene_index(prepared, bars)),
+      : prepared(std::move(mesh)), view(view_of(prepared)), data(build_scene_index(view, bars)),
         index(data, prepared.tolerance.length, prepared.tolerance.largest_island) {}
-  IndexedScene(const IndexedScene&) = delete; // `index` refers to `data`, `data` to `prepared`
+  IndexedScene(const IndexedScene&) = delete; // `index` refers to `data`, `data` to `view`, `view` to `prepared`
   IndexedScene& operator=(const IndexedScene&) = delete;
   PreparedMesh prepared;
+  PreparedSceneView view;
   SceneIndexData data;
   SceneIndex index;
 };

@@ -104,10 +104,10 @@ py::list hull_arrays(const Decomposition& d) {
 std::shared_ptr<Decomposition> run_decompose(const Points& vertices, const Indices& faces, std::optional<double> tol,
                                              const DecomposeOptions& options) {
   auto d = std::make_shared<Decomposition>();
-  d->prepared = prepared_of(vertices, faces, tol);
+  const PreparedMesh prepared = prepared_of(vertices, faces, tol);
   Result<Covering> covering = [&] {
     py::gil_scoped_release unlocked; // every core while Python waits
-    return decompose(d->prepared, options);
+    return decompose(prepared, options);
   }();
   if (!covering.ok()) raise(covering.status());
   d->covering = std::move(covering).value();

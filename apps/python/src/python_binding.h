@@ -41,9 +41,9 @@ inline DecomposeOptions options_of(int threads, std::optional<double> cell_size,
   return options;
 }
 
-/// A decomposition: the covering, with the prepared mesh it refers to.
+/// A decomposition: the covering (which holds what its outputs need; the
+/// scene is not kept).
 struct Decomposition {
-  PreparedMesh prepared;
   Covering covering;
 };
 

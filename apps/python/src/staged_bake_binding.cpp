@@ -78,7 +78,6 @@ std::shared_ptr<Decomposition> finished(const StagedBake& bake, const Finish& fi
     return finish(contents);
   }();
   if (!covering.ok()) raise(covering.status());
-  d->prepared = bake.staged->prepared();
   d->covering = std::move(covering).value();
   return d;
 }
@@ -97,9 +96,8 @@ void bind_staged_bake(py::module_& m) {
       py::gil_scoped_release unlocked;
       Result<PreparedMesh> prepared = prepared_from_file(path, tol);
       if (!prepared.ok()) return prepared.status();
-      d->prepared = std::move(prepared).value();
-      return decompose(d->prepared, options_of(threads, cell_size, agent_radius, max_deviation, std::nullopt,
-                                               kDefaultMaxHullVertices, std::nullopt));
+      return decompose(prepared.value(), options_of(threads, cell_size, agent_radius, max_deviation, std::nullopt,
+                                                    kDefaultMaxHullVertices, std::nullopt));
     }();
     if (!covering.ok()) raise(covering.status());
     d->covering = std::move(covering).value();

@@ -52,14 +52,14 @@ Status check_options(const DecomposeOptions& o) {
 
 namespace detail {
 
-Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& scene, const DecomposeOptions& options,
-                                                            MadeStages* made) {
+Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedSceneView& scene,
+                                                            const DecomposeOptions& options, MadeStages* made) {
   if (Status s = check_options(options); !s.ok()) return s;
   const Eigen::Vector3d origin = local_frame_origin(scene);
   auto stages = origin.isZero() ? std::make_unique<DecompositionStages>(scene)
                                 : std::make_unique<DecompositionStages>(
                                       std::make_unique<const PreparedMesh>(in_local_frame(scene, origin)), origin);
-  const PreparedMesh& prepared = stages->prepared;
+  const PreparedSceneView& prepared = stages->prepared;
   Covering& covering = stages->covering;
   covering.options = options;
   covering.tolerance = scene.tolerance; // the scene's zones, in its own frame
@@ -136,7 +136,7 @@ Result<Covering> decompose(const PreparedMesh& prepared, const DecomposeOptions&
   // No exception may leave the library (a game server links it): out of
   // memory, or a bug, comes back as a status.
   try {
-    Result<std::unique_ptr<detail::DecompositionStages>> stages = detail::prepare_stages(prepared, options);
+    Result<std::unique_ptr<detail::DecompositionStages>> stages = detail::prepare_stages(view_of(prepared), options);
     if (!stages.ok()) return stages.status();
     const Clock::time_point start = Clock::now();
     std::vector<detail::CellResult> results = detail::merge_cells(*stages.value(), threads_to_use(options.threads));

@@ -101,8 +101,8 @@ std::vector<Plane> polygon_side_planes(const std::vector<Eigen::Vector3d>& corne
 
 namespace hullcover {
 
-std::pair<double, double> extent_along(const std::vector<Eigen::Vector3d>& positions,
-                                       const std::vector<int>& vertex_ids, const Eigen::Vector3d& normal) {
+std::pair<double, double> extent_along(const Eigen::Vector3d* positions, const std::vector<int>& vertex_ids,
+                                       const Eigen::Vector3d& normal) {
   double low = normal.dot(positions[vertex_ids.front()]), high = low;
   for (int v : vertex_ids) {
     low = std::min(low, normal.dot(positions[v]));
@@ -111,7 +111,7 @@ std::pair<double, double> extent_along(const std::vector<Eigen::Vector3d>& posit
   return {low, high};
 }
 
-FlatPolygon make_flat_polygon(const std::vector<Eigen::Vector3d>& positions, const std::vector<int>& vertex_ids,
+FlatPolygon make_flat_polygon(const Eigen::Vector3d* positions, const std::vector<int>& vertex_ids,
                               const Eigen::Vector3d& normal, double tol) {
   FlatPolygon polygon;
   if (vertex_ids.empty()) return polygon;

@@ -72,7 +72,7 @@ detail::SceneChange change_since_last_bake(const detail::DecompositionStages& st
   }
 }
 
-Result<Covering> decompose_with_cache_unchecked(const PreparedMesh& prepared, const DecomposeOptions& options,
+Result<Covering> decompose_with_cache_unchecked(const PreparedSceneView& prepared, const DecomposeOptions& options,
                                                 const std::string& cache_dir, CellCacheReport& report) {
   if (Status s = make_folder(cache_dir); !s.ok()) return s;
   Result<std::unique_ptr<detail::DecompositionStages>> prepared_stages = detail::prepare_stages(prepared, options);
@@ -177,7 +177,7 @@ Result<Covering> decompose_with_cell_cache(PreparedMesh prepared, const Decompos
   // No exception may leave the library: a worker thread's (out of memory)
   // comes back here.
   try {
-    return decompose_with_cache_unchecked(prepared, options, cache_dir, report);
+    return decompose_with_cache_unchecked(view_of(prepared), options, cache_dir, report);
   } catch (const std::exception& e) {
     return Status{StatusCode::internal_error, std::string("decomposition failed: ") + e.what()};
   }

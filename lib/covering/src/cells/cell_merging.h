@@ -40,7 +40,7 @@ struct MadeStages {
 /// Checks the options, resolves lengths, finds islands and cells and builds
 /// the scene index; or, given `made`, takes its cells and index (moved out
 /// of it). Fails with `invalid_argument` for options out of range.
-Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedMesh& prepared,
+Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedSceneView& prepared,
                                                             const DecomposeOptions& options,
                                                             MadeStages* made = nullptr);
 

@@ -39,7 +39,7 @@ void write_patch_hull(LittleEndianWriter& out, const PatchHull& made, const Vert
   write_surface_planes(out, made.hull);
 }
 
-bool read_patch_hull(LittleEndianReader& in, const VertexNaming& vertices, const Patch& patch, const Mesh& mesh,
+bool read_patch_hull(LittleEndianReader& in, const VertexNaming& vertices, const Patch& patch, const MeshView& mesh,
                      double tol, PatchHull& made) {
   CoveringHull& hull = made.hull;
   if (!read_solid(in, vertices, hull.polytope) || hull.polytope.facets.empty()) return false;
@@ -62,7 +62,7 @@ Status unreadable(const std::string& what) { return {StatusCode::unreadable_file
 std::uint64_t key_of_cell(const DecompositionStages& stages, int cell, const VertexNaming& vertices) {
   const Covering& covering = stages.covering;
   const DecomposeOptions& options = covering.options;
-  const Mesh& mesh = stages.prepared.mesh;
+  const MeshView& mesh = stages.prepared.mesh;
   LittleEndianWriter key;
   key.bytes.assign(kMagic, sizeof kMagic);
   key.u32(kVersion);

@@ -9,6 +9,7 @@
 #include "hullcover/mesh/mesh_islands.h"
 #include "hullcover/mesh/tolerance.h"
 
+#include "prepared_scene_view.h"
 #include "validity/scene_index.h"
 
 #include <memory>
@@ -16,15 +17,15 @@
 
 namespace hullcover::detail {
 
-/// What the cells share. Holds a reference to the scene it was made for,
+/// What the cells share. Views the arrays of the scene it was made for,
 /// which must outlive it; a scene far from the origin is worked in a local
 /// frame (local_frame.h), on a moved copy the stages own.
 struct DecompositionStages {
-  /// Works `mesh` where it is.
-  explicit DecompositionStages(const PreparedMesh& mesh) : prepared(mesh), place_tolerance(mesh.tolerance) {}
+  /// Works `scene` where it is.
+  explicit DecompositionStages(const PreparedSceneView& scene) : prepared(scene), place_tolerance(prepared.tolerance) {}
   /// Works `local` (the scene moved by -origin), and owns it.
   DecompositionStages(std::unique_ptr<const PreparedMesh> local, const Eigen::Vector3d& origin)
-      : local_scene(std::move(local)), frame_origin(origin), prepared(*local_scene),
+      : local_scene(std::move(local)), frame_origin(origin), prepared(view_of(*local_scene)),
         place_tolerance(local_scene->tolerance) {}
   // The views in `island_index` refer to `index_data`: never copied or moved.
   DecompositionStages(const DecompositionStages&) = delete;
@@ -35,13 +36,13 @@ struct DecompositionStages {
   /// finish_stages moves the hulls back by it.
   const Eigen::Vector3d frame_origin = Eigen::Vector3d::Zero();
   /// The scene every stage works on (the local copy, when there is one).
-  const PreparedMesh& prepared;
+  const PreparedSceneView prepared;
   /// The tolerance of each place, and where each island's zone is.
   const PlaceTolerance place_tolerance;
   /// Options and resolved lengths; no hulls yet. Statistics: faces, index
   /// time, islands, cells.
   Covering covering;
-  MeshIslands islands;
+  IslandsView islands;
   CellLayout cells;
   /// Per island: the tolerance its cells, seam pass and hulls are checked
   /// at, scene units: its place's (hullcover/mesh/tolerance.h; its hulls stay

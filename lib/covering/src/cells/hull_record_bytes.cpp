@@ -138,7 +138,7 @@ bool read_surface_planes(LittleEndianReader& in, CoveringHull& hull) {
   return !in.failed;
 }
 
-bool hull_holds_its_faces(const CoveringHull& hull, const Mesh& mesh, double tol) {
+bool hull_holds_its_faces(const CoveringHull& hull, const MeshView& mesh, double tol) {
   if (!std::isfinite(hull.thickness) || hull.thickness < 0.0 || !std::isfinite(hull.volume) || hull.volume < 0.0 ||
       (!hull.planar && hull.thickness != 0.0))
     return false;

@@ -8,6 +8,7 @@
 #include "hullcover/covering/covering_types.h"
 #include "hullcover/geometry/convex_polytope.h"
 #include "hullcover/geometry/little_endian_bytes.h"
+#include "prepared_scene_view.h"
 #include "hullcover/geometry/mesh.h"
 #include "hullcover/geometry/status.h"
 
@@ -77,6 +78,6 @@ bool read_surface_planes(LittleEndianReader& in, CoveringHull& hull);
 /// Whether a hull read back is sound: finite thickness and volume, neither
 /// negative, a thickness only for a planar hull; and every corner of its
 /// faces within `tol` of it, so bytes can never drop a face's collision.
-bool hull_holds_its_faces(const CoveringHull& hull, const Mesh& mesh, double tol);
+bool hull_holds_its_faces(const CoveringHull& hull, const MeshView& mesh, double tol);
 
 } // namespace hullcover::detail

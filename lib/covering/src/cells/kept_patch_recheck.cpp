@@ -15,7 +15,7 @@
 namespace hullcover::detail {
 namespace {
 
-std::vector<Eigen::Vector3d> face_corners(const Mesh& mesh, int face) {
+std::vector<Eigen::Vector3d> face_corners(const MeshView& mesh, int face) {
   std::vector<Eigen::Vector3d> corners;
   for (int k = 0; k < 3; ++k) corners.push_back(mesh.positions[mesh.triangles[face][k]]);
   return corners;
@@ -24,7 +24,7 @@ std::vector<Eigen::Vector3d> face_corners(const Mesh& mesh, int face) {
 } // namespace
 
 Validity PatchMerger::recheck_patches(const std::vector<char>& which) {
-  const Mesh& mesh = index_.mesh();
+  const MeshView& mesh = index_.mesh();
   const double tol = index_.tol();
   for (int p = 0; p < static_cast<int>(patches_.size()); ++p) {
     const Patch& patch = patches_[p];

@@ -16,7 +16,7 @@ Aabb moved(const Aabb& box, const Eigen::Vector3d& by) {
 
 } // namespace
 
-Eigen::Vector3d local_frame_origin(const PreparedMesh& prepared) {
+Eigen::Vector3d local_frame_origin(const PreparedSceneView& prepared) {
   const Aabb box = referenced_bounding_box(prepared.mesh);
   if (box.empty()) return Eigen::Vector3d::Zero();
   const Eigen::Vector3d centre = 0.5 * (box.min + box.max);
@@ -33,8 +33,8 @@ Eigen::Vector3d local_frame_origin(const PreparedMesh& prepared) {
   return origin;
 }
 
-PreparedMesh in_local_frame(const PreparedMesh& prepared, const Eigen::Vector3d& origin) {
-  PreparedMesh local = prepared;
+PreparedMesh in_local_frame(const PreparedSceneView& prepared, const Eigen::Vector3d& origin) {
+  PreparedMesh local = copy_of(prepared);
   for (Eigen::Vector3d& p : local.mesh.positions) p -= origin;
   for (Aabb& box : local.islands.boxes) box = moved(box, -origin);
   for (Aabb& zone : local.tolerance.island_zones) zone = moved(zone, -origin);

@@ -8,7 +8,7 @@
 // with no frame at all).
 
 #include "hullcover/covering/covering_types.h"
-#include "hullcover/mesh/prepared_mesh.h"
+#include "prepared_scene_view.h"
 
 #include <Eigen/Core>
 
@@ -19,7 +19,7 @@ namespace hullcover::detail {
 /// origin (in every coordinate), else, in each coordinate that far out, the
 /// centre's snapped to a grid whose step is the least power of two at or
 /// above the diagonal (a small edit keeps the frame), and zero in the others.
-Eigen::Vector3d local_frame_origin(const PreparedMesh& prepared);
+Eigen::Vector3d local_frame_origin(const PreparedSceneView& prepared);
 
 /// A scene is far from the origin when its box's centre lies farther than
 /// this many of its diagonals from it in some coordinate.
@@ -27,7 +27,7 @@ inline constexpr double kFarFromOriginInDiagonals = 1.0;
 
 /// `prepared` moved by -origin: positions, island boxes and tolerance
 /// zones; the tolerance lengths, topology and face ids are unchanged.
-PreparedMesh in_local_frame(const PreparedMesh& prepared, const Eigen::Vector3d& origin);
+PreparedMesh in_local_frame(const PreparedSceneView& prepared, const Eigen::Vector3d& origin);
 
 /// Moves every hull of `covering` by +origin, back into the scene's frame.
 void to_scene_frame(Covering& covering, const Eigen::Vector3d& origin);

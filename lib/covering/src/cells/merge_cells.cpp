@@ -11,7 +11,7 @@ namespace {
 
 using CellKey = std::array<long long, 3>;
 
-Eigen::Vector3d centroid(const Mesh& mesh, int f) {
+Eigen::Vector3d centroid(const MeshView& mesh, int f) {
   const Eigen::Vector3i& t = mesh.triangles[f];
   return (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
 }
@@ -25,7 +25,7 @@ CellKey cell_key(const Eigen::Vector3d& p, const Eigen::Vector3d& centre, double
 
 // Faces per occupied cell of side `size` of the grid through `centre`, in
 // key order.
-std::map<CellKey, std::vector<int>> cells_of_grid(const Mesh& mesh, const std::vector<int>& faces,
+std::map<CellKey, std::vector<int>> cells_of_grid(const MeshView& mesh, const std::vector<int>& faces,
                                                   const Eigen::Vector3d& centre, double size) {
   std::map<CellKey, std::vector<int>> cells;
   for (int f : faces) cells[cell_key(centroid(mesh, f), centre, size)].push_back(f);
@@ -33,8 +33,8 @@ std::map<CellKey, std::vector<int>> cells_of_grid(const Mesh& mesh, const std::v
 }
 
 // The same for one island's grid, centred on its box.
-std::map<CellKey, std::vector<int>> cells_of_island(const Mesh& mesh, const std::vector<int>& faces, const Aabb& box,
-                                                    double size) {
+std::map<CellKey, std::vector<int>> cells_of_island(const MeshView& mesh, const std::vector<int>& faces,
+                                                    const Aabb& box, double size) {
   return cells_of_grid(mesh, faces, 0.5 * (box.min + box.max), size);
 }
 
@@ -46,7 +46,7 @@ constexpr long long kMostCellsAlongAnIsland = 1024;
 // The automatic side for an island: its longest extent over k, for the
 // smallest power of two k whose occupied cells average at most
 // kFacesPerAutomaticCell.
-double automatic_cell_size(const Mesh& mesh, const std::vector<int>& faces, const Aabb& box) {
+double automatic_cell_size(const MeshView& mesh, const std::vector<int>& faces, const Aabb& box) {
   if (static_cast<int>(faces.size()) <= kFacesPerAutomaticCell) return 0.0;
   const double longest = (box.max - box.min).maxCoeff();
   if (!(longest > 0.0)) return 0.0;
@@ -73,7 +73,7 @@ void add_cell(std::vector<int> faces, int island, int halvings, CellLayout& layo
 // grid of half the side (the same centre: halving a side splits each cube
 // into eight, to the bit, since halving a quotient is exact), down to sides
 // of `finest`.
-void append_cells(const Mesh& mesh, const std::vector<int>& faces, const Eigen::Vector3d& centre, double size,
+void append_cells(const MeshView& mesh, const std::vector<int>& faces, const Eigen::Vector3d& centre, double size,
                   double finest, int island, int halvings, CellLayout& layout) {
   for (auto& [key, cell] : cells_of_grid(mesh, faces, centre, size)) {
     if (finest > 0.0 && static_cast<int>(cell.size()) > kMostFacesPerAutomaticCell && 0.5 * size >= finest) {
@@ -96,7 +96,7 @@ void index_faces(CellLayout& layout) {
 
 } // namespace
 
-CellLayout lay_out_islands(const PreparedMesh& prepared, const MeshIslands& islands) {
+CellLayout lay_out_islands(const PreparedSceneView& prepared, const IslandsView& islands) {
   const int face_count = static_cast<int>(prepared.mesh.triangles.size());
   CellLayout layout;
   layout.cell_of_face.assign(face_count, 0);
@@ -110,8 +110,9 @@ CellLayout lay_out_islands(const PreparedMesh& prepared, const MeshIslands& isla
   return layout;
 }
 
-CellLayout lay_out_cells(const PreparedMesh& prepared, const MeshIslands& islands, std::optional<double> cell_size) {
-  const Mesh& mesh = prepared.mesh;
+CellLayout lay_out_cells(const PreparedSceneView& prepared, const IslandsView& islands,
+                         std::optional<double> cell_size) {
+  const MeshView& mesh = prepared.mesh;
   const int face_count = static_cast<int>(mesh.triangles.size());
   CellLayout layout;
   layout.cell_of_face.assign(face_count, 0);

@@ -57,7 +57,7 @@ std::uint64_t prepared_options_key(const DecompositionStages& stages) {
 namespace {
 
 // The scene's numbers that are not arrays, and the trees' roots.
-void write_scalars(const PreparedMesh& scene, const DecompositionStages& stages, PreparedSections& out,
+void write_scalars(const PreparedSceneView& scene, const DecompositionStages& stages, PreparedSections& out,
                    LittleEndianWriter& s) {
   s.f64(scene.mesh.coordinate_error);
   s.f64(scene.mesh.coordinate_relative_error);
@@ -84,7 +84,7 @@ void write_scalars(const PreparedMesh& scene, const DecompositionStages& stages,
   for (int t_index = 0; t_index < kTreeCount; ++t_index) AabbTreeStorage::write(*trees[t_index], t_index, out, s);
 }
 
-std::string material_names_blob(const Mesh& mesh) {
+std::string material_names_blob(const MeshView& mesh) {
   LittleEndianWriter names;
   names.u32(static_cast<std::uint32_t>(mesh.material_names.size()));
   for (const std::string& name : mesh.material_names) {
@@ -96,11 +96,12 @@ std::string material_names_blob(const Mesh& mesh) {
 
 } // namespace
 
-Status write_prepared_scene(const std::string& path, const PreparedMesh& scene, const DecompositionStages& stages) {
+Status write_prepared_scene(const std::string& path, const PreparedSceneView& scene,
+                            const DecompositionStages& stages) {
   if (!host_is_little_endian())
     return {StatusCode::internal_error, "prepared scene files are written on little-endian machines only"};
   PreparedSections out;
-  const Mesh& mesh = scene.mesh;
+  const MeshView& mesh = scene.mesh;
   out.add(kPositions, mesh.positions);
   out.add(kTriangles, mesh.triangles);
   out.add(kMaterialIds, mesh.material_ids);
@@ -109,11 +110,11 @@ Status write_prepared_scene(const std::string& path, const PreparedMesh& scene, 
   out.add(kIslandLengths, t.island_lengths);
   out.add(kIslandZones, t.island_zones);
   out.add(kIslandPlace, t.island_place);
-  const MeshIslands& islands = scene.islands;
+  const IslandsView& islands = scene.islands;
   out.add(kIslandOfFace, islands.island_of_face);
   out.add(kIslandBoxes, islands.boxes);
   out.add(kIslandFaceCounts, islands.face_counts);
-  const MeshConnectivity& c = scene.connectivity;
+  const ConnectivityView& c = scene.connectivity;
   // An edge has holes after its kind: stored as five ints.
   std::vector<StoredEdge> edges;
   edges.reserve(c.edges.size());

@@ -40,13 +40,12 @@ std::uint64_t prepared_options_key(const DecompositionStages& stages);
 /// caller gave it: a worker puts it in its own local frame again), to
 /// `path` atomically. The arrays are written from where they lie, not
 /// copied. Fails with `unwritable_file`.
-Status write_prepared_scene(const std::string& path, const PreparedMesh& scene, const DecompositionStages& stages);
+Status write_prepared_scene(const std::string& path, const PreparedSceneView& scene, const DecompositionStages& stages);
 
-/// What a worker takes from a mapped file: the scene (copied), the cells
-/// (copied) and the index (read in place from `file`, which must outlive
-/// it).
+/// What a worker takes from a mapped file: the scene and the index (read
+/// in place from `file`, which must outlive them) and the cells (copied).
 struct MappedPreparedScene {
-  PreparedMesh scene;
+  PreparedSceneView scene;
   CellLayout cells;
   SceneIndexData index;
   std::uint64_t options_key = 0;

@@ -9,6 +9,7 @@
 #include "cells/prepared_scene_sections.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstring>
 
 namespace hullcover::detail {
@@ -198,21 +199,28 @@ std::vector<std::string> read_material_names(const Section& s, bool& ok) {
   return names;
 }
 
-// The scene, as prepare_mesh made it, copied out of the file; `scalars` is
-// read on to the index's numbers.
-Status read_scene(const SectionTable& file, LittleEndianReader& scalars, PreparedMesh& scene) {
-  Mesh& mesh = scene.mesh;
-  mesh.positions = file.copy<Eigen::Vector3d>(kPositions);
-  mesh.triangles = file.copy<Eigen::Vector3i>(kTriangles);
-  mesh.material_ids = file.copy<int>(kMaterialIds);
+// The scene, as prepare_mesh made it, viewed in the file (the tolerance's
+// per-island entries copied); `scalars` is read on to the index's numbers.
+Status read_scene(const SectionTable& file, LittleEndianReader& scalars, PreparedSceneView& scene) {
+  MeshView& mesh = scene.mesh;
+  const auto faces = static_cast<long long>(file.count(kTriangles));
+  const auto vertices = static_cast<long long>(file.count(kPositions));
+  // prepare_mesh keeps only referenced vertices, so every position must be
+  // finite: what validate_mesh asks of a scene.
+  const Eigen::Vector3d* positions = file.at<Eigen::Vector3d>(kPositions);
+  bool finite = true;
+  for (long long v = 0; v < vertices && finite; ++v) finite = positions[v].allFinite();
+  if (faces == 0 || file.count(kMaterialIds) != static_cast<std::size_t>(faces) || !file.checked(kPositions, finite) ||
+      !file.checked(kTriangles, all_within(file.at<int>(kTriangles), 3 * file.count(kTriangles), 0, vertices)))
+    return file.damaged("its scene");
+  mesh.positions = file.view<Eigen::Vector3d>(kPositions);
+  mesh.triangles = file.view<Eigen::Vector3i>(kTriangles);
+  mesh.material_ids = file.view<int>(kMaterialIds);
   bool names_ok = false;
   mesh.material_names = read_material_names(file[kMaterialNames], names_ok);
   if (!names_ok) return file.damaged("material names");
   mesh.coordinate_error = scalars.f64();
   mesh.coordinate_relative_error = scalars.f64();
-  if (Status s = validate_mesh(mesh); !s.ok()) return file.damaged("its scene: " + s.message());
-  const auto faces = static_cast<long long>(mesh.triangles.size());
-  const auto vertices = static_cast<long long>(mesh.positions.size());
   Tolerance& t = scene.tolerance;
   t.length = scalars.f64();
   t.places = scalars.i32();
@@ -226,53 +234,58 @@ Status read_scene(const SectionTable& file, LittleEndianReader& scalars, Prepare
   t.island_lengths = file.copy<double>(kIslandLengths);
   t.island_zones = file.copy<Aabb>(kIslandZones);
   t.island_place = file.copy<int>(kIslandPlace);
-  MeshIslands& islands = scene.islands;
-  islands.island_of_face = file.copy<int>(kIslandOfFace);
-  islands.boxes = file.copy<Aabb>(kIslandBoxes);
-  islands.face_counts = file.copy<int>(kIslandFaceCounts);
+  IslandsView& islands = scene.islands;
+  islands.boxes = file.view<Aabb>(kIslandBoxes);
+  islands.face_counts = file.view<int>(kIslandFaceCounts);
   const auto island_count = static_cast<long long>(islands.boxes.size());
   if (t.islands != island_count || t.island_lengths.size() != islands.boxes.size() ||
       t.island_zones.size() != islands.boxes.size() || t.island_place.size() != islands.boxes.size() ||
       islands.face_counts.size() != islands.boxes.size() ||
       !all_within(t.island_place.data(), t.island_place.size(), 0, t.places) ||
-      islands.island_of_face.size() != mesh.triangles.size() ||
-      !all_within(islands.island_of_face.data(), islands.island_of_face.size(), 0, island_count))
+      file.count(kIslandOfFace) != static_cast<std::size_t>(faces) ||
+      !file.checked(kIslandOfFace, all_within(file.at<int>(kIslandOfFace), file.count(kIslandOfFace), 0, island_count)))
     return file.damaged("islands");
+  islands.island_of_face = file.view<int>(kIslandOfFace);
   scene.vertices_before_weld = scalars.i32();
   scene.unreferenced_dropped = scalars.i32();
-  MeshConnectivity& c = scene.connectivity;
+  ConnectivityView& c = scene.connectivity;
   c.component_count = scalars.i32();
-  c.edge_uses = file.copy<EdgeUse>(kEdgeUses);
-  const auto uses = static_cast<long long>(c.edge_uses.size());
-  // Read from the mapping field by field (a MeshEdge has padding): no
-  // second copy of the largest array.
+  const auto uses = static_cast<long long>(file.count(kEdgeUses));
+  // An edge is stored as five ints, the kind's padding zero: on a
+  // little-endian host, a MeshEdge's bytes.
+  static_assert(sizeof(MeshEdge) == sizeof(StoredEdge) && offsetof(MeshEdge, kind) == 4 * sizeof(std::int32_t),
+                "a stored edge is read in place as a MeshEdge");
   const StoredEdge* edges = file.at<StoredEdge>(kEdges);
-  c.edges.resize(file.count(kEdges));
-  for (std::size_t e = 0; e < c.edges.size(); ++e) {
+  bool edges_ok = true;
+  for (std::size_t e = 0; e < file.count(kEdges) && edges_ok; ++e) {
     const StoredEdge& f = edges[e];
-    if (f[0] < 0 || f[0] >= vertices || f[1] < 0 || f[1] >= vertices || f[2] < 0 || f[3] < 0 || f[2] > uses - f[3] ||
-        f[4] < 0 || f[4] > static_cast<int>(EdgeKind::non_manifold))
-      return file.damaged("edges");
-    c.edges[e] = {f[0], f[1], f[2], f[3], static_cast<EdgeKind>(f[4])};
+    edges_ok = !(f[0] < 0 || f[0] >= vertices || f[1] < 0 || f[1] >= vertices || f[2] < 0 || f[3] < 0 ||
+                 f[2] > uses - f[3] || f[4] < 0 || f[4] > static_cast<int>(EdgeKind::non_manifold));
   }
-  file.release(kEdges);
-  for (const EdgeUse& use : c.edge_uses)
-    if (use.face < 0 || use.face >= faces || use.corner < 0 || use.corner > 2) return file.damaged("edge uses");
-  c.face_edges = file.copy<Eigen::Vector3i>(kFaceEdges);
-  c.face_neighbours = file.copy<Eigen::Vector3i>(kFaceNeighbours);
-  c.zero_area = file.copy<char>(kZeroArea);
-  c.face_component = file.copy<int>(kFaceComponent);
+  if (!file.checked(kEdges, edges_ok)) return file.damaged("edges");
+  c.edges = file.view<MeshEdge>(kEdges);
+  const EdgeUse* use = file.at<EdgeUse>(kEdgeUses);
+  bool uses_ok = true;
+  for (long long u = 0; u < uses && uses_ok; ++u)
+    uses_ok = use[u].face >= 0 && use[u].face < faces && use[u].corner >= 0 && use[u].corner <= 2;
+  if (!file.checked(kEdgeUses, uses_ok)) return file.damaged("edge uses");
+  c.edge_uses = file.view<EdgeUse>(kEdgeUses);
   const auto edge_count = static_cast<long long>(c.edges.size());
-  if (c.face_edges.size() != mesh.triangles.size() || c.face_neighbours.size() != mesh.triangles.size() ||
-      c.zero_area.size() != mesh.triangles.size() || c.face_component.size() != mesh.triangles.size() ||
-      !all_within(c.face_edges.data()->data(), 3 * c.face_edges.size(), -1, edge_count) ||
-      !all_within(c.face_neighbours.data()->data(), 3 * c.face_neighbours.size(), -1, faces) ||
-      !all_within(c.face_component.data(), c.face_component.size(), 0, c.component_count))
+  const auto per_face = static_cast<std::size_t>(faces);
+  if (file.count(kFaceEdges) != per_face || file.count(kFaceNeighbours) != per_face ||
+      file.count(kZeroArea) != per_face || file.count(kFaceComponent) != per_face ||
+      !file.checked(kFaceEdges, all_within(file.at<int>(kFaceEdges), 3 * per_face, -1, edge_count)) ||
+      !file.checked(kFaceNeighbours, all_within(file.at<int>(kFaceNeighbours), 3 * per_face, -1, faces)) ||
+      !file.checked(kFaceComponent, all_within(file.at<int>(kFaceComponent), per_face, 0, c.component_count)))
     return file.damaged("connectivity");
+  c.face_edges = file.view<Eigen::Vector3i>(kFaceEdges);
+  c.face_neighbours = file.view<Eigen::Vector3i>(kFaceNeighbours);
+  c.zero_area = file.view<char>(kZeroArea);
+  c.face_component = file.view<int>(kFaceComponent);
   return scalars.failed ? file.damaged("the scalars end early") : Status::success();
 }
 
-Status read_cells(const SectionTable& file, const PreparedMesh& scene, CellLayout& cells) {
+Status read_cells(const SectionTable& file, const PreparedSceneView& scene, CellLayout& cells) {
   cells.cell_of_face = file.copy<int>(kCellOfFace);
   cells.slot_in_cell = file.copy<int>(kSlotInCell);
   cells.island_of_cell = file.copy<int>(kIslandOfCell);
@@ -297,7 +310,7 @@ Status read_cells(const SectionTable& file, const PreparedMesh& scene, CellLayou
 
 // The index, viewing the file; every index in it checked against what it
 // names.
-Status read_index(const SectionTable& file, const PreparedMesh& scene, LittleEndianReader& scalars,
+Status read_index(const SectionTable& file, const PreparedSceneView& scene, LittleEndianReader& scalars,
                   SceneIndexData& index) {
   const auto faces = static_cast<long long>(scene.mesh.triangles.size());
   const auto edges = static_cast<long long>(scene.connectivity.edges.size());

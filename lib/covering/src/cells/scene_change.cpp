@@ -46,7 +46,7 @@ std::uint64_t settings_hash(const DecompositionStages& stages) {
 // A face as its checks and its neighbours' see it: corners to the bit,
 // material, and its island's lengths.
 std::uint64_t face_hash(const DecompositionStages& stages, int f) {
-  const Mesh& mesh = stages.prepared.mesh;
+  const MeshView& mesh = stages.prepared.mesh;
   const int island = stages.islands.island_of_face[f];
   LittleEndianWriter w;
   for (int k = 0; k < 3; ++k)
@@ -59,7 +59,7 @@ std::uint64_t face_hash(const DecompositionStages& stages, int f) {
   return hash_of(w);
 }
 
-Aabb face_box(const Mesh& mesh, int f) {
+Aabb face_box(const MeshView& mesh, int f) {
   Aabb box;
   for (int k = 0; k < 3; ++k) box.extend(mesh.positions[mesh.triangles[f][k]]);
   return box;
@@ -145,7 +145,7 @@ std::vector<std::uint64_t> face_hashes_of(const DecompositionStages& stages) {
 
 std::string scene_snapshot_bytes(const DecompositionStages& stages, const std::vector<std::uint64_t>& face_hashes,
                                  const std::vector<std::uint64_t>& cell_keys, const std::vector<std::string>& cells) {
-  const Mesh& mesh = stages.prepared.mesh;
+  const MeshView& mesh = stages.prepared.mesh;
   LittleEndianWriter out;
   out.bytes.assign(kSnapshotMagic, sizeof kSnapshotMagic);
   out.u32(kSnapshotVersion);
@@ -203,8 +203,8 @@ Result<SceneSnapshot> read_scene_snapshot(const std::string& bytes) {
 SceneChange scene_change_since(const DecompositionStages& stages, const std::vector<std::uint64_t>& hashes,
                                const SceneSnapshot& before) {
   SceneChange change;
-  const PreparedMesh& prepared = stages.prepared;
-  const Mesh& mesh = prepared.mesh;
+  const PreparedSceneView& prepared = stages.prepared;
+  const MeshView& mesh = prepared.mesh;
   // A user's free-space cap: rays are still followed past it to their first
   // hit, which may be a changed face no capped sweep crosses.
   if (before.settings != settings_hash(stages) || stages.index_data.agent_radius > 0.0 ||
@@ -233,7 +233,7 @@ SceneChange scene_change_since(const DecompositionStages& stages, const std::vec
   // This scene's sweeps that cross a changed face.
   const AabbTree changed_tree(changed);
   const SceneIndexData& index = stages.index_data;
-  const MeshConnectivity& c = prepared.connectivity;
+  const ConnectivityView& c = prepared.connectivity;
   const ViewTolerances views = view_tolerances(stages);
   const SceneIndex finest_view(index, views.finest, prepared.tolerance.largest_island);
   std::vector<int> near, scratch;
@@ -272,7 +272,7 @@ bool patch_may_be_touched(const DecompositionStages& stages, const SceneChange& 
                           const PatchHull& made) {
   if (change.everything) return true;
   if (change.changed_faces == 0) return false;
-  const Mesh& mesh = stages.prepared.mesh;
+  const MeshView& mesh = stages.prepared.mesh;
   Aabb box;
   for (int f : patch.faces)
     for (int k = 0; k < 3; ++k) box.extend(mesh.positions[mesh.triangles[f][k]]);

@@ -28,7 +28,7 @@ void write_hull(LittleEndianWriter& out, const CoveringHull& hull, const VertexN
 // faces the hulls read so far hold.
 bool read_hull(LittleEndianReader& in, const DecompositionStages& stages, const CellLayout& seams, int seam,
                const VertexNaming& naming, std::vector<char>& used, CoveringHull& hull) {
-  const Mesh& mesh = stages.prepared.mesh;
+  const MeshView& mesh = stages.prepared.mesh;
   if (!read_solid(in, naming, hull.polytope) || hull.polytope.facets.empty()) return false;
   std::uint32_t n = 0;
   if (!read_count(in, 4, n) || n == 0) return false;
@@ -80,7 +80,7 @@ Result<SeamResult> seam_result_from_bytes(const DecompositionStages& stages, con
   LittleEndianReader in;
   if (Status opened = open_checked_record(bytes, kMagic, kVersion, kSmallest, "seam result", in); !opened.ok())
     return opened;
-  const Mesh& mesh = stages.prepared.mesh;
+  const MeshView& mesh = stages.prepared.mesh;
   if (in.u32() != static_cast<std::uint32_t>(seam) || in.u32() != seams.faces_of_cell[seam].size() ||
       in.u32() != mesh.triangles.size())
     return unreadable("made for another seam cell or scene");

@@ -26,7 +26,8 @@ Result<std::unique_ptr<StagedDecomposition>> StagedDecomposition::prepare(Prepar
   try {
     std::unique_ptr<StagedDecomposition> staged(new StagedDecomposition());
     staged->prepared_ = std::make_unique<PreparedMesh>(std::move(prepared));
-    Result<std::unique_ptr<detail::DecompositionStages>> stages = detail::prepare_stages(*staged->prepared_, options);
+    staged->scene_ = std::make_unique<PreparedSceneView>(view_of(*staged->prepared_));
+    Result<std::unique_ptr<detail::DecompositionStages>> stages = detail::prepare_stages(*staged->scene_, options);
     if (!stages.ok()) return stages.status();
     staged->stages_ = std::move(stages).value();
     // Progress belongs to a run, not to stages other threads share.
@@ -47,10 +48,10 @@ Result<std::unique_ptr<StagedDecomposition>> StagedDecomposition::map_prepared(c
     detail::MappedPreparedScene& parts = read.value();
     std::unique_ptr<StagedDecomposition> staged(new StagedDecomposition());
     staged->mapping_ = std::move(file).value();
-    staged->prepared_ = std::make_unique<PreparedMesh>(std::move(parts.scene));
+    staged->scene_ = std::make_unique<PreparedSceneView>(std::move(parts.scene));
     detail::MadeStages made{std::move(parts.cells), std::move(parts.index)};
     Result<std::unique_ptr<detail::DecompositionStages>> stages =
-        detail::prepare_stages(*staged->prepared_, options, &made);
+        detail::prepare_stages(*staged->scene_, options, &made);
     if (!stages.ok()) return stages.status();
     staged->stages_ = std::move(stages).value();
     staged->stages_->covering.options.progress = nullptr;
@@ -67,7 +68,7 @@ StagedDecomposition::~StagedDecomposition() = default;
 
 Status StagedDecomposition::write_prepared(const std::string& path) const {
   try {
-    return detail::write_prepared_scene(path, *prepared_, *stages_);
+    return detail::write_prepared_scene(path, *scene_, *stages_);
   } catch (const std::exception& e) {
     return failed(e);
   }

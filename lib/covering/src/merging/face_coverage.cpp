@@ -32,7 +32,7 @@ bool within_tol(const ConvexPolytope& polytope, const Eigen::Vector3d& p, double
 
 // Within tol of one hull at every corner of a face: so is all of it, the
 // hull being convex.
-bool covers_face(const ConvexPolytope& polytope, const Mesh& mesh, int f, double tol) {
+bool covers_face(const ConvexPolytope& polytope, const MeshView& mesh, int f, double tol) {
   const Eigen::Vector3i& t = mesh.triangles[f];
   return within_tol(polytope, mesh.positions[t[0]], tol) && within_tol(polytope, mesh.positions[t[1]], tol) &&
          within_tol(polytope, mesh.positions[t[2]], tol);
@@ -42,7 +42,7 @@ bool covers_face(const ConvexPolytope& polytope, const Mesh& mesh, int f, double
 // sine of its smallest angle (its doubled area, the norm of its area
 // vector, over the product of the two sides meeting there; at least that
 // over the longest side squared) above kParallelSine.
-bool has_plane(const Mesh& mesh, int f) {
+bool has_plane(const MeshView& mesh, int f) {
   const Eigen::Vector3i& t = mesh.triangles[f];
   const Eigen::Vector3d &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
   const double longest_squared = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
@@ -51,7 +51,7 @@ bool has_plane(const Mesh& mesh, int f) {
 
 // Faces joined by a shared edge, each group in face order, groups in the
 // order of their first face.
-std::vector<std::vector<int>> edge_joined_groups(const Mesh& mesh, const std::vector<int>& faces) {
+std::vector<std::vector<int>> edge_joined_groups(const MeshView& mesh, const std::vector<int>& faces) {
   std::vector<int> parent(faces.size());
   std::iota(parent.begin(), parent.end(), 0);
   const auto root = [&](int i) {
@@ -80,7 +80,7 @@ std::vector<std::vector<int>> edge_joined_groups(const Mesh& mesh, const std::ve
 // area (to tol times its rim), covers each within tol, and passes the
 // conditions a flat patch does (nothing crosses it). A strip of slivers
 // fanned between two straight lines (a Cube map's trimmed wall) is one.
-std::optional<FlatPolygon> group_polygon(const SceneIndex& index, const Mesh& mesh, const std::vector<int>& group,
+std::optional<FlatPolygon> group_polygon(const SceneIndex& index, const MeshView& mesh, const std::vector<int>& group,
                                          double tol, std::vector<int>& scratch) {
   if (group.size() < 2) return std::nullopt;
   std::vector<Eigen::Vector3d> area_vectors; // each twice its face's area
@@ -118,8 +118,8 @@ std::optional<FlatPolygon> group_polygon(const SceneIndex& index, const Mesh& me
   return polygon;
 }
 
-CoveringHull flat_hull(const SceneIndex& index, const Mesh& mesh, const FlatPolygon& polygon, std::vector<int> faces,
-                       std::vector<int>& scratch) {
+CoveringHull flat_hull(const SceneIndex& index, const MeshView& mesh, const FlatPolygon& polygon,
+                       std::vector<int> faces, std::vector<int>& scratch) {
   CoveringHull hull;
   hull.polytope = flat_polytope(polygon, true);
   hull.faces = std::move(faces);
@@ -134,8 +134,8 @@ CoveringHull flat_hull(const SceneIndex& index, const Mesh& mesh, const FlatPoly
 
 FaceCoverageCount cover_uncovered_faces(const DecompositionStages& stages, Covering& covering, int threads) {
   FaceCoverageCount count;
-  const PreparedMesh& prepared = stages.prepared;
-  const Mesh& mesh = prepared.mesh;
+  const PreparedSceneView& prepared = stages.prepared;
+  const MeshView& mesh = prepared.mesh;
   const int face_count = static_cast<int>(mesh.triangles.size());
   const auto tol_of = [&](int f) { return stages.island_tolerance[prepared.islands.island_of_face[f]]; };
   std::vector<int> owner(face_count, -1);

@@ -13,7 +13,7 @@
 namespace hullcover::detail {
 namespace {
 
-void corners_of_face(const Mesh& mesh, int f, Eigen::Vector3d (&corners)[3]) {
+void corners_of_face(const MeshView& mesh, int f, Eigen::Vector3d (&corners)[3]) {
   const Eigen::Vector3i& t = mesh.triangles[f];
   for (int k = 0; k < 3; ++k) corners[k] = mesh.positions[t[k]];
 }
@@ -31,7 +31,7 @@ constexpr size_t kFacesReadDirectly = 32;
 } // namespace
 
 bool PatchMerger::face_near_patch(int f, int q) const {
-  const Mesh& mesh = index_.mesh();
+  const MeshView& mesh = index_.mesh();
   Eigen::Vector3d face[3], other[3];
   corners_of_face(mesh, f, face);
   const Aabb reach = grown(box_of_face(face), near_merge_distance_);
@@ -53,7 +53,7 @@ bool PatchMerger::face_near_patch(int f, int q) const {
 
 void PatchMerger::keep_patches_near_face(int f, std::vector<int>& patches) const {
   if (patches.empty()) return;
-  const Mesh& mesh = index_.mesh();
+  const MeshView& mesh = index_.mesh();
   Eigen::Vector3d face[3], other[3];
   corners_of_face(mesh, f, face);
   const Aabb reach = grown(box_of_face(face), near_merge_distance_);

@@ -11,7 +11,7 @@
 namespace hullcover::detail {
 
 std::vector<int> PatchMerger::receivers_of(int f, int h, const AabbTree& near_tree) const {
-  const MeshConnectivity& c = index_.prepared->connectivity;
+  const ConnectivityView& c = index_.prepared->connectivity;
   std::vector<std::pair<double, int>> by_shared; // (-shared length, patch): most shared first
   for (int k = 0; k < 3; ++k) {
     const int g = c.face_neighbours[f][k];
@@ -29,7 +29,7 @@ std::vector<int> PatchMerger::receivers_of(int f, int h, const AabbTree& near_tr
   std::vector<int> out;
   for (const auto& e : by_shared) out.push_back(e.second);
   if (near_merge_distance_ > 0.0) {
-    const Mesh& mesh = index_.mesh();
+    const MeshView& mesh = index_.mesh();
     const Eigen::Vector3i& t = mesh.triangles[f];
     const Aabb box = grown(bounding_box_of({mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]}),
                            0.5 * near_merge_distance_);

@@ -37,14 +37,14 @@ void add_plane(std::vector<Plane>& planes, const Plane& p, double cosine_gap, do
   planes.push_back(p);
 }
 
-std::vector<Eigen::Vector3d> positions_of(const Mesh& mesh, const std::vector<int>& ids) {
+std::vector<Eigen::Vector3d> positions_of(const MeshView& mesh, const std::vector<int>& ids) {
   std::vector<Eigen::Vector3d> out;
   out.reserve(ids.size());
   for (int v : ids) out.push_back(mesh.positions[v]);
   return out;
 }
 
-std::vector<int> vertices_of_faces(const Mesh& mesh, const std::vector<int>& faces) {
+std::vector<int> vertices_of_faces(const MeshView& mesh, const std::vector<int>& faces) {
   std::vector<int> out;
   out.reserve(3 * faces.size());
   for (int f : faces)
@@ -54,14 +54,14 @@ std::vector<int> vertices_of_faces(const Mesh& mesh, const std::vector<int>& fac
   return out;
 }
 
-double face_edge_length(const Mesh& mesh, int face, int corner) {
+double face_edge_length(const MeshView& mesh, int face, int corner) {
   const Eigen::Vector3i& t = mesh.triangles[face];
   return (mesh.positions[t[(corner + 1) % 3]] - mesh.positions[t[corner]]).norm();
 }
 
 bool patches_support_each_other(const SceneIndex& index, const Patch& a, const Patch& b) {
   if (index.has_allowance()) return true;
-  const Mesh& mesh = index.mesh();
+  const MeshView& mesh = index.mesh();
   const double tol = index.tol();
   return planes_support_points(a.face_planes, positions_of(mesh, b.hull_vertices), tol) &&
          planes_support_points(b.face_planes, positions_of(mesh, a.hull_vertices), tol);
@@ -76,7 +76,7 @@ PatchMerger::PatchMerger(const SceneIndex& index, const DecomposeOptions& option
                          const CellLayout& cells, int cell, CoveringStatistics& statistics)
     : index_(index), options_(options), cells_(cells), cell_(cell), statistics_(statistics),
       near_merge_distance_(near_merge_distance) {
-  const MeshConnectivity& c = index.prepared->connectivity;
+  const ConnectivityView& c = index.prepared->connectivity;
   const std::vector<int>& faces = cells.faces_of_cell[cell];
   const int face_count = static_cast<int>(faces.size());
   patches_.resize(face_count);
@@ -96,7 +96,7 @@ PatchMerger::PatchMerger(const SceneIndex& index, const DecomposeOptions& option
 }
 
 Patch PatchMerger::single_face_patch(int f) const {
-  const Mesh& mesh = index_.mesh();
+  const MeshView& mesh = index_.mesh();
   const Eigen::Vector3i& t = mesh.triangles[f];
   Patch p;
   p.faces = {f};
@@ -111,8 +111,8 @@ Patch PatchMerger::single_face_patch(int f) const {
 }
 
 void PatchMerger::recount_shared_edges() {
-  const Mesh& mesh = index_.mesh();
-  const MeshConnectivity& c = index_.prepared->connectivity;
+  const MeshView& mesh = index_.mesh();
+  const ConnectivityView& c = index_.prepared->connectivity;
   for (Patch& p : patches_) {
     p.shared_length.clear();
     p.boundary_length = 0.0;
@@ -163,7 +163,7 @@ void PatchMerger::push_pair(int a, int b) {
 PatchMerger::Candidate PatchMerger::evaluate(int a, int b) {
   const Patch& pa = patches_[a];
   const Patch& pb = patches_[b];
-  const Mesh& mesh = index_.mesh();
+  const MeshView& mesh = index_.mesh();
   const double tol = index_.tol();
   Candidate out;
   if (options_.keep_materials_apart && pa.material != pb.material) {

@@ -41,15 +41,15 @@ double scene_same_plane_gap(const SceneIndex& index);
 void add_plane(std::vector<Plane>& planes, const Plane& p, double cosine_gap, double tol);
 
 /// The positions of mesh vertices `ids`, in order.
-std::vector<Eigen::Vector3d> positions_of(const Mesh& mesh, const std::vector<int>& ids);
+std::vector<Eigen::Vector3d> positions_of(const MeshView& mesh, const std::vector<int>& ids);
 
 /// The mesh vertices the faces use, ascending, once each: all of a
 /// planar patch's points, corners or not, which its polygon's plane must
 /// stay near.
-std::vector<int> vertices_of_faces(const Mesh& mesh, const std::vector<int>& faces);
+std::vector<int> vertices_of_faces(const MeshView& mesh, const std::vector<int>& faces);
 
 /// Length of the edge from corner `corner` of triangle `face` to the next.
-double face_edge_length(const Mesh& mesh, int face, int corner);
+double face_edge_length(const MeshView& mesh, int face, int corner);
 
 /// Condition 2 both ways: each patch's face planes have the other's hull
 /// vertices behind them (within tol). Cheap, and needs no hull. Always true

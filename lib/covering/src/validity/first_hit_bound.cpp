@@ -50,7 +50,7 @@ private:
         first_mesh_hit(index_, ray_base(sweep_, centroid_of(region)), sweep_.direction, stand_off_,
                        index_.prepared->tolerance.diagonal, scratch_, parallel_tol_);
     if (!hit) return kNone;
-    const Mesh& mesh = index_.mesh();
+    const MeshView& mesh = index_.mesh();
     std::vector<Eigen::Vector3d> triangle(3);
     triangle_corners(mesh, hit->face, triangle);
     ShadowSplit split = split_by_shadow(region, triangle, sweep_.direction, tol);

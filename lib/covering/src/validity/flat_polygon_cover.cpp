@@ -127,7 +127,7 @@ Validity check_polygon_covered(const SceneIndex& index, const FlatPolygon& merge
     for (const Eigen::Vector2d& q : piece.corners) box.extend(frame.origin + q.x() * frame.u + q.y() * frame.v);
   scratch.clear();
   index.face_tree.overlapping(grown(box, slab), scratch);
-  const Mesh& mesh = index.mesh();
+  const MeshView& mesh = index.mesh();
   std::vector<Eigen::Vector3d> corners(3);
   for (int f : scratch) {
     bool in_slab = true;

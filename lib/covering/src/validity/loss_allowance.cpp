@@ -25,7 +25,7 @@ struct Cell {
 // far as that point; the tree's nearest-first walk then asks only the
 // triangles nearer than the nearest met so far, not all within the limit.
 double clearance_below(const SceneIndex& index, const Eigen::Vector3d& p, double limit) {
-  const Mesh& mesh = index.mesh();
+  const MeshView& mesh = index.mesh();
   return std::sqrt(index.face_tree.nearest_to_point(p, limit, [&](int f) {
     const auto& t = mesh.triangles[f];
     return (closest_point_on_triangle(p, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]) - p)

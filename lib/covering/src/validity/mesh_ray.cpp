@@ -20,7 +20,7 @@ std::optional<MeshRayHit> first_mesh_hit(const SceneIndex& index, const Eigen::V
                                          const Eigen::Vector3d& dir, double min_t, double max_t,
                                          std::vector<int>& scratch, double parallel_tol) {
   (void)scratch;
-  const Mesh& mesh = index.mesh();
+  const MeshView& mesh = index.mesh();
   const double tol = index.tol();
   const double box_margin = kFaceBoxMarginInTolerances * tol;
   const double length = max_t - min_t;

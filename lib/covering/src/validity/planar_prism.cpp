@@ -30,7 +30,7 @@ double distance_to_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, c
 std::vector<Plane> beveled_side_planes(const SceneIndex& index, const FlatPolygon& polygon,
                                        const std::function<bool(int)>& in_patch, std::vector<int>& scratch) {
   const double tol = index.tol();
-  const Mesh& mesh = index.mesh();
+  const MeshView& mesh = index.mesh();
   const Eigen::Vector3d& n = polygon.plane.normal;
   std::vector<Plane> sides = polygon.sides;
   const size_t count = polygon.corners.size();
@@ -89,7 +89,7 @@ double depth_before_box(const FlatPolygon& polygon, const Aabb& box) {
 double allowed_prism_thickness(const SceneIndex& index, const FlatPolygon& polygon, const std::vector<Plane>& sides,
                                const std::function<bool(int)>& in_patch, double cap, std::vector<int>& scratch) {
   const double tol = index.tol();
-  const Mesh& mesh = index.mesh();
+  const MeshView& mesh = index.mesh();
   const Eigen::Vector3d& n = polygon.plane.normal;
   Aabb region = bounding_box_of(polygon.corners);
   for (const Eigen::Vector3d& c : polygon.corners) region.extend(c - cap * n);
@@ -101,7 +101,7 @@ double allowed_prism_thickness(const SceneIndex& index, const FlatPolygon& polyg
   // Across an edge whose two faces wind opposite ways, "behind" this patch
   // is the other face's front: a prism would fill its free space (a flipped
   // triangle in a floor would grow a prism up into the room). Flat instead.
-  const MeshConnectivity& connectivity = index.prepared->connectivity;
+  const ConnectivityView& connectivity = index.prepared->connectivity;
   for (int f : scratch) {
     if (!in_patch(f)) continue;
     for (int k = 0; k < 3; ++k) {

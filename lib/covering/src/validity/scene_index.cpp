@@ -9,7 +9,7 @@
 
 namespace hullcover {
 
-double uncapped_free_space_reach(const PreparedMesh& prepared, double hull_margin) {
+double uncapped_free_space_reach(const PreparedSceneView& prepared, double hull_margin) {
   // The box grown by the margin has a diagonal of at most D + 2 sqrt(3) m.
   return prepared.tolerance.diagonal + 4.0 * (hull_margin + prepared.tolerance.largest_length());
 }
@@ -19,14 +19,14 @@ std::vector<Eigen::Vector3d> BoundaryBar::outline() const {
   return {a, a + along, b + along, b};
 }
 
-bool is_fold_edge(const PreparedMesh& prepared, int edge) {
-  const MeshConnectivity& c = prepared.connectivity;
+bool is_fold_edge(const PreparedSceneView& prepared, int edge) {
+  const ConnectivityView& c = prepared.connectivity;
   const MeshEdge& e = c.edges[edge];
   if (e.kind != EdgeKind::manifold) return false;
   const EdgeUse& u0 = c.edge_uses[e.first_use];
   const EdgeUse& u1 = c.edge_uses[e.first_use + 1];
   if (c.zero_area[u0.face] || c.zero_area[u1.face]) return false;
-  const Mesh& mesh = prepared.mesh;
+  const MeshView& mesh = prepared.mesh;
   const Eigen::Vector3d n0 = triangle_area_vector(mesh, u0.face).normalized();
   const Eigen::Vector3d n1 = triangle_area_vector(mesh, u1.face).normalized();
   if (n0.dot(n1) >= 0.0) return false;

@@ -9,7 +9,7 @@
 #include "hullcover/covering/validity.h"
 #include "hullcover/geometry/aabb_tree.h"
 #include "hullcover/geometry/mappable_array.h"
-#include "hullcover/mesh/prepared_mesh.h"
+#include "prepared_scene_view.h"
 
 #include <array>
 #include <vector>
@@ -36,7 +36,7 @@ struct BoundaryBar {
 /// What build_scene_index computes once per scene, for every view of it
 /// (SceneIndex). Holds a reference to `prepared`, which must outlive it.
 struct SceneIndexData {
-  const PreparedMesh* prepared = nullptr;
+  const PreparedSceneView* prepared = nullptr;
   ValidityMode mode = ValidityMode::paper;
   double free_space_reach = 0.0; ///< exact mode, scene units
   double agent_radius = 0.0;     ///< BarOptions::agent_radius
@@ -86,7 +86,7 @@ struct SceneIndex {
   SceneIndex(const SceneIndexData& data, double tolerance, double patch_extent);
   SceneIndex(SceneIndexData&&, double, double) = delete; // would refer to a temporary
 
-  const PreparedMesh* prepared;
+  const PreparedSceneView* prepared;
   ValidityMode mode;
   double free_space_reach;
   double agent_radius;
@@ -115,7 +115,7 @@ struct SceneIndex {
   /// Appends, once each and ascending, the bars with a piece overlapping `box`.
   void bars_overlapping(const Aabb& box, std::vector<int>& out) const;
 
-  const Mesh& mesh() const { return prepared->mesh; }
+  const MeshView& mesh() const { return prepared->mesh; }
   /// Whether hulls may take free space exact mode keeps (agent radius or
   /// max deviation set): the paper's conditions 1 and 2 then give way to
   /// the exact conditions' proofs (loss_allowance.h).
@@ -144,12 +144,12 @@ inline constexpr double kBarPiecesPerDiagonal = 64.0;
 /// The free-space reach that amounts to no cap: longer than any segment from
 /// a face to a point of a hull (hulls lie within the scene's box grown by
 /// `hull_margin`), so every ray of free space is followed to the last hull.
-double uncapped_free_space_reach(const PreparedMesh& prepared, double hull_margin);
+double uncapped_free_space_reach(const PreparedSceneView& prepared, double hull_margin);
 
 /// True for a fold edge: a manifold edge whose second face folds back onto
 /// the first (its far corner within tol (the first face's island's) of the
 /// first face's plane, normals opposite): the rim of a double-sided sheet,
 /// as open as a boundary edge.
-bool is_fold_edge(const PreparedMesh& prepared, int edge);
+bool is_fold_edge(const PreparedSceneView& prepared, int edge);
 
 } // namespace hullcover

@@ -97,9 +97,9 @@ void add_sweep_boxes(const FreeSpaceSweep& sweep, int item, const std::vector<Aa
 // look up.
 // Each face's (each open edge's) sweeps at the tolerance of its island.
 void index_sweeps(SceneIndexData& index, double hull_margin, const std::vector<Aabb>& hull_zones, int threads) {
-  const PreparedMesh& prepared = *index.prepared;
-  const Mesh& mesh = prepared.mesh;
-  const MeshConnectivity& c = prepared.connectivity;
+  const PreparedSceneView& prepared = *index.prepared;
+  const MeshView& mesh = prepared.mesh;
+  const ConnectivityView& c = prepared.connectivity;
   const double reach = index.free_space_reach;
   const double largest_tol = prepared.tolerance.largest_length();
   std::vector<Aabb> zones;
@@ -195,7 +195,7 @@ void index_sweeps(SceneIndexData& index, double hull_margin, const std::vector<A
 
 } // namespace
 
-SceneIndexData build_scene_index(const PreparedMesh& prepared, const BarOptions& options) {
+SceneIndexData build_scene_index(const PreparedSceneView& prepared, const BarOptions& options) {
   SceneIndexData index;
   index.prepared = &prepared;
   index.mode = options.mode;
@@ -204,8 +204,8 @@ SceneIndexData build_scene_index(const PreparedMesh& prepared, const BarOptions&
   index.max_deviation = options.max_deviation;
   std::vector<int> open_edge_use(prepared.connectivity.edges.size(), -1);
   std::vector<BoundaryBar> bars;
-  const Mesh& mesh = prepared.mesh;
-  const MeshConnectivity& c = prepared.connectivity;
+  const MeshView& mesh = prepared.mesh;
+  const ConnectivityView& c = prepared.connectivity;
   const int face_count = static_cast<int>(mesh.triangles.size());
   const auto half_length = [&](int face) {
     return options.half_length_of_island.empty() ? options.half_length

@@ -56,6 +56,6 @@ struct BarOptions {
 /// (exact mode: sheets on every boundary and fold edge; and material
 /// boundaries when asked), and the four trees; each face's sweeps at its
 /// island's tolerance. O(n log n).
-SceneIndexData build_scene_index(const PreparedMesh& prepared, const BarOptions& bars);
+SceneIndexData build_scene_index(const PreparedSceneView& prepared, const BarOptions& bars);
 
 } // namespace hullcover

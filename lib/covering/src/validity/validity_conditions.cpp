@@ -23,14 +23,14 @@ namespace {
 // meets faces and stands off by its own).
 Validity judge_sweep(const SceneIndex& hull_view, const SweepRef& ref, const HullInterior& interior,
                      FreeSpaceSweep& sweep, detail::SweepJudgeStorage& storage) {
-  const PreparedMesh& prepared = *hull_view.prepared;
+  const PreparedSceneView& prepared = *hull_view.prepared;
   const int face = ref.fan < 0 ? ref.item : prepared.connectivity.edge_uses[hull_view.open_edge_use[ref.item]].face;
   const double ray_tol = prepared.face_tolerance(face);
   std::optional<SceneIndex> ray_view;
   if (ray_tol != hull_view.tol()) ray_view.emplace(hull_view.at_tolerance(ray_tol));
   const SceneIndex& index = ray_view ? *ray_view : hull_view;
   const double tol = index.tol();
-  const Mesh& mesh = index.mesh();
+  const MeshView& mesh = index.mesh();
   const int own_place = prepared.face_place(face) == hull_view.place ? hull_view.place : -1;
   if (ref.fan < 0) {
     const int f = ref.item;
@@ -117,7 +117,7 @@ Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, s
                           RecentRejections* recent) {
   const double tol = index.tol();
   const Aabb box = grown(bounding_box_of(hull.vertices), tol);
-  const Mesh& mesh = index.mesh();
+  const MeshView& mesh = index.mesh();
 
   // Condition 1 keeps mesh elements out of hulls; with an allowance a hull
   // may swallow them where the exact conditions prove the space around them
@@ -160,7 +160,7 @@ Validity check_solid_hull(const SceneIndex& index, const ConvexPolytope& hull, s
 Validity check_faces_below_polygon(const SceneIndex& index, const FlatPolygon& polygon, double half_width,
                                    const std::function<bool(int)>& in_patch, std::vector<int>& scratch) {
   const Aabb box = grown(bounding_box_of(polygon.corners), half_width);
-  const Mesh& mesh = index.mesh();
+  const MeshView& mesh = index.mesh();
   scratch.clear();
   index.face_tree.overlapping(box, scratch);
   std::vector<Eigen::Vector3d> triangle(3);

@@ -113,7 +113,7 @@ struct Settling {
 
 Settling settle_by_face(const SceneIndex& index, const FreeSpaceSweep& sweep, const std::vector<Eigen::Vector3d>& piece,
                         int f, bool enclosed, SweepJudgeStorage& storage) {
-  const Mesh& mesh = index.mesh();
+  const MeshView& mesh = index.mesh();
   const double tol = index.tol();
   const Plane face{index.face_normals[f], index.face_normals[f].dot(mesh.positions[mesh.triangles[f][0]])};
   const double slope = face.normal.dot(sweep.direction);

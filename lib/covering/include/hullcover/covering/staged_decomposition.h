@@ -31,6 +31,7 @@ namespace hullcover {
 
 class MappedFile;
 struct CellLayout;
+struct PreparedSceneView;
 namespace detail {
 struct DecompositionStages;
 }
@@ -119,8 +120,9 @@ public:
   /// for their seam cell, or `internal_error`.
   [[nodiscard]] Result<Covering> finish_seams(const std::vector<std::string>& seams) const;
 
-  /// The mesh the stages work on.
-  const PreparedMesh& prepared() const { return *prepared_; }
+  /// The mesh given to prepare(); null for stages read by map_prepared(),
+  /// whose scene stays in the mapped file.
+  const PreparedMesh* prepared() const { return prepared_.get(); }
 
 private:
   StagedDecomposition() = default;
@@ -129,7 +131,8 @@ private:
   const CellLayout& seams() const;
   // Declared first, so destroyed last: the stages read the file in place.
   std::unique_ptr<MappedFile> mapping_;
-  std::unique_ptr<PreparedMesh> prepared_;
+  std::unique_ptr<PreparedMesh> prepared_;   // none when the scene is mapped
+  std::unique_ptr<PreparedSceneView> scene_; // the scene's arrays, in prepared_ or mapping_
   std::unique_ptr<detail::DecompositionStages> stages_;
   mutable std::once_flag seams_laid_out_;
   mutable std::unique_ptr<CellLayout> seams_;

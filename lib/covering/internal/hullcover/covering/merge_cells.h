@@ -16,7 +16,7 @@
 /// cell holding its centroid.
 
 #include "hullcover/mesh/mesh_islands.h"
-#include "hullcover/mesh/prepared_mesh.h"
+#include "prepared_scene_view.h"
 
 #include <optional>
 #include <vector>
@@ -61,9 +61,10 @@ struct CellLayout {
 /// `cell_size`: unset for the automatic layout, 0 for one cell holding
 /// every face, else the side of every island's cubes (> 0, finite). Never
 /// fails for a prepared mesh; a cell is never empty.
-CellLayout lay_out_cells(const PreparedMesh& prepared, const MeshIslands& islands, std::optional<double> cell_size);
+CellLayout lay_out_cells(const PreparedSceneView& prepared, const IslandsView& islands,
+                         std::optional<double> cell_size);
 
 /// One cell per island (the seam pass's layout: no edge joins two islands).
-CellLayout lay_out_islands(const PreparedMesh& prepared, const MeshIslands& islands);
+CellLayout lay_out_islands(const PreparedSceneView& prepared, const IslandsView& islands);
 
 } // namespace hullcover

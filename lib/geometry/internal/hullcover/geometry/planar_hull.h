@@ -64,16 +64,28 @@ struct FlatPolygon {
 
 /// How far the points `vertex_ids` (of `positions`) reach along unit
 /// `normal`: {lowest, highest} of normal.p. `vertex_ids` must not be empty.
-std::pair<double, double> extent_along(const std::vector<Eigen::Vector3d>& positions,
-                                       const std::vector<int>& vertex_ids, const Eigen::Vector3d& normal);
+std::pair<double, double> extent_along(const Eigen::Vector3d* positions, const std::vector<int>& vertex_ids,
+                                       const Eigen::Vector3d& normal);
+/// The same, positions in an owned or a mapped array.
+template <class Positions>
+std::pair<double, double> extent_along(const Positions& positions, const std::vector<int>& vertex_ids,
+                                       const Eigen::Vector3d& normal) {
+  return extent_along(positions.data(), vertex_ids, normal);
+}
 
 /// The convex polygon of mesh vertices `vertex_ids` (positions from
 /// `positions`) in the plane with unit normal `normal` through the middle
 /// of their slab along it; corners are projected onto that plane. Points within `tol` of
 /// a hull edge are not corners. Returns an empty polygon when the points
 /// are collinear within `tol`.
-FlatPolygon make_flat_polygon(const std::vector<Eigen::Vector3d>& positions, const std::vector<int>& vertex_ids,
+FlatPolygon make_flat_polygon(const Eigen::Vector3d* positions, const std::vector<int>& vertex_ids,
                               const Eigen::Vector3d& normal, double tol);
+/// The same, positions in an owned or a mapped array.
+template <class Positions>
+FlatPolygon make_flat_polygon(const Positions& positions, const std::vector<int>& vertex_ids,
+                              const Eigen::Vector3d& normal, double tol) {
+  return make_flat_polygon(positions.data(), vertex_ids, normal, tol);
+}
 
 /// Triangle a, b, c as a flat polygon facing the way it winds: corners in
 /// that order, no mesh vertex ids (-1). The corners must not be collinear
