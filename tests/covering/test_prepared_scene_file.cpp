@@ -10,7 +10,10 @@
 #include "prepared_scene_edits.h"
 #include "temp_dir.h"
 
+#include "cells/prepared_scene_file.h"
+
 #include "hullcover/covering/staged_decomposition.h"
+#include "hullcover/geometry/mapped_file.h"
 #include "hullcover/mesh/scene_builder.h"
 
 #include <gtest/gtest.h>
@@ -56,6 +59,48 @@ TEST(PreparedSceneFile, MappedStagesMergeAndFinishAsTheStagesThatWroteIt) {
   const test::TempDir dir;
   ASSERT_TRUE(s->write_prepared(dir.path("scene.hcp")).ok());
   expect_same_stages(*s, dir.path("scene.hcp"), o);
+}
+
+TEST(PreparedSceneFile, TheScenesArraysAreReadWhereTheyLieInTheFile) {
+  // A worker's memory follows its cells only if it copies no array of the
+  // world: every per-vertex, per-face and per-edge array is viewed in the
+  // mapping.
+  const Mesh building = demo_building();
+  const auto s = test::staged_decomposition(building, test::options_with_small_cells(building));
+  ASSERT_TRUE(s);
+  const test::TempDir dir;
+  ASSERT_TRUE(s->write_prepared(dir.path("scene.hcp")).ok());
+  Result<std::unique_ptr<MappedFile>> file = MappedFile::open(dir.path("scene.hcp"));
+  ASSERT_TRUE(file.ok());
+  const MappedFile& mapping = *file.value();
+  Result<detail::MappedPreparedScene> read = detail::read_prepared_scene(mapping, "scene.hcp");
+  ASSERT_TRUE(read.ok()) << read.status().message();
+  const PreparedSceneView& scene = read.value().scene;
+  const auto in_file = [&](const auto& array) {
+    const auto* first = reinterpret_cast<const unsigned char*>(array.data());
+    return array.is_view() && array.size() > 0 && first >= mapping.data() &&
+           first + sizeof(array[0]) * array.size() <= mapping.data() + mapping.size();
+  };
+  EXPECT_TRUE(in_file(scene.mesh.positions));
+  EXPECT_TRUE(in_file(scene.mesh.triangles));
+  EXPECT_TRUE(in_file(scene.mesh.material_ids));
+  EXPECT_TRUE(in_file(scene.islands.island_of_face));
+  EXPECT_TRUE(in_file(scene.connectivity.edges));
+  EXPECT_TRUE(in_file(scene.connectivity.edge_uses));
+  EXPECT_TRUE(in_file(scene.connectivity.face_edges));
+  EXPECT_TRUE(in_file(scene.connectivity.face_neighbours));
+  EXPECT_TRUE(in_file(scene.connectivity.zero_area));
+  EXPECT_TRUE(in_file(scene.connectivity.face_component));
+  EXPECT_TRUE(in_file(read.value().index.face_normals));
+  // And read back as the stages that wrote it hold them.
+  const PreparedMesh& written = *s->prepared();
+  ASSERT_EQ(scene.connectivity.edges.size(), written.connectivity.edges.size());
+  for (std::size_t e = 0; e < written.connectivity.edges.size(); ++e) {
+    const MeshEdge &a = scene.connectivity.edges[e], &b = written.connectivity.edges[e];
+    ASSERT_TRUE(a.v0 == b.v0 && a.v1 == b.v1 && a.first_use == b.first_use && a.use_count == b.use_count &&
+                a.kind == b.kind)
+        << "edge " << e;
+  }
 }
 
 TEST(PreparedSceneFile, AFarSceneIsMappedInTheSameLocalFrame) {
@@ -162,6 +207,18 @@ TEST_F(DamagedPreparedFile, LinksOutOfRangeAreRefusedEvenWithRightChecksums) {
   EXPECT_NE(s.message().find("its scene"), std::string::npos) << s.message();
   s = edit_int(detail::kFrontSweepFace, 0, -1);
   EXPECT_NE(s.message().find("scene index"), std::string::npos) << s.message();
+  // An edge is read in place: its kind (the fifth int) must be one of the
+  // four, its padding zero.
+  s = edit_int(detail::kEdges, 4, 1 << 8);
+  EXPECT_NE(s.message().find("edges"), std::string::npos) << s.message();
+  s = edit_int(detail::kEdgeUses, 0, 1 << 30); // a face past the faces
+  EXPECT_NE(s.message().find("edge uses"), std::string::npos) << s.message();
+  s = edit_int(detail::kIslandOfFace, 0, 1 << 20);
+  EXPECT_NE(s.message().find("islands"), std::string::npos) << s.message();
+  s = edit_int(detail::kFaceNeighbours, 0, 1 << 30);
+  EXPECT_NE(s.message().find("connectivity"), std::string::npos) << s.message();
+  s = edit_ints(detail::kPositions, {{0, 0}, {1, 0x7ff80000}}); // the first x a NaN
+  EXPECT_NE(s.message().find("its scene"), std::string::npos) << s.message();
   // Unchanged but resealed: still read.
   std::string same = good_;
   test::reseal_prepared_scene(same);
