@@ -320,16 +320,25 @@ def bake(args):
                                               priority=2 * tasks, pure=False))
         staged = None
         staged = _hullcover.StagedBake.map(prepared, **dict(_map_options(options), threads=0))
-        # A batch's future is let go once it is counted: its bytes stay on
-        # the worker only until its group's seam task has read them (Dask
-        # keeps, and after a lost worker runs again, what a pending task
-        # needs).
+        # Batches and seam tasks are taken as they finish, in one stream. A
+        # batch's future is let go once it is counted: its bytes stay on the
+        # worker only until its group's seam task has read them (Dask keeps,
+        # and after a lost worker runs again, what a pending task needs). A
+        # group's hulls are fetched as soon as they are made and the task
+        # let go, so no worker holds finished groups until the last batch.
         done = 0
-        batches_done = as_completed(batch_futures)
-        del batch_futures, group_batches
-        for future in batches_done:
+        seam_bytes = [None] * seam_count
+        finished = as_completed(batch_futures + seam_futures)
+        del batch_futures, group_batches, seam_futures
+        for future in finished:
+            cells = cells_of.get(future.key)
+            if cells is None:
+                for seam, data in future.result():
+                    seam_bytes[seam] = data
+                future.release()
+                continue
             future.release()
-            for cell in cells_of[future.key]:
+            for cell in cells:
                 done += 1
                 if args.report_cells:
                     print(f"hullcover.bake: cell {cell} done ({done} of {count})", file=sys.stderr, flush=True)
@@ -337,14 +346,6 @@ def bake(args):
                 print(f"\rhullcover.bake: {done} of {count} cells", end="", file=sys.stderr, flush=True)
         if not args.quiet and not args.report_cells:
             print(file=sys.stderr)
-        # Each group's hulls are taken as they arrive and the task let go,
-        # so the worker that made them frees them at once.
-        seam_bytes = [None] * seam_count
-        for future, results in as_completed(seam_futures, with_results=True):
-            for seam, data in results:
-                seam_bytes[seam] = data
-            future.release()
-        del seam_futures
         workers_seen = len(client.scheduler_info()["workers"])
         worker_peaks = sorted(client.run(module._peak_memory_mb).values())
     finally:
