@@ -18,7 +18,9 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <fstream>
+#include <thread>
 
 namespace hullcover {
 namespace {
@@ -101,6 +103,40 @@ TEST(PreparedSceneFile, TheScenesArraysAreReadWhereTheyLieInTheFile) {
                 a.kind == b.kind)
         << "edge " << e;
   }
+}
+
+TEST(PreparedSceneFile, PagesHandedBackWhileCellsMergeChangeNothing) {
+  // A bake's worker hands the file's pages back on a timer while a cell
+  // merges: every page dropped under the merge is read again, alike.
+  const Mesh building = demo_building();
+  const DecomposeOptions o = test::options_with_small_cells(building);
+  const auto s = test::staged_decomposition(building, o);
+  ASSERT_TRUE(s);
+  const test::TempDir dir;
+  ASSERT_TRUE(s->write_prepared(dir.path("scene.hcp")).ok());
+  Result<std::unique_ptr<StagedDecomposition>> mapped = StagedDecomposition::map_prepared(dir.path("scene.hcp"), o);
+  ASSERT_TRUE(mapped.ok()) << mapped.status().message();
+  const StagedDecomposition& m = *mapped.value();
+  std::atomic<bool> merging{true};
+  std::atomic<long> drops{0};
+  std::thread dropper([&] {
+    while (merging) {
+      m.release_mapped_pages();
+      ++drops;
+    }
+  });
+  for (int c = 0; c < m.cell_count(); ++c) {
+    Result<std::string> a = m.merge_cell(c);
+    Result<std::string> b = s->merge_cell(c);
+    if (!a.ok() || !b.ok()) { // not ASSERT: the dropper must be joined
+      ADD_FAILURE() << "cell " << c << " did not merge";
+      break;
+    }
+    EXPECT_EQ(a.value(), b.value()) << "cell " << c;
+  }
+  merging = false;
+  dropper.join();
+  EXPECT_GT(drops.load(), m.cell_count());
 }
 
 TEST(PreparedSceneFile, AFarSceneIsMappedInTheSameLocalFrame) {

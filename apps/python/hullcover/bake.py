@@ -101,12 +101,35 @@ def _scene_on_this_worker(path, fingerprint, options):
 # more than the cells.
 HAND_BACK_FACES = 2000
 
+# While a task runs, the file's pages are also handed back this often: one
+# large cell, or one large island's seam pass, reads hundreds of MB of the
+# file in a single call. The mapping is read-only, so pages dropped while
+# the call reads them are read again from the page cache (a minor fault).
+HAND_BACK_SECONDS = 1.0
+
 
 class _HandBack:
-    """Counts a task's work and hands pages and heap back as it goes."""
+    """Counts a task's work and hands pages and heap back as it goes; used
+    as a context manager around the task, it also hands the file's pages
+    back every HAND_BACK_SECONDS."""
 
     def __init__(self, bake):
         self.bake, self.faces = bake, 0
+        self._stop = threading.Event()
+        self._timer = threading.Thread(target=self._periodically, daemon=True)
+
+    def __enter__(self):
+        self._timer.start()
+        return self
+
+    def __exit__(self, *exception):
+        self._stop.set()
+        self._timer.join()
+        self.now()
+
+    def _periodically(self):
+        while not self._stop.wait(HAND_BACK_SECONDS):
+            self.bake.release_pages()
 
     def after(self, faces):
         self.faces += faces
@@ -123,14 +146,11 @@ class _HandBack:
 def merge_batch_task(path, fingerprint, options, cells):
     """One Dask task: [(cell, bytes)] for each of `cells` (run on a worker)."""
     bake = _scene_on_this_worker(path, fingerprint, options)
-    hand_back = _HandBack(bake)
     results = []
-    try:
+    with _HandBack(bake) as hand_back:
         for cell in cells:
             results.append((cell, bake.merge_cell(cell)))
             hand_back.after(bake.cell_face_count(cell))
-    finally:
-        hand_back.now()
     return results
 
 
@@ -138,16 +158,13 @@ def finish_seams_task(path, fingerprint, options, seams, *batches):
     """One Dask task: [(seam cell, bytes)] for each of `seams`, from the
     batches that hold their cells (run on a worker)."""
     bake = _scene_on_this_worker(path, fingerprint, options)
-    hand_back = _HandBack(bake)
     cell_bytes = {cell: data for batch in batches for cell, data in batch}
     results = []
-    try:
+    with _HandBack(bake) as hand_back:
         for seam in seams:
             cells = bake.seam_cells(seam)
             results.append((seam, bake.finish_seam(seam, [cell_bytes.pop(c) for c in cells])))
             hand_back.after(sum(bake.cell_face_count(c) for c in cells))
-    finally:
-        hand_back.now()
     return results
 
 

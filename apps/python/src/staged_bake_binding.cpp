@@ -69,8 +69,7 @@ void check_seam(const StagedBake& bake, int seam) {
 // The Decomposition `finish` makes of the given bytes (with the GIL
 // released while it runs).
 template <class Finish>
-std::shared_ptr<Decomposition> finished(const StagedBake& bake, const Finish& finish,
-                                        const std::vector<py::bytes>& parts) {
+std::shared_ptr<Decomposition> finished(const Finish& finish, const std::vector<py::bytes>& parts) {
   std::vector<std::string> contents(parts.begin(), parts.end());
   auto d = std::make_shared<Decomposition>();
   Result<Covering> covering = [&] {
@@ -201,12 +200,10 @@ void bind_staged_bake(py::module_& m) {
       .def(
           "finish_seams",
           [](const StagedBake& b, const std::vector<py::bytes>& seams) {
-    return finished(
-        b, [&](const std::vector<std::string>& contents) { return b.staged->finish_seams(contents); }, seams);
+    return finished([&](const std::vector<std::string>& contents) { return b.staged->finish_seams(contents); }, seams);
           })
       .def("finish", [](const StagedBake& b, const std::vector<py::bytes>& cells) {
-        return finished(
-            b, [&](const std::vector<std::string>& contents) { return b.staged->finish(contents); }, cells);
+        return finished([&](const std::vector<std::string>& contents) { return b.staged->finish(contents); }, cells);
       });
 }
 

@@ -65,7 +65,10 @@ public:
   [[nodiscard]] Status write_prepared(const std::string& path) const;
   /// For stages read by map_prepared(): hands the file's pages read so far
   /// back to the system, so that memory holds only what later cells read
-  /// (a bake's worker calls it between cells). Nothing for other stages.
+  /// (a bake's worker calls it between cells, and on a timer while a large
+  /// one runs). Safe while other threads merge cells or finish seams: the
+  /// mapping is read-only, and a page dropped as it is read is read again
+  /// from the file. Nothing for other stages.
   void release_mapped_pages() const;
   StagedDecomposition(const StagedDecomposition&) = delete;
   StagedDecomposition& operator=(const StagedDecomposition&) = delete;
