@@ -204,6 +204,13 @@ def test_tasks_are_planned_largest_first_and_hold_each_cell_once():
         for batch in batches:
             assert set(batch) <= group_cells
             assert len(batch) == 1 or sum(faces[c] for c in batch) <= target
+    # Guided: a batch of several cells holds at most its share of the work
+    # left from it on, so the plan's last batches are its smallest.
+    divisor = 2 * bake.BATCHES_PER_WORKER
+    costs = [sum(faces[c] for c in batch) for _, batches in plan for batch in batches]
+    for i, batch in enumerate(batch for _, batches in plan for batch in batches):
+        assert len(batch) == 1 or costs[i] <= max(1, sum(costs[i:]) // divisor)
+    assert costs[-1] < costs[0] / 4
     # The largest seam cell's group first, its batches largest first.
     assert plan[0][0] == [2]
     costs = [sum(faces[c] for c in batch) for batch in plan[0][1]]

@@ -179,10 +179,13 @@ BATCHES_PER_WORKER = 8
 def plan_tasks(seam_cells, cell_faces, workers):
     """Groups of seam cells, and each group's batches of cells, largest
     first: [(seams, [cells, ...])]. A group is one seam cell of at least
-    the target cost (faces), or small ones together up to it; a batch is up
-    to the target's worth of one group's cells (a cell larger than the
-    target is a batch of its own). Groups, and each group's batches, come
-    most faces first."""
+    the target cost (faces), or small ones together up to it. Groups come
+    most faces first. A batch holds one group's cells up to the remaining
+    work's share: the faces not yet in a batch over the target's divisor
+    (a cell larger than that is a batch of its own). Batches so shrink
+    towards the end of the plan, so the last tasks are short and no worker
+    waits long for another's (a guided schedule); each group's batches
+    come most faces first."""
     seam_faces = [sum(cell_faces[c] for c in cells) for cells in seam_cells]
     total = sum(seam_faces)
     target = max(1, total // max(1, workers * BATCHES_PER_WORKER))
@@ -196,21 +199,24 @@ def plan_tasks(seam_cells, cell_faces, workers):
             seams, faces = [], 0
     if seams:
         groups.append(seams)
-    plan = []
+    groups.sort(key=lambda group: -sum(seam_faces[s] for s in group))
+    plan, remaining = [], total
+    divisor = max(1, workers * BATCHES_PER_WORKER)
     for group in groups:
         cells = sorted((c for s in group for c in seam_cells[s]), key=lambda c: (-cell_faces[c], c))
         batches, batch, faces = [], [], 0
         for c in cells:
-            if batch and faces + cell_faces[c] > target:
+            if batch and faces + cell_faces[c] > max(1, remaining // divisor):
                 batches.append(batch)
+                remaining -= faces
                 batch, faces = [], 0
             batch.append(c)
             faces += cell_faces[c]
         if batch:
             batches.append(batch)
+            remaining -= faces
         batches.sort(key=lambda b: -sum(cell_faces[c] for c in b))
         plan.append((group, batches))
-    plan.sort(key=lambda entry: -sum(seam_faces[s] for s in entry[0]))
     return plan
 
 
