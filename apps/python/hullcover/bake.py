@@ -12,7 +12,8 @@ How it runs (docs/worlds.md, "The distributed bake"):
   1. The client prepares the scene (islands, cells, scene index), writes it
      to the prepared scene file, plans and sends the tasks, and from then on
      reads the file mapped, as the workers do.
-  2. Cells are batched into tasks of similar cost (faces), largest first,
+  2. Cells are batched into tasks of the remaining work's share (faces),
+     shrinking towards the end, largest first,
      each batch within one group of seam cells (islands). A worker maps the
      prepared file once (StagedBake.map: the scene index is read in place,
      not loaded) and keeps it for every later task of the same file and
@@ -170,9 +171,10 @@ def finish_seams_task(path, fingerprint, options, seams, *batches):
     return results
 
 
-# Tasks per worker the cells are cut into: enough that the last to finish
-# is small and a dead worker's batch costs little, few enough that Dask's
-# per-task cost stays out of sight at a million cells.
+# A batch is at most the remaining work over this many per worker: the
+# first batches large, few enough that Dask's per-task cost stays out of
+# sight at a million cells; the last small, so no worker waits long for
+# another's and a dead worker's batch costs little.
 BATCHES_PER_WORKER = 8
 
 
