@@ -19,8 +19,9 @@ How it runs (docs/worlds.md, "The distributed bake"):
      not loaded) and keeps it for every later task of the same file and
      options; as it goes (every HAND_BACK_FACES faces' work, and every
      HAND_BACK_SECONDS while a task runs) it hands the file's pages back,
-     so its memory holds what the cells at hand read, not the world. A batch returns its
-     cells' results as bytes (lib/covering/src/cells/cell_result_bytes.h).
+     so its memory holds what the cells at hand read, not the world. A
+     batch returns its cells' results as bytes
+     (lib/covering/src/cells/cell_result_bytes.h).
   3. Each group's seam pass and hulls is a task too, on the batches of its
      cells (Dask moves their bytes between workers; the client never holds
      them). It returns the group's hulls as bytes (seam_result_bytes.h).
