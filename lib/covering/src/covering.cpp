@@ -83,10 +83,9 @@ Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedSceneV
   stats.faces = static_cast<int>(prepared.mesh.triangles.size());
 
   const Clock::time_point start = Clock::now();
-  stages->islands = prepared.islands;
-  stages->cells = made ? std::move(made->cells) : lay_out_cells(prepared, stages->islands, options.cell_size);
+  stages->cells = made ? std::move(made->cells) : lay_out_cells(prepared, prepared.islands, options.cell_size);
   covering.island_extents.clear();
-  for (const Aabb& box : stages->islands.boxes)
+  for (const Aabb& box : prepared.islands.boxes)
     covering.island_extents.push_back(box.diagonal() > 0.0 ? box.diagonal() : prepared.tolerance.local_extent);
   // Each island's checks at its place's tolerance: its hulls lie in its box but
   // for prisms, which stop short of every zone of a smaller tolerance
@@ -98,7 +97,7 @@ Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedSceneV
   // indexed only there.
   std::vector<Aabb> hull_zones;
   if (!(options.cell_size && *options.cell_size == 0.0))
-    for (const Aabb& box : stages->islands.boxes) hull_zones.push_back(grown(box, hull_margin));
+    for (const Aabb& box : prepared.islands.boxes) hull_zones.push_back(grown(box, hull_margin));
   BarOptions bars;
   bars.half_length = covering.bar_half_length;
   bars.material_boundaries = options.keep_materials_apart;
@@ -109,7 +108,7 @@ Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedSceneV
   bars.max_deviation = options.max_deviation.value_or(0.0);
   bars.hull_zones = std::move(hull_zones);
   bars.threads = options.threads;
-  for (int island = 0; island < static_cast<int>(stages->islands.boxes.size()); ++island)
+  for (int island = 0; island < static_cast<int>(prepared.islands.boxes.size()); ++island)
     bars.half_length_of_island.push_back(island_bar_half_length(*stages, island));
   if (made) {
     stages->index_data = std::move(made->index);
@@ -117,14 +116,14 @@ Result<std::unique_ptr<DecompositionStages>> prepare_stages(const PreparedSceneV
   } else {
     stages->index_data = build_scene_index(prepared, bars);
   }
-  for (int island = 0; island < static_cast<int>(stages->islands.boxes.size()); ++island) {
+  for (int island = 0; island < static_cast<int>(prepared.islands.boxes.size()); ++island) {
     stages->island_index.emplace_back(stages->index_data, stages->island_tolerance[island],
                                       covering.island_extents[island]);
     stages->island_index.back().place = prepared.tolerance.island_place[island];
   }
   stages->island_index.emplace_back(stages->index_data, prepared.tolerance.length, prepared.tolerance.largest_island);
   covering.cell_sizes = stages->cells.island_cell_size;
-  stats.islands = static_cast<int>(stages->islands.boxes.size());
+  stats.islands = static_cast<int>(prepared.islands.boxes.size());
   stats.cells = static_cast<int>(stages->cells.faces_of_cell.size());
   stats.seconds_index = seconds_since(start);
   return Result<std::unique_ptr<DecompositionStages>>(std::move(stages));

@@ -69,27 +69,4 @@ PreparedMesh copy_of(const PreparedSceneView& view) {
   return prepared;
 }
 
-Eigen::Vector3d triangle_area_vector(const MeshView& mesh, int t) {
-  const Eigen::Vector3i& tri = mesh.triangles[t];
-  const Eigen::Vector3d& a = mesh.positions[tri[0]];
-  return (mesh.positions[tri[1]] - a).cross(mesh.positions[tri[2]] - a);
-}
-
-void triangle_corners(const MeshView& mesh, int t, std::vector<Eigen::Vector3d>& corners) {
-  corners.resize(3);
-  for (int k = 0; k < 3; ++k) corners[k] = mesh.positions[mesh.triangles[t][k]];
-}
-
-bool triangle_has_repeated_vertex(const MeshView& mesh, int t) {
-  const Eigen::Vector3i& tri = mesh.triangles[t];
-  return tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0];
-}
-
-Aabb referenced_bounding_box(const MeshView& mesh) {
-  Aabb box;
-  for (const Eigen::Vector3i& tri : mesh.triangles)
-    for (int k = 0; k < 3; ++k) box.extend(mesh.positions[tri[k]]);
-  return box;
-}
-
 } // namespace hullcover

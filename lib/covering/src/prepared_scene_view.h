@@ -9,6 +9,7 @@
 
 #include "hullcover/geometry/mappable_array.h"
 #include "hullcover/geometry/mesh.h"
+#include "hullcover/geometry/mesh_triangles.h"
 #include "hullcover/mesh/prepared_mesh.h"
 
 #include <string>
@@ -70,10 +71,17 @@ IslandsView view_of(const MeshIslands& islands);
 /// The view's arrays copied into a PreparedMesh of their own.
 PreparedMesh copy_of(const PreparedSceneView& view);
 
-/// As the Mesh functions of the same names (hullcover/geometry/mesh.h).
-Eigen::Vector3d triangle_area_vector(const MeshView& mesh, int t);
-void triangle_corners(const MeshView& mesh, int t, std::vector<Eigen::Vector3d>& corners);
-bool triangle_has_repeated_vertex(const MeshView& mesh, int t);
-Aabb referenced_bounding_box(const MeshView& mesh);
+/// As the Mesh functions of the same names (hullcover/geometry/mesh.h),
+/// which share their code (hullcover/geometry/mesh_triangles.h).
+inline Eigen::Vector3d triangle_area_vector(const MeshView& mesh, int t) {
+  return mesh_triangles::area_vector(mesh, t);
+}
+inline void triangle_corners(const MeshView& mesh, int t, std::vector<Eigen::Vector3d>& corners) {
+  mesh_triangles::corners(mesh, t, corners);
+}
+inline bool triangle_has_repeated_vertex(const MeshView& mesh, int t) {
+  return mesh_triangles::has_repeated_vertex(mesh, t);
+}
+inline Aabb referenced_bounding_box(const MeshView& mesh) { return mesh_triangles::referenced_box(mesh); }
 
 } // namespace hullcover

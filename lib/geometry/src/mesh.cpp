@@ -1,17 +1,14 @@
 #include "hullcover/geometry/mesh.h"
 
+#include "hullcover/geometry/mesh_triangles.h"
+
 #include <Eigen/Geometry>
 
 #include <cmath>
 
 namespace hullcover {
 
-Aabb referenced_bounding_box(const Mesh& mesh) {
-  Aabb box;
-  for (const Eigen::Vector3i& tri : mesh.triangles)
-    for (int k = 0; k < 3; ++k) box.extend(mesh.positions[tri[k]]);
-  return box;
-}
+Aabb referenced_bounding_box(const Mesh& mesh) { return mesh_triangles::referenced_box(mesh); }
 
 double largest_coordinate_magnitude(const Mesh& mesh) {
   double largest = 0.0;
@@ -40,20 +37,12 @@ Status validate_mesh(const Mesh& mesh) {
   return Status::success();
 }
 
-Eigen::Vector3d triangle_area_vector(const Mesh& mesh, int t) {
-  const Eigen::Vector3i& tri = mesh.triangles[t];
-  const Eigen::Vector3d& a = mesh.positions[tri[0]];
-  return (mesh.positions[tri[1]] - a).cross(mesh.positions[tri[2]] - a);
-}
+Eigen::Vector3d triangle_area_vector(const Mesh& mesh, int t) { return mesh_triangles::area_vector(mesh, t); }
 
 void triangle_corners(const Mesh& mesh, int t, std::vector<Eigen::Vector3d>& corners) {
-  corners.resize(3);
-  for (int k = 0; k < 3; ++k) corners[k] = mesh.positions[mesh.triangles[t][k]];
+  mesh_triangles::corners(mesh, t, corners);
 }
 
-bool triangle_has_repeated_vertex(const Mesh& mesh, int t) {
-  const Eigen::Vector3i& tri = mesh.triangles[t];
-  return tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0];
-}
+bool triangle_has_repeated_vertex(const Mesh& mesh, int t) { return mesh_triangles::has_repeated_vertex(mesh, t); }
 
 } // namespace hullcover

@@ -42,7 +42,6 @@ struct DecompositionStages {
   /// Options and resolved lengths; no hulls yet. Statistics: faces, index
   /// time, islands, cells.
   Covering covering;
-  IslandsView islands;
   CellLayout cells;
   /// Per island: the tolerance its cells, seam pass and hulls are checked
   /// at, scene units: its place's (hullcover/mesh/tolerance.h; its hulls stay

@@ -5,11 +5,11 @@
 // every count against the bytes left and every value for finiteness, so
 // bytes from another process or a cache are never trusted.
 
+#include "prepared_scene_view.h"
+
 #include "hullcover/covering/covering_types.h"
 #include "hullcover/geometry/convex_polytope.h"
 #include "hullcover/geometry/little_endian_bytes.h"
-#include "prepared_scene_view.h"
-#include "hullcover/geometry/mesh.h"
 #include "hullcover/geometry/status.h"
 
 #include <cstddef>

@@ -47,7 +47,7 @@ std::uint64_t settings_hash(const DecompositionStages& stages) {
 // material, and its island's lengths.
 std::uint64_t face_hash(const DecompositionStages& stages, int f) {
   const MeshView& mesh = stages.prepared.mesh;
-  const int island = stages.islands.island_of_face[f];
+  const int island = stages.prepared.islands.island_of_face[f];
   LittleEndianWriter w;
   for (int k = 0; k < 3; ++k)
     for (int d = 0; d < 3; ++d) w.f64(mesh.positions[mesh.triangles[f][k]][d]);
@@ -225,7 +225,7 @@ SceneChange scene_change_since(const DecompositionStages& stages, const std::vec
   change.slack = kSceneChangeSlackInTolerances * prepared.tolerance.largest_length();
   if (changed.empty()) return change;
   double longest_bar = stages.covering.bar_half_length;
-  for (int island = 0; island < static_cast<int>(stages.islands.boxes.size()); ++island)
+  for (int island = 0; island < static_cast<int>(stages.prepared.islands.boxes.size()); ++island)
     longest_bar = std::max(longest_bar, island_bar_half_length(stages, island));
   for (const Aabb& box : changed) change.near_boxes.push_back(grown(box, longest_bar + change.slack));
   change.near_tree = AabbTree(change.near_boxes);

@@ -96,8 +96,8 @@ void make_hulls(const DecompositionStages& stages, const CellLayout& seams, std:
 
 CellLayout seam_layout(const DecompositionStages& stages) {
   const DecomposeOptions& options = stages.covering.options;
-  return options.cell_size && *options.cell_size == 0.0 ? lay_out_cells(stages.prepared, stages.islands, 0.0)
-                                                        : lay_out_islands(stages.prepared, stages.islands);
+  return options.cell_size && *options.cell_size == 0.0 ? lay_out_cells(stages.prepared, stages.prepared.islands, 0.0)
+                                                        : lay_out_islands(stages.prepared, stages.prepared.islands);
 }
 
 SeamResult finish_seam(const DecompositionStages& stages, const CellLayout& seams, int seam,

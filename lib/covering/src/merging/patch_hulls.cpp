@@ -53,7 +53,8 @@ double prism_cap_of(const DecompositionStages& stages, const Patch& patch) {
   const Covering& covering = stages.covering;
   if (covering.options.prism_thickness_cap) return *covering.options.prism_thickness_cap;
   double extent = 0.0;
-  for (int f : patch.faces) extent = std::max(extent, covering.island_extents[stages.islands.island_of_face[f]]);
+  for (int f : patch.faces)
+    extent = std::max(extent, covering.island_extents[stages.prepared.islands.island_of_face[f]]);
   return kDefaultPrismCapRelative * extent;
 }
 
