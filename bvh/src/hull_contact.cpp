@@ -2,7 +2,6 @@
 
 #include "planes_ray_hit.h"
 #include "separating_axes.h"
-#include "sphere_face_contact.h"
 #include "surface_normals.h"
 
 #include "hullcover/geometry/tolerances.h"
@@ -47,6 +46,36 @@ void for_each_edge(const RuntimeHull& hull, Visit&& visit) {
       if (visit(v[poly[i]], v[poly[(i + 1) % poly.size()]])) return;
 }
 
+// The nearest of a hull's edges to a point or segment, by squared
+// distance: one root at the end instead of one per edge, which was most of
+// an edge loop's time. `offer` returns true once a pair within
+// `good_enough` is found (the test a yes/no query stops at), decided on
+// the root itself as the caller's comparison with a radius is.
+struct NearestOfEdges {
+  double squared;
+  double good_enough;
+  bool won = false;
+  Eigen::Vector3d on_hull = Eigen::Vector3d::Zero(), on_other = Eigen::Vector3d::Zero();
+
+  NearestOfEdges(double distance_so_far, double enough)
+      : squared(distance_so_far * distance_so_far), good_enough(enough) {}
+  bool offer(double d2, const Eigen::Vector3d& hull_point, const Eigen::Vector3d& other_point) {
+    if (d2 < squared) {
+      squared = d2;
+      on_hull = hull_point;
+      on_other = other_point;
+      won = true;
+    }
+    return squared <= good_enough * good_enough && good_enough >= 0.0 && std::sqrt(squared) <= good_enough;
+  }
+};
+
+// How far a signed distance from one of the hull's planes may be off by
+// rounding: far below kTouchingFraction of the sizes entering it.
+double signed_distance_slack(const RuntimeHull& hull, const Eigen::Vector3d& p) {
+  return kTouchingFraction * (1.0 + hull.box.diagonal() + p.cwiseAbs().maxCoeff());
+}
+
 // The facet plane p is least deep behind (p inside the hull).
 int nearest_facet(const RuntimeHull& hull, const Eigen::Vector3d& p) {
   return detail::least_deep_plane(hull.shape.planes.data(), static_cast<int>(hull.shape.facets.size()), p);
@@ -78,26 +107,32 @@ ClosestPoints closest_to_point_outside(const RuntimeHull& hull, const Eigen::Vec
     if (inside_facet(hull, front.facet, foot)) return {(foot - p).norm(), foot, p};
   }
   // Else the closest point is p's foot inside another facet p is in front
-  // of (one that ties with the front facet, as two triangles of one face
-  // can), or it is on an edge. Each edge is tested once, including those
-  // whose facets both face away from p: they are never nearer, and knowing
-  // which they are would cost more than testing them.
+  // of, or it is on an edge. A facet holding the foot has p at least as far
+  // in front of it as of the front facet (the foot is a hull point, so p's
+  // distance is at most that facet's; and at least every facet's): only
+  // the front facet's ties, to rounding, can (two triangles of one face
+  // can tie), so the others' polygons are not tested. Each edge is tested
+  // once, including those whose facets both face away from p: they are
+  // never nearer, and knowing which they are would cost more than testing
+  // them.
+  // (Normals are unit only to kUnitNormalSlack, which scales distances.)
+  const double tied =
+      front.distance - signed_distance_slack(hull, p) - 4.0 * kUnitNormalSlack * std::abs(front.distance);
   ClosestPoints best{kInfinity, p, p};
   for (int f = 0; f < static_cast<int>(hull.shape.facets.size()); ++f) {
     const Plane& other = hull.shape.planes[f];
     const double d = other.signed_distance(p);
-    if (f == front.facet || !(d >= 0.0) || d >= best.distance) continue;
+    if (f == front.facet || !(d >= 0.0) || d < tied || d >= best.distance) continue;
     const Eigen::Vector3d q = p - d * other.normal;
     if (inside_facet(hull, f, q)) best = {(q - p).norm(), q, p};
     if (best.distance <= good_enough) return best;
   }
+  NearestOfEdges nearest(best.distance, good_enough);
   for_each_edge(hull, [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
     const Eigen::Vector3d c = closest_point_on_segment(p, a, b);
-    const double d = (c - p).norm();
-    if (d < best.distance) best = {d, c, p};
-    return best.distance <= good_enough;
+    return nearest.offer((c - p).squaredNorm(), c, p);
   });
-  return best;
+  return nearest.won ? ClosestPoints{std::sqrt(nearest.squared), nearest.on_hull, nearest.on_other} : best;
 }
 
 bool segment_meets_hull(const RuntimeHull& hull, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
@@ -120,13 +155,13 @@ ClosestPoints closest_to_segment_apart(const RuntimeHull& hull, const Eigen::Vec
   // on an edge.
   // Each edge once, first: the segment-to-segment closest points are the
   // cost, and a yes/no query often stops at the first edge near enough.
-  ClosestPoints best{kInfinity, a, a};
+  NearestOfEdges nearest(kInfinity, good_enough);
   for_each_edge(hull, [&](const Eigen::Vector3d& u, const Eigen::Vector3d& w) {
     const auto [on_segment, on_edge] = closest_points_of_segments(a, b, u, w);
-    const double d = (on_segment - on_edge).norm();
-    if (d < best.distance) best = {d, on_edge, on_segment};
-    return best.distance <= good_enough;
+    return nearest.offer((on_segment - on_edge).squaredNorm(), on_edge, on_segment);
   });
+  ClosestPoints best{kInfinity, a, a};
+  if (nearest.won) best = {std::sqrt(nearest.squared), nearest.on_hull, nearest.on_other};
   for (int f = 0; f < static_cast<int>(hull.shape.facets.size()) && best.distance > good_enough; ++f) {
     const Plane& plane = hull.shape.planes[f];
     for (const Eigen::Vector3d* end : {&a, &b}) {
@@ -230,26 +265,6 @@ std::optional<Contact> sphere_contact(const RuntimeHull& hull, const Eigen::Vect
   return on_surface(hull, Contact{-1, c.on_hull, normal, radius - c.distance}, radius,
                     [&](const Plane& facet) { return facet.signed_distance(centre); });
 }
-
-namespace detail {
-std::optional<Contact> sphere_contact_in_front_of(const RuntimeHull& hull, const Eigen::Vector3d& centre, double radius,
-                                                  int facet) {
-  // sphere_contact's path for a centre outside, in front of `facet` and
-  // over it: front_facet would find `facet` (outside = its distance > 0),
-  // and closest_to_point_outside its foot, in the same operations as here.
-  if (facet < 0 || facet >= static_cast<int>(hull.shape.facets.size())) return sphere_contact(hull, centre, radius);
-  const Plane& plane = hull.shape.planes[facet];
-  const double in_front = plane.signed_distance(centre);
-  if (!(in_front > 0.0) || in_front > radius) return sphere_contact(hull, centre, radius);
-  const Eigen::Vector3d foot = centre - in_front * plane.normal;
-  const double gap = (foot - centre).norm();
-  if (!inside_facet(hull, facet, foot) || gap > in_front * (1.0 + kTouchingFraction) || gap > radius)
-    return sphere_contact(hull, centre, radius);
-  const Eigen::Vector3d normal = gap > touching_distance(hull) ? Eigen::Vector3d((centre - foot) / gap) : plane.normal;
-  return on_surface(hull, Contact{-1, foot, normal, radius - gap}, radius,
-                    [&](const Plane& p) { return p.signed_distance(centre); });
-}
-} // namespace detail
 
 std::optional<Contact> capsule_contact(const RuntimeHull& hull, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                        double radius) {

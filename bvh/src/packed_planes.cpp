@@ -106,8 +106,7 @@ PackedPlanes::PackedPlanes(const std::vector<RuntimeHull>& hulls) {
   }
 }
 
-FloatVerdict PackedPlanes::sphere(int h, const Eigen::Vector3d& p, double radius, int* face) const {
-  if (face) *face = -1;
+FloatVerdict PackedPlanes::sphere(int h, const Eigen::Vector3d& p, double radius) const {
   const HullRecord& hull = hulls_[h];
   if (hull.blocks == 0) return FloatVerdict::unsure;
   float q[3];
@@ -170,11 +169,6 @@ FloatVerdict PackedPlanes::sphere(int h, const Eigen::Vector3d& p, double radius
                             ((nz + niz) >= zero) & ((nz + niz) <= zero);
     if (((at_foot <= margin) | itself | opposite).bits() != 0xf) return FloatVerdict::unsure;
   }
-  // Every other plane then has p less far in front than plane i does, by
-  // more than the margin (s_j(p) = s_j(f) + s_i (n_j . n_i) <= s_j(f) + s_i):
-  // plane i is the one the exact code finds p farthest in front of, and p's
-  // foot on it lies inside the hull.
-  if (face && most > slack) *face = own_index;
   return FloatVerdict::meets;
 }
 

@@ -49,10 +49,8 @@ public:
   /// is behind every plane (inside the hull) or in front of exactly one
   /// plane, nearer than the radius, with its foot on that plane inside the
   /// hull; else `unsure`. Each verdict holds with the float rounding
-  /// bounded as above. In the second case `face`, when given, is set to
-  /// that plane's index (p then lies in front of it by more than the
-  /// slack and in front of no other plane), else to -1.
-  FloatVerdict sphere(int h, const Eigen::Vector3d& p, double radius, int* face = nullptr) const;
+  /// bounded as above.
+  FloatVerdict sphere(int h, const Eigen::Vector3d& p, double radius) const;
 
   /// Segment a-b swept by `radius` (a capsule; radius 0: the segment)
   /// against hull h: `apart` when no point of the segment lies behind
@@ -106,9 +104,8 @@ struct PlanesOf {
   const PackedPlanes* store = nullptr;
   int local = 0;
 
-  FloatVerdict sphere(const Eigen::Vector3d& p, double radius, int* face = nullptr) const {
-    if (face) *face = -1;
-    return store ? store->sphere(local, p, radius, face) : FloatVerdict::unsure;
+  FloatVerdict sphere(const Eigen::Vector3d& p, double radius) const {
+    return store ? store->sphere(local, p, radius) : FloatVerdict::unsure;
   }
   FloatVerdict segment(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius) const {
     return store ? store->segment(local, a, b, radius) : FloatVerdict::unsure;

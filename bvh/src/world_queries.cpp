@@ -1,7 +1,5 @@
 #include "world_queries.h"
 
-#include "sphere_face_contact.h"
-
 #include <memory>
 #include <tuple>
 
@@ -78,18 +76,6 @@ std::optional<Contact> PlacedShape::contact(const RuntimeHull& hull) const {
     case ShapeKind::convex: return convex_contact(hull, *convex);
   }
   return std::nullopt;
-}
-
-std::optional<Contact> PlacedShape::contact(const RuntimeHull& hull, PlanesOf planes) const {
-  if (shape.kind == ShapeKind::sphere) {
-    int face = -1;
-    const FloatVerdict v = planes.sphere(a, shape.radius, &face);
-    if (v == FloatVerdict::apart) return std::nullopt;
-    if (face >= 0) return sphere_contact_in_front_of(hull, a, shape.radius, face);
-    return sphere_contact(hull, a, shape.radius);
-  }
-  if (float_verdict(planes) == FloatVerdict::apart) return std::nullopt;
-  return contact(hull);
 }
 
 Status place(const QueryShape& shape, const Eigen::Isometry3d& pose, std::optional<PlacedShape>& placed) {

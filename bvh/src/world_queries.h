@@ -51,13 +51,15 @@ struct PlacedShape {
   /// The float pre-test of a sphere or capsule on the hull's packed planes
   /// (unsure for the other shapes).
   FloatVerdict float_verdict(PlanesOf planes) const;
-  /// touches(hull) and contact(hull), first settled by the float pre-test
-  /// where it can: the same answers.
+  /// touches(hull), first settled by the float pre-test where it can: the
+  /// same answers. Contacts take no pre-test: most hulls a contact query's
+  /// walk reaches touch the shape and need the exact contact anyway, and
+  /// the pre-test measured a net cost there (docs/definitions-and-proofs.md,
+  /// "The runtime's float pre-tests").
   bool touches(const RuntimeHull& hull, PlanesOf planes) const {
     const FloatVerdict v = float_verdict(planes);
     return v == FloatVerdict::unsure ? touches(hull) : v == FloatVerdict::meets;
   }
-  std::optional<Contact> contact(const RuntimeHull& hull, PlanesOf planes) const;
 };
 
 /// Checks a shape and pose and places the shape; fails as

@@ -3,6 +3,8 @@
 
 #include "hullcover/bvh/hull_contact.h"
 #include "hullcover/covering/convex_hull_3d.h"
+#include "hullcover/geometry/convex_polytope.h"
+#include "hullcover/geometry/planar_hull.h"
 
 #include <gtest/gtest.h>
 
@@ -304,6 +306,50 @@ TEST(ClosestToPoint, AFootOverTheTwinOfTheFrontFacetIsFound) {
   EXPECT_NEAR((contact->normal - Eigen::Vector3d::UnitZ()).norm(), 0.0, 1e-15);
   EXPECT_FALSE(sphere_touches(hull, p, 0.45));
   EXPECT_TRUE(sphere_touches(hull, p, 0.55));
+}
+
+// The closest hull point to points all round random solid hulls and flat
+// polygons, against the distance to the hull's facets fanned into
+// triangles (geometry's own reference, computed triangle by triangle): the
+// search skips facets whose foot cannot be the nearest and compares edges
+// by squared distance, and must still find the nearest point everywhere.
+TEST(ClosestToPoint, EqualsTheFacetFansDistanceRoundRandomHulls) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int solids = 0, flats = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const Eigen::Vector3d centre(40 * u(rng), 40 * u(rng), 40 * u(rng));
+    const std::vector<Eigen::Vector3d> points = random_points(rng, centre, 1.0);
+    const bool flat = trial % 3 == 0;
+    ConvexPolytope shape;
+    if (flat) { // a polygon of the points projected onto a tilted plane
+      std::vector<int> ids(points.size());
+      for (size_t k = 0; k < ids.size(); ++k) ids[k] = static_cast<int>(k);
+      shape = flat_polytope(make_flat_polygon(points, ids, Eigen::Vector3d(0.3, -0.5, 1.0).normalized(), 1e-9), true);
+    } else {
+      ConvexHullBuilder builder;
+      const Result<ConvexPolytope> built = builder.build(points);
+      ASSERT_TRUE(built.ok()) << trial;
+      shape = built.value();
+    }
+    const RuntimeHull hull = make_runtime_hull(shape, 0);
+    (flat ? flats : solids) += 1;
+    for (int i = 0; i < 40; ++i) {
+      const Eigen::Vector3d p = centre + Eigen::Vector3d(u(rng), u(rng), u(rng)) * 3.0;
+      const ClosestPoints c = closest_to_point(hull, p);
+      if (c.distance == 0.0) continue; // inside
+      const double reference = distance_to_facet_fans(hull.shape, p);
+      EXPECT_NEAR(c.distance, reference, kExact) << "trial " << trial << ", point " << i;
+      EXPECT_NEAR((c.on_hull - p).norm(), c.distance, kExact) << "trial " << trial << ", point " << i;
+      // The point found is on the hull: behind or on every plane.
+      for (const Plane& plane : hull.shape.planes) EXPECT_LE(plane.signed_distance(c.on_hull), kExact);
+      // Sphere tests agree with it on both sides of the radius.
+      EXPECT_TRUE(sphere_touches(hull, p, reference + kExact)) << trial;
+      EXPECT_FALSE(sphere_touches(hull, p, reference - kExact)) << trial;
+    }
+  }
+  EXPECT_GT(solids, 150);
+  EXPECT_GT(flats, 50);
 }
 
 } // namespace

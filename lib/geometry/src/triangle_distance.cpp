@@ -7,13 +7,6 @@
 
 namespace hullcover {
 
-Eigen::Vector3d closest_point_on_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const Eigen::Vector3d ab = b - a;
-  const double length2 = ab.squaredNorm();
-  if (!(length2 > 0.0)) return a;
-  return a + std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) * ab;
-}
-
 Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                           const Eigen::Vector3d& c) {
   // Which Voronoi region of the triangle p lies in, read off barycentric

@@ -6,6 +6,8 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
+
 #include <utility>
 
 namespace hullcover {
@@ -15,8 +17,15 @@ namespace hullcover {
 Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                           const Eigen::Vector3d& c);
 
-/// The point of segment a-b nearest to `p` (`a` when a = b).
-Eigen::Vector3d closest_point_on_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b);
+/// The point of segment a-b nearest to `p` (`a` when a = b). Inline: the
+/// runtime's contact tests call it for every edge of a hull.
+inline Eigen::Vector3d closest_point_on_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                                                const Eigen::Vector3d& b) {
+  const Eigen::Vector3d ab = b - a;
+  const double length2 = ab.squaredNorm();
+  if (!(length2 > 0.0)) return a;
+  return a + std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) * ab;
+}
 
 /// The nearest points of segments p0-p1 and q0-q1, the first on p0-p1
 /// (either segment may be a single point); cannot fail.
