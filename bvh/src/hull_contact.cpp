@@ -54,19 +54,22 @@ void for_each_edge(const RuntimeHull& hull, Visit&& visit) {
 struct NearestOfEdges {
   double squared;
   double good_enough;
+  double good_enough_squared; // -1 when nothing is good enough
   bool won = false;
   Eigen::Vector3d on_hull = Eigen::Vector3d::Zero(), on_other = Eigen::Vector3d::Zero();
 
   NearestOfEdges(double distance_so_far, double enough)
-      : squared(distance_so_far * distance_so_far), good_enough(enough) {}
+      : squared(distance_so_far * distance_so_far), good_enough(enough),
+        good_enough_squared(enough >= 0.0 ? enough * enough : -1.0) {}
   bool offer(double d2, const Eigen::Vector3d& hull_point, const Eigen::Vector3d& other_point) {
     if (d2 < squared) {
       squared = d2;
       on_hull = hull_point;
       on_other = other_point;
       won = true;
+      return squared <= good_enough_squared && std::sqrt(squared) <= good_enough;
     }
-    return squared <= good_enough * good_enough && good_enough >= 0.0 && std::sqrt(squared) <= good_enough;
+    return false;
   }
 };
 

@@ -1,8 +1,10 @@
 #pragma once
 // Every hull's planes in one contiguous store (private to bvh/), twice. In
-// float, four planes a block, for the first test a sphere or capsule query
-// makes of a hull: most hulls a tree walk reaches are apart from the shape,
-// and four float planes at a time settle that. A float answer near a
+// float, four planes a block, for the first test a sphere or capsule
+// yes/no or overlap query makes of a hull: many hulls such a walk reaches
+// are apart from the shape, or plainly hold it, and four float planes at
+// a time settle that (contact queries skip it: most hulls they reach
+// touch, and need the exact contact anyway). A float answer near a
 // decision point is not trusted: the test then says "unsure" and the exact
 // narrow phase (hull_contact.h, in double on the RuntimeHull) decides, so
 // answers are those of the double code. See docs/definitions-and-proofs.md,

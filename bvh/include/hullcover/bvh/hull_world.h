@@ -73,7 +73,8 @@ private:
   std::vector<RuntimeHull> hulls_;
   // The broad phase, kept out of this header: fcl headers are slow to compile.
   std::unique_ptr<detail::HullTree> tree_;
-  // Every hull's planes in floats, for the queries' first test of a hull.
+  // Every hull's planes in floats, for the yes/no and overlap queries'
+  // first test of a hull, and in double for the ray clip.
   std::unique_ptr<detail::PackedPlanes> planes_;
 
   friend class HullQueries<HullWorld>;
