@@ -159,8 +159,9 @@ ClosestPoints closest_to_segment_apart(const RuntimeHull& hull, const Eigen::Vec
   // Each edge once, first: the segment-to-segment closest points are the
   // cost, and a yes/no query often stops at the first edge near enough.
   NearestOfEdges nearest(kInfinity, good_enough);
+  const SegmentTerms segment(a, b);
   for_each_edge(hull, [&](const Eigen::Vector3d& u, const Eigen::Vector3d& w) {
-    const auto [on_segment, on_edge] = closest_points_of_segments(a, b, u, w);
+    const auto [on_segment, on_edge] = closest_points_of_segments(segment, u, w);
     return nearest.offer((on_segment - on_edge).squaredNorm(), on_edge, on_segment);
   });
   ClosestPoints best{kInfinity, a, a};

@@ -39,38 +39,6 @@ Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen:
   return a + ab * (vb / sum) + ac * (vc / sum);
 }
 
-std::pair<Eigen::Vector3d, Eigen::Vector3d> closest_points_of_segments(const Eigen::Vector3d& p0,
-                                                                       const Eigen::Vector3d& p1,
-                                                                       const Eigen::Vector3d& q0,
-                                                                       const Eigen::Vector3d& q1) {
-  // The parameters of the nearest points, clamped to the segments in turn,
-  // as in Ericson's Real-Time Collision Detection, 5.1.9.
-  const Eigen::Vector3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
-  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  double s = 0.0, t = 0.0;
-  if (a == 0.0 && e == 0.0) return {p0, q0};
-  if (a == 0.0) {
-    t = std::clamp(f / e, 0.0, 1.0);
-  } else {
-    const double c = d1.dot(r);
-    if (e == 0.0) {
-      s = std::clamp(-c / a, 0.0, 1.0);
-    } else {
-      const double b = d1.dot(d2), denominator = a * e - b * b;
-      s = denominator > 0.0 ? std::clamp((b * f - c * e) / denominator, 0.0, 1.0) : 0.0; // parallel: any s
-      t = (b * s + f) / e;
-      if (t < 0.0) {
-        t = 0.0;
-        s = std::clamp(-c / a, 0.0, 1.0);
-      } else if (t > 1.0) {
-        t = 1.0;
-        s = std::clamp((b - c) / a, 0.0, 1.0);
-      }
-    }
-  }
-  return {p0 + s * d1, q0 + t * d2};
-}
-
 double segment_distance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,
                         const Eigen::Vector3d& q1) {
   const auto [on_p, on_q] = closest_points_of_segments(p0, p1, q0, q1);

@@ -27,12 +27,60 @@ inline Eigen::Vector3d closest_point_on_segment(const Eigen::Vector3d& p, const 
   return a + std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) * ab;
 }
 
+/// One segment p0-p1 with the terms every closest-points computation
+/// against it shares (its direction and squared length), made once when it
+/// is tested against many (a capsule's axis against a hull's edges).
+struct SegmentTerms {
+  Eigen::Vector3d start, direction;
+  double length2;
+
+  SegmentTerms(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1)
+      : start(p0), direction(p1 - p0), length2(direction.squaredNorm()) {}
+};
+
+/// The nearest points of segment `p` and segment q0-q1, the first on `p`
+/// (either may be a single point), as in Ericson's Real-Time Collision
+/// Detection, 5.1.9: the parameters of the nearest points, clamped to the
+/// segments in turn. Inline: the runtime's capsule tests call it for every
+/// edge of a hull.
+inline std::pair<Eigen::Vector3d, Eigen::Vector3d> closest_points_of_segments(const SegmentTerms& p,
+                                                                              const Eigen::Vector3d& q0,
+                                                                              const Eigen::Vector3d& q1) {
+  const Eigen::Vector3d& d1 = p.direction;
+  const Eigen::Vector3d d2 = q1 - q0, r = p.start - q0;
+  const double a = p.length2, e = d2.squaredNorm(), f = d2.dot(r);
+  double s = 0.0, t = 0.0;
+  if (a == 0.0 && e == 0.0) return {p.start, q0};
+  if (a == 0.0) {
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = d1.dot(r);
+    if (e == 0.0) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = d1.dot(d2), denominator = a * e - b * b;
+      s = denominator > 0.0 ? std::clamp((b * f - c * e) / denominator, 0.0, 1.0) : 0.0; // parallel: any s
+      t = (b * s + f) / e;
+      if (t < 0.0) {
+        t = 0.0;
+        s = std::clamp(-c / a, 0.0, 1.0);
+      } else if (t > 1.0) {
+        t = 1.0;
+        s = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  return {p.start + s * d1, q0 + t * d2};
+}
+
 /// The nearest points of segments p0-p1 and q0-q1, the first on p0-p1
 /// (either segment may be a single point); cannot fail.
-std::pair<Eigen::Vector3d, Eigen::Vector3d> closest_points_of_segments(const Eigen::Vector3d& p0,
-                                                                       const Eigen::Vector3d& p1,
-                                                                       const Eigen::Vector3d& q0,
-                                                                       const Eigen::Vector3d& q1);
+inline std::pair<Eigen::Vector3d, Eigen::Vector3d> closest_points_of_segments(const Eigen::Vector3d& p0,
+                                                                              const Eigen::Vector3d& p1,
+                                                                              const Eigen::Vector3d& q0,
+                                                                              const Eigen::Vector3d& q1) {
+  return closest_points_of_segments(SegmentTerms(p0, p1), q0, q1);
+}
 
 /// Distance between segments p0-p1 and q0-q1 (either may be a single
 /// point), scene units; cannot fail.
