@@ -66,7 +66,7 @@ Status collide_query(const Source& source, const OverlapRequest& request, const 
     std::optional<PlacedShape> placed;
     if (Status s = place(request.shape, request.pose, placed); !s.ok()) return s;
     const bool all = filter.admits_all();
-    find_candidates(source, *placed, [&](int h, const RuntimeHull& hull, PlanesOf) {
+    find_every_candidate(source, *placed, [&](int h, const RuntimeHull& hull, PlanesOf) {
       if (!all && !filter.admits(h, hull.material)) return false;
       if (std::optional<Contact> c = placed->contact(hull)) {
         c->hull = h;

@@ -58,12 +58,39 @@ public:
   template <typename Visit>
   bool find_near_point(const Eigen::Vector3d& centre, double radius, Visit&& visit) const;
 
-  /// Calls `visit(h, reach)` for each hull whose box the ray
-  /// origin + t * direction meets for some t in [0, reach], nearer boxes
-  /// first. `visit` may shorten `reach` (to the best hit so far), which
-  /// prunes the rest of the walk. `inverse` is 1 / direction, per axis.
+  /// Calls `visit(h, reach)` for each hull whose box, grown by `grow` on
+  /// every side, the ray origin + t * direction meets for some t in
+  /// [0, reach], nearer boxes first. `visit` may shorten `reach` (to the
+  /// best hit so far), which prunes the rest of the walk; a negative reach
+  /// ends it. `inverse` is 1 / direction, per axis.
   template <typename Visit>
-  void walk_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& inverse, double& reach, Visit&& visit) const;
+  void walk_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& inverse, double& reach, Visit&& visit,
+                double grow = 0.0) const;
+
+  /// Calls `visit(h)` for each hull whose box comes within `radius` of
+  /// segment a-b (a capsule's candidates: along a slanted axis far fewer
+  /// than its box holds), nearer a first, until a call returns true;
+  /// returns whether one did. The segment's walk is the ray walk from a
+  /// towards b over [0, 1] through boxes grown by the radius plus the
+  /// exact tests' touching allowance (kTouchingFraction of the sizes), so
+  /// it never drops a hull a capsule test would find touching.
+  template <typename Visit>
+  bool find_near_segment(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius, Visit&& visit) const {
+    const double scale = std::max(a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff());
+    const double grow = radius + kTouchingFraction * (1.0 + radius + scale);
+    double reach = 1.0;
+    bool stopped = false;
+    walk_ray(
+        a, (b - a).cwiseInverse(), reach,
+        [&](int h, double& r) {
+      if (visit(h)) {
+        stopped = true;
+        r = -1.0;
+      }
+        },
+        grow);
+    return stopped;
+  }
 
   /// The box of every hull (rounded outward to floats).
   Aabb bounds() const { return bounds_; }
@@ -199,11 +226,13 @@ bool HullTree::find_near_point(const Eigen::Vector3d& centre, double radius, Vis
 }
 
 template <typename Visit>
-void HullTree::walk_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& inverse, double& reach,
-                        Visit&& visit) const {
+void HullTree::walk_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& inverse, double& reach, Visit&& visit,
+                        double grow) const {
   // Per axis, the slab's near and far faces (rows of a node's face array:
   // no branch per node) and the origin rounded so that the entry
-  // comes out no later and the exit no earlier than exactly.
+  // comes out no later and the exit no earlier than exactly. Growing the
+  // boxes by `grow` is moving the origin towards each near face by it and
+  // away from each far face.
   Float4 near_origin[3], far_origin[3], inv[3];
   int near_face[3], far_face[3];
   // An axis whose inverse direction is beyond float's range (a direction
@@ -212,7 +241,7 @@ void HullTree::walk_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& in
   // box that axis would have cut, never fewer.
   for (int k = 0; k < 3; ++k) {
     const bool negative = inverse[k] < 0.0;
-    const float below = float_at_or_below(origin[k]), above = float_at_or_above(origin[k]);
+    const float below = float_at_or_below(origin[k] - grow), above = float_at_or_above(origin[k] + grow);
     near_origin[k] = Float4::all(negative ? below : above);
     far_origin[k] = Float4::all(negative ? above : below);
     const bool in_range = std::abs(inverse[k]) <= std::numeric_limits<float>::max() || std::isinf(inverse[k]);

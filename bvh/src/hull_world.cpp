@@ -23,6 +23,10 @@ struct TreeSource {
     return tree.find_near_point(centre, radius, [&](int h) { return visit(h, hulls[h], PlanesOf{&planes, h}); });
   }
   template <typename Visit>
+  bool near_segment(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius, Visit&& visit) const {
+    return tree.find_near_segment(a, b, radius, [&](int h) { return visit(h, hulls[h], PlanesOf{&planes, h}); });
+  }
+  template <typename Visit>
   void along_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& inverse, double& reach, Visit&& visit) const {
     tree.walk_ray(origin, inverse, reach, [&](int h, double& best) { visit(h, hulls[h], PlanesOf{&planes, h}, best); });
   }

@@ -60,6 +60,15 @@ struct SnapshotSource {
           centre, radius, [&](int h) { return visit(section.indices[h], section.hulls[h], section.planes_of(h)); });
     });
   }
+  // The same for a capsule's axis.
+  template <typename Visit>
+  bool near_segment(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius, Visit&& visit) const {
+    return top() && top()->find_near_segment(a, b, radius, [&](int s) {
+      const StreamSection& section = *snapshot->sections[s];
+      return section.tree.find_near_segment(
+          a, b, radius, [&](int h) { return visit(section.indices[h], section.hulls[h], section.planes_of(h)); });
+    });
+  }
   // One reach for both levels: a hit in one section prunes the others.
   template <typename Visit>
   void along_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& inverse, double& reach, Visit&& visit) const {

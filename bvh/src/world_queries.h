@@ -14,6 +14,7 @@
 // packed planes (packed_planes.h):
 //   bool in_box(const Aabb&, visit(int, const RuntimeHull&, PlanesOf) -> bool)
 //   bool near_point(centre, radius, visit(int, const RuntimeHull&, PlanesOf) -> bool)
+//   bool near_segment(a, b, radius, visit(int, const RuntimeHull&, PlanesOf) -> bool)
 //   void along_ray(origin, inverse, double& reach, visit(int, const RuntimeHull&, PlanesOf, double& reach))
 //   std::optional<Aabb> bounds()  (nothing when it holds no hull)
 // with HullTree's guarantees (hull_tree.h): a box walk never misses a hull
@@ -114,13 +115,26 @@ void candidates_in_box(const Source& source, const Aabb& box, std::vector<Candid
 
 /// Calls visit(h, hull) for the hulls the placed shape may touch, until it
 /// returns true: the hulls whose boxes meet its box, or for a sphere those
-/// within its radius.
+/// within its radius, nearest its centre first (a yes/no query meets a
+/// touching hull early).
 template <typename Source, typename Visit>
 void find_candidates(const Source& source, const PlacedShape& placed, Visit&& visit) {
   if (placed.shape.kind == ShapeKind::sphere)
     source.near_point(placed.a, placed.shape.radius, visit);
   else
     source.in_box(world_box(placed.shape, placed.pose), visit);
+}
+
+/// The same for a query that visits every candidate (contacts): a
+/// capsule's are then the hulls whose boxes come within its radius of its
+/// axis, far fewer than its box holds when the axis slants, found from one
+/// end to the other.
+template <typename Source, typename Visit>
+void find_every_candidate(const Source& source, const PlacedShape& placed, Visit&& visit) {
+  if (placed.shape.kind == ShapeKind::capsule)
+    source.near_segment(placed.a, placed.b, placed.shape.radius, visit);
+  else
+    find_candidates(source, placed, visit);
 }
 
 template <typename Source>
