@@ -47,10 +47,10 @@ void for_each_edge(const RuntimeHull& hull, Visit&& visit) {
 }
 
 // The nearest of a hull's edges to a point or segment, by squared
-// distance: one root at the end instead of one per edge, which was most of
-// an edge loop's time. `offer` returns true once a pair within
-// `good_enough` is found (the test a yes/no query stops at), decided on
-// the root itself as the caller's comparison with a radius is.
+// distance: one root at the end instead of one per edge. `offer` returns
+// true once a pair within `good_enough` is found (the test a yes/no query
+// stops at), decided on the root itself as the caller's comparison with a
+// radius is.
 struct NearestOfEdges {
   double squared;
   double good_enough;
@@ -116,9 +116,9 @@ ClosestPoints closest_to_point_outside(const RuntimeHull& hull, const Eigen::Vec
   // the front facet's ties, to rounding, can (two triangles of one face
   // can tie), so the others' polygons are not tested. Each edge is tested
   // once, including those whose facets both face away from p: they are
-  // never nearer, and knowing which they are would cost more than testing
-  // them.
-  // (Normals are unit only to kUnitNormalSlack, which scales distances.)
+  // never nearer, and knowing which they are costs as much as testing them
+  // (measured). Normals are unit only to kUnitNormalSlack, which scales
+  // the distances compared.
   const double tied =
       front.distance - signed_distance_slack(hull, p) - 4.0 * kUnitNormalSlack * std::abs(front.distance);
   ClosestPoints best{kInfinity, p, p};
