@@ -45,8 +45,13 @@ public:
   /// until a call returns true. Returns whether one did.
   template <typename Visit>
   bool find_in_box(const Aabb& box, Visit&& visit) const {
+    Float4 lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = Float4::all(float_at_or_below(box.min[k]));
+      hi[k] = Float4::all(float_at_or_above(box.max[k]));
+    }
     return find_where(
-        box, 0.5 * (box.min + box.max), [](Float4) { return 0xf; }, visit);
+        0.5 * (box.min + box.max), [&](const WideNode& node, Float4) { return lanes_meeting(node, lo, hi); }, visit);
   }
 
   /// The same for the boxes within `radius` of `centre` (a sphere's
@@ -166,20 +171,15 @@ private:
   }
 
   // Calls visit(h) for the leaves whose boxes, and whose ancestors' boxes,
-  // meet `box` and pass `lane_test` (a lane mask from the lanes' squared
-  // float gaps to `centre`), nearest to `centre` first, until a call
-  // returns true.
+  // pass `lane_test(node, gap2)` (a lane mask from a node and its lanes'
+  // squared float gaps to `centre`), nearest to `centre` first, until a
+  // call returns true.
   template <typename LaneTest, typename Visit>
-  bool find_where(const Aabb& box, const Eigen::Vector3d& centre, LaneTest&& lane_test, Visit&& visit) const;
+  bool find_where(const Eigen::Vector3d& centre, LaneTest&& lane_test, Visit&& visit) const;
 };
 
 template <typename LaneTest, typename Visit>
-bool HullTree::find_where(const Aabb& box, const Eigen::Vector3d& centre, LaneTest&& lane_test, Visit&& visit) const {
-  Float4 lo[3], hi[3];
-  for (int k = 0; k < 3; ++k) {
-    lo[k] = Float4::all(float_at_or_below(box.min[k]));
-    hi[k] = Float4::all(float_at_or_above(box.max[k]));
-  }
+bool HullTree::find_where(const Eigen::Vector3d& centre, LaneTest&& lane_test, Visit&& visit) const {
   // Children are taken nearest to the query's centre first, so a yes/no
   // query, which stops at the first touching hull, tends to meet it early.
   // Any order finds the same hulls.
@@ -195,7 +195,7 @@ bool HullTree::find_where(const Aabb& box, const Eigen::Vector3d& centre, LaneTe
       const Float4 g = max(max(Float4::load(node.face[k]) - mid[k], mid[k] - Float4::load(node.face[3 + k])), zero);
       gap2 = gap2 + g * g;
     }
-    const int lanes = lanes_meeting(node, lo, hi) & lane_test(gap2);
+    const int lanes = lane_test(node, gap2) & ((1 << node.count) - 1);
     if (!lanes) continue;
     std::int32_t child[4];
     float key[4];
@@ -214,15 +214,13 @@ template <typename Visit>
 bool HullTree::find_near_point(const Eigen::Vector3d& centre, double radius, Visit&& visit) const {
   const double scale = centre.cwiseAbs().maxCoeff();
   const double reach = radius + kTouchingFraction * (1.0 + radius + scale);
-  Aabb box;
-  box.min = centre.array() - reach;
-  box.max = centre.array() + reach;
   // Float gaps from the rounded centre are off by at most a few roundings
-  // of the coordinates' size: widen the reach by that before squaring.
+  // of the coordinates' size: widen the reach by that before squaring. (A
+  // box within the reach also meets the sphere's box: no box test.)
   const float limit = float_at_or_above(reach + 8.0 * kFloatUnit * (scale + reach));
   const Float4 limit2 = Float4::all(limit) * Float4::all(limit);
   return find_where(
-      box, centre, [&](Float4 gap2) { return (gap2 <= limit2).bits(); }, visit);
+      centre, [&](const WideNode&, Float4 gap2) { return (gap2 <= limit2).bits(); }, visit);
 }
 
 template <typename Visit>
