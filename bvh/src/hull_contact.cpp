@@ -210,6 +210,7 @@ namespace {
 // centre, a capsule's axis) at its lowest; the depth along the facet follows.
 template <typename Lowest>
 Contact on_surface(const RuntimeHull& hull, const Contact& found, double radius, Lowest&& lowest) {
+  if (!detail::has_plane_off_surface(hull)) return found; // every plane is the surface's: no seam to turn from
   // Rounding in the signed distances grows with the coordinates' size too.
   const double near = kTouchingFraction * (1.0 + hull.box.diagonal() + found.point.cwiseAbs().maxCoeff());
   const detail::SeamTurn turn = detail::surface_facet_for(hull, found.point, found.normal, near);

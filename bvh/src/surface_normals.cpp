@@ -13,18 +13,21 @@ bool has_plane_off_surface(const RuntimeHull& hull) {
 
 SeamTurn surface_facet_for(const RuntimeHull& hull, const Eigen::Vector3d& on_hull, const Eigen::Vector3d& normal,
                            double near) {
-  if (!has_plane_off_surface(hull)) return {};
+  // (A hull whose every plane is the surface's finds every plane through
+  // the point on the surface: no seam. Callers test has_plane_off_surface
+  // first, which is cheaper.)
   const int facets = static_cast<int>(hull.shape.facets.size());
   bool all_on_surface = true;
   int through = -1;
   double through_facing = -std::numeric_limits<double>::infinity();
   for (int p = 0; p < static_cast<int>(hull.shape.planes.size()); ++p) {
     const Plane& plane = hull.shape.planes[p];
-    const bool on_it = std::abs(plane.signed_distance(on_hull)) <= near;
-    if (on_it && !hull.plane_on_surface(p)) all_on_surface = false;
-    if (p >= facets || !hull.plane_on_surface(p)) continue;
+    if (!(std::abs(plane.signed_distance(on_hull)) <= near)) continue; // not through the point
+    const bool surface = hull.plane_on_surface(p);
+    if (!surface) all_on_surface = false;
+    if (p >= facets || !surface) continue;
     const double facing = plane.normal.dot(normal);
-    if (on_it && facing > through_facing) {
+    if (facing > through_facing) {
       through_facing = facing;
       through = p;
     }
