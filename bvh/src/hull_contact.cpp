@@ -75,7 +75,7 @@ struct NearestOfEdges {
 
 // How far a signed distance from one of the hull's planes may be off by
 // rounding: far below kTouchingFraction of the sizes entering it.
-double signed_distance_slack(const RuntimeHull& hull, const Eigen::Vector3d& p) {
+inline double signed_distance_slack(const RuntimeHull& hull, const Eigen::Vector3d& p) {
   return kTouchingFraction * (1.0 + hull.box.diagonal() + p.cwiseAbs().maxCoeff());
 }
 
@@ -212,7 +212,7 @@ template <typename Lowest>
 Contact on_surface(const RuntimeHull& hull, const Contact& found, double radius, Lowest&& lowest) {
   if (!detail::has_plane_off_surface(hull)) return found; // every plane is the surface's: no seam to turn from
   // Rounding in the signed distances grows with the coordinates' size too.
-  const double near = kTouchingFraction * (1.0 + hull.box.diagonal() + found.point.cwiseAbs().maxCoeff());
+  const double near = signed_distance_slack(hull, found.point);
   const detail::SeamTurn turn = detail::surface_facet_for(hull, found.point, found.normal, near);
   if (!turn.at_seam) return found;
   int s = turn.facet;

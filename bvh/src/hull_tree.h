@@ -81,8 +81,7 @@ public:
   /// it never drops a hull a capsule test would find touching.
   template <typename Visit>
   bool find_near_segment(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius, Visit&& visit) const {
-    const double scale = std::max(a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff());
-    const double grow = radius + kTouchingFraction * (1.0 + radius + scale);
+    const double grow = touching_reach(radius, std::max(a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff()));
     double reach = 1.0;
     bool stopped = false;
     walk_ray(
@@ -110,6 +109,13 @@ private:
     std::int32_t child[4];
     std::int32_t count;
   };
+  // How far from a sphere's centre or a capsule's axis the exact tests
+  // still count a hull as touching: the radius and kTouchingFraction of
+  // the sizes (`scale`: the largest coordinate of the centre or axis ends).
+  static double touching_reach(double radius, double scale) {
+    return radius + kTouchingFraction * (1.0 + radius + scale);
+  }
+
   // Pending nodes a walk keeps without the heap: each step takes one and
   // adds at most four, so a walk holds at most 3 x height + 1.
   static constexpr size_t kStackOnCaller = 256;
@@ -213,7 +219,7 @@ bool HullTree::find_where(const Eigen::Vector3d& centre, LaneTest&& lane_test, V
 template <typename Visit>
 bool HullTree::find_near_point(const Eigen::Vector3d& centre, double radius, Visit&& visit) const {
   const double scale = centre.cwiseAbs().maxCoeff();
-  const double reach = radius + kTouchingFraction * (1.0 + radius + scale);
+  const double reach = touching_reach(radius, scale);
   // Float gaps from the rounded centre are off by at most a few roundings
   // of the coordinates' size: widen the reach by that before squaring. (A
   // box within the reach also meets the sphere's box: no box test.)

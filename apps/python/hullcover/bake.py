@@ -191,7 +191,8 @@ def plan_tasks(seam_cells, cell_faces, workers):
     come most faces first."""
     seam_faces = [sum(cell_faces[c] for c in cells) for cells in seam_cells]
     total = sum(seam_faces)
-    target = max(1, total // max(1, workers * BATCHES_PER_WORKER))
+    divisor = max(1, workers * BATCHES_PER_WORKER)
+    target = max(1, total // divisor)
     order = sorted(range(len(seam_cells)), key=lambda s: (-seam_faces[s], s))
     groups, seams, faces = [], [], 0
     for s in order:
@@ -204,7 +205,6 @@ def plan_tasks(seam_cells, cell_faces, workers):
         groups.append(seams)
     groups.sort(key=lambda group: -sum(seam_faces[s] for s in group))
     plan, remaining = [], total
-    divisor = max(1, workers * BATCHES_PER_WORKER)
     for group in groups:
         cells = sorted((c for s in group for c in seam_cells[s]), key=lambda c: (-cell_faces[c], c))
         batches, batch, faces = [], [], 0
