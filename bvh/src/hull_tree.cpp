@@ -17,7 +17,7 @@ namespace {
 
 // Bins per axis of the binned surface area heuristic: enough to place a
 // split close to the best one, few enough that a build stays linear.
-constexpr int kSplitBins = 16;
+constexpr int kSplitBins = 32;
 // Past this depth splits are at the median, so a tree over any boxes
 // (nested ones can make every heuristic split lopsided) stays within
 // this plus log2 of the hull count deep: bounded recursion and walk stacks.
@@ -51,56 +51,67 @@ size_t split(std::vector<Item>& items, size_t begin, size_t end, bool at_median)
     centres.min = centres.min.cwiseMin(items[i].centre);
     centres.max = centres.max.cwiseMax(items[i].centre);
   }
-  int axis = 0;
-  (centres.max - centres.min).maxCoeff(&axis);
-  const double lo = centres.min[axis], extent = centres.max[axis] - lo;
+  int widest = 0;
+  (centres.max - centres.min).maxCoeff(&widest);
   const size_t middle = begin + (end - begin) / 2;
-  if (!(extent > 0.0)) {
+  if (!((centres.max - centres.min)[widest] > 0.0)) {
     std::nth_element(items.begin() + begin, items.begin() + middle, items.begin() + end,
                      [](const Item& a, const Item& b) { return a.hull < b.hull; });
     return middle;
   }
-  auto bin_of = [&](const Item& item) {
-    return std::min(kSplitBins - 1, static_cast<int>(kSplitBins * (item.centre[axis] - lo) / extent));
-  };
-  Aabb bin_box[kSplitBins];
-  size_t bin_count[kSplitBins] = {};
-  for (Aabb& b : bin_box) b = empty_box();
-  for (size_t i = begin; i < end; ++i) {
-    const int b = bin_of(items[i]);
-    grow(bin_box[b], items[i].box);
-    ++bin_count[b];
-  }
-  // Cost of each plane between bins: area times count on either side.
-  double right_cost[kSplitBins] = {};
-  Aabb right = empty_box();
-  size_t right_count = 0;
-  for (int b = kSplitBins - 1; b > 0; --b) {
-    grow(right, bin_box[b]);
-    right_count += bin_count[b];
-    right_cost[b] = right_count ? half_area(right) * static_cast<double>(right_count) : 0.0;
-  }
-  Aabb left = empty_box();
-  size_t left_count = 0;
-  int best = -1;
-  double best_cost = std::numeric_limits<double>::infinity();
-  for (int b = 1; b < kSplitBins; ++b) {
-    grow(left, bin_box[b - 1]);
-    left_count += bin_count[b - 1];
-    if (left_count == 0 || left_count == end - begin) continue;
-    const double cost = half_area(left) * static_cast<double>(left_count) + right_cost[b];
-    if (cost < best_cost) {
-      best_cost = cost;
-      best = b;
-    }
-  }
-  if (best < 0 || at_median) {
+  if (at_median) {
     std::nth_element(items.begin() + begin, items.begin() + middle, items.begin() + end,
-                     [axis](const Item& a, const Item& b) { return a.centre[axis] < b.centre[axis]; });
+                     [widest](const Item& a, const Item& b) { return a.centre[widest] < b.centre[widest]; });
     return middle;
   }
-  const auto cut =
-      std::partition(items.begin() + begin, items.begin() + end, [&](const Item& item) { return bin_of(item) < best; });
+  int best_axis = -1, best = -1;
+  double best_cost = std::numeric_limits<double>::infinity();
+  for (int axis = 0; axis < 3; ++axis) {
+    const double lo = centres.min[axis], extent = centres.max[axis] - lo;
+    if (!(extent > 0.0)) continue;
+    auto bin_of = [&](const Item& item) {
+      return std::min(kSplitBins - 1, static_cast<int>(kSplitBins * (item.centre[axis] - lo) / extent));
+    };
+    Aabb bin_box[kSplitBins];
+    size_t bin_count[kSplitBins] = {};
+    for (Aabb& b : bin_box) b = empty_box();
+    for (size_t i = begin; i < end; ++i) {
+      const int b = bin_of(items[i]);
+      grow(bin_box[b], items[i].box);
+      ++bin_count[b];
+    }
+    // Cost of each plane between bins: area times count on either side.
+    double right_cost[kSplitBins] = {};
+    Aabb right = empty_box();
+    size_t right_count = 0;
+    for (int b = kSplitBins - 1; b > 0; --b) {
+      grow(right, bin_box[b]);
+      right_count += bin_count[b];
+      right_cost[b] = right_count ? half_area(right) * static_cast<double>(right_count) : 0.0;
+    }
+    Aabb left = empty_box();
+    size_t left_count = 0;
+    for (int b = 1; b < kSplitBins; ++b) {
+      grow(left, bin_box[b - 1]);
+      left_count += bin_count[b - 1];
+      if (left_count == 0 || left_count == end - begin) continue;
+      const double cost = half_area(left) * static_cast<double>(left_count) + right_cost[b];
+      if (cost < best_cost) {
+        best_cost = cost;
+        best = b;
+        best_axis = axis;
+      }
+    }
+  }
+  if (best < 0) {
+    std::nth_element(items.begin() + begin, items.begin() + middle, items.begin() + end,
+                     [widest](const Item& a, const Item& b) { return a.centre[widest] < b.centre[widest]; });
+    return middle;
+  }
+  const double lo = centres.min[best_axis], extent = centres.max[best_axis] - lo;
+  const auto cut = std::partition(items.begin() + begin, items.begin() + end, [&](const Item& item) {
+    return std::min(kSplitBins - 1, static_cast<int>(kSplitBins * (item.centre[best_axis] - lo) / extent)) < best;
+  });
   return static_cast<size_t>(cut - items.begin());
 }
 
