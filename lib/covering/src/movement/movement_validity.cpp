@@ -62,9 +62,11 @@ RegionVerdict no_centre_in(const MovementContext& context, const Aabb& start, in
     const Eigen::Vector3d c = 0.5 * (box.min + box.max);
     const double half = 0.5 * (box.max - box.min).norm();
     if (lower(c) > half) continue;
-    if (hint >= 0 && context.clearance.farthest_in_box(box, hint) < r - tol) continue;
+    // The grid first: most boxes away from the agents' space are cleared
+    // by it, far more cheaply than by distances to triangles.
     if (!context.grid.any_reachable(box)) continue;
-    const NearestFace near = context.clearance.nearest(c, r + half + tol);
+    if (hint >= 0 && context.clearance.farthest_in_box(box, hint) < r - tol) continue;
+    const NearestFace near = context.clearance.nearest(c, r + half + tol, hint);
     if (near.distance + half < r - tol) continue;
     if (near.face >= 0 && near.face != hint && context.clearance.farthest_in_box(box, near.face) < r - tol) continue;
     if (near.distance >= r - tol && inside(c) && context.grid.reachable_at(c)) return RegionVerdict::reached;

@@ -9,21 +9,26 @@ double ReachGrid::half_diagonal() const { return 0.5 * cell * std::sqrt(3.0); }
 bool ReachGrid::reachable_at(const Eigen::Vector3d& p) const {
   Eigen::Vector3i c;
   for (int a = 0; a < 3; ++a) {
-    const double f = std::floor((p[a] - origin[a]) / cell);
-    if (!(f >= 0.0 && f < dims[a])) return true;
-    c[a] = static_cast<int>(f);
+    // In the grid the quotient is not negative, so truncating it is its
+    // floor (std::floor is a library call on baseline x86-64, and the
+    // proofs ask this at every point they try).
+    const double q = (p[a] - origin[a]) / cell;
+    if (!(q >= 0.0 && q < dims[a])) return true;
+    c[a] = static_cast<int>(q);
   }
   return reachable(index(c.x(), c.y(), c.z()));
 }
 
 void ReachGrid::set_reachable(std::vector<std::uint8_t> reachable) {
-  reachable_ = std::move(reachable);
+  reachable_.assign((reachable.size() + 63) / 64, 0);
+  for (size_t i = 0; i < reachable.size(); ++i)
+    if (reachable[i]) reachable_[i >> 6] |= std::uint64_t{1} << (i & 63);
   bricks_ = (dims.array() + kBrick - 1) / kBrick;
   brick_counts_.assign(static_cast<size_t>(bricks_.x()) * bricks_.y() * bricks_.z(), 0);
   for (int k = 0; k < dims.z(); ++k)
     for (int j = 0; j < dims.y(); ++j)
       for (int i = 0; i < dims.x(); ++i)
-        if (reachable_[index(i, j, k)])
+        if (reachable[index(i, j, k)])
           ++brick_counts_[(static_cast<size_t>(k / kBrick) * bricks_.y() + j / kBrick) * bricks_.x() + i / kBrick];
 }
 
@@ -36,9 +41,9 @@ long long ReachGrid::reachable_count() const {
 bool ReachGrid::any_reachable(const Aabb& box) const {
   Eigen::Vector3i lo, hi;
   for (int a = 0; a < 3; ++a) {
-    const double l = std::floor((box.min[a] - origin[a]) / cell), h = std::floor((box.max[a] - origin[a]) / cell);
-    if (!(l >= 0.0 && h < dims[a])) return true; // leaves the grid (or NaN): may reach
-    lo[a] = static_cast<int>(l);
+    const double l = (box.min[a] - origin[a]) / cell, h = (box.max[a] - origin[a]) / cell;
+    if (!(l >= 0.0 && h < dims[a] && l <= h)) return true; // leaves the grid (or NaN): may reach
+    lo[a] = static_cast<int>(l);                            // the floors, as in reachable_at
     hi[a] = static_cast<int>(h);
   }
   const Eigen::Vector3i blo = lo / kBrick, bhi = hi / kBrick;
@@ -52,7 +57,7 @@ bool ReachGrid::any_reachable(const Aabb& box) const {
         for (int k = clo.z(); k <= chi.z(); ++k)
           for (int j = clo.y(); j <= chi.y(); ++j)
             for (int i = clo.x(); i <= chi.x(); ++i)
-              if (reachable_[index(i, j, k)]) return true;
+              if (reachable(index(i, j, k))) return true;
       }
   return false;
 }

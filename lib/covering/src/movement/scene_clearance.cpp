@@ -24,9 +24,19 @@ double SceneClearance::to_face(const Eigen::Vector3d& p, int face) const {
   return (closest_point_on_triangle(p, mesh_.positions[t[0]], mesh_.positions[t[1]], mesh_.positions[t[2]]) - p).norm();
 }
 
-NearestFace SceneClearance::nearest(const Eigen::Vector3d& p, double limit) const {
+NearestFace SceneClearance::nearest(const Eigen::Vector3d& p, double limit) const { return nearest(p, limit, -1); }
+
+NearestFace SceneClearance::nearest(const Eigen::Vector3d& p, double limit, int hint) const {
   NearestFace found{limit, -1};
+  if (hint >= 0) {
+    const double e = to_face(p, hint);
+    if (e < limit) {
+      found = {e, hint};
+      limit = e;
+    }
+  }
   double best2 = limit * limit;
+  bool nearer = false; // than the hint, or found at all without one
   const double d2 = tree_.nearest_to_point(p, limit, [&](int f) {
     const Eigen::Vector3i& t = mesh_.triangles[f];
     const double e2 =
@@ -35,10 +45,11 @@ NearestFace SceneClearance::nearest(const Eigen::Vector3d& p, double limit) cons
     if (e2 < best2) {
       best2 = e2;
       found.face = f;
+      nearer = true;
     }
     return e2;
   });
-  if (found.face >= 0) found.distance = std::sqrt(d2);
+  if (nearer) found.distance = std::sqrt(d2);
   return found;
 }
 

@@ -29,6 +29,10 @@ public:
 
   /// The nearest triangle to `p`, looking no farther than `limit` (> 0).
   NearestFace nearest(const Eigen::Vector3d& p, double limit) const;
+  /// The same, searching only nearer than triangle `hint` (a face likely
+  /// near: the one nearest to a neighbouring point), which prunes most of
+  /// the search; `hint` itself when no face is nearer. -1: no hint.
+  NearestFace nearest(const Eigen::Vector3d& p, double limit, int hint) const;
   /// Distance from `p` to triangle `face`.
   double to_face(const Eigen::Vector3d& p, int face) const;
   /// The largest distance from a point of `box` to triangle `face`: the
