@@ -164,9 +164,9 @@ struct Column {
 // extent while wider than twice the slop, `depth` times at most), or the
 // column holds no reachable centre.
 RegionVerdict prove_piece(const MovementContext& context, const BoundaryPiece& piece, int depth, int& boxes_left,
-                          std::vector<int>& near) {
+                          std::vector<int>& near, bool witness_tried = false) {
   if (within_slop_of_one_face(context, piece.corners, near)) return RegionVerdict::clear;
-  if (witness_beside(context, piece)) return RegionVerdict::reached;
+  if (!witness_tried && witness_beside(context, piece)) return RegionVerdict::reached;
   const double slop = context.agent.slop;
   const double reach = context.agent.radius - slop;
   const double tol = context.tol;
@@ -210,12 +210,12 @@ RegionVerdict prove_piece(const MovementContext& context, const BoundaryPiece& p
 // slop, `depth` times at most), or the space around it holds no reachable
 // centre.
 RegionVerdict prove_segment(const MovementContext& context, const BoundarySegment& segment, int depth, int& boxes_left,
-                            std::vector<int>& near) {
+                            std::vector<int>& near, bool witness_tried = false) {
   if (within_slop_of_one_face(context, {segment.a, segment.b}, near)) return RegionVerdict::clear;
   const double reach = context.agent.radius - context.agent.slop;
   const double tol = context.tol;
   const Eigen::Vector3d middle = 0.5 * (segment.a + segment.b);
-  if (witness_away_from_mesh(context, middle)) return RegionVerdict::reached;
+  if (!witness_tried && witness_away_from_mesh(context, middle)) return RegionVerdict::reached;
   if (depth > 0 && (segment.b - segment.a).norm() > 2.0 * context.agent.slop) {
     const RegionVerdict first = prove_segment(context, {segment.a, middle}, depth - 1, boxes_left, near);
     if (first == RegionVerdict::reached) return first;
@@ -257,14 +257,24 @@ MovementVerdict check_movement_hull(const MovementContext& context, const Convex
   for (const BoundaryPiece& piece : boundary.pieces) area += area_of(piece.corners);
   int boxes_left = static_cast<int>(
       std::min<double>(kMostProofBoxesOfAHull, kMostProofBoxes + kProofBoxesPerSquareRadius * area / (r * r)));
+  // The cheap witnesses of every piece and segment first: most candidates
+  // a merge tries take space some agent reaches, and one witness refuses
+  // them before any piece is proven by halving. The verdict is the one the
+  // proofs below would give: a piece or segment with a witness is not
+  // within the slop of one triangle (the witness would then be nearer than
+  // r - tol to it), so its own proof would stop at the same witness.
+  for (const BoundaryPiece& piece : boundary.pieces)
+    if (witness_beside(context, piece)) return MovementVerdict::centre_near_boundary;
+  for (const BoundarySegment& segment : boundary.segments)
+    if (witness_away_from_mesh(context, 0.5 * (segment.a + segment.b))) return MovementVerdict::centre_near_boundary;
   bool undecided = false;
   for (const BoundaryPiece& piece : boundary.pieces) {
-    const RegionVerdict verdict = prove_piece(context, piece, kMostPieceHalvings, boxes_left, near);
+    const RegionVerdict verdict = prove_piece(context, piece, kMostPieceHalvings, boxes_left, near, true);
     if (verdict == RegionVerdict::reached) return MovementVerdict::centre_near_boundary;
     undecided |= verdict == RegionVerdict::undecided;
   }
   for (const BoundarySegment& segment : boundary.segments) {
-    const RegionVerdict verdict = prove_segment(context, segment, kMostPieceHalvings, boxes_left, near);
+    const RegionVerdict verdict = prove_segment(context, segment, kMostPieceHalvings, boxes_left, near, true);
     if (verdict == RegionVerdict::reached) return MovementVerdict::centre_near_boundary;
     undecided |= verdict == RegionVerdict::undecided;
   }
