@@ -165,10 +165,17 @@ struct Column {
 // column holds no reachable centre.
 RegionVerdict prove_piece(const MovementContext& context, const BoundaryPiece& piece, int depth, int& boxes_left,
                           std::vector<int>& near, bool witness_tried = false) {
+  const double reach = context.agent.radius - context.agent.slop;
+  // A column whose box holds no reachable cell holds no centre: decided at
+  // once, before any distance (and its witnesses, halves and boxes, all
+  // inside that box, would find none either).
+  Aabb start = bounding_box_of(piece.corners);
+  for (int side : {-1, 1})
+    for (const Eigen::Vector3d& p : piece.corners) start.extend(p + side * reach * piece.normal);
+  if (!context.grid.any_reachable(start)) return RegionVerdict::clear;
   if (within_slop_of_one_face(context, piece.corners, near)) return RegionVerdict::clear;
   if (!witness_tried && witness_beside(context, piece)) return RegionVerdict::reached;
   const double slop = context.agent.slop;
-  const double reach = context.agent.radius - slop;
   const double tol = context.tol;
   size_t a = 0, b = 0;
   double widest = 0.0;
@@ -195,9 +202,6 @@ RegionVerdict prove_piece(const MovementContext& context, const BoundaryPiece& p
     return verdict;
   }
   const Column column{piece, reach};
-  Aabb start = bounding_box_of(piece.corners);
-  for (int side : {-1, 1})
-    for (const Eigen::Vector3d& p : piece.corners) start.extend(p + side * reach * piece.normal);
   return no_centre_in(
       context, start, boxes_left, [&](const Eigen::Vector3d& c) { return column.distance(c); },
       [&](const Eigen::Vector3d& c) {
@@ -211,8 +215,14 @@ RegionVerdict prove_piece(const MovementContext& context, const BoundaryPiece& p
 // centre.
 RegionVerdict prove_segment(const MovementContext& context, const BoundarySegment& segment, int depth, int& boxes_left,
                             std::vector<int>& near, bool witness_tried = false) {
-  if (within_slop_of_one_face(context, {segment.a, segment.b}, near)) return RegionVerdict::clear;
   const double reach = context.agent.radius - context.agent.slop;
+  Aabb start;
+  start.extend(segment.a);
+  start.extend(segment.b);
+  start = grown(start, reach);
+  // As for a piece: no reachable cell near the segment, no centre.
+  if (!context.grid.any_reachable(start)) return RegionVerdict::clear;
+  if (within_slop_of_one_face(context, {segment.a, segment.b}, near)) return RegionVerdict::clear;
   const double tol = context.tol;
   const Eigen::Vector3d middle = 0.5 * (segment.a + segment.b);
   if (!witness_tried && witness_away_from_mesh(context, middle)) return RegionVerdict::reached;
@@ -221,14 +231,11 @@ RegionVerdict prove_segment(const MovementContext& context, const BoundarySegmen
     if (first == RegionVerdict::reached) return first;
     return worse(first, prove_segment(context, {middle, segment.b}, depth - 1, boxes_left, near));
   }
-  Aabb start;
-  start.extend(segment.a);
-  start.extend(segment.b);
   const auto distance = [&](const Eigen::Vector3d& c) {
     return (closest_point_on_segment(c, segment.a, segment.b) - c).norm();
   };
   return no_centre_in(
-      context, grown(start, reach), boxes_left, [&](const Eigen::Vector3d& c) { return distance(c) - reach; },
+      context, start, boxes_left, [&](const Eigen::Vector3d& c) { return distance(c) - reach; },
       [&](const Eigen::Vector3d& c) { return distance(c) < reach - tol; });
 }
 
