@@ -42,8 +42,9 @@ bool ReachGrid::any_reachable(const Aabb& box) const {
   Eigen::Vector3i lo, hi;
   for (int a = 0; a < 3; ++a) {
     const double l = (box.min[a] - origin[a]) / cell, h = (box.max[a] - origin[a]) / cell;
-    if (!(l >= 0.0 && h < dims[a] && l <= h)) return true; // leaves the grid (or NaN): may reach
-    lo[a] = static_cast<int>(l);                           // the floors, as in reachable_at
+    if (!(l >= 0.0 && h < dims[a])) return true; // leaves the grid (or NaN): may reach
+    if (h < l) return false;                     // an empty box meets no cell
+    lo[a] = static_cast<int>(l);                 // the floors, as in reachable_at
     hi[a] = static_cast<int>(h);
   }
   const Eigen::Vector3i blo = lo / kBrick, bhi = hi / kBrick;
