@@ -14,6 +14,9 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
+
 namespace hullcover::detail {
 namespace {
 
@@ -112,6 +115,49 @@ TEST(ReachGrid, AWalkerReachesTheFloorAroundACrateButNotItsCavityOrTheSkyAboveIt
   EXPECT_TRUE(flying.value().reachable_at(V(6, 3.0, 2)));
   EXPECT_TRUE(flying.value().reachable_at(V(9, 3.6, 9)));
   EXPECT_FALSE(flying.value().reachable_at(level.in_void));
+}
+
+// The grid's box query against the cells themselves: a box meets a
+// reachable cell exactly when some cell whose closed extent it meets (by
+// floor of each coordinate) is reachable; an empty box meets none, and a
+// box leaving the grid may reach. Points ask the cell that holds them.
+TEST(ReachGrid, ABoxMeetsAReachableCellExactlyWhenOneOfItsCellsIs) {
+  const test::MovementLevel level = test::movement_level();
+  const SceneClearance clearance(level.mesh);
+  const ReachGrid grid = build_reach_grid(level.mesh, clearance, walker(), {level.spawn}, true, 1).value();
+  std::mt19937 random(20261206);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const V extent = grid.dims.cast<double>() * grid.cell;
+  int reached = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    Aabb box;
+    for (int k = 0; k < 2; ++k)
+      box.extend(grid.origin + V(unit(random), unit(random), unit(random)).cwiseProduct(extent) * 0.999);
+    int lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = static_cast<int>(std::floor((box.min[a] - grid.origin[a]) / grid.cell));
+      hi[a] = static_cast<int>(std::floor((box.max[a] - grid.origin[a]) / grid.cell));
+    }
+    bool any = false;
+    for (int k = lo[2]; k <= hi[2] && !any; ++k)
+      for (int j = lo[1]; j <= hi[1] && !any; ++j)
+        for (int i = lo[0]; i <= hi[0] && !any; ++i) any = grid.reachable(grid.index(i, j, k));
+    ASSERT_EQ(grid.any_reachable(box), any) << "trial " << trial;
+    reached += any;
+    const V p = box.min;
+    EXPECT_EQ(grid.reachable_at(p), grid.reachable(grid.index(lo[0], lo[1], lo[2])));
+  }
+  EXPECT_GT(reached, 100); // the boxes found reachable cells and empty space alike
+  EXPECT_LT(reached, 1900);
+  Aabb empty;
+  empty.min = level.spawn;
+  empty.max = level.spawn - V(grid.cell, 0.0, 0.0);
+  EXPECT_FALSE(grid.any_reachable(empty));
+  Aabb leaving;
+  leaving.min = grid.origin - V::Constant(grid.cell);
+  leaving.max = grid.origin;
+  EXPECT_TRUE(grid.any_reachable(leaving));
+  EXPECT_TRUE(grid.reachable_at(grid.origin - V::Constant(grid.cell)));
 }
 
 // Regressions: the grid once ended r and a cell above the scene, so a
