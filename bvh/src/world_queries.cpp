@@ -134,6 +134,13 @@ Status check_hulls(const std::vector<RuntimeHull>& hulls, const std::vector<int>
     if (!holds) return {StatusCode::invalid_argument, name + " has a box that does not hold all its vertices"};
     if (!hulls[i].surface_planes.empty() && hulls[i].surface_planes.size() != s.planes.size())
       return {StatusCode::invalid_argument, name + " has surface flags neither absent nor one per plane"};
+    // Indices the narrow phase reads without a check.
+    const int vertices = static_cast<int>(s.vertices.size());
+    bool indexed = true;
+    for (const std::vector<int>& facet : s.facets)
+      for (int v : facet) indexed = indexed && v >= 0 && v < vertices;
+    for (const auto& [a, b] : hulls[i].edges) indexed = indexed && a >= 0 && a < vertices && b >= 0 && b < vertices;
+    if (!indexed) return {StatusCode::invalid_argument, name + " has a facet or edge naming a vertex it does not have"};
   }
   return Status::success();
 }

@@ -406,3 +406,27 @@ TEST(HullWorld, RefusesAHullWhoseBoxMissesItsVertices) {
 
 } // namespace
 } // namespace hullcover::bvh
+
+namespace hullcover::bvh {
+namespace {
+
+// The narrow phase reads a hull's vertices through its facets' and edges'
+// indices unchecked: a hull made by hand that names a vertex it does not
+// have is refused at build, naming the hull, not read out of bounds.
+TEST(HullWorld, RefusesAHullWhoseFacetOrEdgeNamesAMissingVertex) {
+  RuntimeHull bad_facet = box_hull(V(0, 0, 0), V(1, 1, 1));
+  bad_facet.shape.facets[2][1] = static_cast<int>(bad_facet.shape.vertices.size());
+  RuntimeHull bad_edge = box_hull(V(0, 0, 0), V(1, 1, 1));
+  bad_edge.edges.back().second = -1;
+  for (const RuntimeHull& bad : {bad_facet, bad_edge}) {
+    auto world = HullWorld::build({box_hull(V(-5, -1, -5), V(5, 0, 5)), bad});
+    ASSERT_FALSE(world.ok());
+    EXPECT_EQ(world.status().code(), StatusCode::invalid_argument);
+    EXPECT_NE(world.status().message().find("hull 1"), std::string::npos) << world.status().message();
+    EXPECT_NE(world.status().message().find("vertex it does not have"), std::string::npos);
+  }
+  EXPECT_TRUE(HullWorld::build({box_hull(V(0, 0, 0), V(1, 1, 1))}).ok());
+}
+
+} // namespace
+} // namespace hullcover::bvh
