@@ -65,10 +65,10 @@ RegionVerdict no_centre_in(const MovementContext& context, const Aabb& start, in
     // The grid first: most boxes away from the agents' space are cleared
     // by it, far more cheaply than by distances to triangles.
     if (!context.grid.any_reachable(box)) continue;
-    if (hint >= 0 && context.clearance.farthest_in_box(box, hint) < r - tol) continue;
+    if (hint >= 0 && context.clearance.box_within(box, hint, r - tol)) continue;
     const NearestFace near = context.clearance.nearest(c, r + half + tol, hint);
     if (near.distance + half < r - tol) continue;
-    if (near.face >= 0 && near.face != hint && context.clearance.farthest_in_box(box, near.face) < r - tol) continue;
+    if (near.face >= 0 && near.face != hint && context.clearance.box_within(box, near.face, r - tol)) continue;
     if (near.distance >= r - tol && inside(c) && context.grid.reachable_at(c)) return RegionVerdict::reached;
     if (half < smallest || --boxes_left < 0) return RegionVerdict::undecided;
     int axis = 0;

@@ -53,7 +53,7 @@ struct GridBuild {
     Aabb cells;
     cells.min = grid.origin + lo.cast<double>() * grid.cell;
     cells.max = grid.origin + hi.cast<double>() * grid.cell;
-    if (near.face >= 0 && clearance.farthest_in_box(cells, near.face) < radius) return;
+    if (near.face >= 0 && clearance.box_within(cells, near.face, radius)) return;
     if (d - spread >= threshold || size == 1) {
       if (size == 1 && d < threshold) return;
       for (int k = lo.z(); k < hi.z(); ++k)

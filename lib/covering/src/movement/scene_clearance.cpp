@@ -2,6 +2,8 @@
 
 #include "hullcover/geometry/triangle_distance.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 
@@ -53,14 +55,36 @@ NearestFace SceneClearance::nearest(const Eigen::Vector3d& p, double limit, int 
   return found;
 }
 
-double SceneClearance::farthest_in_box(const Aabb& box, int face) const {
-  double farthest = 0.0;
+bool SceneClearance::box_within(const Aabb& box, int face, double limit) const {
+  const Eigen::Vector3i& t = mesh_.triangles[face];
+  const Eigen::Vector3d &a = mesh_.positions[t[0]], &b = mesh_.positions[t[1]], &c = mesh_.positions[t[2]];
+  const Eigen::Vector3d middle = 0.5 * (box.min + box.max), half = 0.5 * (box.max - box.min);
+  const Eigen::Vector3d normal = (b - a).cross(c - a);
+  const double length = normal.norm();
+  if (length > 0.0) {
+    // The largest distance from the plane over the box: at least the
+    // largest distance from the triangle, at a corner.
+    const Eigen::Vector3d n = normal / length;
+    const double off_plane = std::abs(n.dot(middle - a)) + n.cwiseAbs().dot(half);
+    if (!(off_plane < limit)) return false;
+    // Every corner on the inner side of each edge (the least of a linear
+    // function over the box is at a corner): each projects into the
+    // triangle, and its distance is its distance from the plane.
+    bool projects_in = true;
+    const Eigen::Vector3d* corners[3] = {&a, &b, &c};
+    for (int k = 0; k < 3 && projects_in; ++k) {
+      const Eigen::Vector3d& from = *corners[k];
+      const Eigen::Vector3d inward = normal.cross(*corners[(k + 1) % 3] - from);
+      projects_in = inward.dot(middle - from) - inward.cwiseAbs().dot(half) >= 0.0;
+    }
+    if (projects_in) return true;
+  }
   for (int corner = 0; corner < 8; ++corner) {
     const Eigen::Vector3d p((corner & 1) ? box.max.x() : box.min.x(), (corner & 2) ? box.max.y() : box.min.y(),
                             (corner & 4) ? box.max.z() : box.min.z());
-    farthest = std::max(farthest, to_face(p, face));
+    if (!(to_face(p, face) < limit)) return false;
   }
-  return farthest;
+  return true;
 }
 
 } // namespace hullcover::detail

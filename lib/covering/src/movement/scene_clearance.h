@@ -35,10 +35,13 @@ public:
   NearestFace nearest(const Eigen::Vector3d& p, double limit, int hint) const;
   /// Distance from `p` to triangle `face`.
   double to_face(const Eigen::Vector3d& p, int face) const;
-  /// The largest distance from a point of `box` to triangle `face`: the
-  /// distance to a convex set is a convex function, so its largest value on
-  /// a box is at a corner. Every point of the box has clearance at most this.
-  double farthest_in_box(const Aabb& box, int face) const;
+  /// Whether every point of `box` lies nearer than `limit` to triangle
+  /// `face`. The distance to a triangle is convex, so its largest value on
+  /// a box is at a corner; when every corner projects into the triangle it
+  /// is the largest distance from the triangle's plane, which one product
+  /// gives for the whole box. Every point of the box then has clearance
+  /// below `limit` too.
+  bool box_within(const Aabb& box, int face, double limit) const;
   /// Appends the faces whose boxes meet `box`.
   void faces_meeting(const Aabb& box, std::vector<int>& out) const { tree_.overlapping(box, out); }
 
