@@ -1,5 +1,6 @@
 #include "movement/movement_validity.h"
 
+#include "hullcover/geometry/tolerances.h"
 #include "hullcover/geometry/triangle_distance.h"
 
 #include <Eigen/Geometry>
@@ -7,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace hullcover::detail {
 namespace {
@@ -100,6 +102,88 @@ bool within_slop_of_one_face(const MovementContext& context, const std::vector<E
   return false;
 }
 
+// Where the uncovered boundary passes over a crease (a hull facet across
+// two triangles that meet at an angle), no triangle lies within E of all
+// of a piece, though each of its points lies within E of one of the two:
+// a plane between the corners nearest to one and those nearest to the
+// other parts it into two that one triangle each holds within E, where
+// halving would go on until each part is narrower than the slop. The
+// plane through the triangles' planes' meeting line that bisects them;
+// none when the points' nearest triangles within E - tol (of `near`) are
+// not exactly two, or no such plane separates them.
+std::optional<Plane> cut_between_nearest_pair(const MovementContext& context,
+                                              const std::vector<Eigen::Vector3d>& points,
+                                              const std::vector<int>& near) {
+  const double reach = context.agent.slop - context.tol;
+  int faces[2] = {-1, -1};
+  std::vector<int> side(points.size(), 0);
+  for (size_t i = 0; i < points.size(); ++i) {
+    int nearest = -1;
+    double best = reach;
+    for (int face : near) {
+      const double d = context.clearance.to_face(points[i], face);
+      if (d <= best) {
+        best = d;
+        nearest = face;
+      }
+    }
+    if (nearest < 0) return std::nullopt;
+    if (faces[0] < 0 || faces[0] == nearest)
+      faces[0] = nearest;
+    else if (faces[1] < 0 || faces[1] == nearest)
+      faces[1] = nearest, side[i] = 1;
+    else
+      return std::nullopt;
+  }
+  if (faces[1] < 0) return std::nullopt;
+  Plane planes[2];
+  for (int k = 0; k < 2; ++k) {
+    const Eigen::Vector3i& t = context.mesh.triangles[faces[k]];
+    const Eigen::Vector3d& a = context.mesh.positions[t[0]];
+    const Eigen::Vector3d n = (context.mesh.positions[t[1]] - a).cross(context.mesh.positions[t[2]] - a);
+    if (!(n.norm() > 0.0)) return std::nullopt;
+    planes[k] = {n.normalized(), n.normalized().dot(a)};
+  }
+  for (double sign : {1.0, -1.0}) {
+    const Eigen::Vector3d normal = planes[0].normal - sign * planes[1].normal;
+    const double length = normal.norm();
+    if (!(length > kTouchingFraction)) continue;
+    const Plane cut{normal / length, (planes[0].offset - sign * planes[1].offset) / length};
+    bool separates = true;
+    for (size_t i = 0; i < points.size() && separates; ++i)
+      separates = side[i] == 0 ? cut.signed_distance(points[i]) <= 0.0 : cut.signed_distance(points[i]) >= 0.0;
+    if (separates) return cut;
+  }
+  return std::nullopt;
+}
+
+// Whether every point of convex polygon `corners` lies within E - tol of
+// one triangle, or of one of two on either side of a plane between them.
+bool held_within_slop(const MovementContext& context, const std::vector<Eigen::Vector3d>& corners,
+                      std::vector<int>& near) {
+  if (within_slop_of_one_face(context, corners, near)) return true;
+  const std::optional<Plane> cut = cut_between_nearest_pair(context, corners, near);
+  if (!cut) return false;
+  for (const Plane& side : {*cut, cut->flipped()}) {
+    const std::vector<Eigen::Vector3d> part = clip_polygon(corners, side, 0.0);
+    if (part.size() >= 3 && !within_slop_of_one_face(context, part, near)) return false;
+  }
+  return true;
+}
+
+// The same for a segment: within E - tol of one triangle, or of one of
+// two on either side of the point where a plane between them cuts it.
+bool segment_within_slop(const MovementContext& context, const BoundarySegment& segment, std::vector<int>& near) {
+  if (within_slop_of_one_face(context, {segment.a, segment.b}, near)) return true;
+  const std::optional<Plane> cut = cut_between_nearest_pair(context, {segment.a, segment.b}, near);
+  if (!cut) return false;
+  const double at_a = cut->signed_distance(segment.a), at_b = cut->signed_distance(segment.b);
+  if (!(at_a != at_b)) return false;
+  const Eigen::Vector3d across = segment.a + (segment.b - segment.a) * (at_a / (at_a - at_b));
+  return within_slop_of_one_face(context, {segment.a, across}, near) &&
+         within_slop_of_one_face(context, {across, segment.b}, near);
+}
+
 // A point a little less than r - E in front of or behind `piece`, over its
 // centroid, its corners (drawn a tenth of the way in) or the middles of
 // its sides, that may be a reachable centre: the cheap way most candidates
@@ -164,7 +248,8 @@ struct Column {
 // extent while wider than twice the slop, `depth` times at most), or the
 // column holds no reachable centre.
 RegionVerdict prove_piece(const MovementContext& context, const BoundaryPiece& piece, int depth, int& boxes_left,
-                          std::vector<int>& near, bool witness_tried = false) {
+                          std::vector<int>& near, bool witness_tried = false, int patience = kHalvingsWithoutProgress,
+                          bool known_unheld = false) {
   const double reach = context.agent.radius - context.agent.slop;
   // A column whose box holds no reachable cell holds no centre: decided at
   // once, before any distance (and its witnesses, halves and boxes, all
@@ -173,7 +258,7 @@ RegionVerdict prove_piece(const MovementContext& context, const BoundaryPiece& p
   for (int side : {-1, 1})
     for (const Eigen::Vector3d& p : piece.corners) start.extend(p + side * reach * piece.normal);
   if (!context.grid.any_reachable(start)) return RegionVerdict::clear;
-  if (within_slop_of_one_face(context, piece.corners, near)) return RegionVerdict::clear;
+  if (!known_unheld && held_within_slop(context, piece.corners, near)) return RegionVerdict::clear;
   if (!witness_tried && witness_beside(context, piece)) return RegionVerdict::reached;
   const double slop = context.agent.slop;
   const double tol = context.tol;
@@ -193,13 +278,17 @@ RegionVerdict prove_piece(const MovementContext& context, const BoundaryPiece& p
     const Plane cut{across, across.dot(0.5 * (piece.corners[a] + piece.corners[b]))};
     const BoundaryPiece halves[2] = {{clip_polygon(piece.corners, cut, 0.0), piece.normal},
                                      {clip_polygon(piece.corners, cut.flipped(), 0.0), piece.normal}};
-    RegionVerdict verdict = RegionVerdict::clear;
-    for (const BoundaryPiece& half : halves) {
-      if (half.corners.size() < 3) continue;
-      verdict = worse(verdict, prove_piece(context, half, depth - 1, boxes_left, near));
-      if (verdict == RegionVerdict::reached) break;
+    bool held[2];
+    for (int h = 0; h < 2; ++h)
+      held[h] = halves[h].corners.size() < 3 || held_within_slop(context, halves[h].corners, near);
+    if (held[0] || held[1] || patience > 0) {
+      RegionVerdict verdict = RegionVerdict::clear;
+      for (int h = 0; h < 2 && verdict != RegionVerdict::reached; ++h)
+        if (!held[h])
+          verdict = worse(verdict, prove_piece(context, halves[h], depth - 1, boxes_left, near, false,
+                                               held[0] || held[1] ? kHalvingsWithoutProgress : patience - 1, true));
+      return verdict;
     }
-    return verdict;
   }
   const Column column{piece, reach};
   return no_centre_in(
@@ -214,7 +303,8 @@ RegionVerdict prove_piece(const MovementContext& context, const BoundaryPiece& p
 // slop, `depth` times at most), or the space around it holds no reachable
 // centre.
 RegionVerdict prove_segment(const MovementContext& context, const BoundarySegment& segment, int depth, int& boxes_left,
-                            std::vector<int>& near, bool witness_tried = false) {
+                            std::vector<int>& near, bool witness_tried = false, int patience = kHalvingsWithoutProgress,
+                            bool known_unheld = false) {
   const double reach = context.agent.radius - context.agent.slop;
   Aabb start;
   start.extend(segment.a);
@@ -222,14 +312,24 @@ RegionVerdict prove_segment(const MovementContext& context, const BoundarySegmen
   start = grown(start, reach);
   // As for a piece: no reachable cell near the segment, no centre.
   if (!context.grid.any_reachable(start)) return RegionVerdict::clear;
-  if (within_slop_of_one_face(context, {segment.a, segment.b}, near)) return RegionVerdict::clear;
+  if (!known_unheld && segment_within_slop(context, segment, near)) return RegionVerdict::clear;
   const double tol = context.tol;
   const Eigen::Vector3d middle = 0.5 * (segment.a + segment.b);
   if (!witness_tried && witness_away_from_mesh(context, middle)) return RegionVerdict::reached;
   if (depth > 0 && (segment.b - segment.a).norm() > 2.0 * context.agent.slop) {
-    const RegionVerdict first = prove_segment(context, {segment.a, middle}, depth - 1, boxes_left, near);
-    if (first == RegionVerdict::reached) return first;
-    return worse(first, prove_segment(context, {middle, segment.b}, depth - 1, boxes_left, near));
+    // As for a piece: halved on while a half is held within E, or for
+    // `patience` halvings without one.
+    const BoundarySegment halves[2] = {{segment.a, middle}, {middle, segment.b}};
+    bool held[2];
+    for (int h = 0; h < 2; ++h) held[h] = segment_within_slop(context, halves[h], near);
+    if (held[0] || held[1] || patience > 0) {
+      RegionVerdict verdict = RegionVerdict::clear;
+      for (int h = 0; h < 2 && verdict != RegionVerdict::reached; ++h)
+        if (!held[h])
+          verdict = worse(verdict, prove_segment(context, halves[h], depth - 1, boxes_left, near, false,
+                                                 held[0] || held[1] ? kHalvingsWithoutProgress : patience - 1, true));
+      return verdict;
+    }
   }
   const auto distance = [&](const Eigen::Vector3d& c) {
     return (closest_point_on_segment(c, segment.a, segment.b) - c).norm();

@@ -39,6 +39,9 @@ inline constexpr int kMostProofBoxesOfAHull = 1 << 18;
 /// most this many times, each half tried again, before the space around it
 /// is searched.
 inline constexpr int kMostPieceHalvings = 10;
+/// ... and, after this many halvings in a row that leave no half within E
+/// of one triangle, its column is searched whole.
+inline constexpr int kHalvingsWithoutProgress = 4;
 /// ... or on a box whose half-diagonal is below the slop over this.
 inline constexpr double kSmallestProofBoxInSlops = 1.0 / 16.0;
 
