@@ -228,3 +228,40 @@ TEST(MovementProof, RefusesAHullAcrossTheFloorsCornerAndAcceptsTheCrate) {
 
 } // namespace
 } // namespace hullcover::detail
+
+namespace hullcover::detail {
+namespace {
+
+// A roof ridge along z: two triangles falling away from x = 0 with slope
+// 0.1. A square just under the ridge, 0.01 below it at x = 0 and 0.01 above
+// the slopes at x = +-0.2, lies within the slop (0.02) of the two triangles
+// but not of either alone (its far corners are 0.03 from the other's
+// plane): the plane between them parts it into halves one triangle each
+// holds. The same square 0.03 below the ridge is not held: its middle is
+// farther than the slop from both.
+TEST(MovementProof, APieceOverACreaseIsHeldByTheTwoTrianglesBesideIt) {
+  Mesh ridge;
+  ridge.positions = {V(0, 0, -1), V(0, 0, 1), V(-1, -0.1, 0), V(1, -0.1, 0)};
+  ridge.triangles = {Eigen::Vector3i(0, 1, 2), Eigen::Vector3i(1, 0, 3)};
+  const SceneClearance clearance(ridge);
+  const AgentShape agent = walker(AgentReach::fly);
+  const ReachGrid grid = build_reach_grid(ridge, clearance, agent, {V(0, 1, 0)}, true, 1).value();
+  const MovementContext context{ridge, clearance, grid, agent, kTol};
+  const auto square = [](double y) {
+    return std::vector<V>{V(-0.2, y, -0.2), V(0.2, y, -0.2), V(0.2, y, 0.2), V(-0.2, y, 0.2)};
+  };
+  std::vector<int> near;
+  for (int face = 0; face < 2; ++face) {
+    bool all = true;
+    for (const V& corner : square(-0.01)) all = all && clearance.to_face(corner, face) <= agent.slop - kTol;
+    EXPECT_FALSE(all) << "one triangle alone holds the square: the case tests nothing";
+  }
+  EXPECT_TRUE(held_within_slop(context, square(-0.01), near));
+  EXPECT_FALSE(held_within_slop(context, square(-0.03), near));
+  // Its side across the ridge, likewise.
+  EXPECT_TRUE(segment_within_slop(context, {V(-0.2, -0.01, 0), V(0.2, -0.01, 0)}, near));
+  EXPECT_FALSE(segment_within_slop(context, {V(-0.2, -0.03, 0), V(0.2, -0.03, 0)}, near));
+}
+
+} // namespace
+} // namespace hullcover::detail

@@ -157,33 +157,6 @@ std::optional<Plane> cut_between_nearest_pair(const MovementContext& context,
   return std::nullopt;
 }
 
-// Whether every point of convex polygon `corners` lies within E - tol of
-// one triangle, or of one of two on either side of a plane between them.
-bool held_within_slop(const MovementContext& context, const std::vector<Eigen::Vector3d>& corners,
-                      std::vector<int>& near) {
-  if (within_slop_of_one_face(context, corners, near)) return true;
-  const std::optional<Plane> cut = cut_between_nearest_pair(context, corners, near);
-  if (!cut) return false;
-  for (const Plane& side : {*cut, cut->flipped()}) {
-    const std::vector<Eigen::Vector3d> part = clip_polygon(corners, side, 0.0);
-    if (part.size() >= 3 && !within_slop_of_one_face(context, part, near)) return false;
-  }
-  return true;
-}
-
-// The same for a segment: within E - tol of one triangle, or of one of
-// two on either side of the point where a plane between them cuts it.
-bool segment_within_slop(const MovementContext& context, const BoundarySegment& segment, std::vector<int>& near) {
-  if (within_slop_of_one_face(context, {segment.a, segment.b}, near)) return true;
-  const std::optional<Plane> cut = cut_between_nearest_pair(context, {segment.a, segment.b}, near);
-  if (!cut) return false;
-  const double at_a = cut->signed_distance(segment.a), at_b = cut->signed_distance(segment.b);
-  if (!(at_a != at_b)) return false;
-  const Eigen::Vector3d across = segment.a + (segment.b - segment.a) * (at_a / (at_a - at_b));
-  return within_slop_of_one_face(context, {segment.a, across}, near) &&
-         within_slop_of_one_face(context, {across, segment.b}, near);
-}
-
 // A point a little less than r - E in front of or behind `piece`, over its
 // centroid, its corners (drawn a tenth of the way in) or the middles of
 // its sides, that may be a reachable centre: the cheap way most candidates
@@ -347,6 +320,29 @@ double area_of(const std::vector<Eigen::Vector3d>& polygon) {
 }
 
 } // namespace
+
+bool held_within_slop(const MovementContext& context, const std::vector<Eigen::Vector3d>& corners,
+                      std::vector<int>& near) {
+  if (within_slop_of_one_face(context, corners, near)) return true;
+  const std::optional<Plane> cut = cut_between_nearest_pair(context, corners, near);
+  if (!cut) return false;
+  for (const Plane& side : {*cut, cut->flipped()}) {
+    const std::vector<Eigen::Vector3d> part = clip_polygon(corners, side, 0.0);
+    if (part.size() >= 3 && !within_slop_of_one_face(context, part, near)) return false;
+  }
+  return true;
+}
+
+bool segment_within_slop(const MovementContext& context, const BoundarySegment& segment, std::vector<int>& near) {
+  if (within_slop_of_one_face(context, {segment.a, segment.b}, near)) return true;
+  const std::optional<Plane> cut = cut_between_nearest_pair(context, {segment.a, segment.b}, near);
+  if (!cut) return false;
+  const double at_a = cut->signed_distance(segment.a), at_b = cut->signed_distance(segment.b);
+  if (!(at_a != at_b)) return false;
+  const Eigen::Vector3d across = segment.a + (segment.b - segment.a) * (at_a / (at_a - at_b));
+  return within_slop_of_one_face(context, {segment.a, across}, near) &&
+         within_slop_of_one_face(context, {across, segment.b}, near);
+}
 
 MovementVerdict check_movement_hull(const MovementContext& context, const ConvexPolytope& hull, bool flat,
                                     const std::vector<const ConvexPolytope*>& known, UncoveredBoundary& boundary) {

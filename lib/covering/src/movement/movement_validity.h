@@ -8,7 +8,8 @@
 ///  1. every point of H's boundary that lies on no face of its own (the
 ///     uncovered boundary, uncovered_boundary.h) is proven at least r - E
 ///     from every reachable centre: within E of one triangle (then a centre
-///     nearer than r - E would be nearer than r to that triangle), or by
+///     nearer than r - E would be nearer than r to that triangle), or of
+///     one of two triangles on either side of a plane between them, or by
 ///     halving boxes of the space around it until each holds no reachable
 ///     centre (the reach grid clears it, or a triangle lies within r - tol
 ///     of all of it, by its corners) or lies too far;
@@ -35,9 +36,9 @@ inline constexpr int kMostProofBoxes = 1 << 17;
 inline constexpr double kProofBoxesPerSquareRadius = 64.0;
 /// ... and never more than this.
 inline constexpr int kMostProofBoxesOfAHull = 1 << 18;
-/// A piece of uncovered boundary not within E of one triangle is halved at
-/// most this many times, each half tried again, before the space around it
-/// is searched.
+/// A piece of uncovered boundary not within E of one triangle (or of two)
+/// is halved at most this many times, each half tried again, before the
+/// space around it is searched.
 inline constexpr int kMostPieceHalvings = 10;
 /// ... and, after this many halvings in a row that leave no half within E
 /// of one triangle, its column is searched whole.
@@ -61,6 +62,15 @@ enum class MovementVerdict {
   centre_inside,        ///< a reachable centre inside the hull
   undecided,            ///< a proof ran out of boxes
 };
+
+/// Whether every point of convex polygon `corners` lies within E - tol of
+/// one triangle, or each of the two parts a plane between two triangles
+/// cuts it into lies so within one of them (a piece over a crease): then
+/// no reachable centre lies within r - E of it. `near` is scratch.
+bool held_within_slop(const MovementContext& context, const std::vector<Eigen::Vector3d>& corners,
+                      std::vector<int>& near);
+/// The same for a segment (a side of the uncovered boundary).
+bool segment_within_slop(const MovementContext& context, const BoundarySegment& segment, std::vector<int>& near);
 
 /// The proof above for `hull` (flat: a polygon), whose
 /// boundary on the hulls `known` (inside it, proven before) needs no proof
