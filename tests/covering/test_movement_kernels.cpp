@@ -8,6 +8,7 @@
 #include "movement/reach_grid.h"
 #include "movement/scene_clearance.h"
 #include "movement/uncovered_boundary.h"
+#include "movement/within_slop.h"
 
 #include "hullcover/covering/convex_hull_3d.h"
 

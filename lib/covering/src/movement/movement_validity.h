@@ -63,15 +63,6 @@ enum class MovementVerdict {
   undecided,            ///< a proof ran out of boxes
 };
 
-/// Whether every point of convex polygon `corners` lies within E - tol of
-/// one triangle, or each of the two parts a plane between two triangles
-/// cuts it into lies so within one of them (a piece over a crease): then
-/// no reachable centre lies within r - E of it. `near` is scratch.
-bool held_within_slop(const MovementContext& context, const std::vector<Eigen::Vector3d>& corners,
-                      std::vector<int>& near);
-/// The same for a segment (a side of the uncovered boundary).
-bool segment_within_slop(const MovementContext& context, const BoundarySegment& segment, std::vector<int>& near);
-
 /// The proof above for `hull` (flat: a polygon), whose
 /// boundary on the hulls `known` (inside it, proven before) needs no proof
 /// again. `boundary` is reused storage.
