@@ -19,8 +19,7 @@
 /// H is on the boundary); a centre inside H would be nearer than r - E to
 /// the boundary or inside the shrunk hull. Neither can be.
 
-#include "movement/reach_grid.h"
-#include "movement/scene_clearance.h"
+#include "movement/movement_context.h"
 #include "movement/uncovered_boundary.h"
 
 #include <vector>
@@ -34,26 +33,17 @@ namespace hullcover::detail {
 inline constexpr int kMostProofBoxes = 1 << 17;
 /// ... and this many more per r^2 of uncovered boundary,
 inline constexpr double kProofBoxesPerSquareRadius = 64.0;
-/// ... and never more than this.
+/// ... and never more than this,
 inline constexpr int kMostProofBoxesOfAHull = 1 << 18;
+/// ... or at a box whose half-diagonal is below the slop times this.
+inline constexpr double kSmallestProofBoxInSlops = 1.0 / 16.0;
 /// A piece of uncovered boundary not within E of one triangle (or of two)
 /// is halved at most this many times, each half tried again, before the
-/// space around it is searched.
+/// space around it is searched,
 inline constexpr int kMostPieceHalvings = 10;
 /// ... and, after this many halvings in a row that leave no half within E
-/// of one triangle, its column is searched whole.
+/// of one or two triangles, its space is searched whole.
 inline constexpr int kHalvingsWithoutProgress = 4;
-/// ... or on a box whose half-diagonal is below the slop over this.
-inline constexpr double kSmallestProofBoxInSlops = 1.0 / 16.0;
-
-/// What the proofs read; shared read-only by every merger.
-struct MovementContext {
-  const Mesh& mesh;
-  const SceneClearance& clearance;
-  const ReachGrid& grid;
-  const AgentShape& agent;
-  double tol = 0.0; ///< the scene's tolerance (the largest place's): coincidence of faces and facets
-};
 
 /// Why a candidate hull fails.
 enum class MovementVerdict {

@@ -1,13 +1,14 @@
 #pragma once
 /// \file within_slop.h
-/// The cheap half of a movement hull's proof (movement_validity.h): a
+/// The cheap certificate of a movement hull's proof (movement_validity.h): a
 /// part of the uncovered boundary every point of which lies within E - tol
 /// of a triangle is at least r - E from every reachable centre (a centre
 /// nearer would be nearer than r to that triangle). Decided by one
 /// triangle (the distance to it is convex: the corners decide), or, over
 /// a crease, by two on either side of a plane between them.
 
-#include "movement/movement_validity.h"
+#include "movement/movement_context.h"
+#include "movement/uncovered_boundary.h"
 
 #include <Eigen/Core>
 
