@@ -15,6 +15,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -262,6 +263,55 @@ TEST(MovementProof, APieceOverACreaseIsHeldByTheTwoTrianglesBesideIt) {
   // Its side across the ridge, likewise.
   EXPECT_TRUE(segment_within_slop(context, {V(-0.2, -0.01, 0), V(0.2, -0.01, 0)}, near));
   EXPECT_FALSE(segment_within_slop(context, {V(-0.2, -0.03, 0), V(0.2, -0.03, 0)}, near));
+}
+
+} // namespace
+} // namespace hullcover::detail
+
+namespace hullcover::detail {
+namespace {
+
+// The proofs' nearest triangle from a short list gathered over a region
+// (nearest_among) is the tree's answer whenever the list holds every
+// triangle within the limit: here 400 random triangles, 2,000 points, with
+// and without a hint. With the nearest left out of the list, the answer
+// differs (so the comparison can fail).
+TEST(SceneClearance, TheNearestFromAListOfTheTrianglesInReachIsTheTreesAnswer) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> across(0.0, 10.0), side(-0.5, 0.5);
+  Mesh soup;
+  for (int t = 0; t < 400; ++t) {
+    const V corner(across(random), across(random), across(random));
+    const int base = static_cast<int>(soup.positions.size());
+    soup.positions.insert(soup.positions.end(), {corner, corner + V(side(random), side(random), side(random)),
+                                                 corner + V(side(random), side(random), side(random))});
+    soup.triangles.emplace_back(base, base + 1, base + 2);
+  }
+  const SceneClearance clearance(soup);
+  const double limit = 1.5;
+  int found = 0, with_nearest = 0, missed = 0;
+  std::vector<int> listed;
+  for (int i = 0; i < 2000; ++i) {
+    const V p(across(random), across(random), across(random));
+    listed.clear();
+    clearance.faces_meeting(grown(Aabb{p, p}, limit), listed);
+    for (int hint : {-1, i % 400}) {
+      const NearestFace tree = clearance.nearest(p, limit, hint);
+      const NearestFace list = clearance.nearest_among(listed, p, limit, hint);
+      EXPECT_EQ(list.face, tree.face);
+      EXPECT_EQ(list.distance, tree.distance);
+      found += tree.face >= 0 && tree.face != hint;
+    }
+    const NearestFace tree = clearance.nearest(p, limit, -1);
+    if (tree.face < 0) continue;
+    ++with_nearest;
+    listed.erase(std::remove(listed.begin(), listed.end(), tree.face), listed.end());
+    missed += clearance.nearest_among(listed, p, limit, -1).face != tree.face;
+  }
+  EXPECT_GT(found, 500);
+  // Every point whose nearest was left out of the list gets another answer.
+  EXPECT_GT(with_nearest, 250);
+  EXPECT_EQ(missed, with_nearest);
 }
 
 } // namespace

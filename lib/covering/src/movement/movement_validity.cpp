@@ -58,6 +58,21 @@ RegionVerdict no_centre_in(const MovementContext& context, const Aabb& start, in
   // Each box with the triangle nearest its parent's centre: most boxes are
   // cleared by their parent's triangle before any search.
   std::vector<std::pair<Aabb, int>> stack{{start, -1}};
+  // The triangles any box of the search may be nearest to, gathered at
+  // the first search (most regions are cleared before any): a short list
+  // scanned is cheaper than the tree walked from its root for each box.
+  std::vector<int> candidates;
+  bool gathered = false;
+  const double reach_of_start = r + 0.5 * (start.max - start.min).norm() + tol;
+  const auto nearest = [&](const Eigen::Vector3d& c, double limit, int hint) {
+    if (!gathered) {
+      context.clearance.faces_meeting(grown(start, reach_of_start), candidates);
+      gathered = true;
+    }
+    return static_cast<int>(candidates.size()) <= kMostScannedTriangles
+               ? context.clearance.nearest_among(candidates, c, limit, hint)
+               : context.clearance.nearest(c, limit, hint);
+  };
   while (!stack.empty()) {
     const auto [box, hint] = stack.back();
     stack.pop_back();
@@ -68,7 +83,7 @@ RegionVerdict no_centre_in(const MovementContext& context, const Aabb& start, in
     // by it, far more cheaply than by distances to triangles.
     if (!context.grid.any_reachable(box)) continue;
     if (hint >= 0 && context.clearance.box_within(box, hint, r - tol)) continue;
-    const NearestFace near = context.clearance.nearest(c, r + half + tol, hint);
+    const NearestFace near = nearest(c, r + half + tol, hint);
     if (near.distance + half < r - tol) continue;
     if (near.face >= 0 && near.face != hint && context.clearance.box_within(box, near.face, r - tol)) continue;
     if (near.distance >= r - tol && inside(c) && context.grid.reachable_at(c)) return RegionVerdict::reached;

@@ -37,6 +37,9 @@ inline constexpr double kProofBoxesPerSquareRadius = 64.0;
 inline constexpr int kMostProofBoxesOfAHull = 1 << 18;
 /// ... or at a box whose half-diagonal is below the slop times this.
 inline constexpr double kSmallestProofBoxInSlops = 1.0 / 16.0;
+/// A search whose region meets at most this many triangles' boxes (grown
+/// by r) scans them for each box's nearest instead of walking the tree.
+inline constexpr int kMostScannedTriangles = 64;
 /// A piece of uncovered boundary not within E of one triangle (or of two)
 /// is halved at most this many times, each half tried again, before the
 /// space around it is searched,

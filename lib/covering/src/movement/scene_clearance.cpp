@@ -19,7 +19,7 @@ std::vector<Aabb> face_boxes(const Mesh& mesh) {
 
 } // namespace
 
-SceneClearance::SceneClearance(const Mesh& mesh) : mesh_(mesh), tree_(face_boxes(mesh)) {}
+SceneClearance::SceneClearance(const Mesh& mesh) : mesh_(mesh), boxes_(face_boxes(mesh)), tree_(boxes_) {}
 
 double SceneClearance::to_face(const Eigen::Vector3d& p, int face) const {
   const Eigen::Vector3i& t = mesh_.triangles[face];
@@ -52,6 +52,37 @@ NearestFace SceneClearance::nearest(const Eigen::Vector3d& p, double limit, int 
     return e2;
   });
   if (nearer) found.distance = std::sqrt(d2);
+  return found;
+}
+
+NearestFace SceneClearance::nearest_among(const std::vector<int>& faces, const Eigen::Vector3d& p, double limit,
+                                          int hint) const {
+  NearestFace found{limit, -1};
+  if (hint >= 0) {
+    const double e = to_face(p, hint);
+    if (e < limit) found = {e, hint};
+  }
+  double best2 = found.distance * found.distance;
+  bool nearer = false;
+  for (int f : faces) {
+    const Aabb& box = boxes_[f];
+    double gap2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double gap = std::max({box.min[k] - p[k], p[k] - box.max[k], 0.0});
+      gap2 += gap * gap;
+    }
+    if (!(gap2 < best2)) continue;
+    const Eigen::Vector3i& t = mesh_.triangles[f];
+    const double e2 =
+        (closest_point_on_triangle(p, mesh_.positions[t[0]], mesh_.positions[t[1]], mesh_.positions[t[2]]) - p)
+            .squaredNorm();
+    if (e2 < best2) {
+      best2 = e2;
+      found.face = f;
+      nearer = true;
+    }
+  }
+  if (nearer) found.distance = std::sqrt(best2);
   return found;
 }
 

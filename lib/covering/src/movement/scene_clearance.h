@@ -33,6 +33,10 @@ public:
   /// near: the one nearest to a neighbouring point), which prunes most of
   /// the search; `hint` itself when no face is nearer. -1: no hint.
   NearestFace nearest(const Eigen::Vector3d& p, double limit, int hint) const;
+  /// nearest(p, limit, hint) among `faces` alone: the same answer when
+  /// `faces` holds every triangle within `limit` of `p` (a search over a
+  /// region asks many points of it, and a short list beats the tree).
+  NearestFace nearest_among(const std::vector<int>& faces, const Eigen::Vector3d& p, double limit, int hint) const;
   /// Distance from `p` to triangle `face`.
   double to_face(const Eigen::Vector3d& p, int face) const;
   /// Whether every point of `box` lies nearer than `limit` to triangle
@@ -49,6 +53,7 @@ public:
 
 private:
   const Mesh& mesh_;
+  std::vector<Aabb> boxes_; ///< each triangle's
   AabbTree tree_;
 };
 
