@@ -137,10 +137,15 @@ Status check_hulls(const std::vector<RuntimeHull>& hulls, const std::vector<int>
     // Indices the narrow phase reads without a check.
     const int vertices = static_cast<int>(s.vertices.size());
     bool indexed = true;
-    for (const std::vector<int>& facet : s.facets)
+    for (const std::vector<int>& facet : s.facets) {
+      // A facet of fewer corners would hold every point its plane does.
+      indexed = indexed && facet.size() >= 3;
       for (int v : facet) indexed = indexed && v >= 0 && v < vertices;
+    }
     for (const auto& [a, b] : hulls[i].edges) indexed = indexed && a >= 0 && a < vertices && b >= 0 && b < vertices;
-    if (!indexed) return {StatusCode::invalid_argument, name + " has a facet or edge naming a vertex it does not have"};
+    if (!indexed)
+      return {StatusCode::invalid_argument,
+              name + " has a facet of fewer than 3 corners, or a facet or edge naming a vertex it does not have"};
   }
   return Status::success();
 }

@@ -411,14 +411,17 @@ namespace hullcover::bvh {
 namespace {
 
 // The narrow phase reads a hull's vertices through its facets' and edges'
-// indices unchecked: a hull made by hand that names a vertex it does not
-// have is refused at build, naming the hull, not read out of bounds.
+// indices unchecked, and takes a facet for a polygon: a hull made by hand
+// that names a vertex it does not have, or has a facet of two corners, is
+// refused at build, naming the hull, not read out of bounds or misjudged.
 TEST(HullWorld, RefusesAHullWhoseFacetOrEdgeNamesAMissingVertex) {
   RuntimeHull bad_facet = box_hull(V(0, 0, 0), V(1, 1, 1));
   bad_facet.shape.facets[2][1] = static_cast<int>(bad_facet.shape.vertices.size());
   RuntimeHull bad_edge = box_hull(V(0, 0, 0), V(1, 1, 1));
   bad_edge.edges.back().second = -1;
-  for (const RuntimeHull& bad : {bad_facet, bad_edge}) {
+  RuntimeHull short_facet = box_hull(V(0, 0, 0), V(1, 1, 1));
+  short_facet.shape.facets[3].resize(2);
+  for (const RuntimeHull& bad : {bad_facet, bad_edge, short_facet}) {
     auto world = HullWorld::build({box_hull(V(-5, -1, -5), V(5, 0, 5)), bad});
     ASSERT_FALSE(world.ok());
     EXPECT_EQ(world.status().code(), StatusCode::invalid_argument);

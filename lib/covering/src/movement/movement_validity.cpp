@@ -62,16 +62,16 @@ RegionVerdict no_centre_in(const MovementContext& context, const Aabb& start, in
   // the first search (most regions are cleared before any): a short list
   // scanned is cheaper than the tree walked from its root for each box.
   std::vector<int> candidates;
-  bool gathered = false;
+  bool gathered = false, short_list = false;
   const double reach_of_start = r + 0.5 * (start.max - start.min).norm() + tol;
   const auto nearest = [&](const Eigen::Vector3d& c, double limit, int hint) {
     if (!gathered) {
-      context.clearance.faces_meeting(grown(start, reach_of_start), candidates);
+      short_list =
+          context.clearance.faces_meeting_at_most(grown(start, reach_of_start), kMostScannedTriangles, candidates);
       gathered = true;
     }
-    return static_cast<int>(candidates.size()) <= kMostScannedTriangles
-               ? context.clearance.nearest_among(candidates, c, limit, hint)
-               : context.clearance.nearest(c, limit, hint);
+    return short_list ? context.clearance.nearest_among(candidates, c, limit, hint)
+                      : context.clearance.nearest(c, limit, hint);
   };
   while (!stack.empty()) {
     const auto [box, hint] = stack.back();

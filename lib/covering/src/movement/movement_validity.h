@@ -22,6 +22,7 @@
 #include "movement/movement_context.h"
 #include "movement/uncovered_boundary.h"
 
+#include <cstddef>
 #include <vector>
 
 namespace hullcover::detail {
@@ -37,9 +38,10 @@ inline constexpr double kProofBoxesPerSquareRadius = 64.0;
 inline constexpr int kMostProofBoxesOfAHull = 1 << 18;
 /// ... or at a box whose half-diagonal is below the slop times this.
 inline constexpr double kSmallestProofBoxInSlops = 1.0 / 16.0;
-/// A search whose region meets at most this many triangles' boxes (grown
-/// by r) scans them for each box's nearest instead of walking the tree.
-inline constexpr int kMostScannedTriangles = 64;
+/// A search whose region, grown by r, its half-diagonal and tol, meets at
+/// most this many triangles' boxes scans them for each box's nearest
+/// instead of walking the tree.
+inline constexpr size_t kMostScannedTriangles = 64;
 /// A piece of uncovered boundary not within E of one triangle (or of two)
 /// is halved at most this many times, each half tried again, before the
 /// space around it is searched,

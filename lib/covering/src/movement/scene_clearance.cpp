@@ -10,6 +10,10 @@
 namespace hullcover::detail {
 namespace {
 
+// A triangle whose sharpest angle's sine is below this is a needle: box_within
+// then tests the box's corners, without the plane shortcut.
+constexpr double kLeastTrustedSine = 1e-6;
+
 std::vector<Aabb> face_boxes(const Mesh& mesh) {
   std::vector<Aabb> boxes(mesh.triangles.size());
   for (size_t f = 0; f < mesh.triangles.size(); ++f)
@@ -55,6 +59,15 @@ NearestFace SceneClearance::nearest(const Eigen::Vector3d& p, double limit, int 
   return found;
 }
 
+bool SceneClearance::faces_meeting_at_most(const Aabb& box, size_t most, std::vector<int>& out) const {
+  out.clear();
+  tree_.any_overlapping(box, [&](int f) {
+    out.push_back(f);
+    return out.size() > most;
+  });
+  return out.size() <= most;
+}
+
 NearestFace SceneClearance::nearest_among(const std::vector<int>& faces, const Eigen::Vector3d& p, double limit,
                                           int hint) const {
   NearestFace found{limit, -1};
@@ -92,9 +105,13 @@ bool SceneClearance::box_within(const Aabb& box, int face, double limit) const {
   const Eigen::Vector3d middle = 0.5 * (box.min + box.max), half = 0.5 * (box.max - box.min);
   const Eigen::Vector3d normal = (b - a).cross(c - a);
   const double length = normal.norm();
-  if (length > 0.0) {
-    // The largest distance from the plane over the box: at least the
-    // largest distance from the triangle, at a corner.
+  // The shortcut trusts the computed normal's direction, off by about the
+  // rounding over the sine of the triangle's sharpest angle: a needle's
+  // box is judged by its corners alone.
+  if (length > kLeastTrustedSine * (b - a).norm() * (c - a).norm()) {
+    // The largest distance from the plane over the box: no corner is
+    // nearer to the triangle than to its plane, so when that is not below
+    // the limit, some corner is not.
     const Eigen::Vector3d n = normal / length;
     const double off_plane = std::abs(n.dot(middle - a)) + n.cwiseAbs().dot(half);
     if (!(off_plane < limit)) return false;

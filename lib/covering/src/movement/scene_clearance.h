@@ -33,9 +33,10 @@ public:
   /// near: the one nearest to a neighbouring point), which prunes most of
   /// the search; `hint` itself when no face is nearer. -1: no hint.
   NearestFace nearest(const Eigen::Vector3d& p, double limit, int hint) const;
-  /// nearest(p, limit, hint) among `faces` alone: the same answer when
-  /// `faces` holds every triangle within `limit` of `p` (a search over a
-  /// region asks many points of it, and a short list beats the tree).
+  /// nearest(p, limit, hint) among `faces` alone: the same distance when
+  /// `faces` holds every triangle within `limit` of `p`, and the same
+  /// triangle but where two are exactly as near (a search over a region
+  /// asks many points of it, and a short list beats the tree).
   NearestFace nearest_among(const std::vector<int>& faces, const Eigen::Vector3d& p, double limit, int hint) const;
   /// Distance from `p` to triangle `face`.
   double to_face(const Eigen::Vector3d& p, int face) const;
@@ -46,6 +47,9 @@ public:
   /// gives for the whole box. Every point of the box then has clearance
   /// below `limit` too.
   bool box_within(const Aabb& box, int face, double limit) const;
+  /// The faces whose boxes meet `box` into `out` (cleared first), when
+  /// there are at most `most`; false (and `out` partial) when more.
+  bool faces_meeting_at_most(const Aabb& box, size_t most, std::vector<int>& out) const;
   /// Appends the faces whose boxes meet `box`.
   void faces_meeting(const Aabb& box, std::vector<int>& out) const { tree_.overlapping(box, out); }
 
