@@ -160,9 +160,11 @@ struct Column {
 };
 
 // Proves no reachable centre in the column over `piece`: the piece lies
-// within E of one triangle, or its halves do (halved across its widest
-// extent while wider than twice the slop, `depth` times at most), or the
-// column holds no reachable centre.
+// within E of one triangle or two (within_slop.h), or its halves do
+// (halved across its widest extent while wider than twice the slop,
+// `depth` times at most, and while a half is held or for `patience`
+// halvings without one), or the column holds no reachable centre.
+// `known_unheld`: the caller found the piece not held.
 RegionVerdict prove_piece(const MovementContext& context, const BoundaryPiece& piece, int depth, int& boxes_left,
                           std::vector<int>& near, bool witness_tried = false, int patience = kHalvingsWithoutProgress,
                           bool known_unheld = false) {
@@ -215,9 +217,8 @@ RegionVerdict prove_piece(const MovementContext& context, const BoundaryPiece& p
 }
 
 // Proves no reachable centre within r - E of segment a-b: it lies within E
-// of one triangle, or its halves do (halved while longer than twice the
-// slop, `depth` times at most), or the space around it holds no reachable
-// centre.
+// of one triangle or two, or its halves do (halved as a piece is), or the
+// space around it holds no reachable centre.
 RegionVerdict prove_segment(const MovementContext& context, const BoundarySegment& segment, int depth, int& boxes_left,
                             std::vector<int>& near, bool witness_tried = false, int patience = kHalvingsWithoutProgress,
                             bool known_unheld = false) {
