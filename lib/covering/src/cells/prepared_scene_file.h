@@ -12,7 +12,8 @@
 //   32  n section entries of 32 bytes: u32 id, u32 element size,
 //       u64 offset, u64 length, u64 checksum of the section's bytes
 //   32 + 32 n: u64 checksum of every byte before it
-// Each section starts on a multiple of kSectionAlignment (the search trees'
+// Each section starts on a multiple of kSectionAlignment
+// (prepared_scene_sections.h; the search trees'
 // nodes are read in place, 64-byte aligned). Arrays of plain numbers and
 // records are stored as the host lays them out, so the file is refused on a
 // big-endian host; records with holes (an edge's kind) are stored field by
@@ -27,9 +28,6 @@
 #include <string>
 
 namespace hullcover::detail {
-
-/// Every section starts on a multiple of this many bytes.
-inline constexpr std::uint64_t kSectionAlignment = 64;
 
 /// What decides the stages besides the scene: the resolved lengths and
 /// every option prepare_stages reads, hashed. A worker's options must give

@@ -21,6 +21,8 @@ inline constexpr char kPreparedMagic[8] = {'H', 'C', 'P', 'R', 'E', 'P', '\r', '
 inline constexpr std::uint32_t kPreparedVersion = 1;
 /// Bytes before the section table; bytes of one table entry.
 inline constexpr std::uint64_t kPreparedHeadBytes = 32, kSectionEntryBytes = 32;
+/// Every section starts on a multiple of this many bytes.
+inline constexpr std::uint64_t kSectionAlignment = 64;
 /// The search trees stored: vertex, edge, face, bar, front sweep, opening sweep.
 inline constexpr int kTreeCount = 6;
 inline constexpr std::uint32_t kSectionsPerTree = 3; // nodes, items, leaf boxes
