@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace hullcover::detail {
 namespace {
@@ -159,6 +160,20 @@ struct Column {
   }
 };
 
+// The halving rule of pieces and sides: with `held[h]` whether half h is
+// held within the slop, the verdict of proving the others by
+// `prove(h, patience_left)` (a half held resets the patience, none spends
+// one), or nothing once the patience is spent: the whole is then searched.
+template <typename Prove>
+std::optional<RegionVerdict> prove_halves(const bool (&held)[2], int patience, Prove&& prove) {
+  const bool progress = held[0] || held[1];
+  if (!progress && patience <= 0) return std::nullopt;
+  RegionVerdict verdict = RegionVerdict::clear;
+  for (int h = 0; h < 2 && verdict != RegionVerdict::reached; ++h)
+    if (!held[h]) verdict = worse(verdict, prove(h, progress ? kHalvingsWithoutProgress : patience - 1));
+  return verdict;
+}
+
 // Proves no reachable centre in the column over `piece`: the piece lies
 // within E of one triangle or two (within_slop.h), or its halves do
 // (halved across its widest extent while wider than twice the slop,
@@ -196,17 +211,12 @@ RegionVerdict prove_piece(const MovementContext& context, const BoundaryPiece& p
     const Plane cut{across, across.dot(0.5 * (piece.corners[a] + piece.corners[b]))};
     const BoundaryPiece halves[2] = {{clip_polygon(piece.corners, cut, 0.0), piece.normal},
                                      {clip_polygon(piece.corners, cut.flipped(), 0.0), piece.normal}};
-    bool held[2];
-    for (int h = 0; h < 2; ++h)
-      held[h] = halves[h].corners.size() < 3 || held_within_slop(context, halves[h].corners, near);
-    if (held[0] || held[1] || patience > 0) {
-      RegionVerdict verdict = RegionVerdict::clear;
-      for (int h = 0; h < 2 && verdict != RegionVerdict::reached; ++h)
-        if (!held[h])
-          verdict = worse(verdict, prove_piece(context, halves[h], depth - 1, boxes_left, near, false,
-                                               held[0] || held[1] ? kHalvingsWithoutProgress : patience - 1, true));
-      return verdict;
-    }
+    const bool held[2] = {halves[0].corners.size() < 3 || held_within_slop(context, halves[0].corners, near),
+                          halves[1].corners.size() < 3 || held_within_slop(context, halves[1].corners, near)};
+    if (const std::optional<RegionVerdict> verdict = prove_halves(held, patience, [&](int h, int patience_left) {
+          return prove_piece(context, halves[h], depth - 1, boxes_left, near, false, patience_left, true);
+        }))
+      return *verdict;
   }
   const Column column{piece, reach};
   return no_centre_in(
@@ -237,16 +247,11 @@ RegionVerdict prove_segment(const MovementContext& context, const BoundarySegmen
     // As for a piece: halved on while a half is held within E, or for
     // `patience` halvings without one.
     const BoundarySegment halves[2] = {{segment.a, middle}, {middle, segment.b}};
-    bool held[2];
-    for (int h = 0; h < 2; ++h) held[h] = segment_within_slop(context, halves[h], near);
-    if (held[0] || held[1] || patience > 0) {
-      RegionVerdict verdict = RegionVerdict::clear;
-      for (int h = 0; h < 2 && verdict != RegionVerdict::reached; ++h)
-        if (!held[h])
-          verdict = worse(verdict, prove_segment(context, halves[h], depth - 1, boxes_left, near, false,
-                                                 held[0] || held[1] ? kHalvingsWithoutProgress : patience - 1, true));
-      return verdict;
-    }
+    const bool held[2] = {segment_within_slop(context, halves[0], near), segment_within_slop(context, halves[1], near)};
+    if (const std::optional<RegionVerdict> verdict = prove_halves(held, patience, [&](int h, int patience_left) {
+          return prove_segment(context, halves[h], depth - 1, boxes_left, near, false, patience_left, true);
+        }))
+      return *verdict;
   }
   const auto distance = [&](const Eigen::Vector3d& c) {
     return (closest_point_on_segment(c, segment.a, segment.b) - c).norm();

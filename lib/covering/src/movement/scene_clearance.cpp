@@ -25,10 +25,13 @@ std::vector<Aabb> face_boxes(const Mesh& mesh) {
 
 SceneClearance::SceneClearance(const Mesh& mesh) : mesh_(mesh), boxes_(face_boxes(mesh)), tree_(boxes_) {}
 
-double SceneClearance::to_face(const Eigen::Vector3d& p, int face) const {
+double SceneClearance::squared_to_face(const Eigen::Vector3d& p, int face) const {
   const Eigen::Vector3i& t = mesh_.triangles[face];
-  return (closest_point_on_triangle(p, mesh_.positions[t[0]], mesh_.positions[t[1]], mesh_.positions[t[2]]) - p).norm();
+  return (closest_point_on_triangle(p, mesh_.positions[t[0]], mesh_.positions[t[1]], mesh_.positions[t[2]]) - p)
+      .squaredNorm();
 }
+
+double SceneClearance::to_face(const Eigen::Vector3d& p, int face) const { return std::sqrt(squared_to_face(p, face)); }
 
 NearestFace SceneClearance::nearest(const Eigen::Vector3d& p, double limit) const { return nearest(p, limit, -1); }
 
@@ -44,10 +47,7 @@ NearestFace SceneClearance::nearest(const Eigen::Vector3d& p, double limit, int 
   double best2 = limit * limit;
   bool nearer = false; // than the hint, or found at all without one
   const double d2 = tree_.nearest_to_point(p, limit, [&](int f) {
-    const Eigen::Vector3i& t = mesh_.triangles[f];
-    const double e2 =
-        (closest_point_on_triangle(p, mesh_.positions[t[0]], mesh_.positions[t[1]], mesh_.positions[t[2]]) - p)
-            .squaredNorm();
+    const double e2 = squared_to_face(p, f);
     if (e2 < best2) {
       best2 = e2;
       found.face = f;
@@ -85,10 +85,7 @@ NearestFace SceneClearance::nearest_among(const std::vector<int>& faces, const E
       gap2 += gap * gap;
     }
     if (!(gap2 < best2)) continue;
-    const Eigen::Vector3i& t = mesh_.triangles[f];
-    const double e2 =
-        (closest_point_on_triangle(p, mesh_.positions[t[0]], mesh_.positions[t[1]], mesh_.positions[t[2]]) - p)
-            .squaredNorm();
+    const double e2 = squared_to_face(p, f);
     if (e2 < best2) {
       best2 = e2;
       found.face = f;

@@ -56,6 +56,10 @@ public:
   const Mesh& mesh() const { return mesh_; }
 
 private:
+  /// The squared distance from `p` to triangle `face`: what the searches
+  /// compare, one root taken at the end.
+  double squared_to_face(const Eigen::Vector3d& p, int face) const;
+
   const Mesh& mesh_;
   std::vector<Aabb> boxes_; ///< each triangle's
   AabbTree tree_;
