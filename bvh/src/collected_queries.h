@@ -154,14 +154,26 @@ Status contact_query(const Source& source, const ContactRequest& request, Contac
 
 template <typename Source>
 Status ray_query(const Source& source, const RayRequest& request, RayResult& result) {
-  ClosestRayHit closest;
-  Status s = cast_ray_query(source, request, HullFilter{}, closest);
-  result = {};
-  if (s.ok() && closest.found()) {
-    result.hit = true;
-    result.first = closest.hit();
-  }
-  return s;
+  // cast_ray_query with ClosestRayHit, written out: the plain call a server
+  // makes most keeps its nearest hit itself, with no collector to call
+  // through. The same hit: NearerRayHit's order, and the same pruning.
+  return guarded("ray query", [&]() -> Status {
+    result = {};
+    Eigen::Vector3d dir;
+    if (Status s = check_ray_request(request, dir); !s.ok()) return s;
+    double reach = request.max_distance;
+    source.along_ray(request.origin, dir.cwiseInverse(), reach,
+                     [&](int h, const RuntimeHull& hull, PlanesOf planes, double& best) {
+      if (std::optional<RayHit> hit = planes.ray_hit(hull, request.origin, dir, best)) {
+        hit->hull = h;
+        if (result.hit && !NearerRayHit{}(*hit, result.first)) return;
+        result.hit = true;
+        result.first = *hit;
+        best = std::min(best, hit->t);
+      }
+    });
+    return Status::success();
+  });
 }
 
 // ---- Batches ------------------------------------------------------------------

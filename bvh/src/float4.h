@@ -139,18 +139,11 @@ struct Float4 {
 
 #endif
 
-/// The float nearest `x` at or below it: a box rounded outward to floats
-/// holds the box. Beyond float's range: its largest value or infinity,
-/// still outward.
-inline float float_at_or_below(double x) {
-  constexpr float kLargest = std::numeric_limits<float>::max();
-  if (x > kLargest) return kLargest; // beyond float's range: the cast would not be defined
-  if (x < -kLargest) return -std::numeric_limits<float>::infinity();
-  const float f = static_cast<float>(x);
-  if (!(static_cast<double>(f) > x)) return f;
-  // The next float down, by its bits (a query rounds a few coordinates;
-  // std::nextafter is a library call): a positive float's pattern one
-  // less, a negative one's one more, and below zero the least negative.
+/// The next float below f (finite): a positive float's bit pattern one
+/// less, a negative one's one more, and below zero the least negative
+/// (by its bits: std::nextafter is a library call, and a query rounds a
+/// few coordinates).
+inline float float_step_down(float f) {
   std::uint32_t bits;
   __builtin_memcpy(&bits, &f, sizeof bits);
   if (f > 0.0f)
@@ -163,8 +156,34 @@ inline float float_at_or_below(double x) {
   __builtin_memcpy(&below, &bits, sizeof below);
   return below;
 }
+
+/// The float nearest `x` at or below it: a box rounded outward to floats
+/// holds the box. Beyond float's range: its largest value or infinity,
+/// still outward.
+inline float float_at_or_below(double x) {
+  constexpr float kLargest = std::numeric_limits<float>::max();
+  if (x > kLargest) return kLargest; // beyond float's range: the cast would not be defined
+  if (x < -kLargest) return -std::numeric_limits<float>::infinity();
+  const float f = static_cast<float>(x);
+  return static_cast<double>(f) > x ? float_step_down(f) : f;
+}
 /// The float nearest `x` at or above it; see float_at_or_below.
 inline float float_at_or_above(double x) { return -float_at_or_below(-x); }
+
+/// float_at_or_below(x) and float_at_or_above(x), the same floats, from
+/// one rounding of x (round to nearest is symmetric: -x rounds to minus
+/// x's float).
+inline void float_bracket(double x, float& below, float& above) {
+  if (!(std::abs(x) <= static_cast<double>(std::numeric_limits<float>::max()))) {
+    below = float_at_or_below(x);
+    above = float_at_or_above(x);
+    return;
+  }
+  const float f = static_cast<float>(x);
+  const double back = static_cast<double>(f);
+  below = back > x ? float_step_down(f) : f;
+  above = back < x ? -float_step_down(-f) : f;
+}
 
 /// The largest of the four lanes.
 inline float largest_lane(Float4 a) {

@@ -245,7 +245,13 @@ void HullTree::walk_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& in
   // box that axis would have cut, never fewer.
   for (int k = 0; k < 3; ++k) {
     const bool negative = inverse[k] < 0.0;
-    const float below = float_at_or_below(origin[k] - grow), above = float_at_or_above(origin[k] + grow);
+    float below, above;
+    if (grow == 0.0) {
+      float_bracket(origin[k], below, above); // a ray's walk: one rounding
+    } else {
+      below = float_at_or_below(origin[k] - grow);
+      above = float_at_or_above(origin[k] + grow);
+    }
     near_origin[k] = Float4::all(negative ? below : above);
     far_origin[k] = Float4::all(negative ? above : below);
     const bool in_range = std::abs(inverse[k]) <= std::numeric_limits<float>::max() || std::isinf(inverse[k]);

@@ -64,7 +64,7 @@ PackedPlanes::PackedPlanes(const std::vector<RuntimeHull>& hulls) {
   if (total_planes > std::numeric_limits<std::uint32_t>::max())
     throw std::length_error("more planes than the packed store indexes");
   blocks_.reserve(total_blocks);
-  exact_.reserve(total_planes);
+  pairs_.reserve(total_planes / 2 + hulls.size());
   for (const RuntimeHull& hull : hulls) {
     HullRecord record{};
     const Eigen::Vector3d centre = 0.5 * (hull.box.min + hull.box.max);
@@ -87,9 +87,23 @@ PackedPlanes::PackedPlanes(const std::vector<RuntimeHull>& hulls) {
     record.reach = float_at_or_above(reach);
     record.first_block = static_cast<std::uint32_t>(blocks_.size());
     record.planes = static_cast<std::uint32_t>(nx.size());
-    record.first_plane = static_cast<std::uint32_t>(exact_.size());
+    record.first_pair = static_cast<std::uint32_t>(pairs_.size());
     record.facets = static_cast<std::uint32_t>(hull.shape.facets.size());
-    exact_.insert(exact_.end(), hull.shape.planes.begin(), hull.shape.planes.end());
+    for (size_t i = 0; i < hull.shape.planes.size(); i += 2) {
+      PlanePair pair{};
+      for (size_t l = 0; l < 2; ++l) {
+        if (i + l < hull.shape.planes.size()) {
+          const Plane& plane = hull.shape.planes[i + l];
+          pair.nx[l] = plane.normal.x();
+          pair.ny[l] = plane.normal.y();
+          pair.nz[l] = plane.normal.z();
+          pair.offset[l] = plane.offset;
+        } else {
+          pair.offset[l] = std::numeric_limits<double>::max(); // the padding: zero normal, behind everything
+        }
+      }
+      pairs_.push_back(pair);
+    }
     record.blocks = unit && std::isfinite(record.reach) ? static_cast<std::uint32_t>((nx.size() + 3) / 4) : 0;
     for (std::uint32_t b = 0; b < record.blocks; ++b) {
       PlaneBlock block{};
@@ -220,8 +234,8 @@ FloatVerdict PackedPlanes::segment(int h, const Eigen::Vector3d& a, const Eigen:
 std::optional<RayHit> PackedPlanes::ray_hit(int h, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                                             double max_t) const {
   const HullRecord& hull = hulls_[h];
-  return first_hit_on_planes(exact_.data() + hull.first_plane, static_cast<int>(hull.planes),
-                             static_cast<int>(hull.facets), origin, direction, max_t);
+  return first_hit_on_plane_pairs(pairs_.data() + hull.first_pair, static_cast<int>(hull.planes),
+                                  static_cast<int>(hull.facets), origin, direction, max_t);
 }
 
 } // namespace hullcover::bvh::detail

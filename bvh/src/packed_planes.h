@@ -8,8 +8,8 @@
 // decision point is not trusted: the test then says "unsure" and the exact
 // narrow phase (hull_contact.h, in double on the RuntimeHull) decides, so
 // answers are those of the double code. See docs/definitions-and-proofs.md,
-// "The runtime's float pre-tests". In double, hull after hull, for the
-// exact ray clip, which reads nothing else.
+// "The runtime's float pre-tests". In double, two planes side by side,
+// hull after hull, for the exact ray clip, which reads nothing else.
 //
 // Each hull's planes are stored about its own centre (its box's centre,
 // in double): a plane's offset is then at most the hull's reach, and
@@ -17,6 +17,7 @@
 // distance from it, not with the world's coordinates.
 
 #include "float4.h"
+#include "planes_ray_hit.h"
 
 #include "hullcover/bvh/hull_contact.h"
 #include "hullcover/bvh/runtime_hull.h"
@@ -78,14 +79,14 @@ private:
     float reach;      // >= the distance from the centre to any of the hull's vertices
     std::uint32_t first_block;
     std::uint32_t blocks;
-    std::uint32_t planes;      // before padding
-    std::uint32_t first_plane; // in exact_
-    std::uint32_t facets;      // the first `facets` planes are the facets'
+    std::uint32_t planes;     // before padding
+    std::uint32_t first_pair; // in pairs_
+    std::uint32_t facets;     // the first `facets` planes are the facets'
   };
   std::vector<PlaneBlock> blocks_;
-  // Every hull's planes in double, hull after hull: what the exact ray
-  // clip reads instead of the scattered RuntimeHull.
-  std::vector<Plane> exact_;
+  // Every hull's planes in double, two at a time, hull after hull: what
+  // the exact ray clip reads instead of the scattered RuntimeHull.
+  std::vector<PlanePair> pairs_;
   std::vector<HullRecord> hulls_;
 
   // The clip of segment q0 + t v, 0 <= t <= span, by hull h's planes moved

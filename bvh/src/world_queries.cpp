@@ -6,14 +6,14 @@
 namespace hullcover::bvh {
 
 Status check_ray_request(const RayRequest& request, Eigen::Vector3d& unit_direction) {
-  // Guarded: the message is allocated.
-  return detail::guarded("checking a ray", [&]() -> Status {
-    const double length = request.direction.norm();
-    if (!(length > 0.0) || !request.direction.allFinite() || !request.origin.allFinite() ||
-        !(request.max_distance >= 0.0))
-      return {StatusCode::invalid_argument, "a ray needs a finite origin, a non-zero direction and max_distance >= 0"};
+  const double length = request.direction.norm();
+  if (length > 0.0 && request.direction.allFinite() && request.origin.allFinite() && request.max_distance >= 0.0) {
     unit_direction = request.direction / length;
     return Status::success();
+  }
+  // Guarded: the message is allocated.
+  return detail::guarded("checking a ray", []() -> Status {
+    return {StatusCode::invalid_argument, "a ray needs a finite origin, a non-zero direction and max_distance >= 0"};
   });
 }
 
