@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -108,6 +109,35 @@ TEST(TrianglesWithin, AnswersAsTheDistanceComparedAtEveryThreshold) {
   EXPECT_EQ(triangle_distance(s, t), inf);
   for (const double threshold : {0.0, 1e300, inf, nan})
     EXPECT_EQ(triangles_within(s, t, threshold), triangle_distance(s, t) <= threshold) << threshold;
+}
+
+// The branch-free clamp of the closest-point parameters equals
+// std::clamp's on every kind of double: either side of 0 and 1, both
+// zeros, the ends themselves, subnormals and infinities; NaN gives 0.
+TEST(UnitClamp, EqualsStdClampAndGivesZeroForNaN) {
+  std::mt19937_64 rng(20261206);
+  std::vector<double> xs = {0.0,
+                            -0.0,
+                            1.0,
+                            std::nextafter(1.0, 2.0),
+                            std::nextafter(1.0, 0.0),
+                            std::numeric_limits<double>::denorm_min(),
+                            -std::numeric_limits<double>::denorm_min(),
+                            std::numeric_limits<double>::infinity(),
+                            -std::numeric_limits<double>::infinity(),
+                            std::numeric_limits<double>::max(),
+                            std::numeric_limits<double>::lowest()};
+  std::uniform_real_distribution<double> u(-2.0, 3.0);
+  for (int i = 0; i < 10000; ++i) xs.push_back(u(rng));
+  int below = 0, inside = 0, above = 0;
+  for (double x : xs) {
+    EXPECT_EQ(unit_clamp(x), std::clamp(x, 0.0, 1.0)) << x;
+    below += x < 0.0;
+    inside += x > 0.0 && x < 1.0;
+    above += x > 1.0;
+  }
+  EXPECT_GT(std::min({below, inside, above}), 1000);
+  EXPECT_EQ(unit_clamp(std::numeric_limits<double>::quiet_NaN()), 0.0);
 }
 
 } // namespace

@@ -9,12 +9,31 @@
 #include <algorithm>
 #include <utility>
 
+#if defined(__SSE2__) || defined(_M_X64)
+#include <emmintrin.h>
+#endif
+
 namespace hullcover {
 
 /// The point of triangle a, b, c nearest to `p` (a degenerate triangle
 /// gives the nearest point of its three sides). Scene units; cannot fail.
 Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                           const Eigen::Vector3d& c);
+
+/// x clamped to [0, 1] by a max and a min, which compile to two
+/// instructions and no branch (std::clamp's comparisons branch, and the
+/// runtime's closest-point loops meet each side of the clamp at random);
+/// equal to std::clamp(x, 0.0, 1.0) for every x but NaN, which gives 0
+/// (and -0 gives +0, an equal value).
+inline double unit_clamp(double x) {
+#if defined(__SSE2__) || defined(_M_X64)
+  // maxsd(x, 0) is x > 0 ? x : 0 and minsd(y, 1) is y < 1 ? y : 1: as
+  // written, since compilers turn the plain min and max back into branches.
+  return _mm_cvtsd_f64(_mm_min_sd(_mm_max_sd(_mm_set_sd(x), _mm_setzero_pd()), _mm_set_sd(1.0)));
+#else
+  return x > 0.0 ? (x < 1.0 ? x : 1.0) : 0.0;
+#endif
+}
 
 /// The point of segment a-b nearest to `p` (`a` when a = b). Inline: the
 /// runtime's contact tests call it for every edge of a hull.
@@ -23,7 +42,7 @@ inline Eigen::Vector3d closest_point_on_segment(const Eigen::Vector3d& p, const 
   const Eigen::Vector3d ab = b - a;
   const double length2 = ab.squaredNorm();
   if (!(length2 > 0.0)) return a;
-  return a + std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) * ab;
+  return a + unit_clamp((p - a).dot(ab) / length2) * ab;
 }
 
 /// One segment p0-p1 with the terms every closest-points computation
@@ -51,21 +70,21 @@ inline std::pair<Eigen::Vector3d, Eigen::Vector3d> closest_points_of_segments(co
   double s = 0.0, t = 0.0;
   if (a == 0.0 && e == 0.0) return {p.start, q0};
   if (a == 0.0) {
-    t = std::clamp(f / e, 0.0, 1.0);
+    t = unit_clamp(f / e);
   } else {
     const double c = d1.dot(r);
     if (e == 0.0) {
-      s = std::clamp(-c / a, 0.0, 1.0);
+      s = unit_clamp(-c / a);
     } else {
       const double b = d1.dot(d2), denominator = a * e - b * b;
-      s = denominator > 0.0 ? std::clamp((b * f - c * e) / denominator, 0.0, 1.0) : 0.0; // parallel: any s
+      s = denominator > 0.0 ? unit_clamp((b * f - c * e) / denominator) : 0.0; // parallel: any s
       t = (b * s + f) / e;
       if (t < 0.0) {
         t = 0.0;
-        s = std::clamp(-c / a, 0.0, 1.0);
+        s = unit_clamp(-c / a);
       } else if (t > 1.0) {
         t = 1.0;
-        s = std::clamp((b - c) / a, 0.0, 1.0);
+        s = unit_clamp((b - c) / a);
       }
     }
   }
