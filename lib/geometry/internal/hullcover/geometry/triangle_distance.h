@@ -23,8 +23,8 @@ Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen:
 /// x clamped to [0, 1] by a max and a min, which compile to two
 /// instructions and no branch (std::clamp's comparisons branch, and the
 /// runtime's closest-point loops meet each side of the clamp at random);
-/// equal to std::clamp(x, 0.0, 1.0) for every x but NaN, which gives 0
-/// (and -0 gives +0, an equal value).
+/// equal to std::clamp(x, 0.0, 1.0) for every x but NaN (-0 gives +0, an
+/// equal value). Callers pass finite parameters.
 inline double unit_clamp(double x) {
 #if defined(__SSE2__) || defined(_M_X64)
   // maxsd(x, 0) is x > 0 ? x : 0 and minsd(y, 1) is y < 1 ? y : 1: as
