@@ -70,8 +70,9 @@ public:
 private:
   // Four planes as four lanes: n.x, n.y, n.z and the offset about the
   // hull's centre. A hull whose plane count is not a multiple of four
-  // repeats its first plane, which changes no test.
-  struct PlaneBlock {
+  // repeats its first plane, which changes no test. One cache line each,
+  // aligned to one.
+  struct alignas(64) PlaneBlock {
     float nx[4], ny[4], nz[4], d[4];
   };
   struct HullRecord {

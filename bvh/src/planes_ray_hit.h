@@ -93,8 +93,9 @@ inline std::optional<RayHit> first_hit_on_planes(const Plane* planes, int count,
 /// Two planes side by side, for the clip two at a time. A hull with an odd
 /// plane count pads its last pair with a plane of zero normal and the
 /// largest offset: parallel to every ray and behind every point, it
-/// changes no clip.
-struct PlanePair {
+/// changes no clip. One cache line each, aligned to one: a pair spread over
+/// two would cost two reads.
+struct alignas(64) PlanePair {
   double nx[2], ny[2], nz[2], offset[2];
 };
 
