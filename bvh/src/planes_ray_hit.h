@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <limits>
 #include <optional>
+#include <utility>
 
 // SSE2 where the compiler offers it (every x86-64 build); a build may set
 // HULLCOVER_PLANE_PAIRS_SSE2 to 0 for the plain loop, which gives the same
@@ -31,24 +32,29 @@
 
 namespace hullcover::bvh::detail {
 
+/// One plane's normal and offset, as a copy of a hull's planes stores it.
+struct PlaneTerms {
+  double nx, ny, nz, offset;
+};
+
 /// n . p - offset, as (n.x p.x + n.y p.y) + n.z p.z - offset: written out
 /// so that every copy of a hull's planes computes the same bits.
-inline double plane_height(double nx, double ny, double nz, double offset, const Eigen::Vector3d& p) {
-  return nx * p.x() + ny * p.y() + nz * p.z() - offset;
+inline double plane_height(const PlaneTerms& q, const Eigen::Vector3d& p) {
+  return q.nx * p.x() + q.ny * p.y() + q.nz * p.z() - q.offset;
 }
 /// n . v, in the same order.
-inline double plane_slope(double nx, double ny, double nz, const Eigen::Vector3d& v) {
-  return nx * v.x() + ny * v.y() + nz * v.z();
+inline double plane_slope(const PlaneTerms& q, const Eigen::Vector3d& v) {
+  return q.nx * v.x() + q.ny * v.y() + q.nz * v.z();
 }
 
-/// Of planes [0, facets), the one `p` is least deep behind (the first of
-/// equals).
-inline int least_deep_plane(const Plane* planes, int facets, const Eigen::Vector3d& p) {
+/// Of planes [0, facets) (plane_at(i): the PlaneTerms of plane i), the one
+/// `p` is least deep behind (the first of equals).
+template <typename PlaneAt>
+int least_deep_of(int facets, PlaneAt&& plane_at, const Eigen::Vector3d& p) {
   int best = 0;
   double most = -std::numeric_limits<double>::infinity();
   for (int f = 0; f < facets; ++f) {
-    const Plane& q = planes[f];
-    const double h = plane_height(q.normal.x(), q.normal.y(), q.normal.z(), q.offset, p);
+    const double h = plane_height(plane_at(f), p);
     if (f == 0 || h > most) {
       most = h;
       best = f;
@@ -57,19 +63,18 @@ inline int least_deep_plane(const Plane* planes, int facets, const Eigen::Vector
   return best;
 }
 
-/// First hit of origin + t * direction (unit), 0 <= t <= max_t, on the hull
-/// bounded by `count` planes whose first `facets` are its facets'. An
-/// origin inside hits at t = 0 with the normal of the facet it is least
-/// deep behind.
-inline std::optional<RayHit> first_hit_on_planes(const Plane* planes, int count, int facets,
-                                                 const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
-                                                 double max_t) {
+/// The clip one plane at a time: the entry (t > 0, or 0 when the origin is
+/// inside) and the plane entered through (-1: inside), or nothing on a
+/// miss.
+template <typename PlaneAt>
+std::optional<std::pair<double, int>> clip_one_plane_at_a_time(int count, PlaneAt&& plane_at,
+                                                               const Eigen::Vector3d& origin,
+                                                               const Eigen::Vector3d& direction, double max_t) {
   double enter = 0.0, leave = max_t;
   int entering_plane = -1;
   for (int i = 0; i < count; ++i) {
-    const Eigen::Vector3d& n = planes[i].normal;
-    const double dist = plane_height(n.x(), n.y(), n.z(), planes[i].offset, origin);
-    const double denom = plane_slope(n.x(), n.y(), n.z(), direction);
+    const PlaneTerms q = plane_at(i);
+    const double dist = plane_height(q, origin), denom = plane_slope(q, direction);
     if (denom == 0.0) {
       if (dist > 0.0) return std::nullopt;
       continue;
@@ -85,9 +90,43 @@ inline std::optional<RayHit> first_hit_on_planes(const Plane* planes, int count,
     }
     if (enter > leave) return std::nullopt;
   }
-  if (entering_plane < 0) // the origin is inside (or on) the hull
-    return RayHit{-1, 0.0, origin, planes[least_deep_plane(planes, facets, origin)].normal};
-  return RayHit{-1, enter, origin + enter * direction, planes[entering_plane].normal};
+  return std::make_pair(enter, entering_plane);
+}
+
+/// The hit of a clip's entry through plane `entering` (-1: the origin is
+/// inside, t = 0, with the normal of the facet it is least deep behind).
+template <typename PlaneAt>
+RayHit hit_of_clip(double enter, int entering, int facets, PlaneAt&& plane_at, const Eigen::Vector3d& origin,
+                   const Eigen::Vector3d& direction) {
+  const bool inside = entering < 0;
+  const PlaneTerms q = plane_at(inside ? least_deep_of(facets, plane_at, origin) : entering);
+  const Eigen::Vector3d normal(q.nx, q.ny, q.nz);
+  return inside ? RayHit{-1, 0.0, origin, normal} : RayHit{-1, enter, origin + enter * direction, normal};
+}
+
+/// The PlaneTerms of a hull's Plane.
+inline PlaneTerms terms_of(const Plane& plane) {
+  return {plane.normal.x(), plane.normal.y(), plane.normal.z(), plane.offset};
+}
+
+/// Of planes [0, facets), the one `p` is least deep behind (the first of
+/// equals).
+inline int least_deep_plane(const Plane* planes, int facets, const Eigen::Vector3d& p) {
+  return least_deep_of(
+      facets, [planes](int i) { return terms_of(planes[i]); }, p);
+}
+
+/// First hit of origin + t * direction (unit), 0 <= t <= max_t, on the hull
+/// bounded by `count` planes whose first `facets` are its facets'. An
+/// origin inside hits at t = 0 with the normal of the facet it is least
+/// deep behind.
+inline std::optional<RayHit> first_hit_on_planes(const Plane* planes, int count, int facets,
+                                                 const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                                                 double max_t) {
+  const auto plane_at = [planes](int i) { return terms_of(planes[i]); };
+  const auto clip = clip_one_plane_at_a_time(count, plane_at, origin, direction, max_t);
+  if (!clip) return std::nullopt;
+  return hit_of_clip(clip->first, clip->second, facets, plane_at, origin, direction);
 }
 
 /// Two planes side by side, for the clip two at a time. A hull with an odd
@@ -103,8 +142,10 @@ struct alignas(64) PlanePair {
 inline std::optional<RayHit> first_hit_on_plane_pairs(const PlanePair* pairs, int count, int facets,
                                                       const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                                                       double max_t) {
-  double enter = 0.0;
-  int entering_plane = -1;
+  const auto plane_at = [pairs](int i) {
+    const PlanePair& q = pairs[i / 2];
+    return PlaneTerms{q.nx[i % 2], q.ny[i % 2], q.nz[i % 2], q.offset[i % 2]};
+  };
 #if HULLCOVER_PLANE_PAIRS_SSE2
   const int pair_count = (count + 1) / 2;
   const __m128d ox = _mm_set1_pd(origin.x()), oy = _mm_set1_pd(origin.y()), oz = _mm_set1_pd(origin.z());
@@ -142,49 +183,12 @@ inline std::optional<RayHit> first_hit_on_plane_pairs(const PlanePair* pairs, in
   // The larger entry; at equal entries the lower plane (the one-at-a-time
   // clip keeps the first of equals).
   const int first = e[1] > e[0] || (e[1] == e[0] && f[1] >= 0.0 && (f[0] < 0.0 || f[1] < f[0])) ? 1 : 0;
-  enter = e[first];
-  entering_plane = static_cast<int>(f[first]);
+  return hit_of_clip(e[first], static_cast<int>(f[first]), facets, plane_at, origin, direction);
 #else
-  double leave = max_t;
-  for (int i = 0; i < count; ++i) {
-    const PlanePair& q = pairs[i / 2];
-    const int l = i % 2;
-    const double dist = plane_height(q.nx[l], q.ny[l], q.nz[l], q.offset[l], origin);
-    const double denom = plane_slope(q.nx[l], q.ny[l], q.nz[l], direction);
-    if (denom == 0.0) {
-      if (dist > 0.0) return std::nullopt;
-      continue;
-    }
-    const double t = -dist / denom;
-    if (denom < 0.0) {
-      if (t > enter) {
-        enter = t;
-        entering_plane = i;
-      }
-    } else {
-      leave = std::min(leave, t);
-    }
-    if (enter > leave) return std::nullopt;
-  }
+  const auto clip = clip_one_plane_at_a_time(count, plane_at, origin, direction, max_t);
+  if (!clip) return std::nullopt;
+  return hit_of_clip(clip->first, clip->second, facets, plane_at, origin, direction);
 #endif
-  const auto normal = [&](int i) {
-    const PlanePair& q = pairs[i / 2];
-    return Eigen::Vector3d(q.nx[i % 2], q.ny[i % 2], q.nz[i % 2]);
-  };
-  if (entering_plane < 0) { // the origin is inside (or on) the hull
-    int best = 0;
-    double most = -std::numeric_limits<double>::infinity();
-    for (int i = 0; i < facets; ++i) {
-      const PlanePair& q = pairs[i / 2];
-      const double h = plane_height(q.nx[i % 2], q.ny[i % 2], q.nz[i % 2], q.offset[i % 2], origin);
-      if (i == 0 || h > most) {
-        most = h;
-        best = i;
-      }
-    }
-    return RayHit{-1, 0.0, origin, normal(best)};
-  }
-  return RayHit{-1, enter, origin + enter * direction, normal(entering_plane)};
 }
 
 } // namespace hullcover::bvh::detail
