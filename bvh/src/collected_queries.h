@@ -176,6 +176,18 @@ Status ray_query(const Source& source, const RayRequest& request, RayResult& res
   });
 }
 
+template <typename Source>
+Status ray_blocked_query(const Source& source, const RayRequest& request, RayResult& result) {
+  AnyHitCollector<RayHit> any;
+  Status s = cast_ray_query(source, request, HullFilter{}, any);
+  result = {};
+  if (s.ok() && any.found()) {
+    result.hit = true;
+    result.first = any.hit();
+  }
+  return s;
+}
+
 // ---- Batches ------------------------------------------------------------------
 
 // Items per chunk a thread takes: small enough that threads finish
@@ -249,6 +261,10 @@ Status HullQueries<World>::ray_cast(const RayRequest& request, RayResult& result
   return detail::ray_query(static_cast<const World&>(*this).source(), request, result);
 }
 template <typename World>
+Status HullQueries<World>::ray_blocked(const RayRequest& request, RayResult& result) const {
+  return detail::ray_blocked_query(static_cast<const World&>(*this).source(), request, result);
+}
+template <typename World>
 Status HullQueries<World>::overlapping(const OverlapRequest& request, const HullFilter& filter,
                                        HitCollector<int>& collector) const {
   return detail::overlapping_query(static_cast<const World&>(*this).source(), request, filter, collector);
@@ -286,6 +302,14 @@ Status HullQueries<World>::ray_cast_batch(const std::vector<RayRequest>& request
   return detail::batch_query(
       source, requests, results, threads, "ray",
       [](const auto& src, const RayRequest& q, RayResult& r) { return detail::ray_query(src, q, r); });
+}
+template <typename World>
+Status HullQueries<World>::ray_blocked_batch(const std::vector<RayRequest>& requests, std::vector<RayResult>& results,
+                                             QueryThreads* threads) const {
+  const auto source = static_cast<const World&>(*this).source();
+  return detail::batch_query(
+      source, requests, results, threads, "ray",
+      [](const auto& src, const RayRequest& q, RayResult& r) { return detail::ray_blocked_query(src, q, r); });
 }
 
 } // namespace hullcover::bvh

@@ -306,6 +306,21 @@ void register_probe(const std::string& name, const std::shared_ptr<const Scene>&
         state, kPoses, [&](int i) { benchmark::DoNotOptimize(s->hulls->ray_cast(probe->rays[i], r)); },
         [&](int i) { benchmark::DoNotOptimize(s->triangles->ray_cast(probe->rays[i], r)); });
   });
+  // The any-hit ray (a line of sight) against the nearest hit, both on the
+  // hulls: speedup = the nearest hit's time over the any-hit's.
+  reg("ray_blocked", [s, probe](benchmark::State& state) {
+    RayResult r;
+    in_turn(
+        state, kPoses,
+        [&] {
+      for (int i = 0; i < kPoses; ++i) benchmark::DoNotOptimize(s->hulls->ray_blocked(probe->rays[i], r));
+        },
+        "blocked",
+        [&] {
+      for (int i = 0; i < kPoses; ++i) benchmark::DoNotOptimize(s->hulls->ray_cast(probe->rays[i], r));
+    },
+        "nearest", false);
+  });
   // The batch: one call for all poses' rays against as many single casts on
   // the triangles (they have no batch); reported per ray.
   reg("ray_batch", [s, probe](benchmark::State& state) {
@@ -413,6 +428,7 @@ const char* const kRows[] = {"touches_capsule",
                              "ray_batch",
                              "contacts_batch_threads",
                              "ray_batch_threads",
+                             "ray_blocked",
                              "distance_sphere",
                              "sliding_sphere",
                              "sliding_capsule"};

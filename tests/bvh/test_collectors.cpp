@@ -75,6 +75,30 @@ TEST(Collectors, EveryCollectorAgreesWithThePlainCalls) {
   EXPECT_GT(hit, 30);
 }
 
+// ray_blocked: blocked exactly when ray_cast hits, by a hull the ray really
+// hits there (that hull's own first hit, never nearer than ray_cast's).
+TEST(Collectors, ABlockedRayIsOneRayCastHitsAndNamesAHullItHits) {
+  const auto world = box_field();
+  const std::vector<RuntimeHull>& hulls = world->hulls();
+  int blocked = 0;
+  for (const Probe& p : probes(300)) {
+    RayResult nearest, any;
+    ASSERT_TRUE(world->ray_cast(p.ray, nearest).ok());
+    ASSERT_TRUE(world->ray_blocked(p.ray, any).ok());
+    ASSERT_EQ(any.hit, nearest.hit);
+    if (!any.hit) continue;
+    ++blocked;
+    const std::optional<RayHit> own =
+        ray_hit(hulls[any.first.hull], p.ray.origin, p.ray.direction.normalized(), p.ray.max_distance);
+    ASSERT_TRUE(own.has_value());
+    EXPECT_EQ(own->t, any.first.t);
+    EXPECT_EQ(own->point, any.first.point);
+    EXPECT_EQ(own->normal, any.first.normal);
+    EXPECT_GE(any.first.t, nearest.first.t);
+  }
+  EXPECT_GT(blocked, 30);
+}
+
 // Hulls of one material are skipped by the mask, and hulls a predicate
 // refuses by it: the answers are those of a world without those hulls.
 TEST(Collectors, FiltersSkipExactlyTheHullsTheyRefuse) {

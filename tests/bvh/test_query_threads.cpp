@@ -29,10 +29,18 @@ TEST(QueryThreads, BatchesAnswerAlikeOnAnyThreadCount) {
   }
   std::vector<ContactResult> c1, cn;
   std::vector<TouchResult> t1, tn;
-  std::vector<RayResult> r1, rn;
+  std::vector<RayResult> r1, rn, b1, bn;
   ASSERT_TRUE(world->contacts_batch(contacts, c1).ok());
   ASSERT_TRUE(world->touches_batch(touches, t1).ok());
   ASSERT_TRUE(world->ray_cast_batch(rays, r1).ok());
+  ASSERT_TRUE(world->ray_blocked_batch(rays, b1).ok());
+  for (size_t i = 0; i < rays.size(); ++i) {
+    RayResult one;
+    ASSERT_TRUE(world->ray_blocked(rays[i], one).ok());
+    EXPECT_EQ(one.hit, b1[i].hit) << i;
+    EXPECT_EQ(one.first.hull, b1[i].first.hull) << i;
+    EXPECT_EQ(one.first.t, b1[i].first.t) << i;
+  }
   for (size_t i = 0; i < contacts.size(); ++i) {
     ContactResult one;
     ASSERT_TRUE(world->contacts(contacts[i], one).ok());
@@ -45,6 +53,7 @@ TEST(QueryThreads, BatchesAnswerAlikeOnAnyThreadCount) {
     ASSERT_TRUE(world->contacts_batch(contacts, cn, pool.value().get()).ok());
     ASSERT_TRUE(world->touches_batch(touches, tn, pool.value().get()).ok());
     ASSERT_TRUE(world->ray_cast_batch(rays, rn, pool.value().get()).ok());
+    ASSERT_TRUE(world->ray_blocked_batch(rays, bn, pool.value().get()).ok());
     ASSERT_EQ(cn.size(), contacts.size());
     for (size_t i = 0; i < contacts.size(); ++i) {
       EXPECT_TRUE(same_contacts(cn[i].contacts, c1[i].contacts)) << threads << " threads, request " << i;
@@ -53,6 +62,11 @@ TEST(QueryThreads, BatchesAnswerAlikeOnAnyThreadCount) {
       EXPECT_EQ(rn[i].hit, r1[i].hit) << i;
       EXPECT_EQ(rn[i].first.hull, r1[i].first.hull) << i;
       EXPECT_EQ(rn[i].first.t, r1[i].first.t) << i;
+    }
+    for (size_t i = 0; i < rays.size(); ++i) {
+      EXPECT_EQ(bn[i].hit, b1[i].hit) << threads << " threads, ray " << i;
+      EXPECT_EQ(bn[i].first.hull, b1[i].first.hull) << i;
+      EXPECT_EQ(bn[i].first.t, b1[i].first.t) << i;
     }
   }
 }

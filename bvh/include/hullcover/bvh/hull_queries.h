@@ -37,13 +37,21 @@ public:
   /// Fails with `invalid_argument` as check_ray_request does. The tree is
   /// walked nearer boxes first and pruned at the best hit so far.
   [[nodiscard]] Status ray_cast(const RayRequest& request, RayResult& result) const;
+  /// Whether any hull lies on the ray within max_distance: a line of
+  /// sight is clear when it is not. The walk stops at the first hull it
+  /// finds hit, so it costs at most what ray_cast() does; `result.hit` is
+  /// ray_cast()'s, and `result.first` is that hull's own first hit, which
+  /// need not be the nearest (the same one every time). Fails as ray_cast().
+  [[nodiscard]] Status ray_blocked(const RayRequest& request, RayResult& result) const;
 
   /// The collector forms (collectors.h, after Jolt's NarrowPhaseQuery):
   /// each hull `filter` admits is tested, and each hit handed to
   /// `collector` (reset first) in walk order, until it stops the walk.
-  /// Fail as the plain calls do. The plain calls are these with a
-  /// collector of their own: touches() an AnyHitCollector, overlap() and
-  /// contacts() every hit then sorted, ray_cast() the closest.
+  /// Fail as the plain calls do. The plain calls give these answers with
+  /// a collector of their own: touches() an AnyHitCollector, overlap() and
+  /// contacts() every hit then sorted, ray_cast() the closest (kept by the
+  /// walk itself, without a collector to call through), and ray_blocked()
+  /// an AnyHitCollector.
   ///
   /// Every hull the shape touches, as its index.
   [[nodiscard]] Status overlapping(const OverlapRequest& request, const HullFilter& filter,
@@ -70,6 +78,9 @@ public:
   /// ray_cast() for each request, as touches_batch.
   [[nodiscard]] Status ray_cast_batch(const std::vector<RayRequest>& requests, std::vector<RayResult>& results,
                                       QueryThreads* threads = nullptr) const;
+  /// ray_blocked() for each request, as touches_batch.
+  [[nodiscard]] Status ray_blocked_batch(const std::vector<RayRequest>& requests, std::vector<RayResult>& results,
+                                         QueryThreads* threads = nullptr) const;
   /// Fails as overlap does. The distance is exact for every shape: spheres
   /// and capsules from their axis, boxes and convex shapes from closest
   /// features (closest_between; FCL's GJK distance was found to
