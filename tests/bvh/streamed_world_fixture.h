@@ -77,6 +77,9 @@ Answers ask(const World& world, const Pose& p, const std::vector<int>* global = 
   EXPECT_TRUE(world.contacts({p.shape, p.pose, 6}, a.contacts).ok());
   for (Contact& c : a.contacts.contacts) name(c.hull);
   EXPECT_TRUE(world.ray_cast(p.ray, a.ray).ok());
+  RayResult blocked; // the line of sight is blocked exactly when the ray hits
+  EXPECT_TRUE(world.ray_blocked(p.ray, blocked).ok());
+  EXPECT_EQ(blocked.hit, a.ray.hit);
   name(a.ray.first.hull);
   EXPECT_TRUE(world.distance({p.shape, p.pose}, a.distance).ok());
   name(a.distance.hull);
