@@ -69,6 +69,10 @@ def test_rays_overlaps_and_contacts_answer_in_arrays():
     assert t[0] == pytest.approx(4.0, abs=1e-12) and math.isinf(t[1])
     assert hull.tolist() == [0, -1]
     assert np.allclose(point[0], [0.5, 0.5, 1.0]) and np.allclose(normal[0], [0.0, 0.0, 1.0])
+    # Lines of sight: blocked exactly where a ray hits, and not by a hull
+    # beyond max_distance (the cube's top is 4 below the first origin).
+    assert w.rays_blocked(origins, directions).tolist() == [True, False]
+    assert w.rays_blocked(origins, directions, max_distance=3.9).tolist() == [False, False]
 
     centres = np.array([[0.5, 0.5, 1.2], [0.5, 0.5, 2.0]])
     assert w.overlaps("sphere", centres, radius=0.3).tolist() == [True, False]

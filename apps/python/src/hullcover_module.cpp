@@ -125,25 +125,39 @@ WorldPtr world_of(std::vector<bvh::RuntimeHull> hulls) {
   return std::const_pointer_cast<World>(built.value());
 }
 
-// Rays: origins and directions (n, 3), max distance (scalar). Returns
-// (hit bool (n,), t (n,), hull (n,), point (n, 3), normal (n, 3)).
-py::tuple cast_rays(const World& world, const Points& origins, const Points& directions, double max_distance) {
+// The rays of origins and directions (n, 3) and a max distance (scalar).
+std::vector<bvh::RayRequest> rays_of(const Points& origins, const Points& directions, double max_distance) {
   const std::vector<Eigen::Vector3d> o = rows_of(origins, "origins"), d = rows_of(directions, "directions");
   if (o.size() != d.size()) throw py::value_error("origins and directions must have as many rows");
   std::vector<bvh::RayRequest> requests(o.size());
   for (size_t i = 0; i < o.size(); ++i) requests[i] = {o[i], d[i], max_distance};
+  return requests;
+}
+
+// A ray batch (ray_cast_batch or ray_blocked_batch) without the GIL.
+template <typename Batch>
+std::vector<bvh::RayResult> ray_batch(const std::vector<bvh::RayRequest>& requests, Batch&& batch) {
   std::vector<bvh::RayResult> results;
   Status status;
   {
     py::gil_scoped_release unlocked;
-    status = world.ray_cast_batch(requests, results);
+    status = batch(requests, results);
   }
   if (!status.ok()) raise(status);
-  const py::ssize_t n = static_cast<py::ssize_t>(o.size());
+  return results;
+}
+
+// Rays: origins and directions (n, 3), max distance (scalar). Returns
+// (hit bool (n,), t (n,), hull (n,), point (n, 3), normal (n, 3)).
+py::tuple cast_rays(const World& world, const Points& origins, const Points& directions, double max_distance) {
+  const std::vector<bvh::RayRequest> requests = rays_of(origins, directions, max_distance);
+  const std::vector<bvh::RayResult> results =
+      ray_batch(requests, [&](const auto& q, auto& r) { return world.ray_cast_batch(q, r); });
+  const py::ssize_t n = static_cast<py::ssize_t>(requests.size());
   py::array_t<bool> hit(n);
   py::array_t<double> t(n);
   py::array_t<std::int32_t> hull(n);
-  std::vector<Eigen::Vector3d> points(o.size()), normals(o.size());
+  std::vector<Eigen::Vector3d> points(requests.size()), normals(requests.size());
   auto h = hit.mutable_unchecked<1>();
   auto tt = t.mutable_unchecked<1>();
   auto hh = hull.mutable_unchecked<1>();
@@ -155,6 +169,19 @@ py::tuple cast_rays(const World& world, const Points& origins, const Points& dir
     normals[i] = results[i].first.normal;
   }
   return py::make_tuple(hit, t, hull, array_of(points), array_of(normals));
+}
+
+// Lines of sight: whether each ray meets any hull within max_distance
+// (ray_blocked_batch: stops at the first hull found). Returns bool (n,).
+py::array_t<bool> rays_blocked(const World& world, const Points& origins, const Points& directions,
+                               double max_distance) {
+  const std::vector<bvh::RayRequest> requests = rays_of(origins, directions, max_distance);
+  const std::vector<bvh::RayResult> results =
+      ray_batch(requests, [&](const auto& q, auto& r) { return world.ray_blocked_batch(q, r); });
+  py::array_t<bool> blocked(static_cast<py::ssize_t>(results.size()));
+  auto b = blocked.mutable_unchecked<1>();
+  for (size_t i = 0; i < results.size(); ++i) b(static_cast<py::ssize_t>(i)) = results[i].hit;
+  return blocked;
 }
 
 // The query shape of row i: spheres (radius), capsules along z (radius,
@@ -302,6 +329,8 @@ PYBIND11_MODULE(_hullcover, m) {
           })
       .def("__len__", [](const World& w) { return w.hulls().size(); })
       .def("cast_rays", &cast_rays, py::arg("origins"), py::arg("directions"),
+           py::arg("max_distance") = std::numeric_limits<double>::infinity())
+      .def("rays_blocked", &rays_blocked, py::arg("origins"), py::arg("directions"),
            py::arg("max_distance") = std::numeric_limits<double>::infinity())
       .def("overlaps", &overlaps, py::arg("shape"), py::arg("centres"), py::arg("radius"), py::arg("half_height") = 0.0)
       .def("contacts", &deepest_contacts, py::arg("shape"), py::arg("centres"), py::arg("radius"),
