@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace hullcover {
@@ -109,6 +110,52 @@ TEST(TrianglesWithin, AnswersAsTheDistanceComparedAtEveryThreshold) {
   EXPECT_EQ(triangle_distance(s, t), inf);
   for (const double threshold : {0.0, 1e300, inf, nan})
     EXPECT_EQ(triangles_within(s, t, threshold), triangle_distance(s, t) <= threshold) << threshold;
+}
+
+// Ericson's closest points of two segments with the re-clamp of s written
+// as branches: what closest_points_of_segments computes with masks. `side`
+// says which re-clamp ran (-1: t below 0, 1: t above 1, 0: none).
+std::pair<Eigen::Vector3d, Eigen::Vector3d> branching_closest_points(const Eigen::Vector3d& p0,
+                                                                     const Eigen::Vector3d& p1,
+                                                                     const Eigen::Vector3d& q0,
+                                                                     const Eigen::Vector3d& q1, int& side) {
+  const Eigen::Vector3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r), c = d1.dot(r), b = d1.dot(d2);
+  const double denominator = a * e - b * b;
+  double s = denominator > 0.0 ? std::clamp((b * f - c * e) / denominator, 0.0, 1.0) : 0.0;
+  double t = (b * s + f) / e;
+  side = 0;
+  if (t < 0.0) {
+    t = 0.0;
+    s = std::clamp(-c / a, 0.0, 1.0);
+    side = -1;
+  } else if (t > 1.0) {
+    t = 1.0;
+    s = std::clamp((b - c) / a, 0.0, 1.0);
+    side = 1;
+  }
+  return {p0 + s * d1, q0 + t * d2};
+}
+
+// Segments of every length and direction, parallel ones included: the
+// same points, bit for bit, as the branching form, with t past either end
+// met many times.
+TEST(SegmentDistance, ClosestPointsEqualTheBranchingForm) {
+  std::mt19937 rng(20261206);
+  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  int past[3] = {0, 0, 0};
+  for (int i = 0; i < 20000; ++i) {
+    const Eigen::Vector3d p0(u(rng), u(rng), u(rng)), q0(u(rng), u(rng), u(rng));
+    Eigen::Vector3d p1(u(rng), u(rng), u(rng)), q1(u(rng), u(rng), u(rng));
+    if (i % 10 == 0) q1 = q0 + 0.5 * (p1 - p0); // parallel
+    int side = 0;
+    const auto expected = branching_closest_points(p0, p1, q0, q1, side);
+    const auto got = closest_points_of_segments(p0, p1, q0, q1);
+    ASSERT_EQ(got.first, expected.first) << i;
+    ASSERT_EQ(got.second, expected.second) << i;
+    ++past[side + 1];
+  }
+  EXPECT_GT(std::min({past[0], past[1], past[2]}), 2000);
 }
 
 // The branch-free clamp of the closest-point parameters equals

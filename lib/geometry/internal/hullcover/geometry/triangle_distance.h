@@ -79,6 +79,22 @@ inline std::pair<Eigen::Vector3d, Eigen::Vector3d> closest_points_of_segments(co
       const double b = d1.dot(d2), denominator = a * e - b * b;
       s = denominator > 0.0 ? unit_clamp((b * f - c * e) / denominator) : 0.0; // parallel: any s
       t = (b * s + f) / e;
+#if defined(__SSE2__) || defined(_M_X64)
+      // t past an end moves it there and s to the point nearest that end.
+      // Along a hull's edges t falls on either side at random, so both
+      // new s are computed (one division for the two) and the one t calls
+      // for is chosen by masks, not branches; the same values as below.
+      const __m128d again = _mm_div_pd(_mm_set_pd(b - c, -c), _mm_set1_pd(a));
+      const __m128d past_start = _mm_set_sd(unit_clamp(_mm_cvtsd_f64(again)));
+      const __m128d past_end = _mm_set_sd(unit_clamp(_mm_cvtsd_f64(_mm_unpackhi_pd(again, again))));
+      const __m128d tv = _mm_set_sd(t), one = _mm_set_sd(1.0);
+      const __m128d below = _mm_cmplt_sd(tv, _mm_setzero_pd()), above = _mm_cmpgt_sd(tv, one);
+      const auto pick = [](__m128d mask, __m128d yes, __m128d no) {
+        return _mm_or_pd(_mm_and_pd(mask, yes), _mm_andnot_pd(mask, no));
+      };
+      s = _mm_cvtsd_f64(pick(below, past_start, pick(above, past_end, _mm_set_sd(s))));
+      t = _mm_cvtsd_f64(pick(below, _mm_setzero_pd(), pick(above, one, tv)));
+#else
       if (t < 0.0) {
         t = 0.0;
         s = unit_clamp(-c / a);
@@ -86,6 +102,7 @@ inline std::pair<Eigen::Vector3d, Eigen::Vector3d> closest_points_of_segments(co
         t = 1.0;
         s = unit_clamp((b - c) / a);
       }
+#endif
     }
   }
   return {p.start + s * d1, q0 + t * d2};
