@@ -76,7 +76,8 @@ struct ThreadRun {
   Status failure;
   /// Per character of `characters`: the hulls its shrunk capsule overlaps at the end.
   std::vector<std::vector<int>> inside;
-  std::int64_t shots = 0, shot_hits = 0; ///< rays cast on the rays world, and those that hit
+  std::int64_t shots = 0, shot_hits = 0;         ///< rays cast on the rays world, and those that hit
+  std::int64_t sight_lines = 0, sight_clear = 0; ///< lines of sight to the next character, and those clear
 };
 
 void print_usage(const char* program) {
@@ -99,7 +100,8 @@ void print_usage(const char* program) {
       "  --radius R           capsule radius, scene units (default 0.4 m)\n"
       "  --half-height H      half the capsule's axis segment, scene units (default 0.5 m)\n"
       "  --skin E             gap kept from hulls, scene units (default 0.02 m; radius > 2 E)\n"
-      "  --rays-world F.hcw   cast each character's shots (16, level, in random directions)\n"
+      "  --rays-world F.hcw   cast each character's shots (16, level, in random directions) and\n"
+      "                       its line of sight to the next character of its thread\n"
       "                       on this world: the exact covering, when WORLD.hcw is a\n"
       "                       movement covering (`decompose --agent-reach`), which keeps no rays\n"
       "  -h, --help           this text\n"
@@ -191,7 +193,8 @@ bool parse_command_line(int argc, char** argv, ServerOptions& options, bool& hel
 }
 
 /// Casts kShotsPerCharacter level rays from each of `run`'s characters, in
-/// directions drawn from its own stream, on `rays`.
+/// directions drawn from its own stream, on `rays`, and checks each one's
+/// line of sight to the next character of the run there.
 void fire_shots(const bvh::HullWorld& rays, int up_axis, ThreadRun& run) {
   for (Character& character : run.characters)
     for (int shot = 0; shot < kShotsPerCharacter; ++shot) {
@@ -208,6 +211,19 @@ void fire_shots(const bvh::HullWorld& rays, int up_axis, ThreadRun& run) {
       ++run.shots;
       run.shot_hits += result.hit ? 1 : 0;
     }
+  // Lines of sight: any hull between two characters blocks it, wherever
+  // it lies, so the walk may stop at the first hull it finds hit.
+  for (size_t i = 0; i + 1 < run.characters.size(); ++i) {
+    const Eigen::Vector3d from = run.characters[i].position, to = run.characters[i + 1].position;
+    if (!((to - from).norm() > 0.0)) continue;
+    bvh::RayResult result;
+    if (Status s = rays.ray_blocked({from, to - from, (to - from).norm()}, result); !s.ok()) {
+      run.failure = s;
+      return;
+    }
+    ++run.sight_lines;
+    run.sight_clear += result.hit ? 0 : 1;
+  }
 }
 
 /// Moves `run`'s characters until the thread has swept `sweeps` times, then
@@ -353,13 +369,17 @@ int serve(const ServerOptions& options) {
                   c.position.z(), hull_list.c_str());
     }
   if (rays) {
-    std::int64_t shots = 0, hits = 0;
+    std::int64_t shots = 0, hits = 0, lines = 0, clear = 0;
     for (const ThreadRun& run : runs) {
       shots += run.shots;
       hits += run.shot_hits;
+      lines += run.sight_lines;
+      clear += run.sight_clear;
     }
     std::printf("shots: %lld rays on %s (%zu hulls), %lld hit\n", static_cast<long long>(shots),
                 options.rays_world_path.c_str(), rays->hulls().size(), static_cast<long long>(hits));
+    std::printf("sight lines: %lld between characters, %lld clear\n", static_cast<long long>(lines),
+                static_cast<long long>(clear));
   }
   std::printf("characters ended inside a hull: %d of %d\n", ended_inside, options.characters);
   return ended_inside > 0 ? kExitEndedInside : kExitSuccess;
