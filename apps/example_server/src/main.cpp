@@ -193,8 +193,7 @@ bool parse_command_line(int argc, char** argv, ServerOptions& options, bool& hel
 }
 
 /// Casts kShotsPerCharacter level rays from each of `run`'s characters, in
-/// directions drawn from its own stream, on `rays`, and checks each one's
-/// line of sight to the next character of the run there.
+/// directions drawn from its own stream, on `rays`.
 void fire_shots(const bvh::HullWorld& rays, int up_axis, ThreadRun& run) {
   for (Character& character : run.characters)
     for (int shot = 0; shot < kShotsPerCharacter; ++shot) {
@@ -211,13 +210,19 @@ void fire_shots(const bvh::HullWorld& rays, int up_axis, ThreadRun& run) {
       ++run.shots;
       run.shot_hits += result.hit ? 1 : 0;
     }
-  // Lines of sight: any hull between two characters blocks it, wherever
-  // it lies, so the walk may stop at the first hull it finds hit.
+}
+
+/// Checks each of `run`'s characters' line of sight to the next one on
+/// `rays`: any hull between them blocks it, wherever it lies, so the walk
+/// may stop at the first hull it finds hit (ray_blocked).
+void check_lines_of_sight(const bvh::HullWorld& rays, ThreadRun& run) {
   for (size_t i = 0; i + 1 < run.characters.size(); ++i) {
-    const Eigen::Vector3d from = run.characters[i].position, to = run.characters[i + 1].position;
-    if (!((to - from).norm() > 0.0)) continue;
+    const Eigen::Vector3d from = run.characters[i].position;
+    const Eigen::Vector3d along = run.characters[i + 1].position - from;
+    const double length = along.norm();
+    if (!(length > 0.0)) continue;
     bvh::RayResult result;
-    if (Status s = rays.ray_blocked({from, to - from, (to - from).norm()}, result); !s.ok()) {
+    if (Status s = rays.ray_blocked({from, along, length}, result); !s.ok()) {
       run.failure = s;
       return;
     }
@@ -227,7 +232,8 @@ void fire_shots(const bvh::HullWorld& rays, int up_axis, ThreadRun& run) {
 }
 
 /// Moves `run`'s characters until the thread has swept `sweeps` times, then
-/// checks where each ended and, with a rays world, fires their shots.
+/// checks where each ended and, with a rays world, fires their shots and
+/// checks their lines of sight.
 /// Touches nothing but `run` and the const worlds.
 void move_characters(const CharacterController& controller, std::int64_t sweeps, const bvh::HullWorld* rays,
                      int up_axis, ThreadRun& run) {
@@ -250,7 +256,10 @@ void move_characters(const CharacterController& controller, std::int64_t sweeps,
       run.failure = s;
       return;
     }
-  if (rays) fire_shots(*rays, up_axis, run);
+  if (rays) {
+    fire_shots(*rays, up_axis, run);
+    if (run.failure.ok()) check_lines_of_sight(*rays, run);
+  }
 }
 
 /// The world in `path`, or nothing after a message.
