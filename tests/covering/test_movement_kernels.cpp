@@ -143,11 +143,11 @@ TEST(ReachGrid, ABoxMeetsAReachableCellExactlyWhenOneOfItsCellsIs) {
     bool any = false;
     for (int k = lo[2]; k <= hi[2] && !any; ++k)
       for (int j = lo[1]; j <= hi[1] && !any; ++j)
-        for (int i = lo[0]; i <= hi[0] && !any; ++i) any = grid.reachable(grid.index(i, j, k));
+        for (int i = lo[0]; i <= hi[0] && !any; ++i) any = grid.reachable(i, j, k);
     ASSERT_EQ(grid.any_reachable(box), any) << "trial " << trial;
     reached += any;
     const V p = box.min;
-    EXPECT_EQ(grid.reachable_at(p), grid.reachable(grid.index(lo[0], lo[1], lo[2])));
+    EXPECT_EQ(grid.reachable_at(p), grid.reachable(lo[0], lo[1], lo[2]));
   }
   EXPECT_GT(reached, 100); // the boxes found reachable cells and empty space alike
   EXPECT_LT(reached, 1900);
@@ -207,6 +207,58 @@ TEST(ReachGrid, AWalkerOnAHillsideStaysAboveIt) {
     EXPECT_FALSE(grid.value().reachable_at(under));
     EXPECT_FALSE(grid.value().reachable_at(V(1, slope - 1.0, 1).cwiseProduct(flip)));
   }
+}
+
+// Two copies of the level 3 km apart, as the maps of a world: the grid
+// spans billions of cells (far past what a cell each could hold) but keeps
+// a byte a cell only near surfaces while it is built, and walkers and
+// flyers reach what they reach in each copy alone; the flyer crosses the
+// empty sky between them, block by block.
+TEST(ReachGrid, TwoLevelsFarApartEachReachWhatTheyReachAlone) {
+  const test::MovementLevel level = test::movement_level();
+  const V apart(3000, 0, 3000);
+  Mesh world = level.mesh;
+  for (const V& p : level.mesh.positions) world.positions.push_back(p + apart);
+  const int offset = static_cast<int>(level.mesh.positions.size());
+  for (const Eigen::Vector3i& t : level.mesh.triangles) world.triangles.push_back(t.array() + offset);
+  const SceneClearance clearance(world);
+
+  const Result<ReachGrid> walking =
+      build_reach_grid(world, clearance, walker(), {level.spawn, level.spawn + apart}, true, 2);
+  ASSERT_TRUE(walking.ok()) << walking.status().message();
+  const ReachGrid& grid = walking.value();
+  EXPECT_GT(grid.cell_count(), 1LL << 32);
+  EXPECT_LT(grid.cells_held(), grid.cell_count() / 10000);
+  EXPECT_EQ(grid.seeds_used, 2);
+  for (const V& shift : {V(0, 0, 0), apart}) {
+    EXPECT_TRUE(grid.reachable_at(level.spawn + shift));
+    EXPECT_TRUE(grid.reachable_at(V(6, 1.0, 2) + shift));
+    EXPECT_FALSE(grid.reachable_at(level.in_void + shift));
+    EXPECT_FALSE(grid.reachable_at(V(6, 3.0, 2) + shift));
+    EXPECT_FALSE(grid.reachable_at(level.on_balcony + shift));
+  }
+  EXPECT_FALSE(grid.reachable_at(0.5 * apart + V(0, 1, 0))); // no floor halfway
+
+  // A flyer from the first copy alone reaches the second copy's balcony.
+  const Result<ReachGrid> flying = build_reach_grid(world, clearance, walker(AgentReach::fly), {level.spawn}, true, 2);
+  ASSERT_TRUE(flying.ok()) << flying.status().message();
+  EXPECT_TRUE(flying.value().reachable_at(level.on_balcony + apart + V(0, 0.3, 0)));
+  EXPECT_TRUE(flying.value().reachable_at(0.5 * apart + V(0, 1, 0)));
+  EXPECT_FALSE(flying.value().reachable_at(level.in_void + apart));
+  EXPECT_LT(flying.value().cells_held(), flying.value().cell_count() / 10000);
+}
+
+// A scene wider than the grid's coordinates hold is refused with a message,
+// never allocated.
+TEST(ReachGrid, ASceneTooWideForTheGridIsRefused) {
+  Mesh far;
+  test::add_level_box(far, V(0, 0, 0), V(1, 1, 1));
+  test::add_level_box(far, V(1e6, 0, 0), V(1e6 + 1, 1, 1));
+  const SceneClearance clearance(far);
+  const Result<ReachGrid> grid = build_reach_grid(far, clearance, walker(), {}, false, 1);
+  ASSERT_FALSE(grid.ok());
+  EXPECT_EQ(grid.status().code(), StatusCode::limit_exceeded);
+  EXPECT_NE(grid.status().message().find("along an axis"), std::string::npos) << grid.status().message();
 }
 
 TEST(MovementProof, RefusesAHullAcrossTheFloorsCornerAndAcceptsTheCrate) {

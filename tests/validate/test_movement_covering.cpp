@@ -227,5 +227,50 @@ TEST(MovementAudit, FindsAHullInReachableSpaceAndAFloorWithoutItsHull) {
   EXPECT_GT(bare.contacts_lost, 0);
 }
 
+// Two copies of the level 256 m apart, as two maps of a world: the audit's
+// lattice spans hundreds of millions of points but examines only the
+// blocks near walkable faces. From a spawn in either copy it reaches about
+// as many centres (the far copy's coordinates round differently, and a
+// point exactly r from a face may fall either side), from both the sum of
+// the two, and it finds a block hung in the far copy's reachable space.
+TEST(MovementAudit, TwoLevelsFarApartAreAuditedAlike) {
+  const test::MovementLevel level = test::movement_level();
+  const V apart(256, 0, 256);
+  Mesh world = level.mesh;
+  for (const V& p : level.mesh.positions) world.positions.push_back(p + apart);
+  const int offset = static_cast<int>(level.mesh.positions.size());
+  for (const Eigen::Vector3i& t : level.mesh.triangles) world.triangles.push_back(t.array() + offset);
+  world.material_ids.assign(world.triangles.size(), 0);
+  MovementOptions options = walking_from(level);
+  options.seeds.push_back(level.spawn + apart);
+  const Made both = make(world, options);
+  std::vector<bvh::RuntimeHull> hulls = bvh::runtime_hulls(both.movement.covering);
+
+  validate::MovementAuditOptions audit;
+  audit.agent = options;
+  audit.spacing = 0.1;
+  const auto audit_from = [&](const std::vector<V>& seeds, const std::vector<bvh::RuntimeHull>& with) {
+    audit.agent.seeds = seeds;
+    Result<validate::MovementAuditReport> report = validate::audit_movement(both.prepared, with, audit, 2);
+    EXPECT_TRUE(report.ok()) << report.status().message();
+    return report.ok() ? report.value() : validate::MovementAuditReport{};
+  };
+  const validate::MovementAuditReport near = audit_from({level.spawn}, hulls);
+  const validate::MovementAuditReport far = audit_from({level.spawn + apart}, hulls);
+  const validate::MovementAuditReport twice = audit_from(options.seeds, hulls);
+  EXPECT_GT(twice.lattice_points, 1LL << 28);
+  EXPECT_GT(near.reachable_points, 10000);
+  EXPECT_NEAR(far.reachable_points, near.reachable_points, 0.02 * near.reachable_points);
+  EXPECT_EQ(twice.reachable_points, near.reachable_points + far.reachable_points);
+  EXPECT_EQ(twice.touching_poses, near.touching_poses + far.touching_poses);
+  EXPECT_TRUE(twice.clean());
+
+  hulls.push_back(test::box_hull(V(3, 0.8, 3) + apart, V(3.5, 1.0, 3.5) + apart));
+  EXPECT_EQ(audit_from({level.spawn}, hulls).sinking, 0);
+  const validate::MovementAuditReport blocked = audit_from({level.spawn + apart}, hulls);
+  EXPECT_GT(blocked.sinking, 0);
+  EXPECT_GT(blocked.deepest_at.x(), 250.0);
+}
+
 } // namespace
 } // namespace hullcover

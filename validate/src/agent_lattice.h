@@ -9,7 +9,9 @@
 
 #include "hullcover/covering/movement_options.h"
 #include "hullcover/geometry/aabb_tree.h"
+#include "hullcover/geometry/block_bytes.h"
 #include "hullcover/geometry/mesh.h"
+#include "hullcover/geometry/status.h"
 
 #include <cstdint>
 #include <vector>
@@ -36,18 +38,21 @@ struct TriangleDistances {
   double clearance(const Eigen::Vector3d& p, double limit) const;
 };
 
+/// The lattice's points, a byte each in blocks (block_bytes.h): a block of
+/// open air or solid ground is one byte, and, walking, blocks no walker
+/// reaches are never examined.
 struct AgentLattice {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   double spacing = 0.0;
   Eigen::Vector3i dims = Eigen::Vector3i::Zero();
   /// Per point, bits: kClearPoint (clearance >= r at the point itself) and
   /// kReachablePoint (a reachable centre); the others are the flood's own.
-  std::vector<std::uint8_t> flags;
+  /// A point in a block not examined reads 0.
+  BlockBytes flags{Eigen::Vector3i::Zero()};
   static constexpr std::uint8_t kClearPoint = 1;
   static constexpr std::uint8_t kReachablePoint = 2;
-  bool clear(long long i) const { return flags[i] & kClearPoint; }
-  bool reachable(long long i) const { return flags[i] & kReachablePoint; }
-  long long index(int i, int j, int k) const { return (static_cast<long long>(k) * dims.y() + j) * dims.x() + i; }
+  bool clear(int i, int j, int k) const { return flags.get(i, j, k) & kClearPoint; }
+  bool reachable(int i, int j, int k) const { return flags.get(i, j, k) & kReachablePoint; }
   Eigen::Vector3d point(int i, int j, int k) const { return origin + Eigen::Vector3d(i, j, k) * spacing; }
   long long size() const { return static_cast<long long>(dims.x()) * dims.y() * dims.z(); }
   /// Whether one of the 8 lattice points around `p` is reachable: for a
@@ -66,8 +71,12 @@ bool audit_walkable(const Mesh& mesh, const AuditAgent& agent, int f);
 inline constexpr double kWidestLatticeSpacingInRadii = 0.7;
 
 /// The lattice of `spacing` (at most kWidestLatticeSpacingInRadii x r)
-/// over `box`, flooded from `seeds` (each a point at clearance >= r).
-AgentLattice reach_lattice(const TriangleDistances& distances, const AuditAgent& agent, const Aabb& box, double spacing,
-                           const std::vector<Eigen::Vector3d>& seeds, int threads);
+/// over `box`, flooded from `seeds` (each a point at clearance >= r). A
+/// block of points is judged whole only when the clearance at its middle
+/// decides every point with `tol` to spare (1-Lipschitz), else point by
+/// point. Fails with `limit_exceeded` past `most_held` points held one by one.
+Result<AgentLattice> reach_lattice(const TriangleDistances& distances, const AuditAgent& agent, const Aabb& box,
+                                   double spacing, const std::vector<Eigen::Vector3d>& seeds, double tol,
+                                   long long most_held, int threads);
 
 } // namespace hullcover::validate::detail

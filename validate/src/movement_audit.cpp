@@ -57,7 +57,7 @@ std::vector<Eigen::Vector3d> definition_seeds(const detail::TriangleDistances& d
   return seeds;
 }
 
-// What one slab of the lattice found (added up in slab order).
+// What one block of the lattice, or one face, found (added up in order).
 struct Findings {
   long long clear = 0, reachable = 0, sinking = 0, touching = 0, lost = 0;
   Status failure; ///< a runtime query that failed (the audit then fails with it)
@@ -114,67 +114,86 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
   double spacing = options.spacing > 0.0 ? options.spacing : kDefaultAuditSpacingInRadii * agent.radius;
   const Eigen::Vector3d extent = box.max - box.min;
   const auto points_at = [&](double s) { return ((extent / s).array().floor() + 1.0).prod(); };
+  const auto widest_axis_at = [&](double s) { return ((extent / s).array().floor() + 1.0).maxCoeff(); };
+  const auto fits = [&](double s) {
+    return points_at(s) <= static_cast<double>(kMostAuditLatticePoints) &&
+           widest_axis_at(s) < static_cast<double>(kMostCellsAlongAnAxis);
+  };
   const double widest = detail::kWidestLatticeSpacingInRadii * agent.radius;
   if (options.spacing > widest)
     return Status{StatusCode::invalid_argument, "the lattice spacing must be at most " +
                                                     std::to_string(detail::kWidestLatticeSpacingInRadii) +
                                                     " x the agent radius"};
   // The default spacing widens to fit; a given one is kept or refused.
-  while (options.spacing <= 0.0 && points_at(spacing) > static_cast<double>(kMostAuditLatticePoints) &&
-         spacing < widest)
-    spacing = std::min(widest, 1.25 * spacing);
-  if (points_at(spacing) > static_cast<double>(kMostAuditLatticePoints)) {
+  while (options.spacing <= 0.0 && !fits(spacing) && spacing < widest) spacing = std::min(widest, 1.25 * spacing);
+  if (!fits(spacing)) {
     char count[32];
     std::snprintf(count, sizeof count, "%.3g", points_at(spacing));
-    return Status{StatusCode::limit_exceeded, std::string("the movement audit's lattice would need ") + count +
+    return Status{StatusCode::limit_exceeded, std::string("the movement audit's lattice would span ") + count +
                                                   " points (at most " + std::to_string(kMostAuditLatticePoints) +
-                                                  "): a wider --lattice-spacing, or a part of the scene"};
+                                                  ", and " + std::to_string(kMostCellsAlongAnAxis - 1) +
+                                                  " along an axis): a wider --lattice-spacing, or a part of the scene"};
   }
   report.spacing = spacing;
-  AgentLattice lattice = detail::reach_lattice(distances, agent, box, spacing, seeds, threads);
+  Result<AgentLattice> reached =
+      detail::reach_lattice(distances, agent, box, spacing, seeds, tol, kMostAuditLatticePointsHeld, threads);
+  if (!reached.ok()) return reached.status();
+  AgentLattice& lattice = reached.value();
+  BlockBytes& flags = lattice.flags;
   if (options.agent.seeds.empty() && !agent.walking && seeds.empty())
-    for (std::uint8_t& f : lattice.flags)
-      if (f & AgentLattice::kClearPoint) f |= AgentLattice::kReachablePoint;
+    for (long long b = 0; b < flags.block_count(); ++b) {
+      if (flags.uniform(b) && (flags.uniform_byte(b) & AgentLattice::kClearPoint))
+        flags.uniform_byte(b) |= AgentLattice::kReachablePoint;
+      if (std::uint8_t* held = flags.held(b))
+        for (int c = 0; c < BlockBytes::kCells; ++c)
+          if (held[c] & AgentLattice::kClearPoint) held[c] |= AgentLattice::kReachablePoint;
+    }
   report.lattice_points = lattice.size();
 
-  // Reachable centres: each ball of radius r sinks at most E + tol into the hulls.
+  // Reachable centres: each ball of radius r sinks at most E + tol into the
+  // hulls. Block by block (a block not examined holds no reachable point).
   const double r = agent.radius;
-  std::vector<Findings> slabs(lattice.dims.z());
-  parallel_for(lattice.dims.z(), threads, [&](int k) {
-    Findings& f = slabs[k];
-    for (int j = 0; j < lattice.dims.y(); ++j)
-      for (int i = 0; i < lattice.dims.x(); ++i) {
-        const long long at = lattice.index(i, j, k);
-        f.clear += lattice.clear(at);
-        if (!lattice.clear(at) || !lattice.reachable(at)) continue;
-        ++f.reachable;
-        const Eigen::Vector3d p = lattice.point(i, j, k);
-        // Sinking deeper than E + tol is a ball of radius r - E - tol touching
-        // a hull: asked first (a walk that stops at the first hull), the
-        // depth only of those that do.
-        bvh::OverlapRequest ball;
-        ball.shape = bvh::QueryShape::sphere(r - agent.slop - tol);
-        ball.pose.translation() = p;
-        bvh::TouchResult touch;
-        if (Status asked = world.touches(ball, touch); !asked.ok()) {
-          f.failure = asked;
-          return;
+  std::vector<long long> examined;
+  for (long long b = 0; b < flags.block_count(); ++b)
+    if (flags.classified(b)) examined.push_back(b);
+  std::vector<Findings> slabs(examined.size());
+  parallel_for(static_cast<int>(examined.size()), threads, [&](int n) {
+    Findings& f = slabs[n];
+    const Eigen::Vector3i lo = flags.block_at(examined[n]) * BlockBytes::kSide;
+    const Eigen::Vector3i hi = (lo.array() + BlockBytes::kSide).min(lattice.dims.array());
+    for (int k = lo.z(); k < hi.z(); ++k)
+      for (int j = lo.y(); j < hi.y(); ++j)
+        for (int i = lo.x(); i < hi.x(); ++i) {
+          f.clear += lattice.clear(i, j, k);
+          if (!lattice.clear(i, j, k) || !lattice.reachable(i, j, k)) continue;
+          ++f.reachable;
+          const Eigen::Vector3d p = lattice.point(i, j, k);
+          // Sinking deeper than E + tol is a ball of radius r - E - tol touching
+          // a hull: asked first (a walk that stops at the first hull), the
+          // depth only of those that do.
+          bvh::OverlapRequest ball;
+          ball.shape = bvh::QueryShape::sphere(r - agent.slop - tol);
+          ball.pose.translation() = p;
+          bvh::TouchResult touch;
+          if (Status asked = world.touches(ball, touch); !asked.ok()) {
+            f.failure = asked;
+            return;
+          }
+          if (!touch.touching) continue;
+          int hull = -1;
+          double gap = 0.0;
+          if (Status asked = gap_to_hulls(world, p, tol, gap, hull); !asked.ok()) {
+            f.failure = asked;
+            return;
+          }
+          const double depth = r - gap;
+          ++f.sinking;
+          if (depth > f.deepest) {
+            f.deepest = depth;
+            f.deepest_at = p;
+            f.deepest_hull = hull;
+          }
         }
-        if (!touch.touching) continue;
-        int hull = -1;
-        double gap = 0.0;
-        if (Status asked = gap_to_hulls(world, p, tol, gap, hull); !asked.ok()) {
-          f.failure = asked;
-          return;
-        }
-        const double depth = r - gap;
-        ++f.sinking;
-        if (depth > f.deepest) {
-          f.deepest = depth;
-          f.deepest_at = p;
-          f.deepest_hull = hull;
-        }
-      }
   });
   // Touching poses: over points of every face, on either side, r away,
   // where that face is the nearest and a reachable lattice cell holds it.

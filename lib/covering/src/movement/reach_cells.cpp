@@ -1,10 +1,54 @@
 #include "movement/reach_cells.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace hullcover::detail {
 
 double ReachGrid::half_diagonal() const { return 0.5 * cell * std::sqrt(3.0); }
+
+void ReachGrid::clear_blocks() {
+  block_dims_ = block_dims();
+  blocks_.assign(static_cast<size_t>(block_dims_.x()) * block_dims_.y() * block_dims_.z(), kNoCellKept);
+  bits_.clear();
+  reachable_count_ = 0;
+}
+
+void ReachGrid::set_block(const Eigen::Vector3i& block, bool kept) {
+  const Eigen::Vector3i lo = block * kReachBlock;
+  const Eigen::Vector3i hi = (lo.array() + kReachBlock).min(dims.array());
+  blocks_[block_of(lo.x(), lo.y(), lo.z())] = kept ? kEveryCellKept : kNoCellKept;
+  if (kept) reachable_count_ += static_cast<long long>(hi.x() - lo.x()) * (hi.y() - lo.y()) * (hi.z() - lo.z());
+}
+
+void ReachGrid::set_block_cells(const Eigen::Vector3i& block, const std::uint8_t* kept) {
+  const Eigen::Vector3i lo = block * kReachBlock;
+  const Eigen::Vector3i hi = (lo.array() + kReachBlock).min(dims.array());
+  const size_t b = block_of(lo.x(), lo.y(), lo.z());
+  // Cells beyond the grid (in its last blocks) are never asked; only the
+  // grid's own cells are counted.
+  long long count = 0;
+  const std::int32_t slot = static_cast<std::int32_t>(bits_.size() / kWordsPerBlock);
+  bits_.resize(bits_.size() + kWordsPerBlock, 0);
+  std::uint64_t* words = bits_.data() + static_cast<size_t>(slot) * kWordsPerBlock;
+  for (int k = lo.z(); k < hi.z(); ++k)
+    for (int j = lo.y(); j < hi.y(); ++j)
+      for (int i = lo.x(); i < hi.x(); ++i) {
+        const int at = bit_in_block(i, j, k);
+        if (!kept[at]) continue;
+        words[at >> 6] |= std::uint64_t{1} << (at & 63);
+        ++count;
+      }
+  reachable_count_ += count;
+  const long long cells = static_cast<long long>(hi.x() - lo.x()) * (hi.y() - lo.y()) * (hi.z() - lo.z());
+  if (count == 0 || count == cells) {
+    // None or all: one number for the block, as a uniform one.
+    bits_.resize(bits_.size() - kWordsPerBlock);
+    blocks_[b] = count == 0 ? kNoCellKept : kEveryCellKept;
+    return;
+  }
+  blocks_[b] = slot;
+}
 
 bool ReachGrid::reachable_at(const Eigen::Vector3d& p) const {
   Eigen::Vector3i c;
@@ -16,26 +60,15 @@ bool ReachGrid::reachable_at(const Eigen::Vector3d& p) const {
     if (!(q >= 0.0 && q < dims[a])) return true;
     c[a] = static_cast<int>(q);
   }
-  return reachable(index(c.x(), c.y(), c.z()));
+  return reachable(c.x(), c.y(), c.z());
 }
 
-void ReachGrid::set_reachable(std::vector<std::uint8_t> reachable) {
-  reachable_.assign((reachable.size() + 63) / 64, 0);
-  for (size_t i = 0; i < reachable.size(); ++i)
-    if (reachable[i]) reachable_[i >> 6] |= std::uint64_t{1} << (i & 63);
-  bricks_ = (dims.array() + kBrick - 1) / kBrick;
-  brick_counts_.assign(static_cast<size_t>(bricks_.x()) * bricks_.y() * bricks_.z(), 0);
-  for (int k = 0; k < dims.z(); ++k)
-    for (int j = 0; j < dims.y(); ++j)
-      for (int i = 0; i < dims.x(); ++i)
-        if (reachable[index(i, j, k)])
-          ++brick_counts_[(static_cast<size_t>(k / kBrick) * bricks_.y() + j / kBrick) * bricks_.x() + i / kBrick];
-}
-
-long long ReachGrid::reachable_count() const {
-  long long n = 0;
-  for (std::uint16_t c : brick_counts_) n += c;
-  return n;
+bool ReachGrid::row_has_kept(std::int32_t held, int j, int k, int lo, int hi) const {
+  // A row is kReachBlock bits inside one word (kReachBlock divides 64).
+  const int first = ((k % kReachBlock) * kReachBlock + j % kReachBlock) * kReachBlock;
+  const std::uint64_t word = bits_[static_cast<size_t>(held) * kWordsPerBlock + (first >> 6)] >> (first & 63);
+  const std::uint64_t mask = ((std::uint64_t{1} << (hi - lo + 1)) - 1) << lo;
+  return (word & mask) != 0;
 }
 
 bool ReachGrid::any_reachable(const Aabb& box) const {
@@ -47,18 +80,19 @@ bool ReachGrid::any_reachable(const Aabb& box) const {
     lo[a] = static_cast<int>(l);                 // the floors, as in reachable_at
     hi[a] = static_cast<int>(h);
   }
-  const Eigen::Vector3i blo = lo / kBrick, bhi = hi / kBrick;
+  const Eigen::Vector3i blo = lo / kReachBlock, bhi = hi / kReachBlock;
   for (int bk = blo.z(); bk <= bhi.z(); ++bk)
     for (int bj = blo.y(); bj <= bhi.y(); ++bj)
       for (int bi = blo.x(); bi <= bhi.x(); ++bi) {
-        if (brick_counts_[(static_cast<size_t>(bk) * bricks_.y() + bj) * bricks_.x() + bi] == 0) continue;
-        const Eigen::Vector3i clo = lo.cwiseMax(Eigen::Vector3i(bi, bj, bk) * kBrick);
+        const std::int32_t held = blocks_[(static_cast<size_t>(bk) * block_dims_.y() + bj) * block_dims_.x() + bi];
+        if (held == kNoCellKept) continue;
+        if (held == kEveryCellKept) return true;
+        const Eigen::Vector3i clo = lo.cwiseMax(Eigen::Vector3i(bi, bj, bk) * kReachBlock);
         const Eigen::Vector3i chi =
-            hi.cwiseMin((Eigen::Vector3i(bi, bj, bk).array() + 1).matrix() * kBrick - Eigen::Vector3i::Ones());
+            hi.cwiseMin((Eigen::Vector3i(bi, bj, bk).array() + 1).matrix() * kReachBlock - Eigen::Vector3i::Ones());
         for (int k = clo.z(); k <= chi.z(); ++k)
           for (int j = clo.y(); j <= chi.y(); ++j)
-            for (int i = clo.x(); i <= chi.x(); ++i)
-              if (reachable(index(i, j, k))) return true;
+            if (row_has_kept(held, j, k, clo.x() % kReachBlock, chi.x() % kReachBlock)) return true;
       }
   return false;
 }

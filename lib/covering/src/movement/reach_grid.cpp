@@ -13,9 +13,6 @@
 namespace hullcover::detail {
 namespace {
 
-// Blocks of this many cells a side are classified on their own (in parallel).
-constexpr int kBlock = 32;
-
 std::string number_text(double x) {
   char text[32];
   std::snprintf(text, sizeof text, "%.6g", x);
@@ -28,44 +25,87 @@ std::string point_text(const Eigen::Vector3d& p) {
   return text;
 }
 
+// The cubes the halving starts from, kReachBlock or a multiple (a power of 2).
+constexpr int kClassifiedCube = 32;
+static_assert(kClassifiedCube % kReachBlock == 0, "a classified cube holds whole blocks");
+
 struct GridBuild {
   const ReachGrid& grid;
   const SceneClearance& clearance;
   double threshold; // a cell may hold a clear centre when its centre's clearance is at least this
   double radius;
-  std::vector<std::uint8_t>& marks;
+  ReachMarks& marks;
 
-  // Marks kClear in the cells of the cube of `size` cells (a power of 2) at
-  // `lo`, clipped to the grid. The clearance at the middle of the cube's
-  // cell centres bounds every one of them within `spread` (1-Lipschitz).
-  void classify(const Eigen::Vector3i& lo, int size) const {
-    const Eigen::Vector3i& dims = grid.dims;
-    if (lo.x() >= dims.x() || lo.y() >= dims.y() || lo.z() >= dims.z()) return;
+  // How the cube of `size` cells (a power of 2) at `lo` stands: none of
+  // its cells may hold a point at clearance r (kNone), all may (kAll), or
+  // it must be halved. The clearance at the middle of the cube's cell
+  // centres bounds every one of them within `spread` (1-Lipschitz).
+  enum class Cube { none, all, mixed };
+  Cube judge(const Eigen::Vector3i& lo, int size) const {
     const Eigen::Vector3d middle = grid.origin + (lo.cast<double>().array() + 0.5 * size).matrix() * grid.cell;
     const double spread = 0.5 * (size - 1) * grid.cell * std::sqrt(3.0);
     const NearestFace near = clearance.nearest(middle, threshold + spread + grid.cell);
     const double d = near.distance;
-    if (d + spread < threshold) return;
-    const Eigen::Vector3i hi = (lo.array() + size).min(dims.array());
+    if (d + spread < threshold) return Cube::none;
+    const Eigen::Vector3i hi = (lo.array() + size).min(grid.dims.array());
     // No point of the cells at clearance r or more: one triangle is nearer
     // than r to all of them (the cells beside a surface, whose centres
     // alone would let them hold centres on both of its sides).
     Aabb cells;
     cells.min = grid.origin + lo.cast<double>() * grid.cell;
     cells.max = grid.origin + hi.cast<double>() * grid.cell;
-    if (near.face >= 0 && clearance.box_within(cells, near.face, radius)) return;
-    if (d - spread >= threshold || size == 1) {
-      if (size == 1 && d < threshold) return;
+    if (near.face >= 0 && clearance.box_within(cells, near.face, radius)) return Cube::none;
+    if (d - spread >= threshold) return Cube::all;
+    if (size == 1) return Cube::none;
+    return Cube::mixed;
+  }
+
+  // Marks kClear in the cells of the cube of `size` cells at `lo` (inside
+  // the block whose bytes are `bytes`), clipped to the grid.
+  void classify(const Eigen::Vector3i& lo, int size, std::uint8_t* bytes) const {
+    const Eigen::Vector3i& dims = grid.dims;
+    if (lo.x() >= dims.x() || lo.y() >= dims.y() || lo.z() >= dims.z()) return;
+    const Cube cube = judge(lo, size);
+    if (cube == Cube::none) return;
+    if (cube == Cube::all) {
+      const Eigen::Vector3i hi = (lo.array() + size).min(dims.array());
       for (int k = lo.z(); k < hi.z(); ++k)
         for (int j = lo.y(); j < hi.y(); ++j)
-          for (int i = lo.x(); i < hi.x(); ++i) marks[grid.index(i, j, k)] |= kClear;
+          for (int i = lo.x(); i < hi.x(); ++i) bytes[ReachMarks::in_block(i, j, k)] |= kClear;
       return;
     }
     const int half = size / 2;
     for (int child = 0; child < 8; ++child)
-      classify(lo + Eigen::Vector3i((child & 1) * half, ((child >> 1) & 1) * half, ((child >> 2) & 1) * half), half);
+      classify(lo + Eigen::Vector3i((child & 1) * half, ((child >> 1) & 1) * half, ((child >> 2) & 1) * half), half,
+               bytes);
+  }
+
+  // Classifies block `b`: uniform when decided whole, else a byte a cell.
+  // The halving starts from the cube of kClassifiedCube cells holding the
+  // block, whatever the block size: the cells kept do not depend on how
+  // they are stored.
+  void classify_block(long long b) const {
+    const Eigen::Vector3i lo = marks.block_at(b) * kReachBlock;
+    Cube cube = judge(lo / kClassifiedCube * kClassifiedCube, kClassifiedCube);
+    if (cube == Cube::mixed) cube = judge(lo, kReachBlock);
+    if (cube != Cube::mixed) {
+      marks.set_uniform(b, cube == Cube::all ? kClear : 0);
+      return;
+    }
+    std::uint8_t* bytes = marks.hold(b, 0);
+    const int half = kReachBlock / 2;
+    for (int child = 0; child < 8; ++child)
+      classify(lo + Eigen::Vector3i((child & 1) * half, ((child >> 1) & 1) * half, ((child >> 2) & 1) * half), half,
+               bytes);
   }
 };
+
+Status too_many_cells(const AgentShape& agent, double cells) {
+  return Status{StatusCode::limit_exceeded, "the reach grid of this scene at agent radius " +
+                                                number_text(agent.radius) + " would hold " + number_text(cells) +
+                                                " cells one by one (at most " + std::to_string(kMostReachCellsHeld) +
+                                                "): use a larger radius or a part of the scene"};
+}
 
 } // namespace
 
@@ -95,32 +135,63 @@ Result<ReachGrid> build_reach_grid(const Mesh& mesh, const SceneClearance& clear
       box.min[agent.up_axis] -= rise;
   }
   const Eigen::Vector3d cells = ((box.max - box.min) / grid.cell).array().ceil();
-  if (!(cells.prod() <= static_cast<double>(kMostReachCells)))
-    return Status{StatusCode::limit_exceeded,
-                  "the reach grid of this scene at agent radius " + std::to_string(agent.radius) + " would need " +
-                      number_text(cells.prod()) + " cells (at most " + std::to_string(kMostReachCells) +
-                      "): use a larger radius or a part of the scene"};
+  if (!(cells.prod() <= static_cast<double>(kMostReachCells)) ||
+      !(cells.maxCoeff() < static_cast<double>(kMostCellsAlongAnAxis)))
+    return Status{StatusCode::limit_exceeded, "the reach grid of this scene at agent radius " +
+                                                  number_text(agent.radius) + " would span " + number_text(cells.x()) +
+                                                  " x " + number_text(cells.y()) + " x " + number_text(cells.z()) +
+                                                  " cells (at most " + std::to_string(kMostReachCells) + ", and " +
+                                                  std::to_string(kMostCellsAlongAnAxis - 1) +
+                                                  " along an axis): use a larger radius or a part " + "of the scene"};
   grid.origin = box.min;
   grid.dims = cells.cast<int>().cwiseMax(1);
 
-  std::vector<std::uint8_t> marks(static_cast<size_t>(grid.cell_count()), 0);
+  ReachMarks marks(grid.dims);
   const GridBuild build{grid, clearance, agent.radius - grid.half_diagonal(), agent.radius, marks};
-  const Eigen::Vector3i blocks = (grid.dims.array() + kBlock - 1) / kBlock;
-  // Blocks of kBlock cells a side: each writes only its own cells.
-  parallel_for(blocks.prod(), threads, [&](int b) {
-    const Eigen::Vector3i at(b % blocks.x(), (b / blocks.x()) % blocks.y(), b / (blocks.x() * blocks.y()));
-    build.classify(at * kBlock, kBlock);
-  });
-
   const bool walking = agent.reach == AgentReach::walk;
-  if (walking)
+  // The blocks to classify: every block (flying), or those a walker may
+  // stand in (the rest are classified when a fall enters them).
+  std::vector<long long> to_classify;
+  if (walking) {
+    std::vector<std::uint8_t> wanted(static_cast<size_t>(marks.block_count()), 0);
+    for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) {
+      if (!is_walkable(mesh, agent, f)) continue;
+      Eigen::Vector3i lo, hi;
+      cell_range(grid, standing_box(mesh, agent, f), lo, hi);
+      const Eigen::Vector3i blo = ReachMarks::block_of(lo), bhi = ReachMarks::block_of(hi);
+      for (int k = blo.z(); k <= bhi.z(); ++k)
+        for (int j = blo.y(); j <= bhi.y(); ++j)
+          for (int i = blo.x(); i <= bhi.x(); ++i) wanted[marks.block_index({i, j, k})] = 1;
+    }
+    for (long long b = 0; b < marks.block_count(); ++b)
+      if (wanted[b]) to_classify.push_back(b);
+  } else {
+    to_classify.resize(static_cast<size_t>(marks.block_count()));
+    for (long long b = 0; b < marks.block_count(); ++b) to_classify[b] = b;
+  }
+  // Each task writes only its own block; past the limit the rest is skipped
+  // (the build fails below).
+  parallel_for(static_cast<int>(to_classify.size()), threads, [&](int n) {
+    if (marks.cells_held() <= kMostReachCellsHeld) build.classify_block(to_classify[n]);
+  });
+  if (marks.cells_held() > kMostReachCellsHeld) return too_many_cells(agent, double(marks.cells_held()));
+
+  if (walking) {
     for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f)
       if (is_walkable(mesh, agent, f)) mark_standing(grid, mesh, agent, f, marks);
-  if (walking) mark_drops(grid, agent, marks);
+    mark_drops(agent, marks, [&](long long b) {
+      if (marks.cells_held() <= kMostReachCellsHeld)
+        build.classify_block(b);
+      else
+        marks.set_uniform(b, 0); // past the limit: the build fails below
+    });
+    if (marks.cells_held() > kMostReachCellsHeld) return too_many_cells(agent, double(marks.cells_held()));
+  }
   const auto walkable_cell = [](std::uint8_t m) { return (m & kClear) && (m & (kStanding | kDropping)); };
   const auto occupiable = [&](std::uint8_t m) { return walking ? walkable_cell(m) : (m & kClear) != 0; };
 
-  std::vector<std::uint32_t> starts;
+  FloodStarts starts;
+  bool from_the_sky = false;
   for (const Eigen::Vector3d& seed : seeds) {
     const Eigen::Vector3d at = ((seed - grid.origin) / grid.cell).array().floor();
     if (!((at.array() >= 0.0).all() && (at.array() < grid.dims.cast<double>().array()).all())) {
@@ -129,37 +200,44 @@ Result<ReachGrid> build_reach_grid(const Mesh& mesh, const SceneClearance& clear
       if (walking && seeds_given)
         return Status{StatusCode::invalid_argument,
                       "seed " + point_text(seed) + " lies beyond the scene: no walkable face below it"};
-      if (!walking) add_outer_cells(grid, marks, starts);
+      if (!walking && !from_the_sky) add_outer_cells(marks, starts);
+      from_the_sky = true;
       continue;
     }
-    const long long c = grid.index(static_cast<int>(at.x()), static_cast<int>(at.y()), static_cast<int>(at.z()));
-    if (!occupiable(marks[c]) && !seeds_given) continue;
-    if (!occupiable(marks[c]))
+    const Eigen::Vector3i c = at.cast<int>();
+    const std::uint8_t m = marks.get(c.x(), c.y(), c.z());
+    if (!occupiable(m) && !seeds_given) continue;
+    if (!occupiable(m))
       return Status{StatusCode::invalid_argument,
                     "seed " + point_text(seed) +
                         (walking ? " is not where a walking agent can be (no walkable face within its height below "
                                    "it, or too near the triangles)"
                                  : " is too near the triangles for the agent")};
-    starts.push_back(static_cast<std::uint32_t>(c));
+    starts.cells.push_back(cell_key(c.x(), c.y(), c.z()));
     ++grid.seeds_used;
   }
-  if (walking)
-    for (std::uint8_t& m : marks)
-      if (walkable_cell(m)) m |= kWalkable;
+  // Walkable cells are standing or dropping, so all in held blocks.
+  for (long long b = 0; walking && b < marks.block_count(); ++b)
+    if (std::uint8_t* bytes = marks.held(b))
+      for (int c = 0; c < kReachBlockCells; ++c)
+        if (walkable_cell(bytes[c])) bytes[c] |= kWalkable;
   const std::uint8_t through = walking ? kWalkable : kClear;
   if (!seeds.empty()) {
     if (walking)
-      flood_walking(grid, agent, std::move(starts), marks);
+      flood_walking(agent, std::move(starts.cells), marks);
     else
-      flood(grid, std::move(starts), through, marks);
+      flood(starts, through, marks);
   } else {
     // No seed (flying over a scene with nothing to stand on): all clear
     // space, no connectivity asked.
-    for (std::uint8_t& m : marks)
-      if (m & through) m |= kSeeded;
+    for (long long b = 0; b < marks.block_count(); ++b) {
+      if (marks.uniform(b) && (marks.uniform_byte(b) & through)) marks.uniform_byte(b) |= kSeeded;
+      if (std::uint8_t* bytes = marks.held(b))
+        for (int c = 0; c < kReachBlockCells; ++c)
+          if (bytes[c] & through) bytes[c] |= kSeeded;
+    }
   }
-  for (std::uint8_t& m : marks) m = (m & kSeeded) ? 1 : 0;
-  grid.set_reachable(std::move(marks));
+  keep_cells(marks, kSeeded, grid);
   return grid;
 }
 
@@ -193,7 +271,7 @@ bool face_may_be_touched(const ReachGrid& grid, const SceneClearance& clearance,
   for (int k = lo.z(); k <= hi.z(); ++k)
     for (int j = lo.y(); j <= hi.y(); ++j)
       for (int i = lo.x(); i <= hi.x(); ++i)
-        if (grid.reachable(grid.index(i, j, k)) && clearance.to_face(grid.centre(i, j, k), face) <= reach) return true;
+        if (grid.reachable(i, j, k) && clearance.to_face(grid.centre(i, j, k), face) <= reach) return true;
   return false;
 }
 

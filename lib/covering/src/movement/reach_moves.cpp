@@ -7,6 +7,22 @@
 
 namespace hullcover::detail {
 
+Aabb standing_box(const Mesh& mesh, const AgentShape& agent, int face) {
+  Aabb box;
+  for (int k = 0; k < 3; ++k) box.extend(mesh.positions[mesh.triangles[face][k]]);
+  for (int a = 0; a < 3; ++a)
+    if (a != agent.up_axis) {
+      box.min[a] -= agent.radius;
+      box.max[a] += agent.radius;
+    }
+  const double rise = agent.climb + agent.height - agent.radius;
+  if (agent.up_sign > 0)
+    box.max[agent.up_axis] += rise;
+  else
+    box.min[agent.up_axis] -= rise;
+  return box;
+}
+
 // Cell range [lo, hi] (inclusive) of the cells meeting `box`, clamped to the grid.
 void cell_range(const ReachGrid& grid, const Aabb& box, Eigen::Vector3i& lo, Eigen::Vector3i& hi) {
   // Clamped as doubles first: a box far beyond the grid (a huge height)
@@ -30,33 +46,19 @@ void cell_range(const ReachGrid& grid, const Aabb& box, Eigen::Vector3i& lo, Eig
 // a ceiling. Cells under the face's lowest point within r across of their
 // column are left out: an agent under a surface does not stand on it (and
 // walkers would otherwise walk the envelopes under sloping ground).
-void mark_standing(const ReachGrid& grid, const Mesh& mesh, const AgentShape& agent, int face,
-                   std::vector<std::uint8_t>& marks) {
-  Aabb box;
+void mark_standing(const ReachGrid& grid, const Mesh& mesh, const AgentShape& agent, int face, ReachMarks& marks) {
+  const Aabb box = standing_box(mesh, agent, face);
   std::vector<Eigen::Vector3d> triangle;
-  for (int k = 0; k < 3; ++k) {
-    box.extend(mesh.positions[mesh.triangles[face][k]]);
-    triangle.push_back(mesh.positions[mesh.triangles[face][k]]);
-  }
-  for (int a = 0; a < 3; ++a)
-    if (a != agent.up_axis) {
-      box.min[a] -= agent.radius;
-      box.max[a] += agent.radius;
-    }
-  const double rise = agent.climb + agent.height - agent.radius;
-  if (agent.up_sign > 0)
-    box.max[agent.up_axis] += rise;
-  else
-    box.min[agent.up_axis] -= rise;
+  for (int k = 0; k < 3; ++k) triangle.push_back(mesh.positions[mesh.triangles[face][k]]);
   Eigen::Vector3i lo, hi;
   cell_range(grid, box, lo, hi);
   const int axis = agent.up_axis;
   const int fewest = static_cast<int>(
       std::min(std::floor((agent.height - 2.0 * agent.radius) / grid.cell), double(grid.dims[agent.up_axis] + 1)));
   Eigen::Vector3i c;
-  const auto at = [&](int w) {
+  const auto cell = [&](int w) {
     c[axis] = w;
-    return grid.index(c.x(), c.y(), c.z());
+    return c;
   };
   const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
   std::vector<Eigen::Vector3d> part, clipped;
@@ -92,113 +94,129 @@ void mark_standing(const ReachGrid& grid, const Mesh& mesh, const AgentShape& ag
       }
       int run_start = first;
       for (int w = first; w <= last + 1; ++w) {
-        if (w <= last && (marks[at(w)] & kClear)) continue;
+        if (w <= last) {
+          const Eigen::Vector3i& q = cell(w);
+          if (marks.get(q.x(), q.y(), q.z()) & kClear) continue;
+        }
         if (w - run_start >= fewest)
-          for (int x = run_start; x < w; ++x) marks[at(x)] |= kStanding;
+          for (int x = run_start; x < w; ++x) {
+            const Eigen::Vector3i& q = cell(x);
+            marks.at(q.x(), q.y(), q.z()) |= kStanding;
+          }
         run_start = w + 1;
       }
     }
 }
 
 // Marks kDropping below every standing cell, down through clear cells: an
-// agent stepping off a ledge falls straight down.
-void mark_drops(const ReachGrid& grid, const AgentShape& agent, std::vector<std::uint8_t>& marks) {
+// agent stepping off a ledge falls straight down. Only columns of blocks
+// holding cells (every standing cell is in one) are walked; a block no
+// fall enters is skipped whole, and one a fall enters is classified first.
+void mark_drops(const AgentShape& agent, ReachMarks& marks, const std::function<void(long long)>& classify) {
   const int axis = agent.up_axis;
   const int down = agent.up_sign > 0 ? -1 : 1;
-  const Eigen::Vector3i& dims = grid.dims;
+  const Eigen::Vector3i& dims = marks.dims();
+  const Eigen::Vector3i& blocks = marks.block_dims();
   const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
-  for (int u = 0; u < dims[a1]; ++u)
-    for (int v = 0; v < dims[a2]; ++v) {
-      bool falling = false;
-      const int first = down < 0 ? dims[axis] - 1 : 0;
-      for (int w = first; w >= 0 && w < dims[axis]; w += down) {
-        Eigen::Vector3i c;
-        c[axis] = w;
-        c[a1] = u;
-        c[a2] = v;
-        std::uint8_t& m = marks[grid.index(c.x(), c.y(), c.z())];
-        if (!(m & kClear))
-          falling = false;
-        else if (m & kStanding)
-          falling = true;
-        else if (falling)
-          m |= kDropping;
+  Eigen::Vector3i block;
+  for (int bu = 0; bu < blocks[a1]; ++bu)
+    for (int bv = 0; bv < blocks[a2]; ++bv) {
+      block[a1] = bu;
+      block[a2] = bv;
+      bool any_held = false;
+      for (int bw = 0; bw < blocks[axis] && !any_held; ++bw) {
+        block[axis] = bw;
+        any_held = marks.held(marks.block_index(block)) != nullptr;
       }
+      if (!any_held) continue;
+      const int u_end = std::min(dims[a1], (bu + 1) * kReachBlock), v_end = std::min(dims[a2], (bv + 1) * kReachBlock);
+      for (int u = bu * kReachBlock; u < u_end; ++u)
+        for (int v = bv * kReachBlock; v < v_end; ++v) {
+          bool falling = false;
+          Eigen::Vector3i c;
+          c[a1] = u;
+          c[a2] = v;
+          const int first = down < 0 ? dims[axis] - 1 : 0;
+          for (int w = first; w >= 0 && w < dims[axis]; w += down) {
+            c[axis] = w;
+            const long long b = marks.block_index(ReachMarks::block_of(c));
+            if (!falling && !marks.held(b)) {
+              // No standing cell here (standing cells are held): on to the
+              // next block down.
+              w = down < 0 ? w / kReachBlock * kReachBlock
+                           : std::min(dims[axis], (w / kReachBlock + 1) * kReachBlock) - 1;
+              continue;
+            }
+            if (!marks.classified(b)) classify(b);
+            const std::uint8_t m = marks.get(c.x(), c.y(), c.z());
+            if (!(m & kClear))
+              falling = false;
+            else if (m & kStanding)
+              falling = true;
+            else if (falling)
+              marks.at(c.x(), c.y(), c.z()) |= kDropping;
+          }
+        }
     }
 }
 
-// Appends the grid's outer clear cells (where the sky beyond meets it).
-void add_outer_cells(const ReachGrid& grid, const std::vector<std::uint8_t>& marks, std::vector<std::uint32_t>& out) {
-  const Eigen::Vector3i& d = grid.dims;
-  for (int k = 0; k < d.z(); ++k)
-    for (int j = 0; j < d.y(); ++j)
-      for (int i = 0; i < d.x(); ++i) {
-        const bool outer = i == 0 || j == 0 || k == 0 || i == d.x() - 1 || j == d.y() - 1 || k == d.z() - 1;
-        if (!outer) {
-          i = d.x() - 2; // jump to the far face of this row
-          continue;
+void add_outer_cells(ReachMarks& marks, FloodStarts& out) {
+  const Eigen::Vector3i& d = marks.dims();
+  const Eigen::Vector3i& blocks = marks.block_dims();
+  for (long long b = 0; b < marks.block_count(); ++b) {
+    const Eigen::Vector3i block = marks.block_at(b);
+    if (!(block.array() == 0).any() && !(block.array() == blocks.array() - 1).any()) continue;
+    if (marks.uniform(b)) {
+      if (marks.uniform_byte(b) & kClear) out.blocks.push_back(b);
+      continue;
+    }
+    const std::uint8_t* bytes = marks.held(b);
+    if (!bytes) continue;
+    const Eigen::Vector3i lo = block * kReachBlock;
+    const Eigen::Vector3i hi = (lo.array() + kReachBlock).min(d.array());
+    for (int k = lo.z(); k < hi.z(); ++k)
+      for (int j = lo.y(); j < hi.y(); ++j)
+        for (int i = lo.x(); i < hi.x(); ++i) {
+          const bool outer = i == 0 || j == 0 || k == 0 || i == d.x() - 1 || j == d.y() - 1 || k == d.z() - 1;
+          if (outer && (bytes[ReachMarks::in_block(i, j, k)] & kClear)) out.cells.push_back(cell_key(i, j, k));
         }
-        const long long c = grid.index(i, j, k);
-        if (marks[c] & kClear) out.push_back(static_cast<std::uint32_t>(c));
-      }
+  }
 }
 
-// Floods kSeeded from the cells in `starts` through cells holding every bit
-// of `through`, across shared faces.
-void flood(const ReachGrid& grid, std::vector<std::uint32_t> starts, std::uint8_t through,
-           std::vector<std::uint8_t>& marks) {
-  std::vector<std::uint32_t>& stack = starts;
-  for (long long c : stack) marks[c] |= kSeeded;
-  const Eigen::Vector3i& dims = grid.dims;
-  const long long step[3] = {1, dims.x(), static_cast<long long>(dims.x()) * dims.y()};
-  while (!stack.empty()) {
-    const long long c = stack.back();
-    stack.pop_back();
-    const long long k = c / step[2], j = (c / step[1]) % dims.y(), i = c % dims.x();
-    const long long at[3] = {i, j, k};
-    for (int a = 0; a < 3; ++a)
-      for (int s = -1; s <= 1; s += 2) {
-        const long long n = at[a] + s;
-        if (n < 0 || n >= dims[a]) continue;
-        const long long next = c + s * step[a];
-        std::uint8_t& m = marks[next];
-        if ((m & kSeeded) || (m & through) != through) continue;
-        m |= kSeeded;
-        stack.push_back(static_cast<std::uint32_t>(next));
-      }
-  }
+void flood(const FloodStarts& starts, std::uint8_t through, ReachMarks& marks) {
+  flood_through(marks, starts.cells, starts.blocks, through, kSeeded);
 }
 
 // Floods kSeeded from `starts` as a walking agent moves: between standing
 // cells freely (stepping and climbing lie within their envelopes), from a
 // standing cell into a dropping cell beside or below it, and from a
 // dropping cell only straight down. Never up a drop: a ledge out of reach
-// stays out of reach.
-void flood_walking(const ReachGrid& grid, const AgentShape& agent, std::vector<std::uint32_t> starts,
-                   std::vector<std::uint8_t>& marks) {
-  std::vector<std::uint32_t>& stack = starts;
-  for (long long c : stack) marks[c] |= kSeeded;
-  const Eigen::Vector3i& dims = grid.dims;
-  const long long step[3] = {1, dims.x(), static_cast<long long>(dims.x()) * dims.y()};
+// stays out of reach. Walkable cells are all in held blocks.
+void flood_walking(const AgentShape& agent, std::vector<CellKey> starts, ReachMarks& marks) {
+  std::vector<CellKey>& stack = starts;
+  for (CellKey key : stack) {
+    const Eigen::Vector3i c = cell_of(key);
+    marks.at(c.x(), c.y(), c.z()) |= kSeeded;
+  }
+  const Eigen::Vector3i& dims = marks.dims();
   const int down = agent.up_sign > 0 ? -1 : 1; // the index step along the up axis that goes down
   while (!stack.empty()) {
-    const long long c = stack.back();
+    const Eigen::Vector3i c = cell_of(stack.back());
     stack.pop_back();
-    const bool standing = (marks[c] & kStanding) != 0;
-    const long long at[3] = {c % dims.x(), (c / step[1]) % dims.y(), c / step[2]};
+    const bool standing = (marks.get(c.x(), c.y(), c.z()) & kStanding) != 0;
     for (int a = 0; a < 3; ++a)
       for (int s = -1; s <= 1; s += 2) {
         const bool going_down = a == agent.up_axis && s == down;
         const bool going_up = a == agent.up_axis && s != down;
         if (!standing && !going_down) continue; // falling: straight down only
-        const long long n = at[a] + s;
-        if (n < 0 || n >= dims[a]) continue;
-        const long long next = c + s * step[a];
-        std::uint8_t& m = marks[next];
+        Eigen::Vector3i n = c;
+        n[a] += s;
+        if (n[a] < 0 || n[a] >= dims[a]) continue;
+        const std::uint8_t m = marks.get(n.x(), n.y(), n.z());
         if ((m & kSeeded) || !(m & kWalkable)) continue;
         if (going_up && !(m & kStanding)) continue; // no climbing up a drop
-        m |= kSeeded;
-        stack.push_back(static_cast<std::uint32_t>(next));
+        marks.at(n.x(), n.y(), n.z()) |= kSeeded;
+        stack.push_back(cell_key(n.x(), n.y(), n.z()));
       }
   }
 }

@@ -24,10 +24,15 @@
 
 namespace hullcover::validate {
 
-/// The lattice holds at most this many points (a byte each); the default
-/// spacing is widened to fit, up to 0.7 x r (the widest that keeps its
-/// flood out of walls), and a scene that needs more is refused.
-inline constexpr long long kMostAuditLatticePoints = 1LL << 27;
+/// The lattice spans at most this many points over the scene's box (9
+/// bytes for each block of 4,096). The default spacing is widened to fit,
+/// up to 0.7 x r (the widest that keeps its flood out of walls); a scene
+/// that needs more is refused.
+inline constexpr long long kMostAuditLatticePoints = 1LL << 36;
+/// ... and holds at most this many one by one, a byte each: the blocks near
+/// surfaces (open air, solid ground and, walking, space no walker stands in
+/// cost nothing more). Past it the audit is refused.
+inline constexpr long long kMostAuditLatticePointsHeld = 1LL << 28;
 /// The default spacing, in radii.
 inline constexpr double kDefaultAuditSpacingInRadii = 0.5;
 
@@ -43,7 +48,7 @@ struct MovementAuditReport {
   double spacing = 0.0;            ///< the lattice spacing used
   double slop = 0.0, height = 0.0; ///< as resolved from the options
   long long lattice_points = 0;
-  long long clear_points = 0;     ///< at clearance >= r
+  long long clear_points = 0;     ///< at clearance >= r (walking: of those near walkable faces and below them)
   long long reachable_points = 0; ///< of those, reachable
   long long sinking = 0;          ///< reachable centres sinking more than E + tol into a hull
   double deepest = 0.0;           ///< the deepest sinking of a reachable centre's ball into a hull

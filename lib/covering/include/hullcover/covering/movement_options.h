@@ -38,10 +38,16 @@ inline constexpr double kDefaultMaxSlopeDegrees = 45.0;
 /// occupy on the far side (docs/definitions-and-proofs.md), large enough to
 /// stay small.
 inline constexpr double kReachCellInRadii = 0.7;
-/// The reach grid holds at most this many cells; a scene that needs more at
-/// its radius is refused with a message (a larger radius, or a part of the
-/// scene, fits).
-inline constexpr long long kMostReachCells = 1LL << 28;
+/// The reach grid spans at most this many cells over the scene's box (it
+/// keeps 9 bytes for each block of 4,096: at most about 150 MB). A scene
+/// that needs more at its radius is refused with a message (a larger
+/// radius, or a part of the scene, fits).
+inline constexpr long long kMostReachCells = 1LL << 36;
+/// ... and holds at most this many one by one, a byte each while it is
+/// built: the blocks near surfaces, where some cells may hold an agent and
+/// some not (open air, solid ground and the space between a world's maps
+/// cost nothing more).
+inline constexpr long long kMostReachCellsHeld = 1LL << 28;
 
 /// How to make a movement covering. Lengths in scene units.
 struct MovementOptions {
