@@ -136,9 +136,9 @@ Result<AgentLattice> reach_lattice(const TriangleDistances& distances, const Aud
   // The blocks to examine: all (flying), or those a walker may stand in:
   // a point standing on a face lies within r of its box, and at most
   // `rise` above it (the rest are examined when a fall enters them).
-  std::vector<long long> examined;
+  std::vector<std::uint8_t> wanted; // walking: a byte a block; flying: empty, every block
   if (agent.walking) {
-    std::vector<std::uint8_t> wanted(static_cast<size_t>(flags.block_count()), 0);
+    wanted.assign(static_cast<size_t>(flags.block_count()), 0);
     for (int f : walkable) {
       Aabb near;
       for (int k = 0; k < 3; ++k) near.extend(mesh.positions[mesh.triangles[f][k]]);
@@ -159,14 +159,10 @@ Result<AgentLattice> reach_lattice(const TriangleDistances& distances, const Aud
         for (int j = blo.y(); j <= bhi.y(); ++j)
           for (int i = blo.x(); i <= bhi.x(); ++i) wanted[flags.block_index({i, j, k})] = 1;
     }
-    for (long long b = 0; b < flags.block_count(); ++b)
-      if (wanted[b]) examined.push_back(b);
-  } else {
-    examined.resize(static_cast<size_t>(flags.block_count()));
-    for (long long b = 0; b < flags.block_count(); ++b) examined[b] = b;
   }
-  parallel_for(static_cast<int>(examined.size()), threads, [&](int n) {
-    if (flags.cells_held() <= most_held) examine_block(distances, agent, tol, lattice, examined[n]);
+  parallel_for(static_cast<int>(flags.block_count()), threads, [&](int b) {
+    if ((wanted.empty() || wanted[b]) && flags.cells_held() <= most_held)
+      examine_block(distances, agent, tol, lattice, b);
   });
   if (flags.cells_held() > most_held) return too_many();
 
@@ -179,7 +175,7 @@ Result<AgentLattice> reach_lattice(const TriangleDistances& distances, const Aud
   // highest point plus `rise`.
   const int fewest = static_cast<int>(std::floor((agent.height - 2.0 * agent.radius) / spacing));
   if (agent.walking) {
-    for (long long b : examined)
+    for (long long b = 0; b < flags.block_count(); ++b)
       if (flags.uniform(b) && flags.uniform_byte(b)) flags.hold(b, flags.uniform_byte(b));
     if (flags.cells_held() > most_held) return too_many();
     const Eigen::Vector3i& blocks = flags.block_dims();

@@ -153,47 +153,51 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
   // Reachable centres: each ball of radius r sinks at most E + tol into the
   // hulls. Block by block (a block not examined holds no reachable point).
   const double r = agent.radius;
-  std::vector<long long> examined;
-  for (long long b = 0; b < flags.block_count(); ++b)
-    if (flags.classified(b)) examined.push_back(b);
-  std::vector<Findings> slabs(examined.size());
-  parallel_for(static_cast<int>(examined.size()), threads, [&](int n) {
-    Findings& f = slabs[n];
-    const Eigen::Vector3i lo = flags.block_at(examined[n]) * BlockBytes::kSide;
-    const Eigen::Vector3i hi = (lo.array() + BlockBytes::kSide).min(lattice.dims.array());
-    for (int k = lo.z(); k < hi.z(); ++k)
-      for (int j = lo.y(); j < hi.y(); ++j)
-        for (int i = lo.x(); i < hi.x(); ++i) {
-          f.clear += lattice.clear(i, j, k);
-          if (!lattice.clear(i, j, k) || !lattice.reachable(i, j, k)) continue;
-          ++f.reachable;
-          const Eigen::Vector3d p = lattice.point(i, j, k);
-          // Sinking deeper than E + tol is a ball of radius r - E - tol touching
-          // a hull: asked first (a walk that stops at the first hull), the
-          // depth only of those that do.
-          bvh::OverlapRequest ball;
-          ball.shape = bvh::QueryShape::sphere(r - agent.slop - tol);
-          ball.pose.translation() = p;
-          bvh::TouchResult touch;
-          if (Status asked = world.touches(ball, touch); !asked.ok()) {
-            f.failure = asked;
-            return;
+  // Tasks of kBlocksPerTask blocks, so the findings stay few on any box.
+  constexpr long long kBlocksPerTask = 256;
+  const long long tasks = (flags.block_count() + kBlocksPerTask - 1) / kBlocksPerTask;
+  std::vector<Findings> slabs(static_cast<size_t>(tasks));
+  parallel_for(static_cast<int>(tasks), threads, [&](int task) {
+    Findings& f = slabs[task];
+    const long long last = std::min(flags.block_count(), (task + 1) * kBlocksPerTask);
+    for (long long b = task * kBlocksPerTask; b < last; ++b) {
+      if (!flags.classified(b)) continue;
+      const Eigen::Vector3i lo = flags.block_at(b) * BlockBytes::kSide;
+      const Eigen::Vector3i hi = (lo.array() + BlockBytes::kSide).min(lattice.dims.array());
+      for (int k = lo.z(); k < hi.z(); ++k)
+        for (int j = lo.y(); j < hi.y(); ++j)
+          for (int i = lo.x(); i < hi.x(); ++i) {
+            f.clear += lattice.clear(i, j, k);
+            if (!lattice.clear(i, j, k) || !lattice.reachable(i, j, k)) continue;
+            ++f.reachable;
+            const Eigen::Vector3d p = lattice.point(i, j, k);
+            // Sinking deeper than E + tol is a ball of radius r - E - tol touching
+            // a hull: asked first (a walk that stops at the first hull), the
+            // depth only of those that do.
+            bvh::OverlapRequest ball;
+            ball.shape = bvh::QueryShape::sphere(r - agent.slop - tol);
+            ball.pose.translation() = p;
+            bvh::TouchResult touch;
+            if (Status asked = world.touches(ball, touch); !asked.ok()) {
+              f.failure = asked;
+              return;
+            }
+            if (!touch.touching) continue;
+            int hull = -1;
+            double gap = 0.0;
+            if (Status asked = gap_to_hulls(world, p, tol, gap, hull); !asked.ok()) {
+              f.failure = asked;
+              return;
+            }
+            const double depth = r - gap;
+            ++f.sinking;
+            if (depth > f.deepest) {
+              f.deepest = depth;
+              f.deepest_at = p;
+              f.deepest_hull = hull;
+            }
           }
-          if (!touch.touching) continue;
-          int hull = -1;
-          double gap = 0.0;
-          if (Status asked = gap_to_hulls(world, p, tol, gap, hull); !asked.ok()) {
-            f.failure = asked;
-            return;
-          }
-          const double depth = r - gap;
-          ++f.sinking;
-          if (depth > f.deepest) {
-            f.deepest = depth;
-            f.deepest_at = p;
-            f.deepest_hull = hull;
-          }
-        }
+    }
   });
   // Touching poses: over points of every face, on either side, r away,
   // where that face is the nearest and a reachable lattice cell holds it.

@@ -24,7 +24,6 @@ double across_distance(const AuditAgent& agent, const std::vector<Eigen::Vector3
 /// The lowest height, as up measures it, of the part of `polygon` (a face
 /// in its slab) within r across up of p: the lowest point a walker at p
 /// may rest on. Infinity when there is none.
-double lowest_rest_near(const AuditAgent& agent, const std::vector<Eigen::Vector3d>& polygon,
-                        const Eigen::Vector3d& p);
+double lowest_rest_near(const AuditAgent& agent, const std::vector<Eigen::Vector3d>& polygon, const Eigen::Vector3d& p);
 
 } // namespace hullcover::validate::detail

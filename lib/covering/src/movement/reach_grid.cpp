@@ -151,9 +151,9 @@ Result<ReachGrid> build_reach_grid(const Mesh& mesh, const SceneClearance& clear
   const bool walking = agent.reach == AgentReach::walk;
   // The blocks to classify: every block (flying), or those a walker may
   // stand in (the rest are classified when a fall enters them).
-  std::vector<long long> to_classify;
+  std::vector<std::uint8_t> wanted; // walking: a byte a block; flying: empty, every block
   if (walking) {
-    std::vector<std::uint8_t> wanted(static_cast<size_t>(marks.block_count()), 0);
+    wanted.assign(static_cast<size_t>(marks.block_count()), 0);
     for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) {
       if (!is_walkable(mesh, agent, f)) continue;
       Eigen::Vector3i lo, hi;
@@ -163,16 +163,11 @@ Result<ReachGrid> build_reach_grid(const Mesh& mesh, const SceneClearance& clear
         for (int j = blo.y(); j <= bhi.y(); ++j)
           for (int i = blo.x(); i <= bhi.x(); ++i) wanted[marks.block_index({i, j, k})] = 1;
     }
-    for (long long b = 0; b < marks.block_count(); ++b)
-      if (wanted[b]) to_classify.push_back(b);
-  } else {
-    to_classify.resize(static_cast<size_t>(marks.block_count()));
-    for (long long b = 0; b < marks.block_count(); ++b) to_classify[b] = b;
   }
   // Each task writes only its own block; past the limit the rest is skipped
   // (the build fails below).
-  parallel_for(static_cast<int>(to_classify.size()), threads, [&](int n) {
-    if (marks.cells_held() <= kMostReachCellsHeld) build.classify_block(to_classify[n]);
+  parallel_for(static_cast<int>(marks.block_count()), threads, [&](int b) {
+    if ((wanted.empty() || wanted[b]) && marks.cells_held() <= kMostReachCellsHeld) build.classify_block(b);
   });
   if (marks.cells_held() > kMostReachCellsHeld) return too_many_cells(agent, double(marks.cells_held()));
 

@@ -77,7 +77,7 @@ private:
   static constexpr std::int32_t kUnclassified = -1;
   static constexpr std::int32_t kUniform = -2;
   Eigen::Vector3i dims_, block_dims_;
-  std::vector<std::int32_t> state_;  // per block: kUnclassified, kUniform, or its slot in bytes_
+  std::vector<std::int32_t> state_;   // per block: kUnclassified, kUniform, or its slot in bytes_
   std::vector<std::uint8_t> uniform_; // per block, when uniform
   std::vector<std::unique_ptr<std::uint8_t[]>> bytes_;
   // The lock that hold() takes, and the count of blocks held, apart so that
