@@ -3,7 +3,9 @@
 // one run over the same poses near the surfaces of each shared scene, at two
 // sizes: a character (capsule radius 0.4 m, half height 0.5 m, from the
 // scene's units per metre) and a large probe (radius 0.02 x the scene's
-// diagonal, the size of the Jolt comparison's probes, docs/results/runtime.md). Each row reports
+// diagonal, the size of the Jolt comparison's probes, docs/results/runtime.md), and, on the levels, a
+// walker: the character's capsule upright, standing on walkable faces where
+// it can be (rows query/SCENE/walker/...). Each row reports
 // microseconds per query for both worlds and the speed-up
 // (triangles / hulls). Rows: yes/no (touches), contacts, every touching
 // hull (overlap), rays (single and a batch of all poses, up to 4 radii
@@ -80,6 +82,7 @@ struct Scene {
   std::shared_ptr<const HullWorld> hulls;
   std::shared_ptr<const TriangleWorld> triangles;
   Probe character, large;
+  Probe walker;                                           // levels only: upright characters standing where they can be
   std::vector<Resting> resting_spheres, resting_capsules; // character size
 };
 
@@ -122,6 +125,36 @@ Probe make_probe(const PreparedMesh& prepared, double radius, double half_height
     probe.poses.push_back(pose);
     const Eigen::Vector3d towards = -n + 0.3 * Eigen::Vector3d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
     probe.rays.push_back({pose.translation(), towards, probe.ray_length});
+  }
+  return probe;
+}
+
+// Upright characters (capsule axis along +y, the levels' up) standing on
+// walkable faces (normal within 45 degrees of up), their feet up to one
+// radius across of a random point of one and from a tenth of a radius into
+// it to half a radius above it, kept where a capsule of half the radius on
+// the same axis touches no triangle: the poses a character controller asks
+// about, on floors, stairs and against walls, never inside the scene.
+Probe make_walker_probe(const PreparedMesh& prepared, const TriangleWorld& triangles, double radius, double half_height,
+                        unsigned seed) {
+  Probe probe;
+  probe.radius = radius;
+  probe.half_height = half_height;
+  probe.ray_length = 4.0 * radius;
+  const double min_up_cosine = std::cos(M_PI / 4.0);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> across(-radius, radius), lift(-0.1 * radius, 0.5 * radius);
+  for (int tries = 0; static_cast<int>(probe.poses.size()) < kPoses && tries < 1000 * kPoses; ++tries) {
+    const FacePoint on = random_face_point(prepared.mesh, rng);
+    if (on.normal.y() < min_up_cosine) continue;
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = Eigen::AngleAxisd(-M_PI / 2.0, Eigen::Vector3d::UnitX()).toRotationMatrix(); // local z up
+    pose.translation() = on.point + Eigen::Vector3d(across(rng), radius + half_height + lift(rng), across(rng));
+    TouchResult inside;
+    if (!triangles.touches({QueryShape::capsule(0.5 * radius, half_height), pose}, inside).ok() || inside.touching)
+      continue;
+    probe.poses.push_back(pose);
+    probe.rays.push_back({pose.translation(), -Eigen::Vector3d::UnitY(), probe.ray_length});
   }
   return probe;
 }
@@ -169,6 +202,7 @@ Scene make_scene(const PreparedMesh& prepared, const Covering& covering, double 
   const double metre = units_per_metre > 0.0 ? units_per_metre : diagonal / 50.0;
   s.character = make_probe(prepared, 0.4 * metre, 0.5 * metre, 42);
   s.large = make_probe(prepared, 0.02 * diagonal, 0.025 * diagonal, 43);
+  if (units_per_metre > 0.0) s.walker = make_walker_probe(prepared, *s.triangles, 0.4 * metre, 0.5 * metre, 46);
   s.resting_spheres = resting_poses(prepared, *s.triangles, QueryShape::sphere(s.character.radius), 44);
   s.resting_capsules =
       resting_poses(prepared, *s.triangles, QueryShape::capsule(s.character.radius, s.character.half_height), 45);
@@ -414,6 +448,7 @@ void register_sliding(const std::string& name, const std::shared_ptr<const Scene
 void register_scene(const std::string& name, const std::shared_ptr<const Scene>& s) {
   register_probe(name + "/character", s, s->character);
   register_probe(name + "/large", s, s->large);
+  if (!s->walker.poses.empty()) register_probe(name + "/walker", s, s->walker);
   register_sliding(name, s);
 }
 
@@ -442,7 +477,7 @@ bool filter_selects_scene(const std::string& filter, const std::string& scene) {
     const std::regex pattern(filter);
     if (std::regex_search("load/" + scene, pattern)) return true;
     for (const char* covering : {"", "/movement"})
-      for (const char* size : {"character", "large"})
+      for (const char* size : {"character", "large", "walker"})
         for (const char* row : kRows)
           if (std::regex_search("query/" + scene + covering + "/" + size + "/" + row + "/manual_time", pattern))
             return true;
