@@ -116,10 +116,10 @@ Result<AgentLattice> reach_lattice(const TriangleDistances& distances, const Aud
   lattice.flags = BlockBytes(lattice.dims);
   BlockBytes& flags = lattice.flags;
   const auto too_many = [&] {
-    return Status{StatusCode::limit_exceeded, "the movement audit's lattice would hold " +
-                                                  std::to_string(flags.cells_held()) + " points one by one (at most " +
+    return Status{StatusCode::limit_exceeded, "the movement audit's lattice needs more than " +
                                                   std::to_string(most_held) +
-                                                  "): a wider --lattice-spacing, or a part of the scene"};
+                                                  " points held one by one (those near the scene's surfaces): a wider "
+                                                  "--lattice-spacing, or a part of the scene"};
   };
   // The lattice samples the definition: a point passes when it is clear
   // itself, so every centre the flood reaches is one (two neighbours both

@@ -100,11 +100,11 @@ struct GridBuild {
   }
 };
 
-Status too_many_cells(const AgentShape& agent, double cells) {
-  return Status{StatusCode::limit_exceeded, "the reach grid of this scene at agent radius " +
-                                                number_text(agent.radius) + " would hold " + number_text(cells) +
-                                                " cells one by one (at most " + std::to_string(kMostReachCellsHeld) +
-                                                "): use a larger radius or a part of the scene"};
+Status too_many_cells(const AgentShape& agent) {
+  return Status{StatusCode::limit_exceeded,
+                "the reach grid of this scene at agent radius " + number_text(agent.radius) + " needs more than " +
+                    std::to_string(kMostReachCellsHeld) +
+                    " cells held one by one (those near its surfaces): use a larger radius or a part of the scene"};
 }
 
 } // namespace
@@ -169,7 +169,7 @@ Result<ReachGrid> build_reach_grid(const Mesh& mesh, const SceneClearance& clear
   parallel_for(static_cast<int>(marks.block_count()), threads, [&](int b) {
     if ((wanted.empty() || wanted[b]) && marks.cells_held() <= kMostReachCellsHeld) build.classify_block(b);
   });
-  if (marks.cells_held() > kMostReachCellsHeld) return too_many_cells(agent, double(marks.cells_held()));
+  if (marks.cells_held() > kMostReachCellsHeld) return too_many_cells(agent);
 
   if (walking) {
     for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f)
@@ -180,7 +180,7 @@ Result<ReachGrid> build_reach_grid(const Mesh& mesh, const SceneClearance& clear
       else
         marks.set_uniform(b, 0); // past the limit: the build fails below
     });
-    if (marks.cells_held() > kMostReachCellsHeld) return too_many_cells(agent, double(marks.cells_held()));
+    if (marks.cells_held() > kMostReachCellsHeld) return too_many_cells(agent);
   }
   const auto walkable_cell = [](std::uint8_t m) { return (m & kClear) && (m & (kStanding | kDropping)); };
   const auto occupiable = [&](std::uint8_t m) { return walking ? walkable_cell(m) : (m & kClear) != 0; };
