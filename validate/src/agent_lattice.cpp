@@ -175,9 +175,11 @@ Result<AgentLattice> reach_lattice(const TriangleDistances& distances, const Aud
   // highest point plus `rise`.
   const int fewest = static_cast<int>(std::floor((agent.height - 2.0 * agent.radius) / spacing));
   if (agent.walking) {
-    for (long long b = 0; b < flags.block_count(); ++b)
-      if (flags.uniform(b) && flags.uniform_byte(b)) flags.hold(b, flags.uniform_byte(b));
-    if (flags.cells_held() > most_held) return too_many();
+    for (long long b = 0; b < flags.block_count(); ++b) {
+      if (!flags.uniform(b) || !flags.uniform_byte(b)) continue;
+      if (flags.cells_held() > most_held) return too_many();
+      flags.hold(b, flags.uniform_byte(b));
+    }
     const Eigen::Vector3i& blocks = flags.block_dims();
     parallel_for(blocks[a1] * blocks[a2], threads, [&](int column) {
       const int bu = column / blocks[a2], bv = column % blocks[a2];
@@ -278,8 +280,10 @@ Result<AgentLattice> reach_lattice(const TriangleDistances& distances, const Aud
                 falling = false;
               else if (m & kStanding)
                 falling = true;
-              else if (falling)
+              else if (falling) {
+                if (flags.cells_held() > most_held) return too_many();
                 flags.at(c.x(), c.y(), c.z()) |= kFalling;
+              }
             }
           }
       }

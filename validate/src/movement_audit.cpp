@@ -113,10 +113,13 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
   report.height = agent.height;
   double spacing = options.spacing > 0.0 ? options.spacing : kDefaultAuditSpacingInRadii * agent.radius;
   const Eigen::Vector3d extent = box.max - box.min;
-  const auto points_at = [&](double s) { return ((extent / s).array().floor() + 1.0).prod(); };
+  // Counted in whole blocks: what the blocks' own numbers take.
+  const auto block_points_at = [&](double s) {
+    return (((extent / s).array().floor() + 1.0) / BlockBytes::kSide).ceil().prod() * BlockBytes::kCells;
+  };
   const auto widest_axis_at = [&](double s) { return ((extent / s).array().floor() + 1.0).maxCoeff(); };
   const auto fits = [&](double s) {
-    return points_at(s) <= static_cast<double>(kMostAuditLatticePoints) &&
+    return block_points_at(s) <= static_cast<double>(kMostAuditLatticePoints) &&
            widest_axis_at(s) < static_cast<double>(kMostCellsAlongAnAxis);
   };
   const double widest = detail::kWidestLatticeSpacingInRadii * agent.radius;
@@ -128,10 +131,11 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
   while (options.spacing <= 0.0 && !fits(spacing) && spacing < widest) spacing = std::min(widest, 1.25 * spacing);
   if (!fits(spacing)) {
     char count[32];
-    std::snprintf(count, sizeof count, "%.3g", points_at(spacing));
+    std::snprintf(count, sizeof count, "%.3g", block_points_at(spacing));
     return Status{StatusCode::limit_exceeded, std::string("the movement audit's lattice would span ") + count +
-                                                  " points (at most " + std::to_string(kMostAuditLatticePoints) +
-                                                  ", and " + std::to_string(kMostCellsAlongAnAxis - 1) +
+                                                  " points in whole blocks of 16^3 (at most " +
+                                                  std::to_string(kMostAuditLatticePoints) + ", and " +
+                                                  std::to_string(kMostCellsAlongAnAxis - 1) +
                                                   " along an axis): a wider --lattice-spacing, or a part of the scene"};
   }
   report.spacing = spacing;
@@ -164,12 +168,33 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
       if (!flags.classified(b)) continue;
       const Eigen::Vector3i lo = flags.block_at(b) * BlockBytes::kSide;
       const Eigen::Vector3i hi = (lo.array() + BlockBytes::kSide).min(lattice.dims.array());
+      long long reachable = 0;
       for (int k = lo.z(); k < hi.z(); ++k)
         for (int j = lo.y(); j < hi.y(); ++j)
           for (int i = lo.x(); i < hi.x(); ++i) {
             f.clear += lattice.clear(i, j, k);
+            reachable += lattice.clear(i, j, k) && lattice.reachable(i, j, k);
+          }
+      f.reachable += reachable;
+      if (reachable == 0) continue;
+      // The ball of r - E - tol at any point of the block lies in the ball
+      // of r - E + (half the block's diagonal) at its middle (tol to spare
+      // for rounding): when that touches no hull, no centre here sinks.
+      const Eigen::Vector3d first = lattice.point(lo.x(), lo.y(), lo.z());
+      const Eigen::Vector3d end = lattice.point(hi.x() - 1, hi.y() - 1, hi.z() - 1);
+      bvh::OverlapRequest block_ball;
+      block_ball.shape = bvh::QueryShape::sphere(r - agent.slop + 0.5 * (end - first).norm());
+      block_ball.pose.translation() = 0.5 * (first + end);
+      bvh::TouchResult block_touch;
+      if (Status asked = world.touches(block_ball, block_touch); !asked.ok()) {
+        f.failure = asked;
+        return;
+      }
+      if (!block_touch.touching) continue;
+      for (int k = lo.z(); k < hi.z(); ++k)
+        for (int j = lo.y(); j < hi.y(); ++j)
+          for (int i = lo.x(); i < hi.x(); ++i) {
             if (!lattice.clear(i, j, k) || !lattice.reachable(i, j, k)) continue;
-            ++f.reachable;
             const Eigen::Vector3d p = lattice.point(i, j, k);
             // Sinking deeper than E + tol is a ball of radius r - E - tol touching
             // a hull: asked first (a walk that stops at the first hull), the

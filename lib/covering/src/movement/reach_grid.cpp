@@ -135,14 +135,16 @@ Result<ReachGrid> build_reach_grid(const Mesh& mesh, const SceneClearance& clear
       box.min[agent.up_axis] -= rise;
   }
   const Eigen::Vector3d cells = ((box.max - box.min) / grid.cell).array().ceil();
-  if (!(cells.prod() <= static_cast<double>(kMostReachCells)) ||
+  // Counted in whole blocks: what the blocks' own numbers take.
+  const Eigen::Vector3d blocks = (cells / kReachBlock).array().ceil();
+  if (!(blocks.prod() * kReachBlockCells <= static_cast<double>(kMostReachCells)) ||
       !(cells.maxCoeff() < static_cast<double>(kMostCellsAlongAnAxis)))
-    return Status{StatusCode::limit_exceeded, "the reach grid of this scene at agent radius " +
-                                                  number_text(agent.radius) + " would span " + number_text(cells.x()) +
-                                                  " x " + number_text(cells.y()) + " x " + number_text(cells.z()) +
-                                                  " cells (at most " + std::to_string(kMostReachCells) + ", and " +
-                                                  std::to_string(kMostCellsAlongAnAxis - 1) +
-                                                  " along an axis): use a larger radius or a part " + "of the scene"};
+    return Status{StatusCode::limit_exceeded,
+                  "the reach grid of this scene at agent radius " + number_text(agent.radius) + " would span " +
+                      number_text(cells.x()) + " x " + number_text(cells.y()) + " x " + number_text(cells.z()) +
+                      " cells (at most " + std::to_string(kMostReachCells) + " in whole blocks of 16^3, and " +
+                      std::to_string(kMostCellsAlongAnAxis - 1) +
+                      " along an axis): use a larger radius or a part of the scene"};
   grid.origin = box.min;
   grid.dims = cells.cast<int>().cwiseMax(1);
 
@@ -173,14 +175,10 @@ Result<ReachGrid> build_reach_grid(const Mesh& mesh, const SceneClearance& clear
 
   if (walking) {
     for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f)
-      if (is_walkable(mesh, agent, f)) mark_standing(grid, mesh, agent, f, marks);
-    mark_drops(agent, marks, [&](long long b) {
-      if (marks.cells_held() <= kMostReachCellsHeld)
-        build.classify_block(b);
-      else
-        marks.set_uniform(b, 0); // past the limit: the build fails below
-    });
-    if (marks.cells_held() > kMostReachCellsHeld) return too_many_cells(agent);
+      if (is_walkable(mesh, agent, f) && !mark_standing(grid, mesh, agent, f, kMostReachCellsHeld, marks))
+        return too_many_cells(agent);
+    if (!mark_drops(agent, kMostReachCellsHeld, marks, [&](long long b) { build.classify_block(b); }))
+      return too_many_cells(agent);
   }
   const auto walkable_cell = [](std::uint8_t m) { return (m & kClear) && (m & (kStanding | kDropping)); };
   const auto occupiable = [&](std::uint8_t m) { return walking ? walkable_cell(m) : (m & kClear) != 0; };

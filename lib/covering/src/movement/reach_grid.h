@@ -18,7 +18,8 @@ namespace hullcover::detail {
 
 /// The reach grid of `mesh` for `agent`, from `seeds` (each already checked
 /// to have clearance >= r; empty: all clear space, flying). Fails with
-/// `limit_exceeded` when the grid would exceed kMostReachCells, and, when
+/// `limit_exceeded` when the grid would exceed kMostReachCells (or 2^21
+/// cells along an axis) or kMostReachCellsHeld, and, when
 /// `seeds_given` (the user's spawn points), with `invalid_argument` for a
 /// seed no agent of this reach occupies; default seeds there are passed
 /// over (a walkable face under a low ceiling).

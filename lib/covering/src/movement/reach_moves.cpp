@@ -46,7 +46,8 @@ void cell_range(const ReachGrid& grid, const Aabb& box, Eigen::Vector3i& lo, Eig
 // a ceiling. Cells under the face's lowest point within r across of their
 // column are left out: an agent under a surface does not stand on it (and
 // walkers would otherwise walk the envelopes under sloping ground).
-void mark_standing(const ReachGrid& grid, const Mesh& mesh, const AgentShape& agent, int face, ReachMarks& marks) {
+bool mark_standing(const ReachGrid& grid, const Mesh& mesh, const AgentShape& agent, int face, long long most_held,
+                   ReachMarks& marks) {
   const Aabb box = standing_box(mesh, agent, face);
   std::vector<Eigen::Vector3d> triangle;
   for (int k = 0; k < 3; ++k) triangle.push_back(mesh.positions[mesh.triangles[face][k]]);
@@ -101,18 +102,21 @@ void mark_standing(const ReachGrid& grid, const Mesh& mesh, const AgentShape& ag
         if (w - run_start >= fewest)
           for (int x = run_start; x < w; ++x) {
             const Eigen::Vector3i& q = cell(x);
+            if (marks.cells_held() > most_held) return false;
             marks.at(q.x(), q.y(), q.z()) |= kStanding;
           }
         run_start = w + 1;
       }
     }
+  return true;
 }
 
 // Marks kDropping below every standing cell, down through clear cells: an
 // agent stepping off a ledge falls straight down. Only columns of blocks
 // holding cells (every standing cell is in one) are walked; a block no
 // fall enters is skipped whole, and one a fall enters is classified first.
-void mark_drops(const AgentShape& agent, ReachMarks& marks, const std::function<void(long long)>& classify) {
+bool mark_drops(const AgentShape& agent, long long most_held, ReachMarks& marks,
+                const std::function<void(long long)>& classify) {
   const int axis = agent.up_axis;
   const int down = agent.up_sign > 0 ? -1 : 1;
   const Eigen::Vector3i& dims = marks.dims();
@@ -147,6 +151,7 @@ void mark_drops(const AgentShape& agent, ReachMarks& marks, const std::function<
                            : std::min(dims[axis], (w / kReachBlock + 1) * kReachBlock) - 1;
               continue;
             }
+            if (marks.cells_held() > most_held) return false;
             if (!marks.classified(b)) classify(b);
             const std::uint8_t m = marks.get(c.x(), c.y(), c.z());
             if (!(m & kClear))
@@ -158,6 +163,7 @@ void mark_drops(const AgentShape& agent, ReachMarks& marks, const std::function<
           }
         }
     }
+  return marks.cells_held() <= most_held;
 }
 
 void add_outer_cells(ReachMarks& marks, FloodStarts& out) {

@@ -31,12 +31,16 @@ Aabb standing_box(const Mesh& mesh, const AgentShape& agent, int face);
 
 /// Marks kStanding in the kept cells where an agent standing on walkable
 /// face `face` may have a point of its axis (reach_moves.cpp says how).
-/// The blocks meeting standing_box(face) must be classified.
-void mark_standing(const ReachGrid& grid, const Mesh& mesh, const AgentShape& agent, int face, ReachMarks& marks);
+/// The blocks meeting standing_box(face) must be classified. Stops, false,
+/// when more than `most_held` cells would be held one by one.
+bool mark_standing(const ReachGrid& grid, const Mesh& mesh, const AgentShape& agent, int face, long long most_held,
+                   ReachMarks& marks);
 
 /// Marks kDropping below every standing cell, down through kept cells,
-/// classifying (`classify`) each block a fall enters.
-void mark_drops(const AgentShape& agent, ReachMarks& marks, const std::function<void(long long)>& classify);
+/// classifying (`classify`) each block a fall enters. Stops, false, when
+/// more than `most_held` cells would be held one by one.
+bool mark_drops(const AgentShape& agent, long long most_held, ReachMarks& marks,
+                const std::function<void(long long)>& classify);
 
 /// Adds the grid's outer kept cells and blocks (where the sky beyond meets it).
 void add_outer_cells(ReachMarks& marks, FloodStarts& out);

@@ -25,7 +25,7 @@ struct MovementCovering {
 /// Decomposes `prepared` for agents as `options` says. Deterministic for
 /// any thread count. Fails with `invalid_argument` for options out of range
 /// or a seed where no agent fits, and with `limit_exceeded` when the reach
-/// grid would exceed kMostReachCells.
+/// grid would exceed kMostReachCells or kMostReachCellsHeld.
 Result<MovementCovering> decompose_for_movement(const PreparedMesh& prepared, const MovementOptions& options);
 
 } // namespace hullcover

@@ -38,10 +38,11 @@ inline constexpr double kDefaultMaxSlopeDegrees = 45.0;
 /// occupy on the far side (docs/definitions-and-proofs.md), large enough to
 /// stay small.
 inline constexpr double kReachCellInRadii = 0.7;
-/// The reach grid spans at most this many cells over the scene's box (it
-/// keeps 9 bytes for each block of 4,096: at most about 150 MB). A scene
-/// that needs more at its radius is refused with a message (a larger
-/// radius, or a part of the scene, fits).
+/// The reach grid spans at most this many cells over the scene's box,
+/// counted in whole blocks of 16^3 (about 10 bytes a block while it is
+/// built: at most about 170 MB, and 8 more a block on the grid's outside
+/// when a flyer starts beyond it). A scene that needs more at its radius is
+/// refused with a message (a larger radius, or a part of the scene, fits).
 inline constexpr long long kMostReachCells = 1LL << 36;
 /// ... and holds at most this many one by one, a byte each while it is
 /// built: the blocks near surfaces, where some cells may hold an agent and

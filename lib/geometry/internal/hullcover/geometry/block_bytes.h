@@ -17,8 +17,10 @@
 namespace hullcover {
 
 /// Blocks are classified (set_uniform or hold) once each, at once on
-/// different blocks from several threads; reading and changing cells (get,
-/// at) is for one thread at a time.
+/// different blocks from several threads. Cells are read (get) and changed
+/// (at) by several threads at once only while no block is being held (at
+/// on a block already held), each thread changing cells of its own; else
+/// by one thread at a time.
 class BlockBytes {
 public:
   /// Cells per side of a block (a power of 2), and cells in a block.
