@@ -7,6 +7,8 @@
 /// point it reaches is a reachable centre; passages narrower than the
 /// lattice resolves may leave some out.
 
+#include "audit_agent.h"
+
 #include "hullcover/covering/movement_options.h"
 #include "hullcover/geometry/aabb_tree.h"
 #include "hullcover/geometry/block_bytes.h"
@@ -17,17 +19,6 @@
 #include <vector>
 
 namespace hullcover::validate::detail {
-
-/// The agent with every default resolved.
-struct AuditAgent {
-  double radius = 0.0, slop = 0.0, height = 0.0, climb = 0.0;
-  double min_up_cosine = 0.0;
-  int up_axis = 1;
-  double up_sign = 1.0;
-  bool walking = true;
-  double rise() const { return climb + height - radius; } ///< how high above a walkable point its axis may be
-  double height_of(const Eigen::Vector3d& p) const { return up_sign * p[up_axis]; }
-};
 
 /// Distances to the scene's triangles.
 struct TriangleDistances {

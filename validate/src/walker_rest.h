@@ -5,7 +5,9 @@
 /// its height range, the distance to it across up, and the lowest point of
 /// it under the walker's circle.
 
-#include "agent_lattice.h"
+#include "audit_agent.h"
+
+#include "hullcover/geometry/mesh.h"
 
 #include <Eigen/Core>
 
