@@ -144,10 +144,11 @@ const char* differs(const Answers& x, const Answers& y, int kind) {
                      x.sweep.normal != y.sweep.normal
                  ? "sweeps"
                  : nullptr;
-    default: return x.touching != y.touching ? "yes/no touches" : nullptr;
+    case 5: return x.touching != y.touching ? "yes/no touches" : nullptr;
+    default: return x.blocked != y.blocked ? "lines of sight" : nullptr;
   }
 }
-constexpr int kQueryKinds = 6;
+constexpr int kQueryKinds = 7;
 
 bool touch_hull_overlaps(const Answers& a, const Answers& overlap) {
   return !a.touching || std::binary_search(overlap.overlap.hulls.begin(), overlap.overlap.hulls.end(), a.touch_hull);
@@ -162,6 +163,10 @@ bool same_answers(const Answers& x, const Answers& y, std::string* why) {
     }
   if (!touch_hull_overlaps(x, x) || !touch_hull_overlaps(y, y)) {
     if (why) *why = "a touching hull is not in the overlap";
+    return false;
+  }
+  if (x.blocked != x.ray.hit || y.blocked != y.ray.hit) {
+    if (why) *why = "a line of sight is not blocked exactly when the ray hits";
     return false;
   }
   return true;

@@ -108,6 +108,7 @@ TEST(StreamedWorld, EmptyWorldFindsNothing) {
   EXPECT_EQ(a.distance.distance, std::numeric_limits<double>::infinity());
   EXPECT_FALSE(a.sweep.hit);
   EXPECT_FALSE(a.touching);
+  EXPECT_FALSE(a.blocked);
   ASSERT_TRUE(empty.loaded_sections().ok());
   EXPECT_TRUE(empty.loaded_sections().value().empty());
   // Bad requests fail as on a HullWorld, loaded or not.
