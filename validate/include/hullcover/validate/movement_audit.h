@@ -30,10 +30,10 @@ namespace hullcover::validate {
 /// up to 0.7 x r (the widest that keeps its flood out of walls); a scene
 /// that needs more is refused.
 inline constexpr long long kMostAuditLatticePoints = 1LL << 36;
-/// ... and holds at most this many one by one, a byte each: the blocks near
-/// surfaces (open air, solid ground and, walking, space no walker stands in
-/// cost nothing more). Past it the audit is refused.
-inline constexpr long long kMostAuditLatticePointsHeld = 1LL << 28;
+/// ... and holds at most this many one by one, a byte each (1 GiB): the
+/// blocks near surfaces (open air, solid ground and, walking, space no
+/// walker stands in cost nothing more). Past it the audit is refused.
+inline constexpr long long kMostAuditLatticePointsHeld = 1LL << 30;
 /// The default spacing, in radii.
 inline constexpr double kDefaultAuditSpacingInRadii = 0.5;
 

@@ -45,10 +45,10 @@ inline constexpr double kReachCellInRadii = 0.7;
 /// refused with a message (a larger radius, or a part of the scene, fits).
 inline constexpr long long kMostReachCells = 1LL << 36;
 /// ... and holds at most this many one by one, a byte each while it is
-/// built: the blocks near surfaces, where some cells may hold an agent and
-/// some not (open air, solid ground and the space between a world's maps
-/// cost nothing more).
-inline constexpr long long kMostReachCellsHeld = 1LL << 28;
+/// built (1 GiB): the blocks near surfaces, where some cells may hold an
+/// agent and some not (open air, solid ground and the space between a
+/// world's maps cost nothing more).
+inline constexpr long long kMostReachCellsHeld = 1LL << 30;
 
 /// How to make a movement covering. Lengths in scene units.
 struct MovementOptions {
