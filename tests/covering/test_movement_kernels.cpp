@@ -217,10 +217,7 @@ TEST(ReachGrid, AWalkerOnAHillsideStaysAboveIt) {
 TEST(ReachGrid, TwoLevelsFarApartEachReachWhatTheyReachAlone) {
   const test::MovementLevel level = test::movement_level();
   const V apart(3000, 0, 3000);
-  Mesh world = level.mesh;
-  for (const V& p : level.mesh.positions) world.positions.push_back(p + apart);
-  const int offset = static_cast<int>(level.mesh.positions.size());
-  for (const Eigen::Vector3i& t : level.mesh.triangles) world.triangles.push_back(t.array() + offset);
+  const Mesh world = test::with_a_copy(level.mesh, apart);
   const SceneClearance clearance(world);
 
   const Result<ReachGrid> walking =

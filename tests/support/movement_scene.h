@@ -37,6 +37,17 @@ inline void add_level_box(Mesh& mesh, const Eigen::Vector3d& lo, const Eigen::Ve
   }
 }
 
+/// `mesh` and a copy of it moved by `apart`, as two maps of a world (every
+/// triangle material 0).
+inline Mesh with_a_copy(const Mesh& mesh, const Eigen::Vector3d& apart) {
+  Mesh world = mesh;
+  for (const Eigen::Vector3d& p : mesh.positions) world.positions.push_back(p + apart);
+  const int offset = static_cast<int>(mesh.positions.size());
+  for (const Eigen::Vector3i& t : mesh.triangles) world.triangles.push_back(t.array() + offset);
+  world.material_ids.assign(world.triangles.size(), 0);
+  return world;
+}
+
 /// The level's parts, for the tests to look at.
 struct MovementLevel {
   Mesh mesh;

@@ -2,7 +2,8 @@
 // built for them, checked against the definition: points the level's parts
 // name, the faces each hull holds, and the movement audit's own lattice of
 // agent centres (hullcover/validate/movement_audit.h), which shares no
-// code with the decomposer's reach grid or proofs.
+// code with the decomposer's reach grid or proofs but the geometry
+// library's block store and its flood (block_bytes.h).
 
 #include "box_hulls.h"
 #include "movement_scene.h"
@@ -236,11 +237,7 @@ TEST(MovementAudit, FindsAHullInReachableSpaceAndAFloorWithoutItsHull) {
 TEST(MovementAudit, TwoLevelsFarApartAreAuditedAlike) {
   const test::MovementLevel level = test::movement_level();
   const V apart(256, 0, 256);
-  Mesh world = level.mesh;
-  for (const V& p : level.mesh.positions) world.positions.push_back(p + apart);
-  const int offset = static_cast<int>(level.mesh.positions.size());
-  for (const Eigen::Vector3i& t : level.mesh.triangles) world.triangles.push_back(t.array() + offset);
-  world.material_ids.assign(world.triangles.size(), 0);
+  const Mesh world = test::with_a_copy(level.mesh, apart);
   MovementOptions options = walking_from(level);
   options.seeds.push_back(level.spawn + apart);
   const Made both = make(world, options);
