@@ -994,6 +994,10 @@ def gen_batch_threads(ctx):
     control = rows_in.get("threads/arithmetic_control", {}).get("speedup")
     if control:
         out += f"| arithmetic control | {control:.2f} | |\n"
+    wake = rows_in.get("threads/wake_up", {})
+    if "asleep_us" in wake and "awake_us" in wake:
+        out += (f"| an empty batch, thread asleep / awake | {wake['asleep_us']:.1f} µs / {wake['awake_us']:.1f} µs "
+                f"| |\n")
     return out
 
 

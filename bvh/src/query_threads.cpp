@@ -15,16 +15,13 @@
 namespace hullcover::bvh {
 
 namespace {
-// How long a thread between batches, or a caller waiting for the last
-// chunks, watches for the next event before it sleeps: a server asks
-// batches back to back each tick, and a sleeping thread takes tens of
-// microseconds to wake, as long as a whole batch of short rays.
-constexpr auto kWatchBeforeSleeping = std::chrono::microseconds(200);
-
-// Calls `ready()` until it is true or the watch is over; whether it was.
+// Calls `ready()` until it is true or `how_long` is over; whether it was.
+// A thread between batches, or a caller waiting for the last chunks,
+// watches before it sleeps: a sleeping thread takes tens of microseconds
+// to wake, as long as a whole batch of short rays.
 template <typename Ready>
-bool watch(Ready&& ready) {
-  const auto until = std::chrono::steady_clock::now() + kWatchBeforeSleeping;
+bool watch(std::chrono::microseconds how_long, Ready&& ready) {
+  const auto until = std::chrono::steady_clock::now() + how_long;
   for (;;) {
     for (int i = 0; i < 64; ++i) {
       if (ready()) return true;
@@ -37,6 +34,7 @@ bool watch(Ready&& ready) {
 
 struct QueryThreads::Shared {
   std::vector<std::thread> workers;
+  std::chrono::microseconds watch_time = kDefaultWatch;
   std::mutex batch_mutex; // one batch at a time
   std::mutex mutex;
   std::condition_variable wake, done;
@@ -62,7 +60,7 @@ struct QueryThreads::Shared {
   void work() {
     std::uint64_t seen = 0;
     for (;;) {
-      watch([&] { return quitting.load() || generation.load() != seen; });
+      watch(watch_time, [&] { return quitting.load() || generation.load() != seen; });
       {
         std::unique_lock<std::mutex> lock(mutex);
         wake.wait(lock, [&] { return quitting.load() || generation.load() != seen; });
@@ -87,15 +85,20 @@ QueryThreads::~QueryThreads() {
   for (std::thread& t : shared_->workers) t.join();
 }
 
-Result<std::shared_ptr<QueryThreads>> QueryThreads::start(int threads) {
+Result<std::shared_ptr<QueryThreads>> QueryThreads::start(int threads, std::chrono::microseconds watch) {
   using Started = Result<std::shared_ptr<QueryThreads>>;
   return detail::guarded("starting query threads", [&]() -> Started {
     if (threads < 0 || threads > kMostThreads)
       return Status{StatusCode::invalid_argument, "query threads: " + std::to_string(threads) +
                                                       " is not a thread count from 0 to " +
                                                       std::to_string(kMostThreads)};
+    if (watch.count() < 0 || watch > kLongestWatch)
+      return Status{StatusCode::invalid_argument, "query threads: a watch of " + std::to_string(watch.count()) +
+                                                      " microseconds is not from 0 to " +
+                                                      std::to_string(kLongestWatch.count())};
     if (threads == 0) threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, kMostThreads);
     std::shared_ptr<QueryThreads> pool(new QueryThreads());
+    pool->shared_->watch_time = watch;
     try {
       for (int i = 1; i < threads; ++i) pool->shared_->workers.emplace_back([s = pool->shared_.get()] { s->work(); });
     } catch (const std::system_error& e) {
@@ -125,7 +128,7 @@ void QueryThreads::run(size_t count, size_t chunk, void (*body)(size_t, size_t, 
   }
   s.wake.notify_all();
   s.take_chunks();
-  if (watch([&] { return s.busy.load() == 0; })) return;
+  if (watch(s.watch_time, [&] { return s.busy.load() == 0; })) return;
   std::unique_lock<std::mutex> lock(s.mutex);
   s.done.wait(lock, [&] { return s.busy.load() == 0; });
 }

@@ -42,6 +42,7 @@
 #include <functional>
 #include <random>
 #include <regex>
+#include <thread>
 
 namespace {
 
@@ -248,11 +249,18 @@ void side_by_side(benchmark::State& state, int count, const std::function<void(i
       "triangle", false);
 }
 
+// How long the two-thread pool below watches between batches: longer than
+// the one-thread batch run between two of its own, so the rows time a
+// server's batches asked back to back, threads awake. The cost of waking a
+// sleeping thread is its own row (threads/wake_up).
+constexpr std::chrono::microseconds kWatchAcrossTheOneThreadBatch{100'000};
+
 // One batch on one thread, then on two (QueryThreads, started once), in
 // turn each iteration; the manual time is the two threads'. Counters: µs
 // per query for each and the speed-up (1.0: none; 2.0: perfect).
 void one_thread_then_two(benchmark::State& state, int count, const std::function<void(QueryThreads*)>& batch) {
-  const std::shared_ptr<QueryThreads> one = QueryThreads::start(1).value(), two = QueryThreads::start(2).value();
+  const std::shared_ptr<QueryThreads> one = QueryThreads::start(1).value(),
+                                      two = QueryThreads::start(2, kWatchAcrossTheOneThreadBatch).value();
   in_turn(
       state, count, [&] { batch(one.get()); }, "one_thread", [&] { batch(two.get()); }, "two_threads", true);
 }
@@ -284,6 +292,39 @@ void register_thread_control() {
           &job);
       benchmark::DoNotOptimize(out.data());
     });
+      })
+      ->UseManualTime()
+      ->Unit(benchmark::kMicrosecond);
+}
+
+// What a batch costs beyond its queries: an empty batch of two items on
+// two threads, after a pause of a millisecond, on a pool whose thread slept
+// at once (asleep_us: the wake-up a server pays on its first batch of a
+// tick) and on one that watched (awake_us). Manual time: asleep.
+void register_thread_wake_up() {
+  benchmark::RegisterBenchmark(
+      "threads/wake_up",
+      [](benchmark::State& state) {
+    const std::shared_ptr<QueryThreads> asleep = QueryThreads::start(2, std::chrono::microseconds(0)).value(),
+                                        awake = QueryThreads::start(2, kWatchAcrossTheOneThreadBatch).value();
+    const auto empty_batch = [](QueryThreads& threads) {
+      const Clock::time_point start = Clock::now();
+      threads.run(
+          2, 1, [](size_t, size_t, void*) {}, nullptr);
+      return std::chrono::duration<double>(Clock::now() - start).count();
+    };
+    double asleep_seconds = 0.0, awake_seconds = 0.0;
+    for (auto _ : state) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      const double a = empty_batch(*asleep);
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      awake_seconds += empty_batch(*awake);
+      asleep_seconds += a;
+      state.SetIterationTime(a);
+    }
+    const double n = static_cast<double>(std::max<benchmark::IterationCount>(state.iterations(), 1));
+    state.counters["asleep_us"] = 1e6 * asleep_seconds / n;
+    state.counters["awake_us"] = 1e6 * awake_seconds / n;
       })
       ->UseManualTime()
       ->Unit(benchmark::kMicrosecond);
@@ -527,6 +568,7 @@ int main(int argc, char** argv) {
     })->Unit(benchmark::kMillisecond);
   }
   register_thread_control();
+  register_thread_wake_up();
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

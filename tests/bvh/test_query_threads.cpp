@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 namespace hullcover::bvh {
 namespace {
 
@@ -93,6 +96,37 @@ TEST(QueryThreads, ABatchNamesItsLowestBadRequestOnAnyThreadCount) {
   }
   EXPECT_EQ(QueryThreads::start(-1).status().code(), StatusCode::invalid_argument);
   EXPECT_EQ(QueryThreads::start(QueryThreads::kMostThreads + 1).status().code(), StatusCode::invalid_argument);
+  const Status negative = QueryThreads::start(2, std::chrono::microseconds(-1)).status();
+  EXPECT_EQ(negative.code(), StatusCode::invalid_argument);
+  EXPECT_NE(negative.message().find("watch of -1 microseconds"), std::string::npos) << negative.message();
+  EXPECT_EQ(QueryThreads::start(2, QueryThreads::kLongestWatch + std::chrono::microseconds(1)).status().code(),
+            StatusCode::invalid_argument);
+}
+
+// Threads that sleep at once between batches, and threads that watch for
+// the longest time, answer alike, batches asked back to back or after the
+// threads have slept.
+TEST(QueryThreads, AnyWatchGivesTheSameAnswers) {
+  const auto world = box_field();
+  std::vector<RayRequest> rays;
+  for (const Probe& p : probes(300)) rays.push_back(p.ray);
+  std::vector<RayResult> alone;
+  ASSERT_TRUE(world->ray_cast_batch(rays, alone).ok());
+  for (const auto watch : {std::chrono::microseconds(0), QueryThreads::kLongestWatch}) {
+    auto pool = QueryThreads::start(2, watch);
+    ASSERT_TRUE(pool.ok()) << pool.status().message();
+    for (int round = 0; round < 3; ++round) {
+      if (round == 2) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      std::vector<RayResult> pooled;
+      ASSERT_TRUE(world->ray_cast_batch(rays, pooled, pool.value().get()).ok());
+      ASSERT_EQ(pooled.size(), alone.size());
+      for (size_t i = 0; i < rays.size(); ++i) {
+        EXPECT_EQ(pooled[i].hit, alone[i].hit) << watch.count() << " us watch, round " << round << ", ray " << i;
+        EXPECT_EQ(pooled[i].first.hull, alone[i].first.hull) << i;
+        EXPECT_EQ(pooled[i].first.t, alone[i].first.t) << i;
+      }
+    }
+  }
 }
 
 } // namespace

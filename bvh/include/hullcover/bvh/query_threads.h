@@ -6,9 +6,14 @@
 /// take in turn (the caller's thread takes part), so uneven queries even
 /// out; every query's answer is computed alone, so a batch gives the same
 /// answers for any thread count.
+///
+/// Between batches a thread watches for the next one for a while
+/// (`watch`, see start()) before it sleeps: a sleeping thread takes tens of
+/// microseconds to wake, as long as a batch of a few hundred rays.
 
 #include "hullcover/geometry/status.h"
 
+#include <chrono>
 #include <cstddef>
 #include <memory>
 
@@ -19,11 +24,20 @@ namespace hullcover::bvh {
 class QueryThreads {
 public:
   /// `threads` in all, the caller's included (>= 1; 0: one per hardware
-  /// thread). Fails with `invalid_argument` for a negative count or more
-  /// than kMostThreads, and `internal_error` if the system starts none.
-  static Result<std::shared_ptr<QueryThreads>> start(int threads);
+  /// thread). After a batch, the threads watch for the next for `watch`
+  /// (yielding the core to any other work) before they sleep: a server
+  /// that asks batches less than `watch` apart never waits for a thread to
+  /// wake. Fails with `invalid_argument` for a negative count, more than
+  /// kMostThreads, or a watch outside [0, kLongestWatch]; and
+  /// `internal_error` if the system starts none.
+  static Result<std::shared_ptr<QueryThreads>> start(int threads, std::chrono::microseconds watch = kDefaultWatch);
   /// The most threads start() accepts.
   static constexpr int kMostThreads = 256;
+  /// How long threads watch for the next batch unless told: back-to-back
+  /// batches within a tick find them awake; between ticks they sleep.
+  static constexpr std::chrono::microseconds kDefaultWatch{200};
+  /// The longest watch start() accepts (one second).
+  static constexpr std::chrono::microseconds kLongestWatch{1'000'000};
 
   ~QueryThreads();
   QueryThreads(const QueryThreads&) = delete;
