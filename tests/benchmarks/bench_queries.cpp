@@ -250,9 +250,10 @@ void side_by_side(benchmark::State& state, int count, const std::function<void(i
 }
 
 // How long the two-thread pool below watches between batches: longer than
-// the one-thread batch run between two of its own, so the rows time a
-// server's batches asked back to back, threads awake. The cost of waking a
-// sleeping thread is its own row (threads/wake_up).
+// the one-thread batch run between two of its own (but for the largest
+// contact batches, which last far longer than a wake-up), so the rows time
+// a server's batches asked back to back, threads awake. The cost of waking
+// a sleeping thread is its own row (threads/wake_up).
 constexpr std::chrono::microseconds kWatchAcrossTheOneThreadBatch{100'000};
 
 // One batch on one thread, then on two (QueryThreads, started once), in
