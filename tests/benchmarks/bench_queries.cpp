@@ -131,7 +131,8 @@ Probe make_probe(const PreparedMesh& prepared, double radius, double half_height
 }
 
 // Upright characters (capsule axis along +y, the levels' up) standing on
-// walkable faces (normal within 45 degrees of up), their feet up to one
+// walkable faces (normal within the movement covering's default slope,
+// 45 degrees, of up), their feet up to one
 // radius across of a random point of one and from a tenth of a radius into
 // it to half a radius above it, kept where a capsule of half the radius on
 // the same axis touches no triangle: the poses a character controller asks
@@ -142,7 +143,7 @@ Probe make_walker_probe(const PreparedMesh& prepared, const TriangleWorld& trian
   probe.radius = radius;
   probe.half_height = half_height;
   probe.ray_length = 4.0 * radius;
-  const double min_up_cosine = std::cos(M_PI / 4.0);
+  const double min_up_cosine = std::cos(kDefaultMaxSlopeDegrees * M_PI / 180.0);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> across(-radius, radius), lift(-0.1 * radius, 0.5 * radius);
   for (int tries = 0; static_cast<int>(probe.poses.size()) < kPoses && tries < 1000 * kPoses; ++tries) {

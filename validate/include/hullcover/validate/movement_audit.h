@@ -26,9 +26,8 @@ namespace hullcover::validate {
 
 /// The lattice spans at most this many points over the scene's box,
 /// counted in whole blocks of 16^3 (about 6 bytes a block). The default
-/// spacing is widened to fit,
-/// up to 0.7 x r (the widest that keeps its flood out of walls); a scene
-/// that needs more is refused.
+/// spacing is widened to fit, up to 0.7 x r (the widest that keeps its
+/// flood out of walls); a scene that needs more is refused.
 inline constexpr long long kMostAuditLatticePoints = 1LL << 36;
 /// ... and holds at most this many one by one, a byte each (1 GiB): the
 /// blocks near surfaces (open air, solid ground and, walking, space no
