@@ -3,6 +3,7 @@
 #include "movement/movement_groups.h"
 #include "movement/movement_merging.h"
 #include "movement/reach_grid.h"
+#include "movement/region_tree.h"
 #include "movement/scene_clearance.h"
 
 #include "hullcover/covering/covering.h"
@@ -27,44 +28,6 @@ std::string length_text(double x) {
   char text[32];
   std::snprintf(text, sizeof text, "%.6g", x);
   return text;
-}
-
-// The region of each of `faces`: its box halved at the median of their
-// centroids along its longest side until each holds at most `most`.
-std::vector<int> split_into_regions(const Mesh& mesh, const std::vector<int>& faces, int most) {
-  std::vector<int> region(faces.size(), 0);
-  if (faces.empty()) return region;
-  std::vector<Eigen::Vector3d> centroid(faces.size());
-  for (size_t i = 0; i < faces.size(); ++i) {
-    const Eigen::Vector3i& t = mesh.triangles[faces[i]];
-    centroid[i] = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
-  }
-  std::vector<int> order(faces.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-  int regions = 0;
-  // Ranges of `order` still to split.
-  std::vector<std::pair<int, int>> ranges{{0, static_cast<int>(order.size())}};
-  while (!ranges.empty()) {
-    const auto [begin, end] = ranges.back();
-    ranges.pop_back();
-    if (end - begin <= most) {
-      for (int i = begin; i < end; ++i) region[order[i]] = regions;
-      ++regions;
-      continue;
-    }
-    Aabb box;
-    for (int i = begin; i < end; ++i) box.extend(centroid[order[i]]);
-    int axis = 0;
-    (box.max - box.min).maxCoeff(&axis);
-    const int middle = begin + (end - begin) / 2;
-    // Ties broken by index: the same regions on every machine.
-    std::nth_element(order.begin() + begin, order.begin() + middle, order.begin() + end, [&](int x, int y) {
-      return centroid[x][axis] != centroid[y][axis] ? centroid[x][axis] < centroid[y][axis] : x < y;
-    });
-    ranges.emplace_back(middle, end);
-    ranges.emplace_back(begin, middle);
-  }
-  return region;
 }
 
 // The agent of `o`, and the decomposer's own limits.
@@ -142,9 +105,12 @@ Result<MovementCovering> decompose_checked(const PreparedMesh& prepared, const M
 
   const Clock::time_point merging = Clock::now();
   const detail::MovementContext context{mesh, clearance, grid.value(), agent, tol};
-  // Regions merge on their own, at once; then the pairs across them.
-  const std::vector<int> region_of_face = split_into_regions(mesh, faces, options.faces_per_region);
-  const int regions = region_of_face.empty() ? 1 : 1 + *std::max_element(region_of_face.begin(), region_of_face.end());
+  // Regions merge on their own, at once; then each cut between two sets of
+  // regions merges the pairs across it, once both sides are merged
+  // (region_tree.h).
+  const detail::RegionTree region_tree = detail::split_into_regions(mesh, faces, options.faces_per_region);
+  const std::vector<int>& region_of_face = region_tree.region_of;
+  const int regions = std::max(1, region_tree.regions);
   std::vector<std::vector<int>> region_faces(regions);
   std::vector<std::vector<std::vector<int>>> region_starts(regions);
   std::vector<int> region_of(face_count, -1);
@@ -160,46 +126,58 @@ Result<MovementCovering> decompose_checked(const PreparedMesh& prepared, const M
   }
   for (int f : faces) region_faces[region_of[f]].push_back(f);
   std::vector<std::vector<detail::MovementGroup>> region_groups(regions);
-  // Counts per region: candidates, undecided, merges.
-  std::vector<std::array<long long, 3>> region_counts(regions);
+  // Counts per region, then per join: candidates, undecided, merges.
+  const std::vector<detail::RegionJoin>& joins = region_tree.joins;
+  std::vector<std::array<long long, 3>> counts(regions + joins.size());
   std::mutex progress_mutex;
-  int regions_done = 0;
-  parallel_for(regions, threads, [&](int region) {
+  size_t tasks_done = 0;
+  const auto report = [&] {
+    if (!options.progress) return;
+    const std::lock_guard<std::mutex> lock(progress_mutex);
+    options.progress(0.1 + 0.85 * static_cast<double>(++tasks_done) / static_cast<double>(counts.size()));
+  };
+  // A join's groups end up where its first region's were.
+  detail::run_regions_and_joins(
+      region_tree, threads,
+      [&](int region) {
     detail::GroupProver prover;
     std::vector<detail::MovementGroup> groups = detail::starting_groups(
         context, region_faces[region], region_starts[region], options.max_hull_vertices, prover);
     detail::MovementMerger merger(context, prepared.connectivity, std::move(groups), {}, agent.radius,
                                   options.max_hull_vertices, prover);
     merger.merge({});
-    region_counts[region] = {prover.candidates, prover.undecided, merger.merges()};
+    counts[region] = {prover.candidates, prover.undecided, merger.merges()};
     region_groups[region] = merger.take_groups();
-    if (options.progress) {
-      const std::lock_guard<std::mutex> lock(progress_mutex);
-      options.progress(0.1 + 0.7 * ++regions_done / regions);
-    }
+    report();
+      },
+      [&](int j) {
+    const detail::RegionJoin& join = joins[j];
+    std::vector<detail::MovementGroup> groups = std::move(region_groups[join.first]);
+    std::vector<int> side(groups.size(), 0);
+    for (detail::MovementGroup& g : region_groups[join.split]) groups.push_back(std::move(g));
+    side.resize(groups.size(), 1);
+    region_groups[join.split].clear();
+    detail::GroupProver prover;
+    detail::MovementMerger merger(context, prepared.connectivity, std::move(groups), side, agent.radius,
+                                  options.max_hull_vertices, prover);
+    merger.merge({});
+    counts[regions + j] = {prover.candidates, prover.undecided, merger.merges()};
+    region_groups[join.first] = merger.take_groups();
+    report();
   });
-  for (const std::array<long long, 3>& counts : region_counts) {
-    stats.candidates += counts[0];
-    stats.undecided += counts[1];
-    stats.merges += counts[2];
+  for (const std::array<long long, 3>& c : counts) {
+    stats.candidates += c[0];
+    stats.undecided += c[1];
+    stats.merges += c[2];
   }
-  std::vector<detail::MovementGroup> groups;
-  std::vector<int> group_region;
-  for (int region = 0; region < regions; ++region)
-    for (detail::MovementGroup& g : region_groups[region]) {
-      groups.push_back(std::move(g));
-      group_region.push_back(region);
-    }
+  // Every region's groups are now the first's: a group whose faces all
+  // lie in other hulls is dropped (no pair to try: one side).
+  std::vector<detail::MovementGroup> groups = std::move(region_groups[0]);
+  const std::vector<int> one_side(groups.size(), 0);
   detail::GroupProver prover;
-  detail::MovementMerger merger(context, prepared.connectivity, std::move(groups), group_region, agent.radius,
+  detail::MovementMerger merger(context, prepared.connectivity, std::move(groups), one_side, agent.radius,
                                 options.max_hull_vertices, prover);
-  merger.merge([&](double done) {
-    if (options.progress) options.progress(0.8 + 0.15 * done);
-  });
   merger.drop_held_groups();
-  stats.candidates += prover.candidates;
-  stats.undecided += prover.undecided;
-  stats.merges += merger.merges();
   Covering& covering = result.covering;
   covering.hulls = detail::hulls_of_groups(mesh, tol, merger.take_groups());
   stats.seconds_merging = seconds_since(merging);

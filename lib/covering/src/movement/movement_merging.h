@@ -6,9 +6,10 @@
 /// distance, are tried cheapest first (the paper's cost: the union's
 /// outline length over the square root of its area, so compact unions
 /// first); a merge is made when the hull of the union passes the proof.
-/// Run per region of the scene at once, then once over every region's
-/// groups for the pairs across regions. Then every group whose faces all
-/// lie inside other hulls is dropped: its faces are covered.
+/// Run per region of the scene at once, then at each cut between regions
+/// over both sides' groups, for the pairs across the cut. Then every group
+/// whose faces all lie inside other hulls is dropped: its faces are
+/// covered.
 
 #include "movement/movement_groups.h"
 

@@ -69,7 +69,8 @@ struct MovementOptions {
   int threads = 0;             ///< 0: every core; the covering does not depend on it
   /// The touchable faces are split into regions of at most this many
   /// (before an exact hull's faces join the region of its first), merged
-  /// each on its own, at once on the threads, then across regions (>= 1).
+  /// each on its own, at once on the threads, then across each cut between
+  /// them, once both its sides are merged (>= 1).
   int faces_per_region = 512;
   /// Called now and then with the fraction of work done (0..1); may be empty.
   std::function<void(double)> progress;

@@ -25,6 +25,19 @@ inline int threads_to_use(int requested) {
   return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 }
 
+/// Runs `work` on `threads` threads at once (the calling thread is one of
+/// them) and returns once each has returned. A thread that cannot be
+/// started leaves its share to the others: `work` must take whatever is
+/// left, as a loop over shared jobs does. `work` must not throw.
+inline void run_together(int threads, const std::function<void()>& work) {
+  std::vector<std::thread> pool;
+  try {
+    for (int t = 1; t < threads; ++t) pool.emplace_back(work);
+  } catch (const std::system_error&) {}
+  work();
+  for (std::thread& thread : pool) thread.join();
+}
+
 /// Runs `job(i)` for every i in [0, count) on up to `threads` threads (the
 /// calling thread is one of them; no thread is started for one job or one
 /// thread). Indices are handed out in ascending order. The first exception
@@ -45,14 +58,7 @@ inline void parallel_for(int count, int threads, const std::function<void(int)>&
       }
     }
   };
-  std::vector<std::thread> pool;
-  // A thread that cannot be started leaves its share to the others (the
-  // calling thread always works), as the jobs do not care who runs them.
-  try {
-    for (int t = 1; t < std::min(threads, count); ++t) pool.emplace_back(work);
-  } catch (const std::system_error&) {}
-  work();
-  for (std::thread& thread : pool) thread.join();
+  run_together(std::min(threads, count), work);
   if (failure) std::rethrow_exception(failure);
 }
 
