@@ -4,8 +4,8 @@
 /// join: the touchable faces' box is halved at the median of their
 /// centroids along its longest side until each part holds at most a given
 /// number of faces (a region); each halving is then a join, where the
-/// groups of its two halves merge across the cut. Joins of one height
-/// share no region, so they run at once, lowest first.
+/// groups of its two halves merge across the cut, as soon as both halves
+/// are merged (run_regions_and_joins).
 
 #include "hullcover/geometry/mesh.h"
 
