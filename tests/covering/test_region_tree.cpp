@@ -97,7 +97,7 @@ TEST(RegionTree, EveryJoinRunsOnceAfterBothItsHalvesOnAnyThreadCount) {
       EXPECT_EQ((done[{join.split, join.end}]), 1);
       ++done[{join.first, join.end}];
       finished_at[tree.regions + j] = order++;
-        });
+    });
     for (int r = 0; r < tree.regions; ++r) EXPECT_EQ((done[{r, r + 1}]), 1);
     for (const RegionJoin& j : tree.joins) EXPECT_EQ((done[{j.first, j.end}]), 1);
     for (int f : finished_at) EXPECT_GE(f, 0);
