@@ -171,15 +171,11 @@ Result<MovementCovering> decompose_checked(const PreparedMesh& prepared, const M
     stats.merges += c[2];
   }
   // Every region's groups are now the first's: a group whose faces all
-  // lie in other hulls is dropped (no pair to try: one side).
+  // lie in other hulls is dropped.
   std::vector<detail::MovementGroup> groups = std::move(region_groups[0]);
-  const std::vector<int> one_side(groups.size(), 0);
-  detail::GroupProver prover;
-  detail::MovementMerger merger(context, prepared.connectivity, std::move(groups), one_side, agent.radius,
-                                options.max_hull_vertices, prover);
-  merger.drop_held_groups();
+  detail::drop_held_groups(context, groups);
   Covering& covering = result.covering;
-  covering.hulls = detail::hulls_of_groups(mesh, tol, merger.take_groups());
+  covering.hulls = detail::hulls_of_groups(mesh, tol, groups);
   stats.seconds_merging = seconds_since(merging);
   covering.tolerance = prepared.tolerance;
   covering.statistics.faces = face_count;

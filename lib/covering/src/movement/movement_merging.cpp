@@ -194,21 +194,30 @@ void MovementMerger::merge(const std::function<void(double)>& progress) {
   }
 }
 
-void MovementMerger::drop_held_groups() {
-  const Mesh& mesh = context_.mesh;
-  const double tol = context_.tol;
+std::vector<MovementGroup> MovementMerger::take_groups() {
+  std::vector<MovementGroup> out;
+  for (Entry& e : entries_)
+    if (e.alive) out.push_back(std::move(e.group));
+  entries_.clear();
+  return out;
+}
+
+void drop_held_groups(const MovementContext& context, std::vector<MovementGroup>& groups) {
+  const Mesh& mesh = context.mesh;
+  const double tol = context.tol;
   std::vector<Aabb> boxes;
-  for (const Entry& e : entries_) boxes.push_back(e.alive ? grown(e.group.box, tol) : Aabb{});
+  for (const MovementGroup& g : groups) boxes.push_back(grown(g.box, tol));
   const AabbTree tree(boxes);
+  std::vector<char> alive(groups.size(), 1);
   // A group that holds a dropped group's face stays: dropping it too would
   // leave that face bare.
-  std::vector<char> holding(entries_.size(), 0);
+  std::vector<char> holding(groups.size(), 0);
   std::vector<int> found, holders;
-  for (int g = 0; g < static_cast<int>(entries_.size()); ++g) {
-    if (!entries_[g].alive || holding[g]) continue;
+  for (int g = 0; g < static_cast<int>(groups.size()); ++g) {
+    if (holding[g]) continue;
     holders.clear();
     bool held = true;
-    for (int f : entries_[g].group.faces) {
+    for (int f : groups[g].faces) {
       Aabb face_box;
       for (int k = 0; k < 3; ++k) face_box.extend(mesh.positions[mesh.triangles[f][k]]);
       found.clear();
@@ -216,10 +225,9 @@ void MovementMerger::drop_held_groups() {
       std::sort(found.begin(), found.end());
       int holder = -1;
       for (int h : found) {
-        if (h == g || !entries_[h].alive) continue;
+        if (h == g || !alive[h]) continue;
         bool all = true;
-        for (int k = 0; k < 3 && all; ++k)
-          all = holds(entries_[h].group.hull, mesh.positions[mesh.triangles[f][k]], tol);
+        for (int k = 0; k < 3 && all; ++k) all = holds(groups[h].hull, mesh.positions[mesh.triangles[f][k]], tol);
         if (all) {
           holder = h;
           break;
@@ -229,17 +237,16 @@ void MovementMerger::drop_held_groups() {
       holders.push_back(holder);
     }
     if (!held) continue;
-    entries_[g].alive = false;
+    alive[g] = 0;
     for (int h : holders) holding[h] = 1;
   }
-}
-
-std::vector<MovementGroup> MovementMerger::take_groups() {
-  std::vector<MovementGroup> out;
-  for (Entry& e : entries_)
-    if (e.alive) out.push_back(std::move(e.group));
-  entries_.clear();
-  return out;
+  size_t kept = 0;
+  for (size_t g = 0; g < groups.size(); ++g) {
+    if (!alive[g]) continue;
+    if (kept != g) groups[kept] = std::move(groups[g]); // never onto itself: that would empty it
+    ++kept;
+  }
+  groups.resize(kept);
 }
 
 std::vector<CoveringHull> hulls_of_groups(const Mesh& mesh, double tol, const std::vector<MovementGroup>& groups) {

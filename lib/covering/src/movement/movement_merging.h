@@ -35,8 +35,6 @@ public:
   /// Merges until no pair is left; `progress` (may be empty) hears the
   /// fraction of groups merged away.
   void merge(const std::function<void(double)>& progress);
-  /// Drops every group whose faces each lie inside another group's hull.
-  void drop_held_groups();
   /// Merges made.
   long long merges() const { return merges_; }
   /// The groups left, in the order they started.
@@ -76,6 +74,10 @@ private:
   static constexpr size_t kQueueGrowthBeforeCompaction = size_t{1} << 22;
   long long merges_ = 0;
 };
+
+/// Drops every group of `groups` whose faces each lie inside (or within
+/// tol of) the hull of another group that stays; the rest keep their order.
+void drop_held_groups(const MovementContext& context, std::vector<MovementGroup>& groups);
 
 /// The covering's hulls of `groups`, ordered by their first face.
 std::vector<CoveringHull> hulls_of_groups(const Mesh& mesh, double tol, const std::vector<MovementGroup>& groups);
