@@ -11,6 +11,7 @@
 #include "movement/within_slop.h"
 
 #include "hullcover/covering/convex_hull_3d.h"
+#include "hullcover/geometry/planar_hull.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -275,6 +276,35 @@ TEST(MovementProof, RefusesAHullAcrossTheFloorsCornerAndAcceptsTheCrate) {
   std::vector<V> wedge = {V(8, 0, 1), V(8, 1.5, 1), V(8, 0, 3), V(8, 1.5, 3), V(6, 0, 1), V(6, 0, 3)};
   EXPECT_EQ(check_movement_hull(context, builder.build(wedge).value(), false, {}, boundary),
             MovementVerdict::centre_near_boundary);
+}
+
+// A square hovering exactly E over a floor, under the sky: a flyer resting
+// on the floor under it, or lying on it, is exactly r - E from it, where the
+// promise allows it to be. Such a tangent region is decided at once: the
+// proof counts a centre within tol of the region as in it, and clears a box
+// only where every point is nearer than r - tol / 8 to a triangle, so a box
+// narrower than the gap between the two is always decided. (The proof once
+// searched these down to its smallest box and gave up, undecided.) A little
+// higher, the square is refused for the centres under it; a little lower
+// (within E - tol of the floor), it is held by the floor and valid.
+TEST(MovementProof, ASquareExactlyTheSlopOverTheFloorIsDecidedNotGivenUp) {
+  Mesh floor;
+  floor.positions = {V(-3, 0, -3), V(3, 0, -3), V(3, 0, 3), V(-3, 0, 3)};
+  floor.triangles = {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 3, 2)};
+  const SceneClearance clearance(floor);
+  const AgentShape agent = walker(AgentReach::fly);
+  const ReachGrid grid = build_reach_grid(floor, clearance, agent, {V(0, 1, 0)}, true, 1).value();
+  const MovementContext context{floor, clearance, grid, agent, kTol};
+  const auto square = [&](double y) {
+    const std::vector<V> corners = {V(-0.5, y, -0.5), V(0.5, y, -0.5), V(0.5, y, 0.5), V(-0.5, y, 0.5)};
+    return flat_polytope(make_flat_polygon(corners, {0, 1, 2, 3}, V(0, 1, 0), kTol), true);
+  };
+  UncoveredBoundary boundary;
+  EXPECT_EQ(check_movement_hull(context, square(agent.slop), true, {}, boundary),
+            MovementVerdict::centre_near_boundary);
+  EXPECT_EQ(check_movement_hull(context, square(agent.slop + 0.01), true, {}, boundary),
+            MovementVerdict::centre_near_boundary);
+  EXPECT_EQ(check_movement_hull(context, square(agent.slop - 2 * kTol), true, {}, boundary), MovementVerdict::valid);
 }
 
 } // namespace

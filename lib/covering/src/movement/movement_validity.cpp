@@ -41,21 +41,38 @@ double distance_to_polygon(const Eigen::Vector3d& p, const std::vector<Eigen::Ve
   return best;
 }
 
+// The clearance below which every point of a box clears it (an agent's
+// centre is at least r from every triangle). A point at this clearance or
+// more is never cleared, so the cheap witnesses below count such points
+// alone: a hull they refuse, the halving refuses too.
+double clearing_of(const MovementContext& context) {
+  return context.agent.radius - kClearingMarginInTols * context.tol;
+}
+
 // Whether no reachable centre lies in a region: `lower(c)` bounds from
 // below the distance from point c to the region, and `inside(c)` tells
-// whether c lies in it. Boxes from `start` are halved along their longest
-// side until each is cleared: it misses the region, the reach grid holds
-// no reachable cell in it, or every point of it is nearer than r - tol to
-// a triangle (by the clearance at its centre plus its half-diagonal, or by
-// its farthest corner from the nearest triangle). A point of the region at
+// whether a centre at c breaks the promise: it lies in the region or
+// within tol of it (or, for a hull's inside, anywhere in it). Boxes from `start` are halved along
+// their longest side until each is cleared: it misses the region, the
+// reach grid holds no reachable cell in it, or every point of it is
+// nearer than r - kClearingMarginInTols tol to a triangle (by the
+// clearance at its centre plus its half-diagonal, or by its farthest
+// corner from the nearest triangle). A point within tol of the region at
 // clearance r - tol or more in a reachable cell is a witness: a point
-// within tol of clearance r counts as one an agent's centre may be at.
+// within tol of clearance r counts as one an agent's centre may be at, and
+// one within tol of the region as in it. A box that is neither cleared nor
+// holds a witness at its centre has a point at clearance r -
+// kClearingMarginInTols tol or more, and meets the region: once its
+// half-diagonal is below (1 - kClearingMarginInTols) tol, its centre is a
+// witness unless its cell is not reachable, so a region that just touches
+// where a centre may be is decided, never searched to the smallest box.
 template <class Lower, class Inside>
 RegionVerdict no_centre_in(const MovementContext& context, const Aabb& start, int& boxes_left, Lower&& lower,
                            Inside&& inside) {
   const double r = context.agent.radius;
   const double tol = context.tol;
-  const double smallest = kSmallestProofBoxInSlops * context.agent.slop;
+  const double clearing = clearing_of(context);
+  const double smallest = std::min(kSmallestProofBoxInSlops * context.agent.slop, kSmallestProofBoxInTols * tol);
   // Each box with the triangle nearest its parent's centre: most boxes are
   // cleared by their parent's triangle before any search.
   std::vector<std::pair<Aabb, int>> stack{{start, -1}};
@@ -83,10 +100,10 @@ RegionVerdict no_centre_in(const MovementContext& context, const Aabb& start, in
     // The grid first: most boxes away from the agents' space are cleared
     // by it, far more cheaply than by distances to triangles.
     if (!context.grid.any_reachable(box)) continue;
-    if (hint >= 0 && context.clearance.box_within(box, hint, r - tol)) continue;
+    if (hint >= 0 && context.clearance.box_within(box, hint, clearing)) continue;
     const NearestFace near = nearest(c, r + half + tol, hint);
-    if (near.distance + half < r - tol) continue;
-    if (near.face >= 0 && near.face != hint && context.clearance.box_within(box, near.face, r - tol)) continue;
+    if (near.distance + half < clearing) continue;
+    if (near.face >= 0 && near.face != hint && context.clearance.box_within(box, near.face, clearing)) continue;
     if (near.distance >= r - tol && inside(c) && context.grid.reachable_at(c)) return RegionVerdict::reached;
     if (half < smallest || --boxes_left < 0) return RegionVerdict::undecided;
     int axis = 0;
@@ -115,7 +132,7 @@ bool witness_beside(const MovementContext& context, const BoundaryPiece& piece) 
   const auto reachable = [&](const Eigen::Vector3d& base) {
     for (double side : {1.0, -1.0}) {
       const Eigen::Vector3d c = base + side * offset * piece.normal;
-      if (context.grid.reachable_at(c) && context.clearance.nearest(c, r).distance >= r - tol) return true;
+      if (context.grid.reachable_at(c) && context.clearance.nearest(c, r).distance >= clearing_of(context)) return true;
     }
     return false;
   };
@@ -140,7 +157,7 @@ bool witness_away_from_mesh(const MovementContext& context, const Eigen::Vector3
   const Eigen::Vector3d foot = closest_point_on_triangle(p, context.mesh.positions[t[0]], context.mesh.positions[t[1]],
                                                          context.mesh.positions[t[2]]);
   const Eigen::Vector3d c = p + (r - context.agent.slop - 2.0 * tol) * (p - foot).normalized();
-  return context.grid.reachable_at(c) && context.clearance.nearest(c, r).distance >= r - tol;
+  return context.grid.reachable_at(c) && context.clearance.nearest(c, r).distance >= clearing_of(context);
 }
 
 // The column over `piece`: the points within r - E of its plane whose
@@ -221,9 +238,7 @@ RegionVerdict prove_piece(const MovementContext& context, const BoundaryPiece& p
   const Column column{piece, reach};
   return no_centre_in(
       context, start, boxes_left, [&](const Eigen::Vector3d& c) { return column.distance(c); },
-      [&](const Eigen::Vector3d& c) {
-    return column.distance(c) == 0.0 && std::abs(piece.normal.dot(c - piece.corners[0])) < reach - tol;
-      });
+      [&](const Eigen::Vector3d& c) { return column.distance(c) < tol; });
 }
 
 // Proves no reachable centre within r - E of segment a-b: it lies within E
@@ -258,7 +273,7 @@ RegionVerdict prove_segment(const MovementContext& context, const BoundarySegmen
   };
   return no_centre_in(
       context, start, boxes_left, [&](const Eigen::Vector3d& c) { return distance(c) - reach; },
-      [&](const Eigen::Vector3d& c) { return distance(c) < reach - tol; });
+      [&](const Eigen::Vector3d& c) { return distance(c) < reach + tol; });
 }
 
 double area_of(const std::vector<Eigen::Vector3d>& polygon) {
@@ -317,7 +332,11 @@ MovementVerdict check_movement_hull(const MovementContext& context, const Convex
       const RegionVerdict verdict = no_centre_in(
           context, start, boxes_left,
           [&](const Eigen::Vector3d& c) { return deepest_signed_distance(hull.planes, c) + reach - tol; },
-          [&](const Eigen::Vector3d& c) { return deepest_signed_distance(hull.planes, c) < -tol; });
+          [&](const Eigen::Vector3d& c) {
+        // Inside H, or within tol of H shrunk (which lies inside H unless r - E < 3 tol).
+        const double depth = deepest_signed_distance(hull.planes, c);
+        return depth < -tol || depth + reach - tol < tol;
+          });
       if (verdict == RegionVerdict::reached) return MovementVerdict::centre_inside;
       undecided |= verdict == RegionVerdict::undecided;
     }

@@ -36,8 +36,20 @@ inline constexpr int kMostProofBoxes = 1 << 17;
 inline constexpr double kProofBoxesPerSquareRadius = 64.0;
 /// ... and never more than this,
 inline constexpr int kMostProofBoxesOfAHull = 1 << 18;
-/// ... or at a box whose half-diagonal is below the slop times this.
+/// ... or at a box whose half-diagonal is below the slop times this,
 inline constexpr double kSmallestProofBoxInSlops = 1.0 / 16.0;
+/// ... or tol times this, if less: a box narrower than the gap between the
+/// clearing and the witness thresholds below is always decided, but where
+/// the reach grid's cells part it.
+inline constexpr double kSmallestProofBoxInTols = 0.5;
+/// A box is cleared when every point of it lies nearer to a triangle than r
+/// less this many tol: an agent's centre is at least r from every triangle,
+/// and the margin is far above a distance's rounding. A point at clearance
+/// r - tol or more is a witness, so the two leave a gap of 7/8 tol, and a
+/// region that just touches where a centre may be (an agent resting on a
+/// floor, exactly r - E under a hull) is decided by a witness, never
+/// searched down to the smallest box.
+inline constexpr double kClearingMarginInTols = 1.0 / 8.0;
 /// A search whose region, grown by r, its half-diagonal and tol, meets at
 /// most this many triangles' boxes scans them for each box's nearest
 /// instead of walking the tree.
