@@ -279,14 +279,14 @@ TEST(MovementProof, RefusesAHullAcrossTheFloorsCornerAndAcceptsTheCrate) {
 }
 
 // A square hovering exactly E over a floor, under the sky: a flyer resting
-// on the floor under it, or lying on it, is exactly r - E from it, where the
-// promise allows it to be. Such a tangent region is decided at once: the
-// proof counts a centre within tol of the region as in it, and clears a box
+// on the floor under it is exactly r - E from it, the promise's limit. The
+// proof counts a centre within tol of its region as in it, and clears a box
 // only where every point is nearer than r - tol / 8 to a triangle, so a box
-// narrower than the gap between the two is always decided. (The proof once
-// searched these down to its smallest box and gave up, undecided.) A little
-// higher, the square is refused for the centres under it; a little lower
-// (within E - tol of the floor), it is held by the floor and valid.
+// narrower than the gap between the two is always decided: the square is
+// refused by a witness at once. (The proof once searched such a region down
+// to its smallest box and gave up, undecided.) A little higher, the square
+// is refused as well; a little lower (within E - tol of the floor), it is
+// held by the floor and valid.
 TEST(MovementProof, ASquareExactlyTheSlopOverTheFloorIsDecidedNotGivenUp) {
   Mesh floor;
   floor.positions = {V(-3, 0, -3), V(3, 0, -3), V(3, 0, 3), V(-3, 0, 3)};

@@ -52,20 +52,21 @@ double clearing_of(const MovementContext& context) {
 // Whether no reachable centre lies in a region: `lower(c)` bounds from
 // below the distance from point c to the region, and `inside(c)` tells
 // whether a centre at c breaks the promise: it lies in the region or
-// within tol of it (or, for a hull's inside, anywhere in it). Boxes from `start` are halved along
-// their longest side until each is cleared: it misses the region, the
-// reach grid holds no reachable cell in it, or every point of it is
-// nearer than r - kClearingMarginInTols tol to a triangle (by the
-// clearance at its centre plus its half-diagonal, or by its farthest
-// corner from the nearest triangle). A point within tol of the region at
-// clearance r - tol or more in a reachable cell is a witness: a point
-// within tol of clearance r counts as one an agent's centre may be at, and
-// one within tol of the region as in it. A box that is neither cleared nor
-// holds a witness at its centre has a point at clearance r -
-// kClearingMarginInTols tol or more, and meets the region: once its
-// half-diagonal is below (1 - kClearingMarginInTols) tol, its centre is a
-// witness unless its cell is not reachable, so a region that just touches
-// where a centre may be is decided, never searched to the smallest box.
+// within tol of it (or, for a hull's inside, anywhere in it). Boxes from
+// `start` are halved along their longest side until each is cleared: it
+// misses the region, the reach grid holds no reachable cell in it, or
+// every point of it is nearer than r - kClearingMarginInTols tol to a
+// triangle (by the clearance at its centre plus its half-diagonal, or by
+// its farthest corner from the nearest triangle). A point within tol of
+// the region at clearance r - tol or more in a reachable cell is a
+// witness: a point within tol of clearance r counts as one an agent's
+// centre may be at, and one within tol of the region as in it. A box that
+// is neither cleared nor holds a witness at its centre has a point at
+// clearance r - kClearingMarginInTols tol or more, and meets the region:
+// once its half-diagonal is below (1 - kClearingMarginInTols) tol, its
+// centre is a witness unless its cell is not reachable, so a region that
+// just touches where a centre may be is decided, never searched to the
+// smallest box.
 template <class Lower, class Inside>
 RegionVerdict no_centre_in(const MovementContext& context, const Aabb& start, int& boxes_left, Lower&& lower,
                            Inside&& inside) {
