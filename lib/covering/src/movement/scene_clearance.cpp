@@ -23,7 +23,21 @@ std::vector<Aabb> face_boxes(const Mesh& mesh) {
 
 } // namespace
 
-SceneClearance::SceneClearance(const Mesh& mesh) : mesh_(mesh), boxes_(face_boxes(mesh)), tree_(boxes_) {}
+SceneClearance::SceneClearance(const Mesh& mesh) : mesh_(mesh), boxes_(face_boxes(mesh)), tree_(boxes_) {
+  // A needle's computed normal is not trusted (box_within says why): its
+  // plane is left zero, which passes no triangle by.
+  planes_.resize(mesh.triangles.size(), Eigen::Vector4d::Zero());
+  for (size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Eigen::Vector3i& t = mesh.triangles[f];
+    const Eigen::Vector3d &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    const double length = n.norm();
+    if (length > kLeastTrustedSine * (b - a).norm() * (c - a).norm()) {
+      const Eigen::Vector3d u = n / length;
+      planes_[f] << u, u.dot(a);
+    }
+  }
+}
 
 double SceneClearance::squared_to_face(const Eigen::Vector3d& p, int face) const {
   const Eigen::Vector3i& t = mesh_.triangles[face];
@@ -47,6 +61,7 @@ NearestFace SceneClearance::nearest(const Eigen::Vector3d& p, double limit, int 
   double best2 = limit * limit;
   bool nearer = false; // than the hint, or found at all without one
   const double d2 = tree_.nearest_to_point(p, limit, [&](int f) {
+    if (const double plane2 = squared_to_plane(p, f); plane2 >= best2) return plane2;
     const double e2 = squared_to_face(p, f);
     if (e2 < best2) {
       best2 = e2;
@@ -85,6 +100,7 @@ NearestFace SceneClearance::nearest_among(const std::vector<int>& faces, const E
       gap2 += gap * gap;
     }
     if (!(gap2 < best2)) continue;
+    if (squared_to_plane(p, f) >= best2) continue;
     const double e2 = squared_to_face(p, f);
     if (e2 < best2) {
       best2 = e2;
