@@ -11,7 +11,7 @@
 ///     nearer than r - E would be nearer than r to that triangle), or of
 ///     one of two triangles on either side of a plane between them, or by
 ///     halving boxes of the space around it until each holds no reachable
-///     centre (the reach grid clears it, or a triangle lies within r - tol
+///     centre (the reach grid clears it, or a triangle lies within r - tol / 8
 ///     of all of it, by its corners) or lies too far;
 ///  2. points of the boundary on faces are at least r from every centre;
 ///  3. H shrunk by r - E holds no reachable centre (the same halving).
