@@ -24,8 +24,10 @@ std::vector<Aabb> face_boxes(const Mesh& mesh) {
 } // namespace
 
 SceneClearance::SceneClearance(const Mesh& mesh) : mesh_(mesh), boxes_(face_boxes(mesh)), tree_(boxes_) {
-  // A needle's computed normal is not trusted (box_within says why): its
-  // plane is left zero, which passes no triangle by.
+  // The computed normal's direction is off by about the rounding over the
+  // sine of the triangle's sharpest angle: a needle's is not trusted, its
+  // plane left zero (the searches then pass no triangle by its plane, and
+  // box_within judges its boxes by their corners alone).
   planes_.resize(mesh.triangles.size(), Eigen::Vector4d::Zero());
   for (size_t f = 0; f < mesh.triangles.size(); ++f) {
     const Eigen::Vector3i& t = mesh.triangles[f];
@@ -116,16 +118,12 @@ bool SceneClearance::box_within(const Aabb& box, int face, double limit) const {
   const Eigen::Vector3i& t = mesh_.triangles[face];
   const Eigen::Vector3d &a = mesh_.positions[t[0]], &b = mesh_.positions[t[1]], &c = mesh_.positions[t[2]];
   const Eigen::Vector3d middle = 0.5 * (box.min + box.max), half = 0.5 * (box.max - box.min);
-  const Eigen::Vector3d normal = (b - a).cross(c - a);
-  const double length = normal.norm();
-  // The shortcut trusts the computed normal's direction, off by about the
-  // rounding over the sine of the triangle's sharpest angle: a needle's
-  // box is judged by its corners alone.
-  if (length > kLeastTrustedSine * (b - a).norm() * (c - a).norm()) {
+  // The shortcut trusts the triangle's unit normal: none for a needle.
+  const Eigen::Vector3d n = planes_[face].head<3>();
+  if (n != Eigen::Vector3d::Zero()) {
     // The largest distance from the plane over the box: no corner is
     // nearer to the triangle than to its plane, so when that is not below
     // the limit, some corner is not.
-    const Eigen::Vector3d n = normal / length;
     const double off_plane = std::abs(n.dot(middle - a)) + n.cwiseAbs().dot(half);
     if (!(off_plane < limit)) return false;
     // Every corner on the inner side of each edge (the least of a linear
@@ -135,7 +133,7 @@ bool SceneClearance::box_within(const Aabb& box, int face, double limit) const {
     const Eigen::Vector3d* corners[3] = {&a, &b, &c};
     for (int k = 0; k < 3 && projects_in; ++k) {
       const Eigen::Vector3d& from = *corners[k];
-      const Eigen::Vector3d inward = normal.cross(*corners[(k + 1) % 3] - from);
+      const Eigen::Vector3d inward = n.cross(*corners[(k + 1) % 3] - from);
       projects_in = inward.dot(middle - from) - inward.cwiseAbs().dot(half) >= 0.0;
     }
     if (projects_in) return true;
