@@ -6,6 +6,9 @@
 
 #include <cmath>
 
+// The library's own layout of Eigen's fixed-size types (query_shape.h).
+extern "C" const int HULLCOVER_EIGEN_LAYOUT_SYMBOL = EIGEN_MAX_STATIC_ALIGN_BYTES;
+
 namespace hullcover::bvh {
 
 Aabb world_box(const QueryShape& shape, const Eigen::Isometry3d& pose) {

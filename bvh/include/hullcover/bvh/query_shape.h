@@ -15,6 +15,29 @@
 
 #include <vector>
 
+// Eigen's fixed-size vectorizable types (the Isometry3d of every request)
+// are laid out by the compiler's instruction-set flags: an AVX build aligns
+// them to 32 bytes where an SSE2 build aligns them to 16, so a program
+// built with other such flags than the library would hand it every
+// request at the wrong offsets and get wrong answers, silently. Each file
+// that includes this header refers to a symbol named after its own
+// alignment, which only a library built with the same alignment defines
+// (query_shape.cpp): a mismatch fails to link, naming the symbol
+// (hullcover_eigen_static_alignment_32, say), instead. docs/install.md
+// says what to do then.
+#define HULLCOVER_EIGEN_LAYOUT_NAME_OF(bytes) hullcover_eigen_static_alignment_##bytes
+#define HULLCOVER_EIGEN_LAYOUT_NAME(bytes) HULLCOVER_EIGEN_LAYOUT_NAME_OF(bytes)
+#define HULLCOVER_EIGEN_LAYOUT_SYMBOL HULLCOVER_EIGEN_LAYOUT_NAME(EIGEN_MAX_STATIC_ALIGN_BYTES)
+extern "C" const int HULLCOVER_EIGEN_LAYOUT_SYMBOL;
+#if defined(__GNUC__) || defined(__clang__)
+namespace hullcover::bvh::detail {
+// A constant, kept by `used` so that every including file refers to the
+// symbol even when nothing reads it.
+[[maybe_unused]] __attribute__((used)) static const int* const eigen_layout_of_this_file =
+    &HULLCOVER_EIGEN_LAYOUT_SYMBOL;
+} // namespace hullcover::bvh::detail
+#endif
+
 namespace hullcover::bvh {
 
 /// What a QueryShape is.
