@@ -1,5 +1,6 @@
 #include "hullcover/bvh/hull_contact.h"
 
+#include "nearest_edges.h"
 #include "planes_ray_hit.h"
 #include "separating_axes.h"
 #include "surface_normals.h"
@@ -158,14 +159,20 @@ ClosestPoints closest_to_segment_apart(const RuntimeHull& hull, const Eigen::Vec
   // on an edge.
   // Each edge once, first: the segment-to-segment closest points are the
   // cost, and a yes/no query often stops at the first edge near enough.
-  NearestOfEdges nearest(kInfinity, good_enough);
   const SegmentTerms segment(a, b);
-  for_each_edge(hull, [&](const Eigen::Vector3d& u, const Eigen::Vector3d& w) {
-    const auto [on_segment, on_edge] = closest_points_of_segments(segment, u, w);
-    return nearest.offer((on_segment - on_edge).squaredNorm(), on_edge, on_segment);
-  });
   ClosestPoints best{kInfinity, a, a};
-  if (nearest.won) best = {std::sqrt(nearest.squared), nearest.on_hull, nearest.on_other};
+  if (good_enough < 0.0 && !hull.edges.empty()) {
+    // The nearest edge wanted (a contact): every edge, two at a time.
+    const NearestEdge nearest = nearest_edge_to_segment(segment, hull.shape.vertices, hull.edges, kInfinity);
+    if (nearest.edge >= 0) best = {std::sqrt(nearest.squared), nearest.on_edge, nearest.on_segment};
+  } else {
+    NearestOfEdges nearest(kInfinity, good_enough);
+    for_each_edge(hull, [&](const Eigen::Vector3d& u, const Eigen::Vector3d& w) {
+      const auto [on_segment, on_edge] = closest_points_of_segments(segment, u, w);
+      return nearest.offer((on_segment - on_edge).squaredNorm(), on_edge, on_segment);
+    });
+    if (nearest.won) best = {std::sqrt(nearest.squared), nearest.on_hull, nearest.on_other};
+  }
   for (int f = 0; f < static_cast<int>(hull.shape.facets.size()) && best.distance > good_enough; ++f) {
     const Plane& plane = hull.shape.planes[f];
     for (const Eigen::Vector3d* end : {&a, &b}) {
