@@ -137,9 +137,16 @@ Status overlap_query(const Source& source, const OverlapRequest& request, Overla
   return s;
 }
 
+/// Room a result's contact list gets at its first query: a large sphere or
+/// capsule touches tens of hulls, and a list grown one doubling at a time
+/// from nothing would be allocated six times for them. A result that is
+/// reused keeps what it has grown to and is never allocated again.
+inline constexpr size_t kFirstContactRoom = 64;
+
 template <typename Source>
 Status contact_query(const Source& source, const ContactRequest& request, ContactResult& result) {
   result.contacts.clear();
+  if (result.contacts.capacity() == 0) result.contacts.reserve(kFirstContactRoom);
   if (request.max_contacts < 1) return {StatusCode::invalid_argument, "max_contacts must be at least 1"};
   AppendTo<Contact> append(result.contacts);
   Status s = collide_query(source, OverlapRequest{request.shape, request.pose}, HullFilter{}, append);
