@@ -6,9 +6,7 @@
 // closest_points_of_segments and the squared distance of its points, and
 // the nearest is the first of equals in edge order, so the answer is the
 // same bits as a scan of the edges one at a time. A build without SSE2
-// (HULLCOVER_PLANE_PAIRS_SSE2 = 0, planes_ray_hit.h) scans them so. (The
-// same for a sphere's centre against the edges, measured, saved 2% of a
-// sphere contact's instructions: its edges are few and cheap.)
+// (HULLCOVER_PLANE_PAIRS_SSE2 = 0, planes_ray_hit.h) scans them so.
 
 #include "planes_ray_hit.h" // HULLCOVER_PLANE_PAIRS_SSE2
 
@@ -21,8 +19,8 @@
 
 namespace hullcover::bvh::detail {
 
-/// The nearest points of a segment and edge i of a hull,
-/// whose ends are vertices[edges[i].first] and vertices[edges[i].second].
+/// The nearest points of a segment and edge i of a hull, whose ends are
+/// vertices[edges[i].first] and vertices[edges[i].second].
 struct NearestEdge {
   int edge = -1;        ///< -1: none nearer than the bound given
   double squared = 0.0; ///< squared distance between the two points
@@ -46,7 +44,7 @@ inline void take_nearer_lane(__m128d lane_least, __m128d lane_edge, NearestEdge&
   _mm_storeu_pd(which, lane_edge);
   const int lane =
       least[1] < least[0] || (least[1] == least[0] && which[1] >= 0.0 && (which[0] < 0.0 || which[1] < which[0])) ? 1
-                                                                                                               : 0;
+                                                                                                                  : 0;
   if (which[lane] >= 0.0) {
     best.edge = static_cast<int>(which[lane]);
     best.squared = least[lane];
@@ -55,9 +53,9 @@ inline void take_nearer_lane(__m128d lane_least, __m128d lane_edge, NearestEdge&
 #endif
 } // namespace nearest_edges
 
-/// Of the edges, the first whose closest points to `axis` (of non-zero
-/// length) are at a squared distance below `bound` and below every edge's
-/// before it.
+/// Of the edges, the first whose closest points to `axis` are at a squared
+/// distance below `bound` and below every edge's before it (edge -1 and
+/// `bound` when none is).
 inline NearestEdge nearest_edge_to_segment(const SegmentTerms& axis, const std::vector<Eigen::Vector3d>& vertices,
                                            const std::vector<std::pair<int, int>>& edges, double bound) {
   NearestEdge best;

@@ -21,12 +21,13 @@ namespace {
 using V = Eigen::Vector3d;
 
 // The scan one edge at a time, as a capsule's contact made it.
-NearestEdge scan(const SegmentTerms& axis, const std::vector<V>& vertices, const std::vector<std::pair<int, int>>& edges,
-                 double bound) {
+NearestEdge scan(const SegmentTerms& axis, const std::vector<V>& vertices,
+                 const std::vector<std::pair<int, int>>& edges, double bound) {
   NearestEdge best;
   best.squared = bound;
   for (int i = 0; i < static_cast<int>(edges.size()); ++i) {
-    const auto [on_segment, on_edge] = closest_points_of_segments(axis, vertices[edges[i].first], vertices[edges[i].second]);
+    const auto [on_segment, on_edge] =
+        closest_points_of_segments(axis, vertices[edges[i].first], vertices[edges[i].second]);
     const double d2 = (on_segment - on_edge).squaredNorm();
     if (d2 < best.squared) {
       best = {i, d2, on_segment, on_edge};
