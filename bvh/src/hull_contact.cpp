@@ -94,9 +94,12 @@ FrontFacet front_facet(const RuntimeHull& hull, const Eigen::Vector3d& p) {
   for (int i = 0; i < static_cast<int>(hull.shape.planes.size()); ++i) {
     const double d = hull.shape.planes[i].signed_distance(p);
     front.outside = std::max(front.outside, d);
-    if (i < facets && d > front.distance) {
-      front.distance = d;
-      front.facet = i;
+    if (i < facets) {
+      front.runner_up = std::max(front.runner_up, std::min(d, front.distance)); // the lesser of the two goes on
+      if (d > front.distance) {
+        front.distance = d;
+        front.facet = i;
+      }
     }
   }
   return front;
@@ -123,7 +126,9 @@ ClosestPoints closest_to_point_outside(const RuntimeHull& hull, const Eigen::Vec
   const double tied =
       front.distance - signed_distance_slack(hull, p) - 4.0 * kUnitNormalSlack * std::abs(front.distance);
   ClosestPoints best{kInfinity, p, p};
-  for (int f = 0; f < static_cast<int>(hull.shape.facets.size()); ++f) {
+  // No other facet within the ties' reach (the usual case): none to test.
+  const int facets = front.runner_up >= tied ? static_cast<int>(hull.shape.facets.size()) : 0;
+  for (int f = 0; f < facets; ++f) {
     const Plane& other = hull.shape.planes[f];
     const double d = other.signed_distance(p);
     if (f == front.facet || !(d >= 0.0) || d < tied || d >= best.distance) continue;

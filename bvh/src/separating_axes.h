@@ -27,6 +27,9 @@ struct FrontFacet {
   double outside = -std::numeric_limits<double>::infinity();
   int facet = 0;
   double distance = -std::numeric_limits<double>::infinity();
+  /// The largest of the other facets' distances: a facet that ties with
+  /// `facet` (closest_to_point_outside) can only be there.
+  double runner_up = -std::numeric_limits<double>::infinity();
 };
 /// One pass over the planes; shared by the sphere's contact and yes/no.
 FrontFacet front_facet(const RuntimeHull& hull, const Eigen::Vector3d& p);
