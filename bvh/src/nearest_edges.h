@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 
+#include <tuple>
 #include <utility>
 #include <vector>
 
