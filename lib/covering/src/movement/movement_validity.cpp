@@ -49,6 +49,26 @@ double clearing_of(const MovementContext& context) {
   return context.agent.radius - kClearingMarginInTols * context.tol;
 }
 
+// The two kinds of box the search halves: along the scene's axes (the
+// cheaper, for a region that lies along them) or along any.
+Eigen::Vector3d centre_of(const Aabb& box) { return 0.5 * (box.min + box.max); }
+Eigen::Vector3d centre_of(const OrientedBox& box) { return box.centre; }
+double half_diagonal_of(const Aabb& box) { return 0.5 * (box.max - box.min).norm(); }
+double half_diagonal_of(const OrientedBox& box) { return box.half_diagonal(); }
+const Aabb& bounds_of(const Aabb& box) { return box; }
+Aabb bounds_of(const OrientedBox& box) { return box.bounds(); }
+// The halves of a box across its longest side.
+std::pair<Aabb, Aabb> halves_of(const Aabb& box) {
+  int axis = 0;
+  (box.max - box.min).maxCoeff(&axis);
+  const double middle = 0.5 * (box.min[axis] + box.max[axis]);
+  Aabb low = box, high = box;
+  low.max[axis] = middle;
+  high.min[axis] = middle;
+  return {low, high};
+}
+std::pair<OrientedBox, OrientedBox> halves_of(const OrientedBox& box) { return box.halves(); }
+
 // Whether no reachable centre lies in a region: `lower(c)` bounds from
 // below the distance from point c to the region, and `inside(c)` tells
 // whether a centre at c breaks the promise: it lies in the region or
@@ -67,8 +87,8 @@ double clearing_of(const MovementContext& context) {
 // centre is a witness unless its cell is not reachable, so a region that
 // just touches where a centre may be is decided, never searched to the
 // smallest box.
-template <class Lower, class Inside>
-RegionVerdict no_centre_in(const MovementContext& context, const Aabb& start, int& boxes_left, Lower&& lower,
+template <class Box, class Lower, class Inside>
+RegionVerdict no_centre_in(const MovementContext& context, const Box& start, int& boxes_left, Lower&& lower,
                            Inside&& inside) {
   const double r = context.agent.radius;
   const double tol = context.tol;
@@ -76,17 +96,17 @@ RegionVerdict no_centre_in(const MovementContext& context, const Aabb& start, in
   const double smallest = std::min(kSmallestProofBoxInSlops * context.agent.slop, kSmallestProofBoxInTols * tol);
   // Each box with the triangle nearest its parent's centre: most boxes are
   // cleared by their parent's triangle before any search.
-  std::vector<std::pair<Aabb, int>> stack{{start, -1}};
+  std::vector<std::pair<Box, int>> stack{{start, -1}};
   // The triangles any box of the search may be nearest to, gathered at
   // the first search (most regions are cleared before any): a short list
   // scanned is cheaper than the tree walked from its root for each box.
   std::vector<int> candidates;
   bool gathered = false, short_list = false;
-  const double reach_of_start = r + 0.5 * (start.max - start.min).norm() + tol;
+  const double reach_of_start = r + half_diagonal_of(start) + tol;
   const auto nearest = [&](const Eigen::Vector3d& c, double limit, int hint) {
     if (!gathered) {
-      short_list =
-          context.clearance.faces_meeting_at_most(grown(start, reach_of_start), kMostScannedTriangles, candidates);
+      short_list = context.clearance.faces_meeting_at_most(grown(bounds_of(start), reach_of_start),
+                                                           kMostScannedTriangles, candidates);
       gathered = true;
     }
     return short_list ? context.clearance.nearest_among(candidates, c, limit, hint)
@@ -95,8 +115,8 @@ RegionVerdict no_centre_in(const MovementContext& context, const Aabb& start, in
   while (!stack.empty()) {
     const auto [box, hint] = stack.back();
     stack.pop_back();
-    const Eigen::Vector3d c = 0.5 * (box.min + box.max);
-    const double half = 0.5 * (box.max - box.min).norm();
+    const Eigen::Vector3d c = centre_of(box);
+    const double half = half_diagonal_of(box);
     if (lower(c) > half) continue;
     // The grid first: most boxes away from the agents' space are cleared
     // by it, far more cheaply than by distances to triangles.
@@ -107,16 +127,53 @@ RegionVerdict no_centre_in(const MovementContext& context, const Aabb& start, in
     if (near.face >= 0 && near.face != hint && context.clearance.box_within(box, near.face, clearing)) continue;
     if (near.distance >= r - tol && inside(c) && context.grid.reachable_at(c)) return RegionVerdict::reached;
     if (half < smallest || --boxes_left < 0) return RegionVerdict::undecided;
-    int axis = 0;
-    (box.max - box.min).maxCoeff(&axis);
-    const double middle = 0.5 * (box.min[axis] + box.max[axis]);
-    Aabb low = box, high = box;
-    low.max[axis] = middle;
-    high.min[axis] = middle;
+    const auto [low, high] = halves_of(box);
     stack.emplace_back(high, near.face);
     stack.emplace_back(low, near.face);
   }
   return RegionVerdict::clear;
+}
+
+// no_centre_in from `start`, searched with boxes along the scene's axes
+// when its bounding box along them is as tight (its half diagonal no more
+// than the padding longer): a region along the scene's axes, as most of a
+// level's walls and floors are, is searched as cheaply as before.
+template <class Lower, class Inside>
+RegionVerdict no_centre_in_box(const MovementContext& context, const OrientedBox& start, int& boxes_left, Lower&& lower,
+                               Inside&& inside) {
+  const Aabb bounds = start.bounds();
+  if (half_diagonal_of(bounds) - start.half_diagonal() <= kProofBoxPaddingInTols * context.tol)
+    return no_centre_in(context, bounds, boxes_left, lower, inside);
+  return no_centre_in(context, start, boxes_left, lower, inside);
+}
+
+// The box along `axes` (orthonormal columns) holding every point within
+// `reach` of one of `points` along the axes given by `grow` (1: that axis,
+// 0: not), widened by `pad` on every side: the start of a region's search,
+// aligned with it.
+OrientedBox box_along(const Eigen::Matrix3d& axes, const std::vector<Eigen::Vector3d>& points,
+                      const Eigen::Vector3d& grow, double reach, double pad) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const Eigen::Vector3d& p : points) {
+    const Eigen::Vector3d local = axes.transpose() * p;
+    lo = lo.cwiseMin(local);
+    hi = hi.cwiseMax(local);
+  }
+  lo -= reach * grow + Eigen::Vector3d::Constant(pad);
+  hi += reach * grow + Eigen::Vector3d::Constant(pad);
+  return {axes * (0.5 * (lo + hi)), axes, 0.5 * (hi - lo)};
+}
+
+// The axes of a region about direction `d` (non-zero): d itself, and two
+// directions across it.
+Eigen::Matrix3d axes_about(const Eigen::Vector3d& d) {
+  Eigen::Matrix3d axes;
+  axes.col(0) = d.normalized();
+  int least = 0;
+  axes.col(0).cwiseAbs().minCoeff(&least);
+  axes.col(1) = axes.col(0).cross(Eigen::Vector3d::Unit(least)).normalized();
+  axes.col(2) = axes.col(0).cross(axes.col(1));
+  return axes;
 }
 
 // A point a little less than r - E in front of or behind `piece`, over its
@@ -236,9 +293,23 @@ RegionVerdict prove_piece(const MovementContext& context, const BoundaryPiece& p
         }))
       return *verdict;
   }
+  // The column's box: along the piece's normal, its longest side and the
+  // direction across both (a rectangle's box is the rectangle's).
+  Eigen::Matrix3d axes = axes_about(piece.normal);
+  Eigen::Vector3d longest = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < piece.corners.size(); ++i) {
+    const Eigen::Vector3d side = piece.corners[(i + 1) % piece.corners.size()] - piece.corners[i];
+    if (side.squaredNorm() > longest.squaredNorm()) longest = side;
+  }
+  const Eigen::Vector3d in_plane = longest - longest.dot(axes.col(0)) * axes.col(0);
+  if (in_plane.norm() > 0.0) {
+    axes.col(1) = in_plane.normalized();
+    axes.col(2) = axes.col(0).cross(axes.col(1));
+  }
   const Column column{piece, reach};
-  return no_centre_in(
-      context, start, boxes_left, [&](const Eigen::Vector3d& c) { return column.distance(c); },
+  return no_centre_in_box(
+      context, box_along(axes, piece.corners, Eigen::Vector3d(1.0, 0.0, 0.0), reach, kProofBoxPaddingInTols * tol),
+      boxes_left, [&](const Eigen::Vector3d& c) { return column.distance(c); },
       [&](const Eigen::Vector3d& c) { return column.distance(c) < tol; });
 }
 
@@ -272,8 +343,12 @@ RegionVerdict prove_segment(const MovementContext& context, const BoundarySegmen
   const auto distance = [&](const Eigen::Vector3d& c) {
     return (closest_point_on_segment(c, segment.a, segment.b) - c).norm();
   };
-  return no_centre_in(
-      context, start, boxes_left, [&](const Eigen::Vector3d& c) { return distance(c) - reach; },
+  // The box along the segment: a capsule's.
+  const Eigen::Vector3d along = segment.b - segment.a;
+  const Eigen::Matrix3d axes = along.norm() > 0.0 ? axes_about(along) : Eigen::Matrix3d::Identity();
+  return no_centre_in_box(
+      context, box_along(axes, {segment.a, segment.b}, Eigen::Vector3d::Ones(), reach, kProofBoxPaddingInTols * tol),
+      boxes_left, [&](const Eigen::Vector3d& c) { return distance(c) - reach; },
       [&](const Eigen::Vector3d& c) { return distance(c) < reach + tol; });
 }
 

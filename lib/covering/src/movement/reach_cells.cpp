@@ -63,6 +63,25 @@ bool ReachGrid::reachable_at(const Eigen::Vector3d& p) const {
   return reachable(c.x(), c.y(), c.z());
 }
 
+bool ReachGrid::any_reachable(const OrientedBox& box) const {
+  const Aabb bounds = box.bounds();
+  if (!any_reachable(bounds)) return false;
+  if (reachable_at(box.centre)) return true; // the cell of its centre meets it
+  Eigen::Vector3i lo, hi;
+  for (int a = 0; a < 3; ++a) {
+    const double l = (bounds.min[a] - origin[a]) / cell, h = (bounds.max[a] - origin[a]) / cell;
+    if (!(l >= 0.0 && h < dims[a])) return true; // leaves the grid: may reach, as above
+    lo[a] = static_cast<int>(l);
+    hi[a] = static_cast<int>(h);
+  }
+  if ((hi - lo + Eigen::Vector3i::Ones()).prod() > kMostCellsTestedOneByOne) return true;
+  for (int k = lo.z(); k <= hi.z(); ++k)
+    for (int j = lo.y(); j <= hi.y(); ++j)
+      for (int i = lo.x(); i <= hi.x(); ++i)
+        if (reachable(i, j, k) && !box.apart_from_cube(centre(i, j, k), 0.5 * cell)) return true;
+  return false;
+}
+
 bool ReachGrid::row_has_kept(std::int32_t held, int j, int k, int lo, int hi) const {
   // A row is kReachBlock bits inside one word (kReachBlock divides 64).
   const int first = ((k % kReachBlock) * kReachBlock + j % kReachBlock) * kReachBlock;

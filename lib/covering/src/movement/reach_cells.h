@@ -9,6 +9,7 @@
 
 #include "hullcover/geometry/aabb.h"
 #include "hullcover/geometry/block_bytes.h"
+#include "movement/oriented_box.h"
 
 #include <Eigen/Core>
 
@@ -22,6 +23,10 @@ namespace hullcover::detail {
 inline constexpr int kReachBlock = BlockBytes::kSide;
 /// Cells in a block.
 inline constexpr int kReachBlockCells = kReachBlock * kReachBlock * kReachBlock;
+
+/// An oriented box whose bounding box meets at most this many cells is
+/// tested against each kept one (ReachGrid::any_reachable).
+inline constexpr int kMostCellsTestedOneByOne = 64;
 
 /// What a block of the reach grid holds: none of its cells kept, all of
 /// them, or (a number >= 0) the block's own bits at that slot.
@@ -54,6 +59,11 @@ public:
   /// Whether some cell meeting `box` may hold a reachable centre (true when
   /// the box leaves the grid).
   bool any_reachable(const Aabb& box) const;
+  /// The same for a box along any axes: its bounding box first, then, when
+  /// that meets a cell that may and at most kMostCellsTestedOneByOne cells
+  /// in all, each of those cells against the box itself (a slanted box's
+  /// bounding box meets cells it does not).
+  bool any_reachable(const OrientedBox& box) const;
   long long reachable_count() const { return reachable_count_; }
   /// Cells held one bit each (in blocks partly kept).
   long long cells_held() const { return static_cast<long long>(bits_.size()) * 64; }

@@ -146,4 +146,26 @@ bool SceneClearance::box_within(const Aabb& box, int face, double limit) const {
   return true;
 }
 
+bool SceneClearance::box_within(const OrientedBox& box, int face, double limit) const {
+  // As for an Aabb: the plane shortcut, then the corners.
+  const Eigen::Vector3i& t = mesh_.triangles[face];
+  const Eigen::Vector3d &a = mesh_.positions[t[0]], &b = mesh_.positions[t[1]], &c = mesh_.positions[t[2]];
+  const Eigen::Vector3d n = planes_[face].head<3>();
+  if (n != Eigen::Vector3d::Zero()) {
+    const double off_plane = std::abs(n.dot(box.centre - a)) + box.reach_along(n);
+    if (!(off_plane < limit)) return false;
+    bool projects_in = true;
+    const Eigen::Vector3d* corners[3] = {&a, &b, &c};
+    for (int k = 0; k < 3 && projects_in; ++k) {
+      const Eigen::Vector3d& from = *corners[k];
+      const Eigen::Vector3d inward = n.cross(*corners[(k + 1) % 3] - from);
+      projects_in = inward.dot(box.centre - from) - box.reach_along(inward) >= 0.0;
+    }
+    if (projects_in) return true;
+  }
+  for (int corner = 0; corner < 8; ++corner)
+    if (!(to_face(box.corner(corner), face) < limit)) return false;
+  return true;
+}
+
 } // namespace hullcover::detail

@@ -8,6 +8,7 @@
 #include "hullcover/geometry/aabb.h"
 #include "hullcover/geometry/aabb_tree.h"
 #include "hullcover/geometry/mesh.h"
+#include "movement/oriented_box.h"
 
 #include <Eigen/Core>
 
@@ -47,6 +48,8 @@ public:
   /// gives for the whole box. Every point of the box then has clearance
   /// below `limit` too.
   bool box_within(const Aabb& box, int face, double limit) const;
+  /// The same for a box along any axes.
+  bool box_within(const OrientedBox& box, int face, double limit) const;
   /// The faces whose boxes meet `box` into `out` (cleared first), when
   /// there are at most `most`; false (and `out` partial) when more.
   bool faces_meeting_at_most(const Aabb& box, size_t most, std::vector<int>& out) const;

@@ -1,0 +1,69 @@
+#pragma once
+/// \file oriented_box.h
+/// A box along any three orthonormal axes: what the movement proofs halve
+/// (movement_validity.h) when the region they search is slanted, and what
+/// the clearance and the reach grid answer for.
+
+#include "hullcover/geometry/aabb.h"
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <utility>
+
+namespace hullcover::detail {
+
+/// A box along three orthonormal axes (the columns of `axes`): the proofs
+/// of movement_validity.h halve boxes aligned with the region they search,
+/// where boxes along the scene's axes would straddle a slanted region's
+/// faces down to their smallest size.
+struct OrientedBox {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d half = Eigen::Vector3d::Zero(); ///< half extents along the axes, >= 0
+
+  /// Corner `k` (0 to 7): bit j set is the far side along axis j.
+  Eigen::Vector3d corner(int k) const {
+    Eigen::Vector3d p = centre;
+    for (int j = 0; j < 3; ++j) p += ((k >> j) & 1 ? half[j] : -half[j]) * axes.col(j);
+    return p;
+  }
+  /// Half its diagonal: no point of it is farther from its centre.
+  double half_diagonal() const { return half.norm(); }
+  /// Half the range of w . x over its points x (half its extent along w
+  /// when w is unit).
+  double reach_along(const Eigen::Vector3d& w) const { return (axes.transpose() * w).cwiseAbs().dot(half); }
+  /// Its bounding box along the scene's axes.
+  Aabb bounds() const {
+    const Eigen::Vector3d reach = axes.cwiseAbs() * half;
+    return {centre - reach, centre + reach};
+  }
+  /// Its two halves across its longest side. They meet to rounding, far
+  /// below the tol-wide margins of the tests made on them.
+  std::pair<OrientedBox, OrientedBox> halves() const {
+    int axis = 0;
+    half.maxCoeff(&axis);
+    OrientedBox low = *this, high = *this;
+    low.half[axis] = high.half[axis] = 0.5 * half[axis];
+    low.centre -= low.half[axis] * axes.col(axis);
+    high.centre += high.half[axis] * axes.col(axis);
+    return {low, high};
+  }
+  /// Whether a plane parts it from the cube of half side `half_side` about
+  /// `cube_centre`: by the 15 axes of two boxes (the cube's, its own and
+  /// their crossings), so a cube that does not meet it is always parted.
+  bool apart_from_cube(const Eigen::Vector3d& cube_centre, double half_side) const {
+    const Eigen::Vector3d between = cube_centre - centre;
+    const auto apart_along = [&](const Eigen::Vector3d& w) {
+      return std::abs(w.dot(between)) > reach_along(w) + half_side * w.lpNorm<1>();
+    };
+    for (int a = 0; a < 3; ++a)
+      if (apart_along(Eigen::Vector3d::Unit(a)) || apart_along(axes.col(a))) return true;
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b)
+        if (apart_along(Eigen::Vector3d::Unit(a).cross(axes.col(b)))) return true;
+    return false;
+  }
+};
+
+} // namespace hullcover::detail
