@@ -49,26 +49,6 @@ double clearing_of(const MovementContext& context) {
   return context.agent.radius - kClearingMarginInTols * context.tol;
 }
 
-// The two kinds of box the search halves: along the scene's axes (the
-// cheaper, for a region that lies along them) or along any.
-Eigen::Vector3d centre_of(const Aabb& box) { return 0.5 * (box.min + box.max); }
-Eigen::Vector3d centre_of(const OrientedBox& box) { return box.centre; }
-double half_diagonal_of(const Aabb& box) { return 0.5 * (box.max - box.min).norm(); }
-double half_diagonal_of(const OrientedBox& box) { return box.half_diagonal(); }
-const Aabb& bounds_of(const Aabb& box) { return box; }
-Aabb bounds_of(const OrientedBox& box) { return box.bounds(); }
-// The halves of a box across its longest side.
-std::pair<Aabb, Aabb> halves_of(const Aabb& box) {
-  int axis = 0;
-  (box.max - box.min).maxCoeff(&axis);
-  const double middle = 0.5 * (box.min[axis] + box.max[axis]);
-  Aabb low = box, high = box;
-  low.max[axis] = middle;
-  high.min[axis] = middle;
-  return {low, high};
-}
-std::pair<OrientedBox, OrientedBox> halves_of(const OrientedBox& box) { return box.halves(); }
-
 // Whether no reachable centre lies in a region: `lower(c)` bounds from
 // below the distance from point c to the region, and `inside(c)` tells
 // whether a centre at c breaks the promise: it lies in the region or

@@ -43,7 +43,7 @@ inline constexpr double kSmallestProofBoxInSlops = 1.0 / 16.0;
 /// the reach grid's cells part it.
 inline constexpr double kSmallestProofBoxInTols = 0.5;
 /// A region's first box is along the region (a piece's column along the
-/// piece's normal and its widest extent, a side's along the side), widened
+/// piece's normal and its longest side, a side's along the side), widened
 /// by this many tol on every side beyond the rounding of its corners.
 inline constexpr double kProofBoxPaddingInTols = 1.0 / 64.0;
 /// A box is cleared when every point of it lies nearer to a triangle than r

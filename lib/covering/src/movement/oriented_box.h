@@ -66,4 +66,35 @@ struct OrientedBox {
   }
 };
 
+// The two kinds of box the proofs search with, read alike: along the
+// scene's axes (the cheaper, for a region that lies along them) or along
+// any.
+inline Eigen::Vector3d centre_of(const Aabb& box) { return 0.5 * (box.min + box.max); }
+inline Eigen::Vector3d centre_of(const OrientedBox& box) { return box.centre; }
+inline double half_diagonal_of(const Aabb& box) { return 0.5 * (box.max - box.min).norm(); }
+inline double half_diagonal_of(const OrientedBox& box) { return box.half_diagonal(); }
+inline const Aabb& bounds_of(const Aabb& box) { return box; }
+inline Aabb bounds_of(const OrientedBox& box) { return box.bounds(); }
+inline double reach_along_of(const Aabb& box, const Eigen::Vector3d& w) {
+  return w.cwiseAbs().dot(0.5 * (box.max - box.min));
+}
+inline double reach_along_of(const OrientedBox& box, const Eigen::Vector3d& w) { return box.reach_along(w); }
+/// Corner `k` (0 to 7): bit j set is the far side along axis j.
+inline Eigen::Vector3d corner_of(const Aabb& box, int k) {
+  return {(k & 1) ? box.max.x() : box.min.x(), (k & 2) ? box.max.y() : box.min.y(),
+          (k & 4) ? box.max.z() : box.min.z()};
+}
+inline Eigen::Vector3d corner_of(const OrientedBox& box, int k) { return box.corner(k); }
+/// The halves across the longest side.
+inline std::pair<Aabb, Aabb> halves_of(const Aabb& box) {
+  int axis = 0;
+  (box.max - box.min).maxCoeff(&axis);
+  const double middle = 0.5 * (box.min[axis] + box.max[axis]);
+  Aabb low = box, high = box;
+  low.max[axis] = middle;
+  high.min[axis] = middle;
+  return {low, high};
+}
+inline std::pair<OrientedBox, OrientedBox> halves_of(const OrientedBox& box) { return box.halves(); }
+
 } // namespace hullcover::detail

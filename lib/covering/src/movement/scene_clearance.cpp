@@ -114,17 +114,18 @@ NearestFace SceneClearance::nearest_among(const std::vector<int>& faces, const E
   return found;
 }
 
-bool SceneClearance::box_within(const Aabb& box, int face, double limit) const {
+template <class Box>
+bool SceneClearance::within(const Box& box, int face, double limit) const {
   const Eigen::Vector3i& t = mesh_.triangles[face];
   const Eigen::Vector3d &a = mesh_.positions[t[0]], &b = mesh_.positions[t[1]], &c = mesh_.positions[t[2]];
-  const Eigen::Vector3d middle = 0.5 * (box.min + box.max), half = 0.5 * (box.max - box.min);
+  const Eigen::Vector3d middle = centre_of(box);
   // The shortcut trusts the triangle's unit normal: none for a needle.
   const Eigen::Vector3d n = planes_[face].head<3>();
   if (n != Eigen::Vector3d::Zero()) {
     // The largest distance from the plane over the box: no corner is
     // nearer to the triangle than to its plane, so when that is not below
     // the limit, some corner is not.
-    const double off_plane = std::abs(n.dot(middle - a)) + n.cwiseAbs().dot(half);
+    const double off_plane = std::abs(n.dot(middle - a)) + reach_along_of(box, n);
     if (!(off_plane < limit)) return false;
     // Every corner on the inner side of each edge (the least of a linear
     // function over the box is at a corner): each projects into the
@@ -134,38 +135,19 @@ bool SceneClearance::box_within(const Aabb& box, int face, double limit) const {
     for (int k = 0; k < 3 && projects_in; ++k) {
       const Eigen::Vector3d& from = *corners[k];
       const Eigen::Vector3d inward = n.cross(*corners[(k + 1) % 3] - from);
-      projects_in = inward.dot(middle - from) - inward.cwiseAbs().dot(half) >= 0.0;
-    }
-    if (projects_in) return true;
-  }
-  for (int corner = 0; corner < 8; ++corner) {
-    const Eigen::Vector3d p((corner & 1) ? box.max.x() : box.min.x(), (corner & 2) ? box.max.y() : box.min.y(),
-                            (corner & 4) ? box.max.z() : box.min.z());
-    if (!(to_face(p, face) < limit)) return false;
-  }
-  return true;
-}
-
-bool SceneClearance::box_within(const OrientedBox& box, int face, double limit) const {
-  // As for an Aabb: the plane shortcut, then the corners.
-  const Eigen::Vector3i& t = mesh_.triangles[face];
-  const Eigen::Vector3d &a = mesh_.positions[t[0]], &b = mesh_.positions[t[1]], &c = mesh_.positions[t[2]];
-  const Eigen::Vector3d n = planes_[face].head<3>();
-  if (n != Eigen::Vector3d::Zero()) {
-    const double off_plane = std::abs(n.dot(box.centre - a)) + box.reach_along(n);
-    if (!(off_plane < limit)) return false;
-    bool projects_in = true;
-    const Eigen::Vector3d* corners[3] = {&a, &b, &c};
-    for (int k = 0; k < 3 && projects_in; ++k) {
-      const Eigen::Vector3d& from = *corners[k];
-      const Eigen::Vector3d inward = n.cross(*corners[(k + 1) % 3] - from);
-      projects_in = inward.dot(box.centre - from) - box.reach_along(inward) >= 0.0;
+      projects_in = inward.dot(middle - from) - reach_along_of(box, inward) >= 0.0;
     }
     if (projects_in) return true;
   }
   for (int corner = 0; corner < 8; ++corner)
-    if (!(to_face(box.corner(corner), face) < limit)) return false;
+    if (!(to_face(corner_of(box, corner), face) < limit)) return false;
   return true;
+}
+
+bool SceneClearance::box_within(const Aabb& box, int face, double limit) const { return within(box, face, limit); }
+
+bool SceneClearance::box_within(const OrientedBox& box, int face, double limit) const {
+  return within(box, face, limit);
 }
 
 } // namespace hullcover::detail

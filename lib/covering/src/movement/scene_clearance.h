@@ -71,6 +71,10 @@ private:
     return s * s;
   }
 
+  /// box_within for either kind of box.
+  template <class Box>
+  bool within(const Box& box, int face, double limit) const;
+
   const Mesh& mesh_;
   std::vector<Aabb> boxes_;             ///< each triangle's
   std::vector<Eigen::Vector4d> planes_; ///< each triangle's unit normal and offset (zero for a needle)
