@@ -78,9 +78,63 @@ TEST(OrientedBox, ItsHalvesCoverItAndItsBoundsHoldIt) {
       EXPECT_TRUE((p.array() >= bounds.min.array() - 1e-12).all() && (p.array() <= bounds.max.array() + 1e-12).all());
       EXPECT_LE((p - box.centre).norm(), box.half_diagonal() + 1e-12);
     }
-    for (int c = 0; c < 8; ++c) EXPECT_TRUE(in_box(box, box.corner(c), 1e-12));
     EXPECT_LT(low.half_diagonal(), box.half_diagonal());
   }
+}
+
+// The first box of a search holds its whole region: a piece's column (the
+// points within r - E of the piece's plane whose foot lies in it) for any
+// axes along the piece's normal, and a side's ball-swept segment for any
+// axes along the side; axes of no length, or not orthonormal, give the
+// scene's. Points of each region at random, with no slack beyond the
+// box's own padding.
+TEST(OrientedBox, ABoxAlongARegionHoldsEveryPointOfIt) {
+  std::mt19937 random(17);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::normal_distribution<double> normal;
+  const double reach = 0.28, pad = 1e-7;
+  const auto turned_about_first = [&](Eigen::Matrix3d axes) {
+    const Eigen::Matrix3d turn = Eigen::AngleAxisd(2.0 * M_PI * unit(random), axes.col(0)).toRotationMatrix();
+    axes.col(1) = turn * axes.col(1);
+    axes.col(2) = turn * axes.col(2);
+    return axes;
+  };
+  for (int trial = 0; trial < 300; ++trial) {
+    const V centre = 1000.0 * V(normal(random), normal(random), normal(random));
+    const V n = V(normal(random), normal(random), normal(random)).normalized();
+    const Eigen::Matrix3d axes = turned_about_first(axes_about(n));
+    // A piece: corners round its centre in its plane.
+    std::vector<V> corners;
+    const int count = 3 + trial % 5;
+    for (int k = 0; k < count; ++k) {
+      const double angle = 2.0 * M_PI * (k + 0.5 * unit(random)) / count;
+      corners.push_back(centre +
+                        (0.2 + 2.0 * unit(random)) * (std::cos(angle) * axes.col(1) + std::sin(angle) * axes.col(2)));
+    }
+    const OrientedBox column = box_along(axes, corners, V(1, 0, 0), reach, pad);
+    for (int i = 0; i < 200; ++i) {
+      V foot = V::Zero();
+      double total = 0.0;
+      for (const V& c : corners) {
+        const double w = unit(random);
+        foot += w * c;
+        total += w;
+      }
+      const V p = foot / total + (2.0 * unit(random) - 1.0) * reach * n;
+      ASSERT_TRUE(in_box(column, p, 0.0)) << trial;
+    }
+    // A side: a segment and the points within reach of it.
+    const V a = corners[0], b = corners[1];
+    const OrientedBox around = box_along(turned_about_first(axes_about(b - a)), {a, b}, V::Ones(), reach, pad);
+    for (int i = 0; i < 200; ++i) {
+      const V off = V(normal(random), normal(random), normal(random)).normalized() * reach * unit(random);
+      ASSERT_TRUE(in_box(around, a + unit(random) * (b - a) + off, 0.0)) << trial;
+    }
+  }
+  EXPECT_EQ(axes_about(V::Zero()), Eigen::Matrix3d::Identity());
+  EXPECT_EQ(box_along(Eigen::Matrix3d::Zero(), {V(1, 2, 3)}, V::Ones(), 1.0, 0.0).axes, Eigen::Matrix3d::Identity());
+  EXPECT_EQ(box_along(2.0 * Eigen::Matrix3d::Identity(), {V(1, 2, 3)}, V::Ones(), 1.0, 0.0).axes,
+            Eigen::Matrix3d::Identity());
 }
 
 // A cube the box is parted from holds none of the box's points; a cube it

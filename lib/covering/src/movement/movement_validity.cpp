@@ -127,35 +127,6 @@ RegionVerdict no_centre_in_box(const MovementContext& context, const OrientedBox
   return no_centre_in(context, start, boxes_left, lower, inside);
 }
 
-// The box along `axes` (orthonormal columns) holding every point within
-// `reach` of one of `points` along the axes given by `grow` (1: that axis,
-// 0: not), widened by `pad` on every side: the start of a region's search,
-// aligned with it.
-OrientedBox box_along(const Eigen::Matrix3d& axes, const std::vector<Eigen::Vector3d>& points,
-                      const Eigen::Vector3d& grow, double reach, double pad) {
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (const Eigen::Vector3d& p : points) {
-    const Eigen::Vector3d local = axes.transpose() * p;
-    lo = lo.cwiseMin(local);
-    hi = hi.cwiseMax(local);
-  }
-  lo -= reach * grow + Eigen::Vector3d::Constant(pad);
-  hi += reach * grow + Eigen::Vector3d::Constant(pad);
-  return {axes * (0.5 * (lo + hi)), axes, 0.5 * (hi - lo)};
-}
-
-// The axes of a region about direction `d` (non-zero): d itself, and two
-// directions across it.
-Eigen::Matrix3d axes_about(const Eigen::Vector3d& d) {
-  Eigen::Matrix3d axes;
-  axes.col(0) = d.normalized();
-  int least = 0;
-  axes.col(0).cwiseAbs().minCoeff(&least);
-  axes.col(1) = axes.col(0).cross(Eigen::Vector3d::Unit(least)).normalized();
-  axes.col(2) = axes.col(0).cross(axes.col(1));
-  return axes;
-}
-
 // A point a little less than r - E in front of or behind `piece`, over its
 // centroid, its corners (drawn a tenth of the way in) or the middles of
 // its sides, that may be a reachable centre: the cheap way most candidates
@@ -282,7 +253,7 @@ RegionVerdict prove_piece(const MovementContext& context, const BoundaryPiece& p
     if (side.squaredNorm() > longest.squaredNorm()) longest = side;
   }
   const Eigen::Vector3d in_plane = longest - longest.dot(axes.col(0)) * axes.col(0);
-  if (in_plane.norm() > 0.0) {
+  if (in_plane.norm() > tol) {
     axes.col(1) = in_plane.normalized();
     axes.col(2) = axes.col(0).cross(axes.col(1));
   }
@@ -325,7 +296,7 @@ RegionVerdict prove_segment(const MovementContext& context, const BoundarySegmen
   };
   // The box along the segment: a capsule's.
   const Eigen::Vector3d along = segment.b - segment.a;
-  const Eigen::Matrix3d axes = along.norm() > 0.0 ? axes_about(along) : Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d axes = along.norm() > tol ? axes_about(along) : Eigen::Matrix3d::Identity();
   return no_centre_in_box(
       context, box_along(axes, {segment.a, segment.b}, Eigen::Vector3d::Ones(), reach, kProofBoxPaddingInTols * tol),
       boxes_left, [&](const Eigen::Vector3d& c) { return distance(c) - reach; },

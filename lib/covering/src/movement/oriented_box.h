@@ -9,7 +9,9 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <limits>
 #include <utility>
+#include <vector>
 
 namespace hullcover::detail {
 
@@ -65,6 +67,46 @@ struct OrientedBox {
     return false;
   }
 };
+
+/// How far from orthonormal the axes given to box_along may be (their
+/// products against the identity), past which it takes the scene's axes:
+/// rounding leaves a few units of the last place, which the padding covers.
+inline constexpr double kOrthonormalSlack = 64.0 * std::numeric_limits<double>::epsilon();
+
+/// The axes about direction `d`: d itself, and two directions across it;
+/// the scene's axes for a `d` of no length (or not finite).
+inline Eigen::Matrix3d axes_about(const Eigen::Vector3d& d) {
+  if (!(d.norm() > 0.0) || !d.allFinite()) return Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d axes;
+  axes.col(0) = d.normalized();
+  int least = 0;
+  axes.col(0).cwiseAbs().minCoeff(&least);
+  axes.col(1) = axes.col(0).cross(Eigen::Vector3d::Unit(least)).normalized();
+  axes.col(2) = axes.col(0).cross(axes.col(1));
+  return axes;
+}
+
+/// The box along `axes` (orthonormal columns; the scene's axes if they are
+/// not, to kOrthonormalSlack) holding every point within `reach` of the
+/// hull of `points` along the axes `grow` marks (1: that axis, 0: not),
+/// widened by `pad` on every side: the first box of a region's search. A
+/// piece's column is its corners grown along its normal; a segment's
+/// ball-swept neighbourhood, its ends grown along all three.
+inline OrientedBox box_along(Eigen::Matrix3d axes, const std::vector<Eigen::Vector3d>& points,
+                             const Eigen::Vector3d& grow, double reach, double pad) {
+  if (!axes.allFinite() ||
+      !((axes.transpose() * axes - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() <= kOrthonormalSlack))
+    axes = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const Eigen::Vector3d& p : points) {
+    const Eigen::Vector3d local = axes.transpose() * p;
+    lo = lo.cwiseMin(local);
+    hi = hi.cwiseMax(local);
+  }
+  lo -= reach * grow + Eigen::Vector3d::Constant(pad);
+  hi += reach * grow + Eigen::Vector3d::Constant(pad);
+  return {axes * (0.5 * (lo + hi)), axes, 0.5 * (hi - lo)};
+}
 
 // The two kinds of box the proofs search with, read alike: along the
 // scene's axes (the cheaper, for a region that lies along them) or along

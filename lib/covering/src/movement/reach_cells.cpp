@@ -67,14 +67,16 @@ bool ReachGrid::any_reachable(const OrientedBox& box) const {
   const Aabb bounds = box.bounds();
   if (!any_reachable(bounds)) return false;
   if (reachable_at(box.centre)) return true; // the cell of its centre meets it
+  // Within the grid: any_reachable(bounds) said a box leaving it may reach.
   Eigen::Vector3i lo, hi;
   for (int a = 0; a < 3; ++a) {
     const double l = (bounds.min[a] - origin[a]) / cell, h = (bounds.max[a] - origin[a]) / cell;
-    if (!(l >= 0.0 && h < dims[a])) return true; // leaves the grid: may reach, as above
     lo[a] = static_cast<int>(l);
     hi[a] = static_cast<int>(h);
   }
-  if ((hi - lo + Eigen::Vector3i::Ones()).prod() > kMostCellsTestedOneByOne) return true;
+  // Counted in 64 bits: a large box's cells would overflow an int.
+  const Eigen::Matrix<long long, 3, 1> span = (hi - lo).cast<long long>().array() + 1;
+  if (span.prod() > kMostCellsTestedOneByOne) return true;
   for (int k = lo.z(); k <= hi.z(); ++k)
     for (int j = lo.y(); j <= hi.y(); ++j)
       for (int i = lo.x(); i <= hi.x(); ++i)
