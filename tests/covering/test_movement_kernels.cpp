@@ -34,17 +34,6 @@ ConvexPolytope unit_cube() {
   return builder.build(corners).value();
 }
 
-AgentShape walker(AgentReach reach = AgentReach::walk) {
-  AgentShape agent;
-  agent.radius = 0.3;
-  agent.slop = 0.02;
-  agent.height = 1.8;
-  agent.climb = 0.4;
-  agent.min_up_cosine = std::cos(45.0 * M_PI / 180.0);
-  agent.reach = reach;
-  return agent;
-}
-
 TEST(UncoveredBoundary, ACubeOnItsOwnFacesHasNoneAndLosesOneSideWithThatFace) {
   Mesh mesh;
   test::add_level_box(mesh, V(0, 0, 0), V(1, 1, 1));
@@ -93,7 +82,7 @@ TEST(UncoveredBoundary, AFacetCutIntoTooManyPiecesIsGivenUpAndItsHullIsUndecided
   uncovered_boundary(clearance, cube, false, {}, kTol, boundary);
   EXPECT_TRUE(boundary.overflow);
   EXPECT_LE(boundary.pieces.size(), kMostUncoveredPieces);
-  const AgentShape agent = walker(AgentReach::fly);
+  const AgentShape agent = test::level_agent(AgentReach::fly);
   const ReachGrid grid = build_reach_grid(specks, clearance, agent, {V(0.5, 3, 0.5)}, true, 1).value();
   const MovementContext context{specks, clearance, grid, agent, kTol};
   EXPECT_EQ(check_movement_hull(context, cube, false, {}, boundary), MovementVerdict::undecided);
@@ -102,7 +91,7 @@ TEST(UncoveredBoundary, AFacetCutIntoTooManyPiecesIsGivenUpAndItsHullIsUndecided
 TEST(ReachGrid, AWalkerReachesTheFloorAroundACrateButNotItsCavityOrTheSkyAboveItsHead) {
   const test::MovementLevel level = test::movement_level();
   const SceneClearance clearance(level.mesh);
-  const AgentShape agent = walker();
+  const AgentShape agent = test::level_agent();
   const Result<ReachGrid> grid = build_reach_grid(level.mesh, clearance, agent, {level.spawn}, true, 1);
   ASSERT_TRUE(grid.ok()) << grid.status().message();
   const ReachGrid& g = grid.value();
@@ -113,7 +102,7 @@ TEST(ReachGrid, AWalkerReachesTheFloorAroundACrateButNotItsCavityOrTheSkyAboveIt
   EXPECT_FALSE(g.reachable_at(V(9, 3.6, 9)));  // on the balcony, out of reach
   // A flyer from the same spawn reaches both.
   const Result<ReachGrid> flying =
-      build_reach_grid(level.mesh, clearance, walker(AgentReach::fly), {level.spawn}, true, 1);
+      build_reach_grid(level.mesh, clearance, test::level_agent(AgentReach::fly), {level.spawn}, true, 1);
   ASSERT_TRUE(flying.ok());
   EXPECT_TRUE(flying.value().reachable_at(V(6, 3.0, 2)));
   EXPECT_TRUE(flying.value().reachable_at(V(9, 3.6, 9)));
@@ -127,7 +116,7 @@ TEST(ReachGrid, AWalkerReachesTheFloorAroundACrateButNotItsCavityOrTheSkyAboveIt
 TEST(ReachGrid, ABoxMeetsAReachableCellExactlyWhenOneOfItsCellsIs) {
   const test::MovementLevel level = test::movement_level();
   const SceneClearance clearance(level.mesh);
-  const ReachGrid grid = build_reach_grid(level.mesh, clearance, walker(), {level.spawn}, true, 1).value();
+  const ReachGrid grid = build_reach_grid(level.mesh, clearance, test::level_agent(), {level.spawn}, true, 1).value();
   std::mt19937 random(20261206);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const V extent = grid.dims.cast<double>() * grid.cell;
@@ -170,14 +159,15 @@ TEST(ReachGrid, AWalkerStandsOnTheHighestFaceAndAFlyerFromTheSkyReachesTheScene)
   Mesh block;
   test::add_level_box(block, V(0, 0, 0), V(4, 1, 4));
   const SceneClearance clearance(block);
-  const Result<ReachGrid> walking = build_reach_grid(block, clearance, walker(), {V(2, 1.5, 2)}, true, 1);
+  const Result<ReachGrid> walking = build_reach_grid(block, clearance, test::level_agent(), {V(2, 1.5, 2)}, true, 1);
   ASSERT_TRUE(walking.ok()) << walking.status().message();
   EXPECT_TRUE(walking.value().reachable_at(V(2, 2.5, 2))); // a walker's head, 1.5 above the top
-  const Result<ReachGrid> flying = build_reach_grid(block, clearance, walker(AgentReach::fly), {V(2, 100, 2)}, true, 1);
+  const Result<ReachGrid> flying =
+      build_reach_grid(block, clearance, test::level_agent(AgentReach::fly), {V(2, 100, 2)}, true, 1);
   ASSERT_TRUE(flying.ok()) << flying.status().message();
   EXPECT_TRUE(flying.value().reachable_at(V(2, 1.5, 2)));
   EXPECT_TRUE(flying.value().reachable_at(V(-0.5, 0.5, 2))); // beside the block
-  const Result<ReachGrid> refused = build_reach_grid(block, clearance, walker(), {V(2, 100, 2)}, true, 1);
+  const Result<ReachGrid> refused = build_reach_grid(block, clearance, test::level_agent(), {V(2, 100, 2)}, true, 1);
   EXPECT_FALSE(refused.ok());
 }
 
@@ -197,7 +187,7 @@ TEST(ReachGrid, AWalkerOnAHillsideStaysAboveIt) {
     hillside.triangles = {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 3, 2)};
     if (up < 0)
       for (Eigen::Vector3i& t : hillside.triangles) std::swap(t[1], t[2]);
-    AgentShape agent = walker();
+    AgentShape agent = test::level_agent();
     agent.up_sign = up;
     const SceneClearance clearance(hillside);
     const V above = V(3, 3 * slope + 0.5, 3).cwiseProduct(flip), under = V(3, 3 * slope - 1.5, 3).cwiseProduct(flip);
@@ -222,7 +212,7 @@ TEST(ReachGrid, TwoLevelsFarApartEachReachWhatTheyReachAlone) {
   const SceneClearance clearance(world);
 
   const Result<ReachGrid> walking =
-      build_reach_grid(world, clearance, walker(), {level.spawn, level.spawn + apart}, true, 2);
+      build_reach_grid(world, clearance, test::level_agent(), {level.spawn, level.spawn + apart}, true, 2);
   ASSERT_TRUE(walking.ok()) << walking.status().message();
   const ReachGrid& grid = walking.value();
   EXPECT_GT(grid.cell_count(), 1LL << 32);
@@ -238,7 +228,8 @@ TEST(ReachGrid, TwoLevelsFarApartEachReachWhatTheyReachAlone) {
   EXPECT_FALSE(grid.reachable_at(0.5 * apart + V(0, 1, 0))); // no floor halfway
 
   // A flyer from the first copy alone reaches the second copy's balcony.
-  const Result<ReachGrid> flying = build_reach_grid(world, clearance, walker(AgentReach::fly), {level.spawn}, true, 2);
+  const Result<ReachGrid> flying =
+      build_reach_grid(world, clearance, test::level_agent(AgentReach::fly), {level.spawn}, true, 2);
   ASSERT_TRUE(flying.ok()) << flying.status().message();
   EXPECT_TRUE(flying.value().reachable_at(level.on_balcony + apart + V(0, 0.3, 0)));
   EXPECT_TRUE(flying.value().reachable_at(0.5 * apart + V(0, 1, 0)));
@@ -253,7 +244,7 @@ TEST(ReachGrid, ASceneTooWideForTheGridIsRefused) {
   test::add_level_box(far, V(0, 0, 0), V(1, 1, 1));
   test::add_level_box(far, V(1e6, 0, 0), V(1e6 + 1, 1, 1));
   const SceneClearance clearance(far);
-  const Result<ReachGrid> grid = build_reach_grid(far, clearance, walker(), {}, false, 1);
+  const Result<ReachGrid> grid = build_reach_grid(far, clearance, test::level_agent(), {}, false, 1);
   ASSERT_FALSE(grid.ok());
   EXPECT_EQ(grid.status().code(), StatusCode::limit_exceeded);
   EXPECT_NE(grid.status().message().find("along an axis"), std::string::npos) << grid.status().message();
@@ -262,7 +253,7 @@ TEST(ReachGrid, ASceneTooWideForTheGridIsRefused) {
 TEST(MovementProof, RefusesAHullAcrossTheFloorsCornerAndAcceptsTheCrate) {
   const test::MovementLevel level = test::movement_level();
   const SceneClearance clearance(level.mesh);
-  const AgentShape agent = walker();
+  const AgentShape agent = test::level_agent();
   const ReachGrid grid = build_reach_grid(level.mesh, clearance, agent, {level.spawn}, true, 1).value();
   const MovementContext context{level.mesh, clearance, grid, agent, kTol};
   ConvexHullBuilder builder;
@@ -292,7 +283,7 @@ TEST(MovementProof, ASquareExactlyTheSlopOverTheFloorIsDecidedNotGivenUp) {
   floor.positions = {V(-3, 0, -3), V(3, 0, -3), V(3, 0, 3), V(-3, 0, 3)};
   floor.triangles = {Eigen::Vector3i(0, 2, 1), Eigen::Vector3i(0, 3, 2)};
   const SceneClearance clearance(floor);
-  const AgentShape agent = walker(AgentReach::fly);
+  const AgentShape agent = test::level_agent(AgentReach::fly);
   const ReachGrid grid = build_reach_grid(floor, clearance, agent, {V(0, 1, 0)}, true, 1).value();
   const MovementContext context{floor, clearance, grid, agent, kTol};
   const auto square = [&](double y) {
@@ -325,7 +316,7 @@ TEST(MovementProof, APieceOverACreaseIsHeldByTheTwoTrianglesBesideIt) {
   ridge.positions = {V(0, 0, -1), V(0, 0, 1), V(-1, -0.1, 0), V(1, -0.1, 0)};
   ridge.triangles = {Eigen::Vector3i(0, 1, 2), Eigen::Vector3i(1, 0, 3)};
   const SceneClearance clearance(ridge);
-  const AgentShape agent = walker(AgentReach::fly);
+  const AgentShape agent = test::level_agent(AgentReach::fly);
   const ReachGrid grid = build_reach_grid(ridge, clearance, agent, {V(0, 1, 0)}, true, 1).value();
   const MovementContext context{ridge, clearance, grid, agent, kTol};
   const auto square = [](double y) {

@@ -209,13 +209,7 @@ TEST(SceneClearance, AnOrientedBoxIsWithinATriangleOnlyWhenEveryPointIs) {
 TEST(ReachGrid, AnOrientedBoxMeetsAReachableCellExactlyWhenOneOfTheCellsItMeetsIs) {
   const test::MovementLevel level = test::movement_level();
   const SceneClearance clearance(level.mesh);
-  AgentShape agent;
-  agent.radius = 0.3;
-  agent.slop = 0.02;
-  agent.height = 1.8;
-  agent.climb = 0.4;
-  agent.min_up_cosine = std::cos(45.0 * M_PI / 180.0);
-  const ReachGrid grid = build_reach_grid(level.mesh, clearance, agent, {level.spawn}, true, 1).value();
+  const ReachGrid grid = build_reach_grid(level.mesh, clearance, test::level_agent(), {level.spawn}, true, 1).value();
   std::mt19937 random(3);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const V extent = grid.dims.cast<double>() * grid.cell;

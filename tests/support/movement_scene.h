@@ -5,11 +5,13 @@
 // flight of stairs up to a landing, and a balcony on a pillar out of
 // reach, with a spawn point on the floor.
 
+#include "hullcover/covering/movement_options.h"
 #include "hullcover/geometry/mesh.h"
 
 #include <Eigen/Core>
 
 #include <array>
+#include <cmath>
 
 namespace hullcover::test {
 
@@ -61,6 +63,19 @@ struct MovementLevel {
   int first_stair_face = 0, stair_faces = 0; ///< the flight's triangles
   int first_balcony_face = 0;                ///< the balcony slab's 12 triangles
 };
+
+/// The character the level is made for: radius 0.3, slop 0.02, 1.8 tall,
+/// stepping 0.4, standing on faces up to 45 degrees from level, y up.
+inline AgentShape level_agent(AgentReach reach = AgentReach::walk) {
+  AgentShape agent;
+  agent.radius = 0.3;
+  agent.slop = 0.02;
+  agent.height = 1.8;
+  agent.climb = 0.4;
+  agent.min_up_cosine = std::cos(45.0 * M_PI / 180.0);
+  agent.reach = reach;
+  return agent;
+}
 
 inline MovementLevel movement_level() {
   MovementLevel level;
