@@ -40,6 +40,7 @@ struct AuditCommandOptions {
   validate::AuditOptions audit;
   MovementCliOptions movement; // with --agent-reach, the movement audit
   double lattice_spacing = 0.0;
+  bool hull_bound = false; // with --agent-reach: the fewest hulls any covering can have, bounded below
   bool quiet = false;
 };
 
@@ -80,22 +81,33 @@ int run_movement_audit(const AuditCommandOptions& o, const LoadedScene& scene, c
   if (m.contacts_lost > 0)
     std::printf(" (first at %.6g %.6g %.6g)", m.first_lost_at.x(), m.first_lost_at.y(), m.first_lost_at.z());
   std::printf("\n  verdict: %s\n", m.clean() ? "CLEAN" : "VIOLATIONS");
+  std::optional<validate::MovementHullBound> bound;
+  if (o.hull_bound) {
+    Result<validate::MovementHullBound> found = validate::movement_hull_bound(scene.prepared, options, o.audit.threads);
+    if (!found.ok()) return bad_input(found.status());
+    bound = std::move(found.value());
+    std::printf(
+        "  hull bound: every covering keeping the promise for these reachable centres has at least %d hulls "
+        "(these: %zu; %lld points of touched faces tried)\n",
+        bound->hulls_needed, set.hulls.size(), bound->points_tried);
+  }
   if (!o.json_path.empty()) {
-    const nlohmann::json out = {{"mesh", o.mesh},
-                                {"hulls", o.hulls},
-                                {"movement",
-                                 {{"reach", o.movement.reach},
-                                  {"radius", radius},
-                                  {"slop", m.slop},
-                                  {"height", m.height},
-                                  {"spacing", m.spacing},
-                                  {"lattice_points", m.lattice_points},
-                                  {"reachable_centres", m.reachable_points},
-                                  {"sinking", m.sinking},
-                                  {"deepest", m.deepest},
-                                  {"touching_poses", m.touching_poses},
-                                  {"contacts_lost", m.contacts_lost},
-                                  {"clean", m.clean()}}}};
+    nlohmann::json out = {{"mesh", o.mesh},
+                          {"hulls", o.hulls},
+                          {"movement",
+                           {{"reach", o.movement.reach},
+                            {"radius", radius},
+                            {"slop", m.slop},
+                            {"height", m.height},
+                            {"spacing", m.spacing},
+                            {"lattice_points", m.lattice_points},
+                            {"reachable_centres", m.reachable_points},
+                            {"sinking", m.sinking},
+                            {"deepest", m.deepest},
+                            {"touching_poses", m.touching_poses},
+                            {"contacts_lost", m.contacts_lost},
+                            {"clean", m.clean()}}}};
+    if (bound) out["movement"]["hull_bound"] = bound->hulls_needed;
     if (Status written = write_file_atomically(o.json_path, out.dump(1) + "\n"); !written.ok())
       return bad_input(written);
   }
@@ -109,6 +121,8 @@ int run_audit_command(const AuditCommandOptions& o) {
   if (!scene) return kExitBadInput;
   if (const std::string stray = option_without_reach(o.movement); !stray.empty())
     return bad_input({StatusCode::invalid_argument, stray + " needs --agent-reach walk or fly"});
+  if (o.hull_bound && o.movement.reach.empty())
+    return bad_input({StatusCode::invalid_argument, "--hull-bound needs --agent-reach walk or fly"});
   if (!o.movement.reach.empty()) {
     const Result<validate::HullSet> hulls = validate::load_hull_set(o.hulls);
     if (!hulls.ok()) return bad_input(hulls.status());
@@ -231,6 +245,10 @@ void register_audit_command(CLI::App& app, int& exit_status) {
                       " x radius, widened to keep the lattice within " +
                       std::to_string(validate::kMostAuditLatticePoints) + " points)")
       ->check(positive_number());
+  cmd->add_flag("--hull-bound", o->hull_bound,
+                "With --agent-reach: also bound from below the hulls any covering keeping the movement promise\n"
+                "needs, on the audit's reachable centres (points of touched faces that no one hull may hold\n"
+                "together: a reachable centre lies nearer than r - E to the segment between any two)");
   cmd->add_flag("-q,--quiet", o->quiet, "No progress bar (drawn on stderr only when it is a terminal)");
   cmd->callback([o, &exit_status] { exit_status = run_audit_command(*o); });
 }

@@ -344,3 +344,27 @@ TEST(CommandLine, AuditSaysWhereARayRanOutOfEvaluations) {
 }
 
 } // namespace
+
+// A closed room of 4 x 3 x 4, its faces turned in: a walker of radius 0.3,
+// 1.8 tall, touches the floor and the four walls, and no hull may span two
+// of them (it would cut across the room's corner, where walkers stand).
+TEST(CommandLine, AuditBoundsTheHullsOfAnyMovementCoveringAndNeedsAReach) {
+  TempDir dir;
+  const std::string room = dir.write("room.obj",
+                                     "v 0 0 0\nv 4 0 0\nv 0 3 0\nv 4 3 0\nv 0 0 4\nv 4 0 4\nv 0 3 4\nv 4 3 4\n"
+                                     "f 3 7 5 1\nf 6 8 4 2\nf 5 6 2 1\nf 4 8 7 3\nf 2 4 3 1\nf 7 8 6 5\n");
+  const std::string agent = " --agent-radius 0.3 --agent-height 1.8 --agent-climb 0.4 --agent-reach walk";
+  const CommandRun made = run_hullcover(
+      dir, "decompose " + room + agent + " -o " + dir.path("h.obj") + " --world " + dir.path("h.hcw") + " -q");
+  ASSERT_EQ(made.status, 0) << made.err;
+  const CommandRun bounded = run_hullcover(dir, "audit " + room + " " + dir.path("h.hcw") + agent +
+                                                    " --hull-bound --json " + dir.path("bound.json") + " -q");
+  EXPECT_EQ(bounded.status, 0) << bounded.out << bounded.err;
+  EXPECT_NE(bounded.out.find("has at least 5 hulls"), std::string::npos) << bounded.out;
+  const nlohmann::json json = nlohmann::json::parse(slurp(dir.path("bound.json")));
+  EXPECT_EQ(json["movement"]["hull_bound"], 5);
+
+  const CommandRun alone = run_hullcover(dir, "audit " + room + " " + dir.path("h.hcw") + " --hull-bound -q");
+  EXPECT_EQ(alone.status, 2);
+  EXPECT_NE(alone.err.find("--hull-bound needs --agent-reach"), std::string::npos) << alone.err;
+}

@@ -59,10 +59,22 @@ bool AgentLattice::reachable_near(const Eigen::Vector3d& p) const {
   return false;
 }
 
-bool AgentLattice::reachable_nearest(const Eigen::Vector3d& p) const {
-  const Eigen::Vector3d at = ((p - origin) / spacing).array().round();
-  if ((at.array() < 0.0).any() || (at.array() >= dims.cast<double>().array()).any()) return false;
-  return reachable(static_cast<int>(at.x()), static_cast<int>(at.y()), static_cast<int>(at.z()));
+bool AgentLattice::reachable_for_walker(const Eigen::Vector3d& p, int up_axis, double up_sign) const {
+  const Eigen::Vector3d at = (p - origin) / spacing;
+  const auto reachable_at = [&](const Eigen::Vector3d& c) {
+    if ((c.array() < 0.0).any() || (c.array() >= dims.cast<double>().array()).any()) return false;
+    return reachable(static_cast<int>(c.x()), static_cast<int>(c.y()), static_cast<int>(c.z()));
+  };
+  if (reachable_at(at.array().round())) return true;
+  const int across_a = (up_axis + 1) % 3, across_b = (up_axis + 2) % 3;
+  Eigen::Vector3d above;
+  above[up_axis] = up_sign > 0 ? std::ceil(at[up_axis]) : std::floor(at[up_axis]);
+  for (int corner = 0; corner < 4; ++corner) {
+    above[across_a] = std::floor(at[across_a]) + (corner & 1);
+    above[across_b] = std::floor(at[across_b]) + ((corner >> 1) & 1);
+    if (reachable_at(above)) return true;
+  }
+  return false;
 }
 
 namespace {

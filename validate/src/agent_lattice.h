@@ -15,8 +15,17 @@
 #include "hullcover/geometry/mesh.h"
 #include "hullcover/geometry/status.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
+
+namespace hullcover {
+struct PreparedMesh;
+namespace validate {
+struct MovementAuditOptions;
+}
+} // namespace hullcover
 
 namespace hullcover::validate::detail {
 
@@ -50,8 +59,13 @@ struct AgentLattice {
   /// point `p` at clearance r or more, it is then reachable itself (the two,
   /// less than 2 r apart and both clear, have no surface between them).
   bool reachable_near(const Eigen::Vector3d& p) const;
-  /// Whether the lattice point nearest to `p` is reachable.
-  bool reachable_nearest(const Eigen::Vector3d& p) const;
+  /// Whether a walker may be at `p` (a point at clearance r or more): the
+  /// lattice point nearest to it is reachable, or one of the 4 around it on
+  /// the level above it (along `up_axis`, `up_sign`) is, from which it falls
+  /// to `p`. Not the 8 around it: standing ends at a height, and a point
+  /// above the highest reachable level is out of reach; but a pose beside a
+  /// wall or over a floor is judged whatever the lattice's offset from them.
+  bool reachable_for_walker(const Eigen::Vector3d& p, int up_axis, double up_sign) const;
 };
 
 /// Whether face `f` is walkable for `agent`.
@@ -69,5 +83,57 @@ inline constexpr double kWidestLatticeSpacingInRadii = 0.7;
 Result<AgentLattice> reach_lattice(const TriangleDistances& distances, const AuditAgent& agent, const Aabb& box,
                                    double spacing, const std::vector<Eigen::Vector3d>& seeds, double tol,
                                    long long most_held, int threads);
+
+/// A face is sampled on at most this many steps a side (about 2 x 10^5
+/// poses).
+inline constexpr int kMostFaceSampleSteps = 640;
+
+/// The audit's poses touching face `face`: over a triangular lattice of the
+/// lattice's spacing on it (at most kMostFaceSampleSteps a side), the points
+/// r + 2 tol along its normal, on either side, at clearance r or more, whose
+/// lattice samples say it is reachable (a flyer moves from a reachable point
+/// to any clear point near it, so one of the 8 around; a walker's by
+/// AgentLattice::reachable_for_walker). Calls
+/// `visit(pose)` on each until it returns false.
+template <class Visit>
+void visit_touching_poses(const AgentLattice& lattice, const TriangleDistances& distances, const AuditAgent& agent,
+                          double tol, int face, Visit&& visit) {
+  const Mesh& mesh = distances.mesh;
+  const Eigen::Vector3i& t = mesh.triangles[face];
+  const Eigen::Vector3d &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+  const Eigen::Vector3d n = (b - a).cross(c - a);
+  if (!(n.norm() > 0.0)) return;
+  const Eigen::Vector3d unit = n.normalized();
+  const double r = agent.radius;
+  // The side count capped so a long sliver cannot ask for billions.
+  const double longest = std::max({(b - a).norm(), (c - a).norm(), (c - b).norm()});
+  const int steps =
+      static_cast<int>(std::clamp(std::ceil(longest / lattice.spacing), 1.0, double(kMostFaceSampleSteps)));
+  for (int u = 0; u <= steps; ++u)
+    for (int v = 0; u + v <= steps; ++v) {
+      const double s = (u + 1.0 / 3.0) / (steps + 1.0), w = (v + 1.0 / 3.0) / (steps + 1.0);
+      const Eigen::Vector3d on_face = a + s * (b - a) + w * (c - a);
+      for (double side : {1.0, -1.0}) {
+        const Eigen::Vector3d pose = on_face + side * (r + 2.0 * tol) * unit;
+        const bool reachable = agent.walking ? lattice.reachable_for_walker(pose, agent.up_axis, agent.up_sign)
+                                             : lattice.reachable_near(pose);
+        if (distances.clearance(pose, r) < r || !reachable) continue;
+        if (!visit(pose)) return;
+      }
+    }
+}
+
+/// The audit's reach for `options` over `scene`: the agent resolved (a
+/// walker with nothing to stand on flies), the lattice spanning the scene's
+/// box grown by r (walking: and up by climb + H - r) at the given spacing or
+/// the default widened to fit, flooded from the given seeds or the
+/// definition's (with neither, every clear point is reachable).
+struct AuditReach {
+  AuditAgent agent;
+  double tol = 0.0;
+  AgentLattice lattice;
+};
+Result<AuditReach> audit_reach(const PreparedMesh& scene, const TriangleDistances& distances,
+                               const MovementAuditOptions& options, int threads);
 
 } // namespace hullcover::validate::detail

@@ -18,8 +18,6 @@ namespace {
 
 using detail::AgentLattice;
 
-// A face is sampled on at most this many steps a side (about 2 x 10^5 poses).
-constexpr int kMostFaceSampleSteps = 640;
 using detail::AuditAgent;
 
 Result<AuditAgent> resolve(const MovementOptions& o, double tol) {
@@ -79,17 +77,17 @@ Status gap_to_hulls(const bvh::HullWorld& world, const Eigen::Vector3d& p, doubl
   return Status::success();
 }
 
-Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh::RuntimeHull>& hulls,
-                                const MovementAuditOptions& options, int threads) {
+} // namespace
+
+namespace detail {
+
+Result<AuditReach> audit_reach(const PreparedMesh& scene, const TriangleDistances& distances,
+                               const MovementAuditOptions& options, int threads) {
   const double tol = scene.tolerance.largest_length();
   Result<AuditAgent> resolved = resolve(options.agent, tol);
   if (!resolved.ok()) return resolved.status();
   AuditAgent agent = resolved.value();
-  Result<std::shared_ptr<const bvh::HullWorld>> built = bvh::HullWorld::build(hulls);
-  if (!built.ok()) return built.status();
-  const bvh::HullWorld& world = *built.value();
   const Mesh& mesh = scene.mesh;
-  const detail::TriangleDistances distances(mesh);
   std::vector<Eigen::Vector3d> seeds = options.agent.seeds;
   for (const Eigen::Vector3d& s : seeds)
     if (!(distances.clearance(s, agent.radius) >= agent.radius))
@@ -108,9 +106,6 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
     else
       box.min[agent.up_axis] -= rise;
   }
-  MovementAuditReport report;
-  report.slop = agent.slop;
-  report.height = agent.height;
   double spacing = options.spacing > 0.0 ? options.spacing : kDefaultAuditSpacingInRadii * agent.radius;
   const Eigen::Vector3d extent = box.max - box.min;
   // Counted in whole blocks: what the blocks' own numbers take.
@@ -122,11 +117,11 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
     return block_points_at(s) <= static_cast<double>(kMostAuditLatticePoints) &&
            widest_axis_at(s) < static_cast<double>(kMostCellsAlongAnAxis);
   };
-  const double widest = detail::kWidestLatticeSpacingInRadii * agent.radius;
+  const double widest = kWidestLatticeSpacingInRadii * agent.radius;
   if (options.spacing > widest)
-    return Status{StatusCode::invalid_argument, "the lattice spacing must be at most " +
-                                                    std::to_string(detail::kWidestLatticeSpacingInRadii) +
-                                                    " x the agent radius"};
+    return Status{
+        StatusCode::invalid_argument,
+        "the lattice spacing must be at most " + std::to_string(kWidestLatticeSpacingInRadii) + " x the agent radius"};
   // The default spacing widens to fit; a given one is kept or refused.
   while (options.spacing <= 0.0 && !fits(spacing) && spacing < widest) spacing = std::min(widest, 1.25 * spacing);
   if (!fits(spacing)) {
@@ -138,12 +133,11 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
                                                   std::to_string(kMostCellsAlongAnAxis - 1) +
                                                   " along an axis): a wider --lattice-spacing, or a part of the scene"};
   }
-  report.spacing = spacing;
   Result<AgentLattice> reached =
-      detail::reach_lattice(distances, agent, box, spacing, seeds, tol, kMostAuditLatticePointsHeld, threads);
+      reach_lattice(distances, agent, box, spacing, seeds, tol, kMostAuditLatticePointsHeld, threads);
   if (!reached.ok()) return reached.status();
-  AgentLattice& lattice = reached.value();
-  BlockBytes& flags = lattice.flags;
+  AuditReach reach{agent, tol, std::move(reached.value())};
+  BlockBytes& flags = reach.lattice.flags;
   if (options.agent.seeds.empty() && !agent.walking && seeds.empty())
     for (long long b = 0; b < flags.block_count(); ++b) {
       if (flags.uniform(b) && (flags.uniform_byte(b) & AgentLattice::kClearPoint))
@@ -152,6 +146,31 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
         for (int c = 0; c < BlockBytes::kCells; ++c)
           if (held[c] & AgentLattice::kClearPoint) held[c] |= AgentLattice::kReachablePoint;
     }
+  return reach;
+}
+
+} // namespace detail
+
+namespace {
+
+Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh::RuntimeHull>& hulls,
+                                const MovementAuditOptions& options, int threads) {
+  Result<std::shared_ptr<const bvh::HullWorld>> built = bvh::HullWorld::build(hulls);
+  if (!built.ok()) return built.status();
+  const bvh::HullWorld& world = *built.value();
+  const Mesh& mesh = scene.mesh;
+  const detail::TriangleDistances distances(mesh);
+  Result<detail::AuditReach> reached = detail::audit_reach(scene, distances, options, threads);
+  if (!reached.ok()) return reached.status();
+  const AuditAgent& agent = reached.value().agent;
+  const double tol = reached.value().tol;
+  const AgentLattice& lattice = reached.value().lattice;
+  const BlockBytes& flags = lattice.flags;
+  const double spacing = lattice.spacing;
+  MovementAuditReport report;
+  report.slop = agent.slop;
+  report.height = agent.height;
+  report.spacing = spacing;
   report.lattice_points = lattice.size();
 
   // Reachable centres: each ball of radius r sinks at most E + tol into the
@@ -229,42 +248,23 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
   std::vector<Findings> faces(mesh.triangles.size());
   parallel_for(static_cast<int>(mesh.triangles.size()), threads, [&](int face) {
     Findings& f = faces[face];
-    const Eigen::Vector3i& t = mesh.triangles[face];
-    const Eigen::Vector3d &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
-    const Eigen::Vector3d n = (b - a).cross(c - a);
-    if (!(n.norm() > 0.0)) return;
-    const Eigen::Vector3d unit = n.normalized();
-    // A lattice of the spacing over the face, its side count capped so a
-    // long sliver cannot ask for billions.
-    const double longest = std::max({(b - a).norm(), (c - a).norm(), (c - b).norm()});
-    const int steps = static_cast<int>(std::clamp(std::ceil(longest / spacing), 1.0, double(kMostFaceSampleSteps)));
-    for (int u = 0; u <= steps; ++u)
-      for (int v = 0; u + v <= steps; ++v) {
-        const double s = (u + 1.0 / 3.0) / (steps + 1.0), w = (v + 1.0 / 3.0) / (steps + 1.0);
-        const Eigen::Vector3d on_face = a + s * (b - a) + w * (c - a);
-        for (double side : {1.0, -1.0}) {
-          const Eigen::Vector3d pose = on_face + side * (r + 2.0 * tol) * unit;
-          // A flyer moves from a reachable point to any clear point near it;
-          // a walker's pose is judged by its own sample (standing ends at a
-          // height).
-          const bool reachable = agent.walking ? lattice.reachable_nearest(pose) : lattice.reachable_near(pose);
-          if (distances.clearance(pose, r) < r || !reachable) continue;
-          ++f.touching;
-          // Lost: a ball of r + E + 3 tol there touches no hull.
-          bvh::OverlapRequest reach;
-          reach.shape = bvh::QueryShape::sphere(r + agent.slop + 3.0 * tol);
-          reach.pose.translation() = pose;
-          bvh::TouchResult touch;
-          if (Status asked = world.touches(reach, touch); !asked.ok()) {
-            f.failure = asked;
-            return;
-          }
-          if (!touch.touching) {
-            if (f.lost == 0) f.first_lost_at = pose;
-            ++f.lost;
-          }
-        }
+    detail::visit_touching_poses(lattice, distances, agent, tol, face, [&](const Eigen::Vector3d& pose) {
+      ++f.touching;
+      // Lost: a ball of r + E + 3 tol there touches no hull.
+      bvh::OverlapRequest reach;
+      reach.shape = bvh::QueryShape::sphere(r + agent.slop + 3.0 * tol);
+      reach.pose.translation() = pose;
+      bvh::TouchResult touch;
+      if (Status asked = world.touches(reach, touch); !asked.ok()) {
+        f.failure = asked;
+        return false;
       }
+      if (!touch.touching) {
+        if (f.lost == 0) f.first_lost_at = pose;
+        ++f.lost;
+      }
+      return true;
+    });
   });
   for (const std::vector<Findings>* part : {&slabs, &faces})
     for (const Findings& f : *part)

@@ -67,4 +67,22 @@ struct MovementAuditReport {
 Result<MovementAuditReport> audit_movement(const PreparedMesh& scene, const std::vector<bvh::RuntimeHull>& hulls,
                                            const MovementAuditOptions& options, int threads);
 
+/// A lower bound on the hulls of any covering that keeps the promise over
+/// the audit's reach (docs/definitions-and-proofs.md, "A lower bound on the
+/// hulls"): points of faces a reached agent touches (each lies in a hull),
+/// pairwise parted by a reached centre nearer than r - E - 2 tol to the
+/// segment between them (no hull holds both). Found greedily, so a bound,
+/// not the least count.
+struct MovementHullBound {
+  int hulls_needed = 0;                ///< the points found: no covering has fewer hulls
+  long long points_tried = 0;          ///< points of touched faces tried
+  std::vector<Eigen::Vector3d> points; ///< the points, pairwise parted
+};
+
+/// The bound for the agent of `options` over `scene`, on the audit's own
+/// reach (the same lattice as audit_movement). Fails as audit_movement does
+/// for options out of range.
+Result<MovementHullBound> movement_hull_bound(const PreparedMesh& scene, const MovementAuditOptions& options,
+                                              int threads);
+
 } // namespace hullcover::validate

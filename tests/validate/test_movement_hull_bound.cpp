@@ -1,0 +1,97 @@
+// The lower bound on a movement covering's hulls
+// (hullcover/validate/movement_audit.h, movement_hull_bound): a room whose
+// fewest hulls are known, and the movement level, whose clean coverings
+// must give each of the bound's points a hull of its own.
+
+#include "movement_scene.h"
+
+#include "hullcover/bvh/covering_hulls.h"
+#include "hullcover/covering/movement_covering.h"
+#include "hullcover/mesh/prepared_mesh.h"
+#include "hullcover/validate/movement_audit.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+namespace hullcover {
+namespace {
+
+// A room of 4 x 3 x 4 (y up) with a spawn point inside. Each of its six
+// walls is a plane of two triangles; a hull spanning two walls cuts across
+// the room's corner, where a flyer reaches, so a flyer needs six hulls. A
+// walker (1.8 tall, climbing 0.4, radius 0.3) reaches no higher than 2.2:
+// the ceiling is not touched, and five are needed.
+Mesh closed_room() {
+  Mesh mesh;
+  test::add_level_box(mesh, Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(4, 3, 4), true);
+  mesh.material_ids.assign(mesh.triangles.size(), 0);
+  return mesh;
+}
+
+MovementOptions room_agent(AgentReach reach) {
+  MovementOptions options;
+  options.radius = 0.3;
+  options.height = 1.8;
+  options.climb = 0.4;
+  options.reach = reach;
+  options.seeds = {Eigen::Vector3d(2.0, 0.5, 2.0)};
+  return options;
+}
+
+validate::MovementHullBound bound_for(const PreparedMesh& prepared, const MovementOptions& agent) {
+  validate::MovementAuditOptions options;
+  options.agent = agent;
+  Result<validate::MovementHullBound> bound = validate::movement_hull_bound(prepared, options, 2);
+  EXPECT_TRUE(bound.ok()) << bound.status().message();
+  return bound.ok() ? bound.value() : validate::MovementHullBound{};
+}
+
+TEST(MovementHullBound, AClosedRoomNeedsAHullForEachWallItsAgentsTouch) {
+  Result<PreparedMesh> prepared = prepare_mesh(closed_room(), std::nullopt);
+  ASSERT_TRUE(prepared.ok()) << prepared.status().message();
+  EXPECT_EQ(bound_for(prepared.value(), room_agent(AgentReach::fly)).hulls_needed, 6);
+  const validate::MovementHullBound walking = bound_for(prepared.value(), room_agent(AgentReach::walk));
+  EXPECT_EQ(walking.hulls_needed, 5);
+  for (const Eigen::Vector3d& p : walking.points) EXPECT_LT(p.y(), 3.0 - 1e-9) << "a point on the ceiling";
+}
+
+TEST(MovementHullBound, EachPointHasAHullOfItsOwnInACleanCovering) {
+  const test::MovementLevel level = test::movement_level();
+  Result<PreparedMesh> prepared = prepare_mesh(level.mesh, std::nullopt);
+  ASSERT_TRUE(prepared.ok()) << prepared.status().message();
+  const double tol = prepared.value().tolerance.largest_length();
+  for (AgentReach reach : {AgentReach::walk, AgentReach::fly}) {
+    MovementOptions agent = room_agent(reach);
+    agent.seeds = {level.spawn};
+    Result<MovementCovering> made = decompose_for_movement(prepared.value(), agent);
+    ASSERT_TRUE(made.ok()) << made.status().message();
+    const Covering& covering = made.value().covering;
+    validate::MovementAuditOptions audit;
+    audit.agent = agent;
+    Result<validate::MovementAuditReport> report =
+        validate::audit_movement(prepared.value(), bvh::runtime_hulls(covering), audit, 2);
+    ASSERT_TRUE(report.ok()) << report.status().message();
+    ASSERT_TRUE(report.value().clean());
+
+    const validate::MovementHullBound bound = bound_for(prepared.value(), agent);
+    EXPECT_GT(bound.hulls_needed, 1);
+    EXPECT_LE(bound.hulls_needed, static_cast<int>(covering.hulls.size()));
+    // Every point lies in a hull (its face is touched), and no hull holds
+    // two of them.
+    std::set<int> taken;
+    for (const Eigen::Vector3d& p : bound.points) {
+      int holding = 0;
+      for (size_t h = 0; h < covering.hulls.size(); ++h) {
+        if (deepest_signed_distance(covering.hulls[h].polytope.planes, p) > tol) continue;
+        ++holding;
+        EXPECT_TRUE(taken.insert(static_cast<int>(h)).second)
+            << "hull " << h << " holds two of the bound's points, one at " << p.transpose();
+      }
+      EXPECT_GT(holding, 0) << "no hull holds " << p.transpose();
+    }
+  }
+}
+
+} // namespace
+} // namespace hullcover

@@ -1,0 +1,208 @@
+#include "hullcover/validate/movement_audit.h"
+
+#include "agent_lattice.h"
+
+#include "hullcover/geometry/parallel_for.h"
+#include "hullcover/geometry/triangle_distance.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <string>
+
+namespace hullcover::validate {
+namespace {
+
+using detail::AgentLattice;
+
+// Points of a segment are searched for a reachable centre this far apart,
+// in lattice spacings: a centre beside the segment is found from the
+// sample nearest its foot.
+constexpr double kSegmentStepInSpacings = 0.5;
+// Points nearer than this many radii count toward how many points share a
+// hull with a point (farther ones rarely do, and cost a segment each).
+constexpr double kNeighbourhoodInRadii = 8.0;
+// An agent is posed this fraction of the reach short of it, so that the
+// rounding of its place never takes it farther.
+constexpr double kPoseInsideReach = 1e-9;
+// Chosen points nearer than this many radii to a new one are asked first:
+// a point that shares a hull with one of them usually shares it with a
+// near one, and that is found without asking the far ones.
+constexpr double kNearChosenInRadii = 4.0;
+
+// Whether a reachable centre lies nearer than `reach` to a point or a
+// segment, sampled: a "no" may miss one, a "yes" never errs. At a point x,
+// the agent is posed `reach` less a rounding margin from x, straight away
+// from the nearest triangle, and counts when the audit would pose it there
+// (clearance r or more, its lattice sample reachable).
+struct ReachedNear {
+  const AgentLattice& lattice;
+  const detail::TriangleDistances& distances;
+  const detail::AuditAgent& agent;
+  double reach;
+
+  bool near_point(const Eigen::Vector3d& x) const {
+    const double r = agent.radius;
+    // The nearest point of the triangles within r of x.
+    const Mesh& mesh = distances.mesh;
+    double best = r * r;
+    Eigen::Vector3d foot = x;
+    distances.tree.nearest_to_point(x, r, [&](int f) {
+      const Eigen::Vector3i& t = mesh.triangles[f];
+      const Eigen::Vector3d on =
+          closest_point_on_triangle(x, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
+      const double d2 = (on - x).squaredNorm();
+      if (d2 < best) {
+        best = d2;
+        foot = on;
+      }
+      return d2;
+    });
+    const bool clear_at_x = !(best < r * r); // no triangle nearer than r: x itself may be a centre
+    const Eigen::Vector3d away = x - foot;
+    if (!clear_at_x && !(away.norm() > 0.0)) return false; // x on a triangle
+    const Eigen::Vector3d pose =
+        clear_at_x ? x : Eigen::Vector3d(x + (reach * (1.0 - kPoseInsideReach)) * away.normalized());
+    const bool reachable =
+        agent.walking ? lattice.reachable_for_walker(pose, agent.up_axis, agent.up_sign) : lattice.reachable_near(pose);
+    return reachable && distances.clearance(pose, r) >= r;
+  }
+
+  // The segment's samples in the order of halving: its middle first, where
+  // the free space between two faces most often lies.
+  bool near_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& q) const {
+    const double step = kSegmentStepInSpacings * lattice.spacing;
+    const double length = (q - p).norm();
+    const int steps = static_cast<int>(std::min(std::ceil(length / step), double(1 << 24))) + 1;
+    int top = 1;
+    while (2 * top <= steps) top *= 2;
+    const auto at = [&](int i) { return Eigen::Vector3d(p + (q - p) * (double(i) / steps)); };
+    if (near_point(at(0))) return true;
+    for (int s = top; s >= 1; s /= 2)
+      for (int i = s; i <= steps; i += 2 * s)
+        if (near_point(at(i))) return true;
+    return false;
+  }
+};
+
+Result<MovementHullBound> run_bound(const PreparedMesh& scene, const MovementAuditOptions& options, int threads) {
+  const Mesh& mesh = scene.mesh;
+  const detail::TriangleDistances distances(mesh);
+  Result<detail::AuditReach> reach = detail::audit_reach(scene, distances, options, threads);
+  if (!reach.ok()) return reach.status();
+  const detail::AuditAgent& agent = reach.value().agent;
+  const double tol = reach.value().tol;
+  const AgentLattice& lattice = reach.value().lattice;
+  // Promise (1) keeps every reachable centre r - E away from every hull,
+  // and the audit lets a ball sink E + tol: a hull holding two points (each
+  // within tol of where the face puts it) keeps their segment r - E - 2 tol
+  // from every reachable centre.
+  const double parting = agent.radius - agent.slop - 2.0 * tol;
+  if (!(parting > 0.0)) return Status{StatusCode::invalid_argument, "the slop leaves no room below the agent radius"};
+  const ReachedNear near{lattice, distances, agent, parting};
+
+  // Promise (2): every point of a face a reachable agent touches lies in a
+  // hull. Touched: the audit poses an agent touching it (r + 2 tol away),
+  // and no other triangle is nearer than r + tol to that pose, so the
+  // agent moved 2 tol straight to the face stays clear. Points of such a
+  // face: the centroid and the middles between it and its corners (two
+  // points of one face never part: a centre is at least r from it).
+  std::vector<char> is_touched(mesh.triangles.size(), 0);
+  parallel_for(static_cast<int>(mesh.triangles.size()), threads, [&](int f) {
+    detail::visit_touching_poses(lattice, distances, agent, tol, f, [&](const Eigen::Vector3d& pose) {
+      const double clear = agent.radius + tol;
+      is_touched[f] = distances.clearance(pose, clear) >= clear;
+      return !is_touched[f];
+    });
+  });
+  std::vector<Eigen::Vector3d> candidates;
+  for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) {
+    if (!is_touched[f]) continue;
+    const Eigen::Vector3i& t = mesh.triangles[f];
+    const Eigen::Vector3d &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+    const Eigen::Vector3d g = (a + b + c) / 3.0;
+    for (const Eigen::Vector3d& x :
+         {g, Eigen::Vector3d(0.5 * (g + a)), Eigen::Vector3d(0.5 * (g + b)), Eigen::Vector3d(0.5 * (g + c))})
+      candidates.push_back(x);
+  }
+  // Greedy: a point joins when a reachable centre parts it from every point
+  // already chosen. Points that share a hull with few others nearby come
+  // first (a point in a corner, which shares one with both walls, would
+  // shut out both); ties in an order fixed by a hash of their index.
+  const double neighbourhood = kNeighbourhoodInRadii * agent.radius;
+  std::vector<std::pair<std::uint64_t, int>> by_cell(candidates.size());
+  const auto cell_of = [&](const Eigen::Vector3d& x) {
+    return Eigen::Vector3i(((x - lattice.origin) / neighbourhood).array().floor().cast<int>());
+  };
+  const auto key_of = [](const Eigen::Vector3i& c) {
+    return (std::uint64_t(std::uint32_t(c.x()) & 0x1fffff) << 42) |
+           (std::uint64_t(std::uint32_t(c.y()) & 0x1fffff) << 21) | std::uint64_t(std::uint32_t(c.z()) & 0x1fffff);
+  };
+  for (size_t i = 0; i < candidates.size(); ++i) by_cell[i] = {key_of(cell_of(candidates[i])), static_cast<int>(i)};
+  std::sort(by_cell.begin(), by_cell.end());
+  std::vector<int> sharing(candidates.size(), 0);
+  parallel_for(static_cast<int>(candidates.size()), threads, [&](int i) {
+    const Eigen::Vector3i c = cell_of(candidates[i]);
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const std::uint64_t key = key_of(c + Eigen::Vector3i(dx, dy, dz));
+          auto it = std::lower_bound(by_cell.begin(), by_cell.end(), std::make_pair(key, -1));
+          for (; it != by_cell.end() && it->first == key; ++it)
+            if (it->second != i && (candidates[it->second] - candidates[i]).norm() < neighbourhood &&
+                !near.near_segment(candidates[i], candidates[it->second]))
+              ++sharing[i];
+        }
+  });
+  std::vector<int> order(candidates.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  const auto mixed = [](std::uint64_t x) {
+    x ^= x >> 33;
+    x *= 0xff51afd7ed558ccdULL;
+    x ^= x >> 33;
+    return x;
+  };
+  std::sort(order.begin(), order.end(), [&](int i, int j) {
+    if (sharing[i] != sharing[j]) return sharing[i] < sharing[j];
+    return mixed(i) < mixed(j);
+  });
+
+  MovementHullBound bound;
+  bound.points_tried = static_cast<long long>(candidates.size());
+  const double near_chosen = kNearChosenInRadii * agent.radius;
+  std::vector<int> asked;
+  for (int i : order) {
+    const Eigen::Vector3d& q = candidates[i];
+    asked.clear();
+    for (int k = 0; k < static_cast<int>(bound.points.size()); ++k)
+      if ((bound.points[k] - q).squaredNorm() < near_chosen * near_chosen) asked.push_back(k);
+    bool parted = true;
+    for (int k : asked)
+      if (!near.near_segment(bound.points[k], q)) {
+        parted = false;
+        break;
+      }
+    for (int k = 0; parted && k < static_cast<int>(bound.points.size()); ++k)
+      if ((bound.points[k] - q).squaredNorm() >= near_chosen * near_chosen && !near.near_segment(bound.points[k], q))
+        parted = false;
+    if (parted) bound.points.push_back(q);
+  }
+  bound.hulls_needed = static_cast<int>(bound.points.size());
+  return bound;
+}
+
+} // namespace
+
+Result<MovementHullBound> movement_hull_bound(const PreparedMesh& scene, const MovementAuditOptions& options,
+                                              int threads) {
+  try {
+    return run_bound(scene, options, threads);
+  } catch (const std::exception& e) {
+    return Status{StatusCode::internal_error, std::string("movement hull bound failed: ") + e.what()};
+  }
+}
+
+} // namespace hullcover::validate
