@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 
 namespace hullcover {
@@ -39,10 +40,10 @@ MovementOptions room_agent(AgentReach reach) {
   return options;
 }
 
-validate::MovementHullBound bound_for(const PreparedMesh& prepared, const MovementOptions& agent) {
+validate::MovementHullBound bound_for(const PreparedMesh& prepared, const MovementOptions& agent, int threads = 2) {
   validate::MovementAuditOptions options;
   options.agent = agent;
-  Result<validate::MovementHullBound> bound = validate::movement_hull_bound(prepared, options, 2);
+  Result<validate::MovementHullBound> bound = validate::movement_hull_bound(prepared, options, threads);
   EXPECT_TRUE(bound.ok()) << bound.status().message();
   return bound.ok() ? bound.value() : validate::MovementHullBound{};
 }
@@ -91,6 +92,38 @@ TEST(MovementHullBound, EachPointHasAHullOfItsOwnInACleanCovering) {
       EXPECT_GT(holding, 0) << "no hull holds " << p.transpose();
     }
   }
+}
+
+// An open sheet of 10 x 10, rippled 0.4 up and down every 2.5 along both
+// axes: a flyer reaches both sides, so every ripple keeps hulls apart.
+Mesh rippled_sheet() {
+  Mesh mesh;
+  constexpr int kSide = 14;
+  for (int j = 0; j <= kSide; ++j)
+    for (int i = 0; i <= kSide; ++i) {
+      const double x = 10.0 * i / kSide, z = 10.0 * j / kSide;
+      mesh.positions.emplace_back(x, 0.4 * std::sin(x * 2.5) * std::sin(z * 2.5), z);
+    }
+  for (int j = 0; j < kSide; ++j)
+    for (int i = 0; i < kSide; ++i) {
+      const int v = j * (kSide + 1) + i;
+      mesh.triangles.emplace_back(v, v + kSide + 1, v + 1);
+      mesh.triangles.emplace_back(v + 1, v + kSide + 1, v + kSide + 2);
+    }
+  mesh.material_ids.assign(mesh.triangles.size(), 0);
+  return mesh;
+}
+
+TEST(MovementHullBound, TheSamePointsOnAnyThreadCount) {
+  Result<PreparedMesh> prepared = prepare_mesh(rippled_sheet(), std::nullopt);
+  ASSERT_TRUE(prepared.ok()) << prepared.status().message();
+  MovementOptions agent = room_agent(AgentReach::fly);
+  agent.seeds.clear(); // over every walkable face
+  const validate::MovementHullBound one = bound_for(prepared.value(), agent, 1);
+  const validate::MovementHullBound three = bound_for(prepared.value(), agent, 3);
+  // More points than one task of the threads asks (64), so they share them.
+  EXPECT_GT(one.hulls_needed, 128) << one.hulls_needed;
+  EXPECT_EQ(one.points, three.points);
 }
 
 } // namespace

@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <exception>
@@ -32,10 +33,13 @@ constexpr double kPoseInsideReach = 1e-9;
 // a point that shares a hull with one of them usually shares it with a
 // near one, and that is found without asking the far ones.
 constexpr double kNearChosenInRadii = 4.0;
+// The chosen points one task asks, when the threads ask the far ones.
+constexpr int kChosenPerTask = 64;
 
 // Whether a reachable centre lies nearer than `reach` to a point or a
 // segment, sampled: a "no" may miss one, a "yes" never errs. At a point x,
-// the agent is posed `reach` less a rounding margin from x, straight away
+// the nearest lattice point counts when it is reachable; else the agent is
+// posed `reach` less a rounding margin from x, straight away
 // from the nearest triangle, and counts when the audit would pose it there
 // (clearance r or more, its lattice sample reachable).
 struct ReachedNear {
@@ -45,6 +49,14 @@ struct ReachedNear {
   double reach;
 
   bool near_point(const Eigen::Vector3d& x) const {
+    // The lattice point nearest to x, when reachable and near enough: in
+    // open space most samples are decided so, without a distance.
+    const Eigen::Vector3d at = ((x - lattice.origin) / lattice.spacing).array().round();
+    if ((at.array() >= 0.0).all() && (at.array() < lattice.dims.cast<double>().array()).all()) {
+      const Eigen::Vector3i g = at.cast<int>();
+      if (lattice.reachable(g.x(), g.y(), g.z()) && (lattice.point(g.x(), g.y(), g.z()) - x).norm() < reach)
+        return true;
+    }
     const double r = agent.radius;
     // The nearest point of the triangles within r of x.
     const Mesh& mesh = distances.mesh;
@@ -185,10 +197,19 @@ Result<MovementHullBound> run_bound(const PreparedMesh& scene, const MovementAud
         parted = false;
         break;
       }
-    for (int k = 0; parted && k < static_cast<int>(bound.points.size()); ++k)
-      if ((bound.points[k] - q).squaredNorm() >= near_chosen * near_chosen && !near.near_segment(bound.points[k], q))
-        parted = false;
-    if (parted) bound.points.push_back(q);
+    if (!parted) continue;
+    // The farther points on the threads, in tasks of a few: whether q is
+    // parted from all of them does not depend on which thread asks.
+    const int chosen = static_cast<int>(bound.points.size());
+    const int tasks = (chosen + kChosenPerTask - 1) / kChosenPerTask;
+    std::atomic<bool> shares{false};
+    parallel_for(tasks, tasks > 1 ? threads : 1, [&](int task) {
+      const int last = std::min(chosen, (task + 1) * kChosenPerTask);
+      for (int k = task * kChosenPerTask; k < last && !shares.load(std::memory_order_relaxed); ++k)
+        if ((bound.points[k] - q).squaredNorm() >= near_chosen * near_chosen && !near.near_segment(bound.points[k], q))
+          shares.store(true, std::memory_order_relaxed);
+    });
+    if (!shares.load()) bound.points.push_back(q);
   }
   bound.hulls_needed = static_cast<int>(bound.points.size());
   return bound;
