@@ -248,7 +248,7 @@ void register_audit_command(CLI::App& app, int& exit_status) {
   cmd->add_flag("--hull-bound", o->hull_bound,
                 "With --agent-reach: also bound from below the hulls any covering keeping the movement promise\n"
                 "needs, on the audit's reachable centres (points of touched faces that no one hull may hold\n"
-                "together: a reachable centre lies nearer than r - E to the segment between any two)");
+                "together: a reachable centre lies nearer than r - E - 2 tol to the segment between any two)");
   cmd->add_flag("-q,--quiet", o->quiet, "No progress bar (drawn on stderr only when it is a terminal)");
   cmd->callback([o, &exit_status] { exit_status = run_audit_command(*o); });
 }

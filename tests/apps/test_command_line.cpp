@@ -343,8 +343,6 @@ TEST(CommandLine, AuditSaysWhereARayRanOutOfEvaluations) {
   EXPECT_NE(refused.err.find("--max-ray-evaluations"), std::string::npos) << refused.err;
 }
 
-} // namespace
-
 // A closed room of 4 x 3 x 4, its faces turned in: a walker of radius 0.3,
 // 1.8 tall, touches the floor and the four walls, and no hull may span two
 // of them (it would cut across the room's corner, where walkers stand).
@@ -368,3 +366,5 @@ TEST(CommandLine, AuditBoundsTheHullsOfAnyMovementCoveringAndNeedsAReach) {
   EXPECT_EQ(alone.status, 2);
   EXPECT_NE(alone.err.find("--hull-bound needs --agent-reach"), std::string::npos) << alone.err;
 }
+
+} // namespace

@@ -228,6 +228,39 @@ TEST(MovementAudit, FindsAHullInReachableSpaceAndAFloorWithoutItsHull) {
   EXPECT_GT(bare.contacts_lost, 0);
 }
 
+// A closed room of 4 x 3 x 4 whose wall at x = 4 has no hull. The audit's
+// lattice (origin r below the room's corner, spacing r / 2 = 0.15) has no
+// point between 3.6 and 3.75 across x: a walker touching that wall stands
+// at x = 3.7, whose nearest lattice point (3.75) lies nearer than r to the
+// wall. Judged by that point alone, no pose of the wall was judged and the
+// lost contacts went unseen; the 4 points above it include x = 3.6.
+TEST(MovementAudit, FindsAWallWithoutItsHullWhateverTheLatticesOffsetFromIt) {
+  Mesh room;
+  test::add_level_box(room, V(0, 0, 0), V(4, 3, 4), true);
+  room.material_ids.assign(room.triangles.size(), 0);
+  Result<PreparedMesh> prepared = prepare_mesh(room, std::nullopt);
+  ASSERT_TRUE(prepared.ok()) << prepared.status().message();
+  validate::MovementAuditOptions audit;
+  audit.agent.radius = kRadius;
+  audit.agent.height = 1.8;
+  audit.agent.climb = 0.4;
+  audit.agent.seeds = {V(2, 0.5, 2)};
+  audit.spacing = 0.5 * kRadius;
+  std::vector<bvh::RuntimeHull> walls = {
+      test::box_hull(V(-1, -1, -1), V(5, 0, 5)), test::box_hull(V(-1, 3, -1), V(5, 4, 5)),
+      test::box_hull(V(-1, -1, -1), V(0, 4, 5)), test::box_hull(V(-1, -1, -1), V(5, 4, 0)),
+      test::box_hull(V(-1, -1, 4), V(5, 4, 5))};
+  Result<validate::MovementAuditReport> open = validate::audit_movement(prepared.value(), walls, audit, 2);
+  ASSERT_TRUE(open.ok()) << open.status().message();
+  EXPECT_GT(open.value().contacts_lost, 0);
+  EXPECT_NEAR(open.value().first_lost_at.x(), 4.0 - kRadius, 0.01);
+  walls.push_back(test::box_hull(V(4, -1, -1), V(5, 4, 5)));
+  Result<validate::MovementAuditReport> closed = validate::audit_movement(prepared.value(), walls, audit, 2);
+  ASSERT_TRUE(closed.ok()) << closed.status().message();
+  EXPECT_TRUE(closed.value().clean()) << closed.value().contacts_lost << " lost, " << closed.value().sinking
+                                      << " sinking";
+}
+
 // Two copies of the level 256 m apart, as two maps of a world: the audit's
 // lattice spans hundreds of millions of points but examines only the
 // blocks near walkable faces. From a spawn in either copy it reaches about

@@ -136,8 +136,10 @@ Result<AgentLattice> reach_lattice(const TriangleDistances& distances, const Aud
   // The lattice samples the definition: a point passes when it is clear
   // itself, so every centre the flood reaches is one (two neighbours both
   // clear, less than 2 r apart, have no surface between them). Narrow
-  // passages between samples may be missed: the audit's reach is at most
-  // the definition's, and a violation it reports is a real pose.
+  // passages between samples may be missed: the lattice's reach is at most
+  // the definition's, and a centre sinking that it reports is a real pose.
+  // (A walker's touching pose is judged a spacing wider:
+  // AgentLattice::reachable_for_walker.)
   std::vector<int> walkable;
   for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f)
     if (audit_walkable(mesh, agent, f)) walkable.push_back(f);

@@ -59,12 +59,16 @@ struct AgentLattice {
   /// point `p` at clearance r or more, it is then reachable itself (the two,
   /// less than 2 r apart and both clear, have no surface between them).
   bool reachable_near(const Eigen::Vector3d& p) const;
-  /// Whether a walker may be at `p` (a point at clearance r or more): the
-  /// lattice point nearest to it is reachable, or one of the 4 around it on
-  /// the level above it (along `up_axis`, `up_sign`) is, from which it falls
-  /// to `p`. Not the 8 around it: standing ends at a height, and a point
-  /// above the highest reachable level is out of reach; but a pose beside a
-  /// wall or over a floor is judged whatever the lattice's offset from them.
+  /// Whether the audit counts a walker at `p` (a point at clearance r or
+  /// more): the lattice point nearest to it is reachable, or one of the 4
+  /// around it on the level above it (along `up_axis`, `up_sign`) is. That
+  /// point may stand up to a spacing across from `p`, off the column a fall
+  /// keeps to: this widens the sampled reach by a spacing across, on the
+  /// strict side (a contact may be asked of a face a walker only passes
+  /// within a spacing of), so that a pose beside a wall or over a floor is
+  /// judged whatever the lattice's offset from them, where the nearest point
+  /// alone lies nearer than r to the face for the whole face when that
+  /// offset is unlucky. Not the 8 around it: standing ends at a height.
   bool reachable_for_walker(const Eigen::Vector3d& p, int up_axis, double up_sign) const;
 };
 

@@ -155,6 +155,9 @@ namespace {
 
 Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh::RuntimeHull>& hulls,
                                 const MovementAuditOptions& options, int threads) {
+  // Options out of range are refused before the hulls are indexed.
+  if (Result<AuditAgent> resolved = resolve(options.agent, scene.tolerance.largest_length()); !resolved.ok())
+    return resolved.status();
   Result<std::shared_ptr<const bvh::HullWorld>> built = bvh::HullWorld::build(hulls);
   if (!built.ok()) return built.status();
   const bvh::HullWorld& world = *built.value();

@@ -26,9 +26,13 @@ constexpr double kSegmentStepInSpacings = 0.5;
 // Points nearer than this many radii count toward how many points share a
 // hull with a point (farther ones rarely do, and cost a segment each).
 constexpr double kNeighbourhoodInRadii = 8.0;
-// An agent is posed this fraction of the reach short of it, so that the
-// rounding of its place never takes it farther.
+// An agent is posed this fraction of the reach short of it, against the
+// rounding of its offset; the rounding of its coordinates is within the
+// 2 tol kept below r - E.
 constexpr double kPoseInsideReach = 1e-9;
+// A segment is sampled on at most this many steps (a segment across a
+// scene of 2^23 lattice spacings).
+constexpr int kMostSegmentSteps = 1 << 24;
 // Chosen points nearer than this many radii to a new one are asked first:
 // a point that shares a hull with one of them usually shares it with a
 // near one, and that is found without asking the far ones.
@@ -88,15 +92,15 @@ struct ReachedNear {
   bool near_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& q) const {
     const double step = kSegmentStepInSpacings * lattice.spacing;
     const double length = (q - p).norm();
-    const int steps = static_cast<int>(std::min(std::ceil(length / step), double(1 << 24))) + 1;
-    int top = 1;
-    while (2 * top <= steps) top *= 2;
+    // A power of 2 of steps, so that the halving's first sample is the middle.
+    int steps = 1;
+    while (steps < kMostSegmentSteps && steps * step < length) steps *= 2;
     const auto at = [&](int i) { return Eigen::Vector3d(p + (q - p) * (double(i) / steps)); };
     if (near_point(at(0))) return true;
-    for (int s = top; s >= 1; s /= 2)
+    for (int s = steps / 2; s >= 1; s /= 2)
       for (int i = s; i <= steps; i += 2 * s)
         if (near_point(at(i))) return true;
-    return false;
+    return near_point(at(steps));
   }
 };
 
@@ -117,9 +121,10 @@ Result<MovementHullBound> run_bound(const PreparedMesh& scene, const MovementAud
   const ReachedNear near{lattice, distances, agent, parting};
 
   // Promise (2): every point of a face a reachable agent touches lies in a
-  // hull. Touched: the audit poses an agent touching it (r + 2 tol away),
-  // and no other triangle is nearer than r + tol to that pose, so the
-  // agent moved 2 tol straight to the face stays clear. Points of such a
+  // hull. Touched, to the tolerance: the audit poses an agent touching it
+  // (r + 2 tol away), and no other triangle is nearer than r + tol to that
+  // pose, so the agent moved tol straight to the face stays clear, within
+  // r + tol of it. Points of such a
   // face: the centroid and the middles between it and its corners (two
   // points of one face never part: a centre is at least r from it).
   std::vector<char> is_touched(mesh.triangles.size(), 0);

@@ -81,7 +81,8 @@ struct MovementHullBound {
 
 /// The bound for the agent of `options` over `scene`, on the audit's own
 /// reach (the same lattice as audit_movement). Fails as audit_movement does
-/// for options out of range.
+/// for options out of range, and with `invalid_argument` when the slop lies
+/// within 2 tol of the radius (no room left to part two points).
 Result<MovementHullBound> movement_hull_bound(const PreparedMesh& scene, const MovementAuditOptions& options,
                                               int threads);
 
