@@ -124,9 +124,9 @@ Result<MovementHullBound> run_bound(const PreparedMesh& scene, const MovementAud
   // hull. Touched, to the tolerance: the audit poses an agent touching it
   // (r + 2 tol away), and no other triangle is nearer than r + tol to that
   // pose, so the agent moved tol straight to the face stays clear, within
-  // r + tol of it. Points of such a
-  // face: the centroid and the middles between it and its corners (two
-  // points of one face never part: a centre is at least r from it).
+  // r + tol of it. Points of such a face: the centroid and the middles
+  // between it and its corners (two points of one face never part: a
+  // centre is at least r from it).
   std::vector<char> is_touched(mesh.triangles.size(), 0);
   parallel_for(static_cast<int>(mesh.triangles.size()), threads, [&](int f) {
     detail::visit_touching_poses(lattice, distances, agent, tol, f, [&](const Eigen::Vector3d& pose) {
