@@ -33,12 +33,24 @@ std::vector<int> all_faces(const Mesh& mesh) {
 
 TriangleDistances::TriangleDistances(const Mesh& m) : mesh(m), tree(triangle_boxes(m, all_faces(m))) {}
 
-double TriangleDistances::clearance(const Eigen::Vector3d& p, double limit) const {
+double TriangleDistances::nearest(const Eigen::Vector3d& p, double limit, Eigen::Vector3d& foot) const {
+  double best = limit * limit;
   return std::sqrt(tree.nearest_to_point(p, limit, [&](int f) {
     const Eigen::Vector3i& t = mesh.triangles[f];
-    return (closest_point_on_triangle(p, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]) - p)
-        .squaredNorm();
+    const Eigen::Vector3d on =
+        closest_point_on_triangle(p, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
+    const double d2 = (on - p).squaredNorm();
+    if (d2 < best) {
+      best = d2;
+      foot = on;
+    }
+    return d2;
   }));
+}
+
+double TriangleDistances::clearance(const Eigen::Vector3d& p, double limit) const {
+  Eigen::Vector3d foot;
+  return nearest(p, limit, foot);
 }
 
 bool audit_walkable(const Mesh& mesh, const AuditAgent& agent, int f) {

@@ -36,6 +36,9 @@ struct TriangleDistances {
   explicit TriangleDistances(const Mesh& m);
   /// Distance from p to the nearest triangle, or `limit` when none is nearer.
   double clearance(const Eigen::Vector3d& p, double limit) const;
+  /// The same, and the nearest triangle's point nearest to p in `foot`
+  /// (left as it was when no triangle is nearer than `limit`).
+  double nearest(const Eigen::Vector3d& p, double limit, Eigen::Vector3d& foot) const;
 };
 
 /// The lattice's points, a byte each in blocks (block_bytes.h): a block of

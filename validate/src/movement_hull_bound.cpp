@@ -3,7 +3,6 @@
 #include "agent_lattice.h"
 
 #include "hullcover/geometry/parallel_for.h"
-#include "hullcover/geometry/triangle_distance.h"
 
 #include <Eigen/Geometry>
 
@@ -62,24 +61,12 @@ struct ReachedNear {
         return true;
     }
     const double r = agent.radius;
-    // The nearest point of the triangles within r of x.
-    const Mesh& mesh = distances.mesh;
-    double best = r * r;
+    // The nearest point of the triangles nearer than r to x; none (foot left
+    // at x): x itself may be a centre. On a triangle, x is judged as a pose.
     Eigen::Vector3d foot = x;
-    distances.tree.nearest_to_point(x, r, [&](int f) {
-      const Eigen::Vector3i& t = mesh.triangles[f];
-      const Eigen::Vector3d on =
-          closest_point_on_triangle(x, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
-      const double d2 = (on - x).squaredNorm();
-      if (d2 < best) {
-        best = d2;
-        foot = on;
-      }
-      return d2;
-    });
-    const bool clear_at_x = !(best < r * r); // no triangle nearer than r: x itself may be a centre
+    distances.nearest(x, r, foot);
     const Eigen::Vector3d away = x - foot;
-    if (!clear_at_x && !(away.norm() > 0.0)) return false; // x on a triangle
+    const bool clear_at_x = !(away.norm() > 0.0);
     const Eigen::Vector3d pose =
         clear_at_x ? x : Eigen::Vector3d(x + (reach * (1.0 - kPoseInsideReach)) * away.normalized());
     const bool reachable =
