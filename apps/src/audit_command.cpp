@@ -64,6 +64,7 @@ int run_movement_audit(const AuditCommandOptions& o, const LoadedScene& scene, c
   validate::MovementAuditOptions options;
   options.agent = *agent;
   options.spacing = o.lattice_spacing;
+  options.hull_bound = o.hull_bound;
   const Result<validate::MovementAuditReport> audited =
       validate::audit_movement(scene.prepared, set.hulls, options, o.audit.threads);
   if (!audited.ok()) return bad_input(audited.status());
@@ -81,11 +82,8 @@ int run_movement_audit(const AuditCommandOptions& o, const LoadedScene& scene, c
   if (m.contacts_lost > 0)
     std::printf(" (first at %.6g %.6g %.6g)", m.first_lost_at.x(), m.first_lost_at.y(), m.first_lost_at.z());
   std::printf("\n  verdict: %s\n", m.clean() ? "CLEAN" : "VIOLATIONS");
-  std::optional<validate::MovementHullBound> bound;
-  if (o.hull_bound) {
-    Result<validate::MovementHullBound> found = validate::movement_hull_bound(scene.prepared, options, o.audit.threads);
-    if (!found.ok()) return bad_input(found.status());
-    bound = std::move(found.value());
+  const std::optional<validate::MovementHullBound>& bound = m.hull_bound;
+  if (bound) {
     std::printf(
         "  hull bound: every covering keeping the promise for these reachable centres has at least %d hulls "
         "(these: %zu; %lld points of touched faces tried)\n",

@@ -57,6 +57,24 @@ TEST(MovementHullBound, AClosedRoomNeedsAHullForEachWallItsAgentsTouch) {
   for (const Eigen::Vector3d& p : walking.points) EXPECT_LT(p.y(), 2.9) << "a point on the ceiling, at 3";
 }
 
+TEST(MovementHullBound, ASlopLeavingNoRoomToPartTwoPointsIsRefusedBeforeTheWork) {
+  Result<PreparedMesh> prepared = prepare_mesh(closed_room(), std::nullopt);
+  ASSERT_TRUE(prepared.ok()) << prepared.status().message();
+  const double tol = prepared.value().tolerance.largest_length();
+  validate::MovementAuditOptions options;
+  options.agent = room_agent(AgentReach::fly);
+  options.agent.slop = options.agent.radius - tol; // r - E - 2 tol < 0: no centre parts two points
+  const Result<validate::MovementHullBound> alone = validate::movement_hull_bound(prepared.value(), options, 2);
+  ASSERT_FALSE(alone.ok());
+  EXPECT_EQ(alone.status().code(), StatusCode::invalid_argument);
+  EXPECT_NE(alone.status().message().find("slop"), std::string::npos) << alone.status().message();
+  // With the audit, refused before its hulls are indexed: none are given.
+  options.hull_bound = true;
+  const Result<validate::MovementAuditReport> audited = validate::audit_movement(prepared.value(), {}, options, 2);
+  ASSERT_FALSE(audited.ok());
+  EXPECT_EQ(audited.status().message(), alone.status().message());
+}
+
 // An open sheet of 10 x 10, rippled 0.4 up and down every 2.5 along both
 // axes: a flyer reaches both sides, so every ripple keeps hulls apart.
 Mesh rippled_sheet() {
@@ -89,12 +107,16 @@ void expect_a_hull_for_each_point(const Mesh& mesh, const MovementOptions& agent
   const Covering& covering = made.value().covering;
   validate::MovementAuditOptions audit;
   audit.agent = agent;
+  audit.hull_bound = true;
   Result<validate::MovementAuditReport> report =
       validate::audit_movement(prepared.value(), bvh::runtime_hulls(covering), audit, 2);
   ASSERT_TRUE(report.ok()) << report.status().message();
   ASSERT_TRUE(report.value().clean());
 
+  // The audit's bound, on its own reach, is the bound found alone.
   const validate::MovementHullBound bound = bound_for(prepared.value(), agent);
+  ASSERT_TRUE(report.value().hull_bound.has_value());
+  EXPECT_EQ(report.value().hull_bound->points, bound.points);
   EXPECT_GE(bound.hulls_needed, fewest_points);
   std::set<int> taken;
   for (const Eigen::Vector3d& p : bound.points) {

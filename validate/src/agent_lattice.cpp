@@ -71,13 +71,23 @@ bool AgentLattice::reachable_near(const Eigen::Vector3d& p) const {
   return false;
 }
 
+bool AgentLattice::nearest_reachable(const Eigen::Vector3d& p, Eigen::Vector3d& nearest) const {
+  const Eigen::Vector3d at = ((p - origin) / spacing).array().round();
+  // Written so that a NaN coordinate lies off the lattice.
+  if (!((at.array() >= 0.0).all() && (at.array() < dims.cast<double>().array()).all())) return false;
+  const Eigen::Vector3i g = at.cast<int>();
+  nearest = point(g.x(), g.y(), g.z());
+  return reachable(g.x(), g.y(), g.z());
+}
+
 bool AgentLattice::reachable_for_walker(const Eigen::Vector3d& p, int up_axis, double up_sign) const {
+  Eigen::Vector3d nearest;
+  if (nearest_reachable(p, nearest)) return true;
   const Eigen::Vector3d at = (p - origin) / spacing;
   const auto reachable_at = [&](const Eigen::Vector3d& c) {
-    if ((c.array() < 0.0).any() || (c.array() >= dims.cast<double>().array()).any()) return false;
+    if (!((c.array() >= 0.0).all() && (c.array() < dims.cast<double>().array()).all())) return false;
     return reachable(static_cast<int>(c.x()), static_cast<int>(c.y()), static_cast<int>(c.z()));
   };
-  if (reachable_at(at.array().round())) return true;
   const int across_a = (up_axis + 1) % 3, across_b = (up_axis + 2) % 3;
   Eigen::Vector3d above;
   above[up_axis] = up_sign > 0 ? std::ceil(at[up_axis]) : std::floor(at[up_axis]);

@@ -24,7 +24,8 @@ namespace hullcover {
 struct PreparedMesh;
 namespace validate {
 struct MovementAuditOptions;
-}
+struct MovementHullBound;
+} // namespace validate
 } // namespace hullcover
 
 namespace hullcover::validate::detail {
@@ -62,6 +63,9 @@ struct AgentLattice {
   /// point `p` at clearance r or more, it is then reachable itself (the two,
   /// less than 2 r apart and both clear, have no surface between them).
   bool reachable_near(const Eigen::Vector3d& p) const;
+  /// Whether the lattice point nearest to `p` is reachable; that point in
+  /// `nearest` (left as it was when `p` lies off the lattice).
+  bool nearest_reachable(const Eigen::Vector3d& p, Eigen::Vector3d& nearest) const;
   /// Whether the audit counts a walker at `p` (a point at clearance r or
   /// more): the lattice point nearest to it is reachable, or one of the 4
   /// around it on the level above it (along `up_axis`, `up_sign`) is. That
@@ -142,5 +146,15 @@ struct AuditReach {
 };
 Result<AuditReach> audit_reach(const PreparedMesh& scene, const TriangleDistances& distances,
                                const MovementAuditOptions& options, int threads);
+
+/// How near a reached centre must come to the segment between two points
+/// of touched faces to part them (movement_hull_bound): r - E - 2 tol.
+/// Fails with `invalid_argument` when that leaves no room above 0.
+Result<double> parting_reach(double radius, double slop, double tol);
+
+/// The hull bound over a reach already found, `parting` from parting_reach:
+/// movement_hull_bound's work, which audit_movement shares.
+MovementHullBound hull_bound_on_reach(const TriangleDistances& distances, const AuditReach& reach, double parting,
+                                      int threads);
 
 } // namespace hullcover::validate::detail

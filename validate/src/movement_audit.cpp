@@ -156,8 +156,11 @@ namespace {
 Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh::RuntimeHull>& hulls,
                                 const MovementAuditOptions& options, int threads) {
   // Options out of range are refused before the hulls are indexed.
-  if (Result<AuditAgent> resolved = resolve(options.agent, scene.tolerance.largest_length()); !resolved.ok())
-    return resolved.status();
+  const Result<AuditAgent> resolved = resolve(options.agent, scene.tolerance.largest_length());
+  if (!resolved.ok()) return resolved.status();
+  const Result<double> parting =
+      detail::parting_reach(resolved.value().radius, resolved.value().slop, scene.tolerance.largest_length());
+  if (options.hull_bound && !parting.ok()) return parting.status();
   Result<std::shared_ptr<const bvh::HullWorld>> built = bvh::HullWorld::build(hulls);
   if (!built.ok()) return built.status();
   const bvh::HullWorld& world = *built.value();
@@ -286,6 +289,8 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
       if (f.lost > 0 && report.contacts_lost == 0) report.first_lost_at = f.first_lost_at;
       report.contacts_lost += f.lost;
     }
+  if (options.hull_bound)
+    report.hull_bound = detail::hull_bound_on_reach(distances, reached.value(), parting.value(), threads);
   return report;
 }
 

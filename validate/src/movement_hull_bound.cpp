@@ -54,12 +54,8 @@ struct ReachedNear {
   bool near_point(const Eigen::Vector3d& x) const {
     // The lattice point nearest to x, when reachable and near enough: in
     // open space most samples are decided so, without a distance.
-    const Eigen::Vector3d at = ((x - lattice.origin) / lattice.spacing).array().round();
-    if ((at.array() >= 0.0).all() && (at.array() < lattice.dims.cast<double>().array()).all()) {
-      const Eigen::Vector3i g = at.cast<int>();
-      if (lattice.reachable(g.x(), g.y(), g.z()) && (lattice.point(g.x(), g.y(), g.z()) - x).norm() < reach)
-        return true;
-    }
+    Eigen::Vector3d nearest;
+    if (lattice.nearest_reachable(x, nearest) && (nearest - x).norm() < reach) return true;
     const double r = agent.radius;
     // The nearest point of the triangles nearer than r to x; none (foot left
     // at x): x itself may be a centre. On a triangle, x is judged as a pose.
@@ -92,19 +88,38 @@ struct ReachedNear {
 };
 
 Result<MovementHullBound> run_bound(const PreparedMesh& scene, const MovementAuditOptions& options, int threads) {
-  const Mesh& mesh = scene.mesh;
-  const detail::TriangleDistances distances(mesh);
+  // The options refused before the reach is found.
+  const double tol = scene.tolerance.largest_length();
+  const Result<AgentShape> shape = resolve_agent_shape(options.agent, tol);
+  if (!shape.ok()) return shape.status();
+  const Result<double> parting = detail::parting_reach(shape.value().radius, shape.value().slop, tol);
+  if (!parting.ok()) return parting.status();
+  const detail::TriangleDistances distances(scene.mesh);
   Result<detail::AuditReach> reach = detail::audit_reach(scene, distances, options, threads);
   if (!reach.ok()) return reach.status();
-  const detail::AuditAgent& agent = reach.value().agent;
-  const double tol = reach.value().tol;
-  const AgentLattice& lattice = reach.value().lattice;
+  return detail::hull_bound_on_reach(distances, reach.value(), parting.value(), threads);
+}
+
+} // namespace
+
+namespace detail {
+
+Result<double> parting_reach(double radius, double slop, double tol) {
   // Promise (1) keeps every reachable centre r - E away from every hull,
   // and the audit lets a ball sink E + tol: a hull holding two points (each
   // within tol of where the face puts it) keeps their segment r - E - 2 tol
   // from every reachable centre.
-  const double parting = agent.radius - agent.slop - 2.0 * tol;
+  const double parting = radius - slop - 2.0 * tol;
   if (!(parting > 0.0)) return Status{StatusCode::invalid_argument, "the slop leaves no room below the agent radius"};
+  return parting;
+}
+
+MovementHullBound hull_bound_on_reach(const TriangleDistances& distances, const AuditReach& reach, double parting,
+                                      int threads) {
+  const Mesh& mesh = distances.mesh;
+  const AuditAgent& agent = reach.agent;
+  const double tol = reach.tol;
+  const AgentLattice& lattice = reach.lattice;
   const ReachedNear near{lattice, distances, agent, parting};
 
   // Promise (2): every point of a face a reachable agent touches lies in a
@@ -207,7 +222,7 @@ Result<MovementHullBound> run_bound(const PreparedMesh& scene, const MovementAud
   return bound;
 }
 
-} // namespace
+} // namespace detail
 
 Result<MovementHullBound> movement_hull_bound(const PreparedMesh& scene, const MovementAuditOptions& options,
                                               int threads) {

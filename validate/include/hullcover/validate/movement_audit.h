@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 
+#include <optional>
 #include <vector>
 
 namespace hullcover::validate {
@@ -36,11 +37,26 @@ inline constexpr long long kMostAuditLatticePointsHeld = 1LL << 30;
 /// The default spacing, in radii.
 inline constexpr double kDefaultAuditSpacingInRadii = 0.5;
 
+/// A lower bound on the hulls of any covering that keeps the promise over
+/// the audit's reach (docs/definitions-and-proofs.md, "A lower bound on the
+/// hulls"): points of faces a reached agent touches (each lies in a hull),
+/// pairwise parted by a reached centre nearer than r - E - 2 tol to the
+/// segment between them (no hull holds both). Found greedily, so a bound,
+/// not the least count.
+struct MovementHullBound {
+  int hulls_needed = 0;                ///< the points found: no covering has fewer hulls
+  long long points_tried = 0;          ///< points of touched faces tried
+  std::vector<Eigen::Vector3d> points; ///< the points, pairwise parted
+};
+
 /// The agent, as the covering was made for it (MovementOptions' meaning
 /// and defaults), and the lattice.
 struct MovementAuditOptions {
   MovementOptions agent;
   double spacing = 0.0; ///< lattice spacing, scene units; 0: kDefaultAuditSpacingInRadii x r
+  /// Also bound the hulls any covering needs (movement_hull_bound), on the
+  /// audit's own reach rather than a second one.
+  bool hull_bound = false;
 };
 
 /// What the audit found.
@@ -57,27 +73,18 @@ struct MovementAuditReport {
   long long touching_poses = 0; ///< reachable poses touching a face
   long long contacts_lost = 0;  ///< of those, with no hull within r + E + 3 tol
   Eigen::Vector3d first_lost_at = Eigen::Vector3d::Zero();
+  /// With MovementAuditOptions::hull_bound: the bound.
+  std::optional<MovementHullBound> hull_bound;
   /// No centre sinking deeper than the slop and no contact lost.
   bool clean() const { return sinking == 0 && contacts_lost == 0; }
 };
 
 /// Audits `hulls` against `scene` for the agent of `options`. Fails with
 /// `invalid_argument` for options out of range or a seed too near the
-/// triangles, and as HullWorld::build does.
+/// triangles, as HullWorld::build does, and with the bound as
+/// movement_hull_bound does.
 Result<MovementAuditReport> audit_movement(const PreparedMesh& scene, const std::vector<bvh::RuntimeHull>& hulls,
                                            const MovementAuditOptions& options, int threads);
-
-/// A lower bound on the hulls of any covering that keeps the promise over
-/// the audit's reach (docs/definitions-and-proofs.md, "A lower bound on the
-/// hulls"): points of faces a reached agent touches (each lies in a hull),
-/// pairwise parted by a reached centre nearer than r - E - 2 tol to the
-/// segment between them (no hull holds both). Found greedily, so a bound,
-/// not the least count.
-struct MovementHullBound {
-  int hulls_needed = 0;                ///< the points found: no covering has fewer hulls
-  long long points_tried = 0;          ///< points of touched faces tried
-  std::vector<Eigen::Vector3d> points; ///< the points, pairwise parted
-};
 
 /// The bound for the agent of `options` over `scene`, on the audit's own
 /// reach (the same lattice as audit_movement). Fails as audit_movement does
