@@ -65,8 +65,13 @@ int run_movement_audit(const AuditCommandOptions& o, const LoadedScene& scene, c
   options.agent = *agent;
   options.spacing = o.lattice_spacing;
   options.hull_bound = o.hull_bound;
+  TerminalProgress bar(o.hull_bound ? "auditing movement (reach, centres, contacts, bound)"
+                                    : "auditing movement (reach, centres, contacts)",
+                       o.quiet);
+  if (bar.enabled()) options.progress = [&bar](double fraction) { bar.update(fraction); };
   const Result<validate::MovementAuditReport> audited =
       validate::audit_movement(scene.prepared, set.hulls, options, o.audit.threads);
+  bar.finish();
   if (!audited.ok()) return bad_input(audited.status());
   const validate::MovementAuditReport& m = audited.value();
   std::printf("%s: %zu hulls against %s, movement audit (%s): agent radius %.6g, slop %.6g, height %.6g\n",

@@ -12,8 +12,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
+#include <thread>
 
 namespace hullcover {
 namespace {
@@ -73,6 +75,36 @@ TEST(MovementHullBound, ASlopLeavingNoRoomToPartTwoPointsIsRefusedBeforeTheWork)
   const Result<validate::MovementAuditReport> audited = validate::audit_movement(prepared.value(), {}, options, 2);
   ASSERT_FALSE(audited.ok());
   EXPECT_EQ(audited.status().message(), alone.status().message());
+}
+
+TEST(MovementHullBound, TheAuditWithTheBoundReportsItsProgressAndFindsTheSameWithIt) {
+  Result<PreparedMesh> prepared = prepare_mesh(closed_room(), std::nullopt);
+  ASSERT_TRUE(prepared.ok()) << prepared.status().message();
+  const MovementOptions agent = room_agent(AgentReach::fly);
+  Result<MovementCovering> made = decompose_for_movement(prepared.value(), agent);
+  ASSERT_TRUE(made.ok()) << made.status().message();
+  const std::vector<bvh::RuntimeHull> hulls = bvh::runtime_hulls(made.value().covering);
+  validate::MovementAuditOptions options;
+  options.agent = agent;
+  options.hull_bound = true;
+  const Result<validate::MovementAuditReport> quiet = validate::audit_movement(prepared.value(), hulls, options, 2);
+  ASSERT_TRUE(quiet.ok()) << quiet.status().message();
+  const std::thread::id caller = std::this_thread::get_id();
+  std::vector<double> reported;
+  options.progress = [&](double fraction) {
+    EXPECT_EQ(std::this_thread::get_id(), caller) << "reported from another thread";
+    reported.push_back(fraction);
+  };
+  const Result<validate::MovementAuditReport> told = validate::audit_movement(prepared.value(), hulls, options, 2);
+  ASSERT_TRUE(told.ok()) << told.status().message();
+  ASSERT_GE(reported.size(), 4u); // the reach, the centres, the touching poses, the bound
+  EXPECT_TRUE(std::is_sorted(reported.begin(), reported.end()));
+  EXPECT_GT(reported.front(), 0.0);
+  EXPECT_EQ(reported.back(), 1.0);
+  EXPECT_EQ(told.value().touching_poses, quiet.value().touching_poses);
+  EXPECT_EQ(told.value().reachable_points, quiet.value().reachable_points);
+  ASSERT_TRUE(told.value().hull_bound && quiet.value().hull_bound);
+  EXPECT_EQ(told.value().hull_bound->points, quiet.value().hull_bound->points);
 }
 
 // An open sheet of 10 x 10, rippled 0.4 up and down every 2.5 along both

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace hullcover {
@@ -153,8 +154,9 @@ Result<AuditReach> audit_reach(const PreparedMesh& scene, const TriangleDistance
 Result<double> parting_reach(double radius, double slop, double tol);
 
 /// The hull bound over a reach already found, `parting` from parting_reach:
-/// movement_hull_bound's work, which audit_movement shares.
+/// movement_hull_bound's work, which audit_movement shares. Reports its
+/// fraction done to `progress` (may be empty) from the calling thread.
 MovementHullBound hull_bound_on_reach(const TriangleDistances& distances, const AuditReach& reach, double parting,
-                                      int threads);
+                                      int threads, const std::function<void(double)>& progress);
 
 } // namespace hullcover::validate::detail

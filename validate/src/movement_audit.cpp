@@ -1,6 +1,7 @@
 #include "hullcover/validate/movement_audit.h"
 
 #include "agent_lattice.h"
+#include "progress_span.h"
 
 #include "hullcover/bvh/hull_world.h"
 #include "hullcover/geometry/parallel_for.h"
@@ -153,6 +154,14 @@ Result<AuditReach> audit_reach(const PreparedMesh& scene, const TriangleDistance
 
 namespace {
 
+// Progress: the reports a stage makes, and the shares of the audit's time
+// its stages take on the shared levels (the reach, the centres, the
+// touching poses the rest), and of the whole when the bound is asked too
+// (which takes longer than the audit on most of them).
+constexpr int kAuditProgressSteps = 64;
+constexpr double kReachShareOfAudit = 0.35, kCentresShareOfAudit = 0.25;
+constexpr double kAuditShareWithBound = 0.3;
+
 Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh::RuntimeHull>& hulls,
                                 const MovementAuditOptions& options, int threads) {
   // Options out of range are refused before the hulls are indexed.
@@ -166,8 +175,10 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
   const bvh::HullWorld& world = *built.value();
   const Mesh& mesh = scene.mesh;
   const detail::TriangleDistances distances(mesh);
+  const double audit_share = options.hull_bound ? kAuditShareWithBound : 1.0;
   Result<detail::AuditReach> reached = detail::audit_reach(scene, distances, options, threads);
   if (!reached.ok()) return reached.status();
+  if (options.progress) options.progress(audit_share * kReachShareOfAudit);
   const AuditAgent& agent = reached.value().agent;
   const double tol = reached.value().tol;
   const AgentLattice& lattice = reached.value().lattice;
@@ -186,7 +197,7 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
   constexpr long long kBlocksPerTask = 256;
   const long long tasks = (flags.block_count() + kBlocksPerTask - 1) / kBlocksPerTask;
   std::vector<Findings> slabs(static_cast<size_t>(tasks));
-  parallel_for(static_cast<int>(tasks), threads, [&](int task) {
+  const auto check_centres = [&](int task) {
     Findings& f = slabs[task];
     const long long last = std::min(flags.block_count(), (task + 1) * kBlocksPerTask);
     for (long long b = task * kBlocksPerTask; b < last; ++b) {
@@ -248,11 +259,14 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
             }
           }
     }
-  });
+  };
+  parallel_for_reporting(
+      static_cast<int>(tasks), threads, kAuditProgressSteps, check_centres,
+      detail::progress_span(options.progress, audit_share * kReachShareOfAudit, audit_share * kCentresShareOfAudit));
   // Touching poses: over points of every face, on either side, r away,
   // where that face is the nearest and a reachable lattice cell holds it.
   std::vector<Findings> faces(mesh.triangles.size());
-  parallel_for(static_cast<int>(mesh.triangles.size()), threads, [&](int face) {
+  const auto check_touching = [&](int face) {
     Findings& f = faces[face];
     detail::visit_touching_poses(lattice, distances, agent, tol, face, [&](const Eigen::Vector3d& pose) {
       ++f.touching;
@@ -271,7 +285,10 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
       }
       return true;
     });
-  });
+  };
+  const double poses_start = audit_share * (kReachShareOfAudit + kCentresShareOfAudit);
+  parallel_for_reporting(static_cast<int>(mesh.triangles.size()), threads, kAuditProgressSteps, check_touching,
+                         detail::progress_span(options.progress, poses_start, audit_share - poses_start));
   for (const std::vector<Findings>* part : {&slabs, &faces})
     for (const Findings& f : *part)
       if (!f.failure.ok()) return Status{StatusCode::internal_error, "a runtime query failed: " + f.failure.message()};
@@ -290,7 +307,9 @@ Result<MovementAuditReport> run(const PreparedMesh& scene, const std::vector<bvh
       report.contacts_lost += f.lost;
     }
   if (options.hull_bound)
-    report.hull_bound = detail::hull_bound_on_reach(distances, reached.value(), parting.value(), threads);
+    report.hull_bound =
+        detail::hull_bound_on_reach(distances, reached.value(), parting.value(), threads,
+                                    detail::progress_span(options.progress, audit_share, 1.0 - audit_share));
   return report;
 }
 

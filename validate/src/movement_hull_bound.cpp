@@ -1,6 +1,7 @@
 #include "hullcover/validate/movement_audit.h"
 
 #include "agent_lattice.h"
+#include "progress_span.h"
 
 #include "hullcover/geometry/parallel_for.h"
 
@@ -38,6 +39,11 @@ constexpr int kMostSegmentSteps = 1 << 24;
 constexpr double kNearChosenInRadii = 4.0;
 // The chosen points one task asks, when the threads ask the far ones.
 constexpr int kChosenPerTask = 64;
+// Progress: the reports a stage makes, and the stages' shares of the
+// bound's time (on the shared levels: the touched faces a few percent, the
+// sharing counts and the greedy choice each from a tenth to nine tenths).
+constexpr int kBoundProgressSteps = 64;
+constexpr double kTouchedFacesShare = 0.02, kSharingShare = 0.48;
 
 // Whether a reachable centre lies nearer than `reach` to a point or a
 // segment, sampled: a "no" may miss one, a "yes" never errs. At a point x,
@@ -95,9 +101,14 @@ Result<MovementHullBound> run_bound(const PreparedMesh& scene, const MovementAud
   const Result<double> parting = detail::parting_reach(shape.value().radius, shape.value().slop, tol);
   if (!parting.ok()) return parting.status();
   const detail::TriangleDistances distances(scene.mesh);
+  // The reach's share of the progress: from a twentieth to more than the
+  // bound's own time on the shared levels.
+  constexpr double kReachShareAlone = 0.1;
   Result<detail::AuditReach> reach = detail::audit_reach(scene, distances, options, threads);
   if (!reach.ok()) return reach.status();
-  return detail::hull_bound_on_reach(distances, reach.value(), parting.value(), threads);
+  if (options.progress) options.progress(kReachShareAlone);
+  return detail::hull_bound_on_reach(distances, reach.value(), parting.value(), threads,
+                                     detail::progress_span(options.progress, kReachShareAlone, 1.0 - kReachShareAlone));
 }
 
 } // namespace
@@ -115,7 +126,7 @@ Result<double> parting_reach(double radius, double slop, double tol) {
 }
 
 MovementHullBound hull_bound_on_reach(const TriangleDistances& distances, const AuditReach& reach, double parting,
-                                      int threads) {
+                                      int threads, const std::function<void(double)>& progress) {
   const Mesh& mesh = distances.mesh;
   const AuditAgent& agent = reach.agent;
   const double tol = reach.tol;
@@ -130,13 +141,15 @@ MovementHullBound hull_bound_on_reach(const TriangleDistances& distances, const 
   // between it and its corners (two points of one face never part: a
   // centre is at least r from it).
   std::vector<char> is_touched(mesh.triangles.size(), 0);
-  parallel_for(static_cast<int>(mesh.triangles.size()), threads, [&](int f) {
+  const auto mark_touched = [&](int f) {
     detail::visit_touching_poses(lattice, distances, agent, tol, f, [&](const Eigen::Vector3d& pose) {
       const double clear = agent.radius + tol;
       is_touched[f] = distances.clearance(pose, clear) >= clear;
       return !is_touched[f];
     });
-  });
+  };
+  parallel_for_reporting(static_cast<int>(mesh.triangles.size()), threads, kBoundProgressSteps, mark_touched,
+                         progress_span(progress, 0.0, kTouchedFacesShare));
   std::vector<Eigen::Vector3d> candidates;
   for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) {
     if (!is_touched[f]) continue;
@@ -163,7 +176,7 @@ MovementHullBound hull_bound_on_reach(const TriangleDistances& distances, const 
   for (size_t i = 0; i < candidates.size(); ++i) by_cell[i] = {key_of(cell_of(candidates[i])), static_cast<int>(i)};
   std::sort(by_cell.begin(), by_cell.end());
   std::vector<int> sharing(candidates.size(), 0);
-  parallel_for(static_cast<int>(candidates.size()), threads, [&](int i) {
+  const auto count_sharing = [&](int i) {
     const Eigen::Vector3i c = cell_of(candidates[i]);
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
@@ -175,7 +188,9 @@ MovementHullBound hull_bound_on_reach(const TriangleDistances& distances, const 
                 !near.near_segment(candidates[i], candidates[it->second]))
               ++sharing[i];
         }
-  });
+  };
+  parallel_for_reporting(static_cast<int>(candidates.size()), threads, kBoundProgressSteps, count_sharing,
+                         progress_span(progress, kTouchedFacesShare, kSharingShare));
   std::vector<int> order(candidates.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
   const auto mixed = [](std::uint64_t x) {
@@ -193,7 +208,11 @@ MovementHullBound hull_bound_on_reach(const TriangleDistances& distances, const 
   bound.points_tried = static_cast<long long>(candidates.size());
   const double near_chosen = kNearChosenInRadii * agent.radius;
   std::vector<int> asked;
-  for (int i : order) {
+  const double greedy_start = kTouchedFacesShare + kSharingShare;
+  const size_t report_every = std::max<size_t>(1, order.size() / kBoundProgressSteps);
+  for (size_t n = 0; n < order.size(); ++n) {
+    if (progress && n % report_every == 0) progress(greedy_start + (1.0 - greedy_start) * n / order.size());
+    const int i = order[n];
     const Eigen::Vector3d& q = candidates[i];
     asked.clear();
     for (int k = 0; k < static_cast<int>(bound.points.size()); ++k)
@@ -219,6 +238,7 @@ MovementHullBound hull_bound_on_reach(const TriangleDistances& distances, const 
     if (!shares.load()) bound.points.push_back(q);
   }
   bound.hulls_needed = static_cast<int>(bound.points.size());
+  if (progress) progress(1.0);
   return bound;
 }
 

@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -57,6 +58,10 @@ struct MovementAuditOptions {
   /// Also bound the hulls any covering needs (movement_hull_bound), on the
   /// audit's own reach rather than a second one.
   bool hull_bound = false;
+  /// Called now and then with the fraction of the work done (0..1, never
+  /// decreasing): the reach, the centres, the touching poses, then the
+  /// bound; always from the thread that called; may be empty.
+  std::function<void(double)> progress;
 };
 
 /// What the audit found.

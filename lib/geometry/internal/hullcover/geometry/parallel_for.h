@@ -79,4 +79,22 @@ inline void parallel_for_ordered(int count, int threads, int batch, const std::f
   }
 }
 
+/// Runs `job(i)` for every i in [0, count) as parallel_for does, and when
+/// `done` is set, in about `steps` batches, calling `done(fraction)` on the
+/// calling thread after each with the fraction of the jobs finished: a
+/// progress report for work whose jobs land in slots of their own.
+inline void parallel_for_reporting(int count, int threads, int steps, const std::function<void(int)>& job,
+                                   const std::function<void(double)>& done) {
+  if (!done) {
+    parallel_for(count, threads, job);
+    return;
+  }
+  const int batch = std::max(1, (count + std::max(1, steps) - 1) / std::max(1, steps));
+  for (int first = 0; first < count; first += batch) {
+    const int size = std::min(batch, count - first);
+    parallel_for(size, threads, [&](int k) { job(first + k); });
+    done(static_cast<double>(first + size) / count);
+  }
+}
+
 } // namespace hullcover
