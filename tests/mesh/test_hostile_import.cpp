@@ -5,6 +5,7 @@
 
 #include "hullcover/mesh/mesh_import.h"
 
+#include "ply_value_bytes.h"
 #include "shared_data.h"
 #include "temp_dir.h"
 
@@ -135,32 +136,14 @@ std::string ply_header(const std::string& format, int vertices, int faces,
          "\nproperty list " + list_types + " vertex_indices\nend_header\n";
 }
 
-// `value`'s bytes in a binary PLY of the given byte order.
-template <class T>
-std::string ply_bytes(T value, bool big_endian) {
-  std::uint64_t bits = 0;
-  if constexpr (std::is_floating_point_v<T>) {
-    static_assert(sizeof(T) == sizeof(std::uint32_t));
-    std::uint32_t narrow = 0;
-    std::memcpy(&narrow, &value, sizeof narrow);
-    bits = narrow;
-  } else {
-    bits = static_cast<std::make_unsigned_t<T>>(value);
-  }
-  std::string bytes(sizeof(T), '\0');
-  for (std::size_t i = 0; i < sizeof(T); ++i)
-    bytes[big_endian ? sizeof(T) - 1 - i : i] = static_cast<char>(bits >> (8 * i) & 0xff);
-  return bytes;
-}
-
 // A tetrahedron (four triangles) as a binary PLY.
 std::string binary_tetrahedron(bool big_endian) {
   std::string ply = ply_header(big_endian ? "binary_big_endian" : "binary_little_endian", 4, 4);
   for (float coordinate : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f})
-    ply += ply_bytes(coordinate, big_endian);
+    ply += test::ply_value_bytes(coordinate, big_endian);
   for (const auto& face : {std::array<int, 3>{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}}) {
-    ply += ply_bytes(std::uint8_t{3}, big_endian);
-    for (int index : face) ply += ply_bytes(index, big_endian);
+    ply += test::ply_value_bytes(std::uint8_t{3}, big_endian);
+    for (int index : face) ply += test::ply_value_bytes(index, big_endian);
   }
   return ply;
 }
@@ -169,9 +152,10 @@ std::string binary_tetrahedron(bool big_endian) {
 // follow.
 std::string binary_face_declaring(std::uint32_t length, bool big_endian) {
   std::string ply = ply_header(big_endian ? "binary_big_endian" : "binary_little_endian", 3, 1, "uint int");
-  for (float coordinate : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) ply += ply_bytes(coordinate, big_endian);
-  ply += ply_bytes(length, big_endian);
-  for (int index : {0, 1, 2}) ply += ply_bytes(index, big_endian);
+  for (float coordinate : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f})
+    ply += test::ply_value_bytes(coordinate, big_endian);
+  ply += test::ply_value_bytes(length, big_endian);
+  for (int index : {0, 1, 2}) ply += test::ply_value_bytes(index, big_endian);
   return ply;
 }
 
@@ -191,8 +175,9 @@ TEST(HostileImport, PlyListLengthsMustFitTheBytesLeft) {
     expect_refused(import_in(dir, big_endian ? "be.ply" : "le.ply", ply), std::to_string(kBinaryLength), "bytes left");
   }
   std::string negative = ply_header("binary_little_endian", 3, 1, "char int");
-  for (float coordinate : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) negative += ply_bytes(coordinate, false);
-  negative += ply_bytes(std::int8_t{-1}, false) + ply_bytes(0, false);
+  for (float coordinate : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f})
+    negative += test::ply_value_bytes(coordinate, false);
+  negative += test::ply_value_bytes(std::int8_t{-1}, false) + test::ply_value_bytes(0, false);
   expect_refused(import_in(dir, "negative.ply", negative), "-1", "negative");
 
   constexpr std::uint32_t kAsciiLength = std::uint32_t{1} << 26; // 1 GiB in Assimp
@@ -224,7 +209,7 @@ TEST(HostileImport, PlyIsCheckedAsAssimpReadsIt) {
                  "reads whole");
   std::string camera = binary_tetrahedron(false);
   camera.replace(camera.find("element vertex"), 0, "element camera 1\nproperty float a\n");
-  camera.replace(camera.find("end_header\n") + 11, 0, ply_bytes(1.f, false));
+  camera.replace(camera.find("end_header\n") + 11, 0, test::ply_value_bytes(1.f, false));
   expect_refused(import_in(dir, "camera.ply", camera), "'camera'", "wrong place");
   std::string dropped = binary_tetrahedron(false);
   dropped.replace(dropped.find("property list"), 0, "obj_info scanner\n");

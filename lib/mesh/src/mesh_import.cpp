@@ -4,7 +4,7 @@
 #include "scene_file_checks.h"
 #include "obj_reader.h"
 #include "stl_ascii_reader.h"
-#include "ply_ascii_reader.h"
+#include "ply_reader.h"
 #include "ply_header.h"
 #include "scene_file_rules.h"
 
@@ -255,16 +255,15 @@ Result<ImportedMesh> import_ascii_stl(const std::string& path, const ImportLimit
   return imported_in_double(path, std::move(read).value(), 0);
 }
 
-// An ASCII PLY file by the project's reader (ply_ascii_reader.h), in
-// double; a binary one by Assimp. The header is read once here to tell.
+// A PLY file by the project's reader (ply_reader.h), ASCII or binary, in
+// double.
 Result<ImportedMesh> import_ply(const std::string& path, const ImportLimits& limits, std::uint64_t file_bytes) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return Status{StatusCode::unreadable_file, path + ": cannot open"};
   detail::PlyHeader header;
   if (Status read = detail::read_ply_header(in, file_bytes, header); !read.ok()) return of_file(path, read);
-  if (!header.ascii) return import_with_assimp(path, limits);
   int skipped = 0;
-  Result<Mesh> read = detail::read_ascii_ply(in, header, triangle_limit_for(limits, file_bytes), skipped);
+  Result<Mesh> read = detail::read_ply_body(in, header, file_bytes, triangle_limit_for(limits, file_bytes), skipped);
   if (!read.ok()) return of_file(path, read.status());
   return imported_in_double(path, std::move(read).value(), skipped);
 }

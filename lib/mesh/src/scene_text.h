@@ -1,6 +1,6 @@
 #pragma once
 // What the project's text scene readers (obj_reader.h, stl_ascii_reader.h,
-// ply_ascii_reader.h) share: decimal numbers read in double, and failures
+// ply_reader.h) share: decimal numbers read in double, and failures
 // that name the line.
 
 #include "hullcover/geometry/status.h"

@@ -1,10 +1,12 @@
-#include "ply_ascii_reader.h"
+#include "ply_reader.h"
 
 #include "polygon_triangulation.h"
 #include "scene_text.h"
 
 #include <charconv>
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <vector>
 
 namespace hullcover::detail {
@@ -34,12 +36,82 @@ int property_named(const Element& e, std::initializer_list<const char*> names, b
   return -1;
 }
 
-} // namespace
+// An ASCII body's values: whitespace-separated tokens, whatever the
+// property's type.
+class AsciiValues {
+public:
+  explicit AsciiValues(std::istream& in) : in_(in) {}
+  /// Reads the next value; false at the end of the data.
+  bool next(const ScalarType&) { return static_cast<bool>(in_ >> token_); }
+  bool real(double& value) const { return read_decimal(token_, value); }
+  bool whole(long long& value) const { return read_whole(token_, value); }
+  /// The value as a message quotes it.
+  std::string shown() const { return "'" + token_.substr(0, 40) + "'"; }
 
-Result<Mesh> read_ascii_ply(std::istream& in, const PlyHeader& h, std::uint64_t triangle_limit, int& skipped) {
-  if (!h.ascii) return Status{StatusCode::unreadable_file, "PLY body is binary, not ASCII"};
-  in.clear();
-  in.seekg(static_cast<std::streamoff>(h.after_line));
+private:
+  std::istream& in_;
+  std::string token_;
+};
+
+// A binary body's values: each of its property's type (PLY's integers of
+// 1, 2 or 4 bytes, floats of 4 and 8) in the header's byte order.
+class BinaryValues {
+public:
+  BinaryValues(BodyReader& body, bool big_endian) : body_(body), big_endian_(big_endian) {}
+  bool next(const ScalarType& type) {
+    unsigned char bytes[sizeof(std::uint64_t)];
+    const int size = std::clamp(type.bytes, 1, static_cast<int>(sizeof bytes));
+    if (!body_.read(bytes, static_cast<std::size_t>(size))) return false;
+    std::uint64_t bits = 0;
+    for (int i = 0; i < size; ++i) bits |= std::uint64_t{bytes[big_endian_ ? size - 1 - i : i]} << (8 * i);
+    integer_ = type.number != Number::real;
+    if (type.number == Number::real && size == sizeof(float)) {
+      float narrow = 0.0f;
+      const std::uint32_t narrow_bits = static_cast<std::uint32_t>(bits);
+      std::memcpy(&narrow, &narrow_bits, sizeof narrow);
+      real_ = narrow;
+    } else if (type.number == Number::real) {
+      std::memcpy(&real_, &bits, sizeof real_);
+    } else {
+      // Two's complement of `size` bytes: the sign bit's weight taken away.
+      const std::uint64_t sign = type.number == Number::signed_integer ? std::uint64_t{1} << (8 * size - 1) : 0;
+      whole_ = static_cast<long long>(bits ^ sign) - static_cast<long long>(sign);
+      real_ = static_cast<double>(whole_);
+    }
+    return true;
+  }
+  bool real(double& value) const {
+    value = real_;
+    return true;
+  }
+  /// A float stored where a whole number belongs counts when it is one.
+  bool whole(long long& value) const {
+    if (integer_) {
+      value = whole_;
+      return true;
+    }
+    constexpr double kWholeRange = 0x1p62;
+    if (!(std::abs(real_) < kWholeRange) || real_ != std::floor(real_)) return false;
+    value = static_cast<long long>(real_);
+    return true;
+  }
+  std::string shown() const {
+    if (integer_) return std::to_string(whole_);
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", real_);
+    return text;
+  }
+
+private:
+  BodyReader& body_;
+  bool big_endian_;
+  bool integer_ = true;
+  long long whole_ = 0;
+  double real_ = 0.0;
+};
+
+template <class Values>
+Result<Mesh> read_elements(Values& values, const PlyHeader& h, std::uint64_t triangle_limit, int& skipped) {
   // Every vertex a triangle could use, three a triangle: more would be
   // memory the triangle limit does not bound.
   const std::uint64_t vertex_limit = kCornersPerTriangle * triangle_limit;
@@ -55,7 +127,6 @@ Result<Mesh> read_ascii_ply(std::istream& in, const PlyHeader& h, std::uint64_t 
   };
   std::vector<Run> runs;
   std::uint64_t triangles = 0;
-  std::string token;
   for (const Element& e : h.elements) {
     const bool vertices = e.name == "vertex", polygons = e.name == "face", strips = e.name == "tristrips";
     const int x = property_named(e, {"x"}, false), y = property_named(e, {"y"}, false),
@@ -72,28 +143,30 @@ Result<Mesh> read_ascii_ply(std::istream& in, const PlyHeader& h, std::uint64_t 
       Run run{corners.size(), corners.size(), strips, i};
       for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {
         const Property& property = e.properties[k];
-        if (!(in >> token)) return at_instance(StatusCode::unreadable_file, e, i, "the data ends inside it");
+        if (!values.next(property.is_list ? property.length : property.value))
+          return at_instance(StatusCode::unreadable_file, e, i, "the data ends inside it");
         if (!property.is_list) {
           const int axis = !vertices ? -1 : k == x ? 0 : k == y ? 1 : k == z ? 2 : -1;
           if (axis < 0) continue;
-          if (!read_decimal(token, p[axis]))
-            return at_instance(StatusCode::unreadable_file, e, i, "'" + token.substr(0, 40) + "' is not a number");
+          if (!values.real(p[axis]))
+            return at_instance(StatusCode::unreadable_file, e, i, values.shown() + " is not a number");
           if (!std::isfinite(p[axis]))
             return at_instance(StatusCode::non_finite_coordinate, e, i,
-                               "coordinate '" + token.substr(0, 40) + "' is not a finite number");
+                               "coordinate " + values.shown() + " is not a finite number");
           continue;
         }
         long long length = 0;
-        if (!read_whole(token, length) || length < 0)
+        if (!values.whole(length) || length < 0)
           return at_instance(StatusCode::unreadable_file, e, i,
-                             "list length '" + token.substr(0, 40) + "' is not a whole number");
+                             "list length " + values.shown() + " is not a whole number");
         const bool kept = (polygons || strips) && k == corner_list;
         for (long long item = 0; item < length; ++item) {
-          if (!(in >> token)) return at_instance(StatusCode::unreadable_file, e, i, "the data ends inside a list");
+          if (!values.next(property.value))
+            return at_instance(StatusCode::unreadable_file, e, i, "the data ends inside a list");
           if (!kept) continue;
           long long index = 0;
-          if (!read_whole(token, index))
-            return at_instance(StatusCode::unreadable_file, e, i, "corner '" + token.substr(0, 40) + "' is no index");
+          if (!values.whole(index))
+            return at_instance(StatusCode::unreadable_file, e, i, "corner " + values.shown() + " is no index");
           corners.push_back(index);
         }
         // A polygon of n corners makes n - 2 triangles, a strip at most that.
@@ -159,6 +232,21 @@ Result<Mesh> read_ascii_ply(std::istream& in, const PlyHeader& h, std::uint64_t 
   if (mesh.triangles.empty()) return Status{StatusCode::empty_scene, "no face"};
   mesh.material_ids.assign(mesh.triangles.size(), 0);
   return mesh;
+}
+
+} // namespace
+
+Result<Mesh> read_ply_body(std::ifstream& in, const PlyHeader& h, std::uint64_t file_bytes,
+                           std::uint64_t triangle_limit, int& skipped) {
+  if (h.ascii) {
+    in.clear();
+    in.seekg(static_cast<std::streamoff>(h.after_line));
+    AsciiValues values(in);
+    return read_elements(values, h, triangle_limit, skipped);
+  }
+  BodyReader body(in, h.data_at, file_bytes - std::min(file_bytes, h.data_at));
+  BinaryValues values(body, h.big_endian);
+  return read_elements(values, h, triangle_limit, skipped);
 }
 
 } // namespace hullcover::detail

@@ -1,14 +1,18 @@
-// The project's ASCII PLY reader (lib/mesh/src/ply_ascii_reader.h), through
-// import_mesh as every command reaches it: coordinates in double, extra
-// elements and properties read past, polygons triangulated, and a clear
-// failure naming the element for every malformed value.
+// The project's PLY reader (lib/mesh/src/ply_reader.h), ASCII and binary,
+// through import_mesh as every command reaches it: coordinates in double,
+// extra elements and properties read past, polygons triangulated, and a
+// clear failure naming the element for every malformed value.
 
 #include "hullcover/mesh/mesh_import.h"
 
+#include "ply_value_bytes.h"
 #include "temp_dir.h"
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cstdint>
+#include <limits>
 #include <string>
 
 namespace hullcover {
@@ -102,6 +106,71 @@ TEST(PlyAsciiReader, NegativeCornersAndVerticesWithoutCoordinatesAreRefused) {
   const Result<ImportedMesh> flat = import_mesh(dir.write("no_z.ply", no_z));
   ASSERT_FALSE(flat.ok());
   EXPECT_NE(flat.status().message().find("no x, y and z"), std::string::npos) << flat.status().message();
+}
+
+// A unit square 1e5 out as two triangles, its coordinates binary doubles, a
+// signed 16-bit `confidence` read past, corner lists of uchar length and
+// uint corners, and a last element the reader reads past.
+std::string binary_far_square(bool big_endian) {
+  std::string ply = std::string("ply\nformat ") + (big_endian ? "binary_big_endian" : "binary_little_endian") +
+                    " 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\n"
+                    "property short confidence\nelement face 2\nproperty list uchar uint vertex_indices\n"
+                    "element camera 1\nproperty float view_px\nend_header\n";
+  const double corners[4][3] = {{100000.12345678901, 100000, -100000},
+                                {100001.12345678901, 100000, -100000},
+                                {100001.12345678901, 100001, -100000},
+                                {100000.12345678901, 100001, -100000}};
+  for (const auto& corner : corners) {
+    for (double c : corner) ply += test::ply_value_bytes(c, big_endian);
+    ply += test::ply_value_bytes(std::int16_t{-2}, big_endian);
+  }
+  for (const auto& face : {std::array<std::uint32_t, 3>{0, 1, 2}, {0, 2, 3}}) {
+    ply += test::ply_value_bytes(std::uint8_t{3}, big_endian);
+    for (std::uint32_t corner : face) ply += test::ply_value_bytes(corner, big_endian);
+  }
+  return ply + test::ply_value_bytes(0.5f, big_endian);
+}
+
+TEST(PlyBinaryReader, DoublesKeepTheirDigitsInEitherByteOrder) {
+  TempDir dir;
+  for (bool big_endian : {false, true}) {
+    SCOPED_TRACE(big_endian ? "big-endian" : "little-endian");
+    const Result<ImportedMesh> read = import_mesh(dir.write("square.ply", binary_far_square(big_endian)));
+    ASSERT_TRUE(read.ok()) << read.status().message();
+    const Mesh& mesh = read.value().mesh;
+    ASSERT_EQ(mesh.positions.size(), 4u);
+    EXPECT_EQ(mesh.positions[1], Eigen::Vector3d(100001.12345678901, 100000, -100000)); // float32: 100001.125
+    ASSERT_EQ(mesh.triangles.size(), 2u);
+    EXPECT_EQ(mesh.triangles[1], Eigen::Vector3i(0, 2, 3));
+    EXPECT_LT(mesh.coordinate_error, 1e-10);
+  }
+}
+
+TEST(PlyBinaryReader, DamagedBodiesAreRefusedNamingTheElement) {
+  TempDir dir;
+  std::string cut = binary_far_square(false);
+  cut.resize(cut.size() - 4 - 3); // inside face #1's corners
+  const Result<ImportedMesh> short_body = import_mesh(dir.write("cut.ply", cut));
+  ASSERT_FALSE(short_body.ok());
+  EXPECT_EQ(short_body.status().code(), StatusCode::unreadable_file);
+  EXPECT_NE(short_body.status().message().find("face #1"), std::string::npos) << short_body.status().message();
+
+  std::string far_corner = binary_far_square(true);
+  const std::size_t last_corner = far_corner.size() - 4 - 4;
+  far_corner.replace(last_corner, 4, test::ply_value_bytes(std::uint32_t{7}, true));
+  const Result<ImportedMesh> out_of_range = import_mesh(dir.write("corner.ply", far_corner));
+  ASSERT_FALSE(out_of_range.ok());
+  EXPECT_EQ(out_of_range.status().code(), StatusCode::index_out_of_range) << out_of_range.status().message();
+  EXPECT_NE(out_of_range.status().message().find("face #1: corner 7 names no vertex"), std::string::npos)
+      << out_of_range.status().message();
+
+  std::string infinite = binary_far_square(false);
+  const std::size_t second_y = infinite.find("end_header\n") + 11 + 26 + 8;
+  infinite.replace(second_y, 8, test::ply_value_bytes(std::numeric_limits<double>::infinity(), false));
+  const Result<ImportedMesh> not_finite = import_mesh(dir.write("inf.ply", infinite));
+  ASSERT_FALSE(not_finite.ok());
+  EXPECT_EQ(not_finite.status().code(), StatusCode::non_finite_coordinate) << not_finite.status().message();
+  EXPECT_NE(not_finite.status().message().find("vertex #1"), std::string::npos) << not_finite.status().message();
 }
 
 } // namespace
