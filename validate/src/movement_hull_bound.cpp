@@ -101,8 +101,8 @@ Result<MovementHullBound> run_bound(const PreparedMesh& scene, const MovementAud
   const Result<double> parting = detail::parting_reach(shape.value().radius, shape.value().slop, tol);
   if (!parting.ok()) return parting.status();
   const detail::TriangleDistances distances(scene.mesh);
-  // The reach's share of the progress: from a twentieth to more than the
-  // bound's own time on the shared levels.
+  // The reach's share of the progress, a guess: on the shared levels the
+  // reach takes from a twentieth of the bound's time to more than all of it.
   constexpr double kReachShareAlone = 0.1;
   Result<detail::AuditReach> reach = detail::audit_reach(scene, distances, options, threads);
   if (!reach.ok()) return reach.status();
