@@ -1,7 +1,7 @@
 #pragma once
 // A PLY file's header, read the way Assimp reads it: shared by the PLY
-// pre-check (ply_file_checks.h) and the project's ASCII PLY reader
-// (ply_ascii_reader.h), so both see the elements Assimp would.
+// pre-check (ply_file_checks.h) and the project's PLY reader
+// (ply_reader.h), so both see the same elements.
 
 #include "ply_walk.h"
 
