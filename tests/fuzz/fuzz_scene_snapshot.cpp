@@ -45,9 +45,11 @@ void copy_folder_of_files(const std::string& from, const std::string& to) {
   std::filesystem::create_directory(to);
   for (const std::filesystem::directory_entry& entry : std::filesystem::directory_iterator(from)) {
     std::ifstream in(entry.path(), std::ios::binary);
+    if (!in) std::abort();
     const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     std::ofstream out(std::filesystem::path(to) / entry.path().filename(), std::ios::binary);
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    out.close();
     if (in.bad() || !out) std::abort();
   }
 }

@@ -3,6 +3,8 @@
 // extra elements and properties read past, polygons triangulated, and a
 // clear failure naming the element for every malformed value.
 
+#include "ply_reader.h"
+
 #include "hullcover/mesh/mesh_import.h"
 
 #include "ply_value_bytes.h"
@@ -12,6 +14,8 @@
 
 #include <array>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <string>
 
@@ -171,6 +175,49 @@ TEST(PlyBinaryReader, DamagedBodiesAreRefusedNamingTheElement) {
   ASSERT_FALSE(not_finite.ok());
   EXPECT_EQ(not_finite.status().code(), StatusCode::non_finite_coordinate) << not_finite.status().message();
   EXPECT_NE(not_finite.status().message().find("vertex #1"), std::string::npos) << not_finite.status().message();
+}
+
+// The reader's own checks, asked directly: the pre-check import_mesh runs
+// first refuses these files already.
+Result<Mesh> read_body_of(const std::string& path, std::uint64_t triangle_limit, int& skipped) {
+  std::ifstream in(path, std::ios::binary);
+  const std::uint64_t bytes = static_cast<std::uint64_t>(std::filesystem::file_size(path));
+  detail::PlyHeader header;
+  if (Status read = detail::read_ply_header(in, bytes, header); !read.ok()) return read;
+  return detail::read_ply_body(in, header, bytes, triangle_limit, skipped);
+}
+
+TEST(PlyBinaryReader, ItsOwnCheckRefusesABodyEndingInsideAList) {
+  TempDir dir;
+  int skipped = 0;
+  std::string cut = binary_far_square(false);
+  cut.resize(cut.size() - 4 - 3); // inside face #1's corners
+  const Result<Mesh> short_body = read_body_of(dir.write("cut.ply", cut), 100, skipped);
+  ASSERT_FALSE(short_body.ok());
+  EXPECT_EQ(short_body.status().code(), StatusCode::unreadable_file);
+  EXPECT_NE(short_body.status().message().find("face #1: the data ends inside a list"), std::string::npos)
+      << short_body.status().message();
+}
+
+TEST(PlyAsciiReader, FacesTooShortForATriangleAreCountedNotKept) {
+  TempDir dir;
+  std::string text =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1003\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n";
+  for (int i = 0; i < 1000; ++i) text += i % 2 ? "2 0 1\n" : "0\n";
+  text += "3 0 1 2\n1 2\n3 2 1 0\n";
+  int skipped = 0;
+  const Result<Mesh> read = read_body_of(dir.write("short_faces.ply", text), 2, skipped);
+  ASSERT_TRUE(read.ok()) << read.status().message(); // two triangles, within a limit of 2
+  EXPECT_EQ(read.value().triangles.size(), 2u);
+  EXPECT_EQ(skipped, 1001);
+  // One triangle allowed: the last face, the second triangle, is refused.
+  const Result<Mesh> limited = read_body_of(dir.write("short_faces.ply", text), 1, skipped);
+  ASSERT_FALSE(limited.ok());
+  EXPECT_EQ(limited.status().code(), StatusCode::limit_exceeded);
+  EXPECT_NE(limited.status().message().find("face #1002: more than 1 triangles"), std::string::npos)
+      << limited.status().message();
 }
 
 } // namespace

@@ -127,14 +127,12 @@ Status read_ply_header(std::istream& in, std::uint64_t file_bytes, PlyHeader& h)
   at = std::min(at, text.size());
   h.after_line = at;
   h.line_number += static_cast<std::uint64_t>(std::count(text.data(), text.data() + at, '\n'));
-  // Assimp starts binary data one byte later when that byte is '\n', meant
-  // as the second half of a "\r\n" line end; after a plain '\n' it is data.
-  const bool newline_next = at < text.size() && text[at] == '\n';
-  if (!h.ascii && newline_next && text[at - 1] == '\n')
-    return damaged_file(
-        "binary PLY data starts with byte 0x0A, which Assimp would skip as part of the 'end_header' "
-        "line's end, reading every value one byte off");
-  h.data_at = at + (newline_next ? 1 : 0);
+  // Binary data starts after the line's end: a '\n', or the '\n' of a
+  // "\r\n" (the line read ends at its '\r'). A first data byte of 0x0A after
+  // a '\n' is data (Assimp skipped it, reading every value a byte off; the
+  // project's reader reads PLY now).
+  const bool crlf = at < text.size() && text[at] == '\n' && text[at - 1] == '\r';
+  h.data_at = at + (crlf ? 1 : 0);
   return Status::success();
 }
 

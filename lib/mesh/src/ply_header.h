@@ -20,7 +20,7 @@ struct PlyHeader {
   std::vector<Element> elements;
   std::uint64_t after_line = 0;  ///< just past the byte ending the 'end_header' line: Assimp's next line read
   std::uint64_t line_number = 1; ///< of the line at after_line
-  std::uint64_t data_at = 0;     ///< binary data, as Assimp reads it
+  std::uint64_t data_at = 0;     ///< binary data: past the 'end_header' line's "\n" or "\r\n"
 };
 
 /// Reads the header at the start of `in` (`file_bytes` long) the way Assimp

@@ -5,6 +5,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <vector>
@@ -159,7 +160,15 @@ Result<Mesh> read_elements(Values& values, const PlyHeader& h, std::uint64_t tri
         if (!values.whole(length) || length < 0)
           return at_instance(StatusCode::unreadable_file, e, i,
                              "list length " + values.shown() + " is not a whole number");
-        const bool kept = (polygons || strips) && k == corner_list;
+        // A polygon of n corners makes n - 2 triangles, a strip at most
+        // that: counted before its corners are kept, and a list too short
+        // for a triangle keeps none, so the limit bounds what is kept.
+        const bool kept = (polygons || strips) && k == corner_list && length >= 3;
+        if (kept) triangles += static_cast<std::uint64_t>(length) - 2;
+        if (triangles > triangle_limit)
+          return at_instance(
+              StatusCode::limit_exceeded, e, i,
+              "more than " + std::to_string(triangle_limit) + " triangles (raise it with --max-triangles)");
         for (long long item = 0; item < length; ++item) {
           if (!values.next(property.value))
             return at_instance(StatusCode::unreadable_file, e, i, "the data ends inside a list");
@@ -169,18 +178,13 @@ Result<Mesh> read_elements(Values& values, const PlyHeader& h, std::uint64_t tri
             return at_instance(StatusCode::unreadable_file, e, i, "corner " + values.shown() + " is no index");
           corners.push_back(index);
         }
-        // A polygon of n corners makes n - 2 triangles, a strip at most that.
-        if (kept && length >= 3) triangles += static_cast<std::uint64_t>(length) - 2;
-        if (triangles > triangle_limit)
-          return at_instance(
-              StatusCode::limit_exceeded, e, i,
-              "more than " + std::to_string(triangle_limit) + " triangles (raise it with --max-triangles)");
       }
       if (vertices) mesh.positions.push_back(p);
-      if (polygons || strips) {
-        run.end = corners.size();
+      run.end = corners.size();
+      if (run.end > run.begin)
         runs.push_back(run);
-      }
+      else if (polygons && skipped < std::numeric_limits<int>::max())
+        ++skipped; // fewer than three corners
     }
   }
   Element face_element, strip_element;
@@ -211,10 +215,6 @@ Result<Mesh> read_elements(Values& values, const PlyHeader& h, std::uint64_t tri
         else
           mesh.triangles.emplace_back(b, a, d);
       }
-      continue;
-    }
-    if (run.end - run.begin < 3) {
-      ++skipped;
       continue;
     }
     polygon.clear();

@@ -80,21 +80,30 @@ inline void parallel_for_ordered(int count, int threads, int batch, const std::f
 }
 
 /// Runs `job(i)` for every i in [0, count) as parallel_for does, and when
-/// `done` is set, in about `steps` batches, calling `done(fraction)` on the
-/// calling thread after each with the fraction of the jobs finished: a
-/// progress report for work whose jobs land in slots of their own.
+/// `done` is set, calls `done(fraction)` with the fraction of the jobs
+/// finished, rising, at most `steps` times and last with 1: from the
+/// calling thread, as it finishes jobs of its own (it is one of the
+/// threads), so the others never wait for a report.
 inline void parallel_for_reporting(int count, int threads, int steps, const std::function<void(int)>& job,
                                    const std::function<void(double)>& done) {
   if (!done) {
     parallel_for(count, threads, job);
     return;
   }
-  const int batch = std::max(1, (count + std::max(1, steps) - 1) / std::max(1, steps));
-  for (int first = 0; first < count; first += batch) {
-    const int size = std::min(batch, count - first);
-    parallel_for(size, threads, [&](int k) { job(first + k); });
-    done(static_cast<double>(first + size) / count);
-  }
+  const std::thread::id caller = std::this_thread::get_id();
+  std::atomic<int> finished{0};
+  long long told = 0; // the last step reported; only the caller reads it
+  parallel_for(count, threads, [&](int i) {
+    job(i);
+    const int now = ++finished;
+    if (std::this_thread::get_id() != caller) return;
+    const long long step = static_cast<long long>(now) * steps / count;
+    if (step > told && step < steps) {
+      told = step;
+      done(static_cast<double>(now) / count);
+    }
+  });
+  done(1.0);
 }
 
 } // namespace hullcover
