@@ -71,10 +71,14 @@ bool AgentLattice::reachable_near(const Eigen::Vector3d& p) const {
   return false;
 }
 
+bool AgentLattice::holds(const Eigen::Vector3d& at) const {
+  // Written so that a NaN coordinate lies off the lattice.
+  return (at.array() >= 0.0).all() && (at.array() < dims.cast<double>().array()).all();
+}
+
 bool AgentLattice::nearest_reachable(const Eigen::Vector3d& p, Eigen::Vector3d& nearest) const {
   const Eigen::Vector3d at = ((p - origin) / spacing).array().round();
-  // Written so that a NaN coordinate lies off the lattice.
-  if (!((at.array() >= 0.0).all() && (at.array() < dims.cast<double>().array()).all())) return false;
+  if (!holds(at)) return false;
   const Eigen::Vector3i g = at.cast<int>();
   nearest = point(g.x(), g.y(), g.z());
   return reachable(g.x(), g.y(), g.z());
@@ -85,8 +89,7 @@ bool AgentLattice::reachable_for_walker(const Eigen::Vector3d& p, int up_axis, d
   if (nearest_reachable(p, nearest)) return true;
   const Eigen::Vector3d at = (p - origin) / spacing;
   const auto reachable_at = [&](const Eigen::Vector3d& c) {
-    if (!((c.array() >= 0.0).all() && (c.array() < dims.cast<double>().array()).all())) return false;
-    return reachable(static_cast<int>(c.x()), static_cast<int>(c.y()), static_cast<int>(c.z()));
+    return holds(c) && reachable(static_cast<int>(c.x()), static_cast<int>(c.y()), static_cast<int>(c.z()));
   };
   const int across_a = (up_axis + 1) % 3, across_b = (up_axis + 2) % 3;
   Eigen::Vector3d above;

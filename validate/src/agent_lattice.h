@@ -64,6 +64,9 @@ struct AgentLattice {
   /// point `p` at clearance r or more, it is then reachable itself (the two,
   /// less than 2 r apart and both clear, have no surface between them).
   bool reachable_near(const Eigen::Vector3d& p) const;
+  /// Whether the whole lattice coordinates `at` name a point of the
+  /// lattice (a NaN names none).
+  bool holds(const Eigen::Vector3d& at) const;
   /// Whether the lattice point nearest to `p` is reachable; that point in
   /// `nearest` (left as it was when `p` lies off the lattice).
   bool nearest_reachable(const Eigen::Vector3d& p, Eigen::Vector3d& nearest) const;
